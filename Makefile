@@ -1,0 +1,61 @@
+# rockdem — build, run, test. `make run` and `make test` install missing Debian packages first.
+CC      ?= cc
+PKGS    := hdf5-serial gsl
+OPT     ?= -O2 -march=x86-64-v2
+CFLAGS  ?= $(OPT) -g
+WFLAGS  := -std=c11 -Wall -Wextra -Werror -D_DEFAULT_SOURCE
+PKGCFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKGLIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lhdf5_hl
+SUNLIBS := -lsundials_cvode -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense
+ALL_CFLAGS = $(WFLAGS) $(CFLAGS) $(SAN) -Iinclude -Isrc $(PKGCFLAGS)
+LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lm
+
+BUILD   ?= build
+BIN     ?= bin
+LIBSRC  := $(filter-out src/main.c,$(wildcard src/*.c))
+LIBOBJ  := $(LIBSRC:src/%.c=$(BUILD)/obj/%.o)
+TESTSRC := $(wildcard tests/test_*.c)
+TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
+HEADERS := $(wildcard include/rockdem/*.h src/*.h)
+DEPS_STAMP := $(BUILD)/.deps-ok
+
+.PHONY: all run test asan bench deps clean
+
+all: $(BIN)/rockdem
+
+deps: $(DEPS_STAMP)
+$(DEPS_STAMP): tools/install-deps.sh
+	@bash tools/install-deps.sh
+	@mkdir -p $(dir $@) && touch $@
+
+$(BUILD)/obj/%.o: src/%.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/librockdem.a: $(LIBOBJ)
+	@mkdir -p $(dir $@)
+	ar rcs $@ $^
+
+$(BIN)/rockdem: src/main.c $(BUILD)/librockdem.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) src/main.c $(BUILD)/librockdem.a $(LDLIBS) -o $@
+
+$(BUILD)/tests/%: tests/%.c $(BUILD)/librockdem.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $< $(BUILD)/librockdem.a $(LDLIBS) -lcmocka -o $@
+
+run: $(BIN)/rockdem
+	$(BIN)/rockdem run scenarios/default.dat
+
+test: $(BIN)/rockdem $(TESTBIN)
+	@bash tests/run.sh $(BUILD) $(BIN)
+
+asan:
+	$(MAKE) test BUILD=build-asan BIN=build-asan/bin OPT=-O1 \
+	    SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
+
+bench: $(BIN)/rockdem
+	@bash bench/run.sh $(BIN)
+
+clean:
+	rm -rf build build-asan bin

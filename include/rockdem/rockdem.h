@@ -1,0 +1,102 @@
+/* rockdem — distinct-element simulation of freestanding rigid blocks under ground motion.
+ *
+ * Usage (REBOUND-style: one simulation object, a status enum from the run call):
+ *     rd_scenario sc; rd_error err;
+ *     if (rd_scenario_load(&sc, "run.dat", &err)) { fprintf(stderr, "%s\n", err.msg); ... }
+ *     rd_sim *sim = rd_sim_create(&sc, &err);
+ *     rd_status st = rd_sim_run(sim);
+ *     rd_sim_summary(sim, &summary);
+ *     rd_sim_free(sim); rd_scenario_free(&sc);
+ */
+#ifndef ROCKDEM_H
+#define ROCKDEM_H
+
+#include "rockdem/error.h"
+#include "rockdem/scenario.h"
+#include "rockdem/motion.h"
+
+#define RD_VERSION "0.1.0"
+
+typedef enum rd_status {
+    RD_STATUS_DONE = 0,        /* ran for the requested duration */
+    RD_STATUS_OVERTURNED = 1,  /* stopped early: every free body overturned (criterion met) */
+    RD_STATUS_INTERRUPTED = 2, /* stopped by a signal (Ctrl-C); output holds everything so far */
+    RD_STATUS_UNSTABLE = 3,    /* NaN/Inf or runaway velocity: stopped, cause in rd_sim_error() */
+    RD_STATUS_IO_ERROR = 4     /* the output file could not be written */
+} rd_status;
+
+/* What a run found, per free body and overall (written as HDF5 summary attributes). */
+typedef struct rd_body_summary {
+    char name[RD_NAME_MAX];
+    int overturned;        /* 1 if the overturn criterion was met */
+    double overturn_time;  /* s, -1 if never */
+    double max_tilt;       /* max angle between the body's initial and current vertical axis, rad */
+    double alpha;          /* static tipping angle of the body about its base edge, rad */
+    double max_tilt_ratio; /* max_tilt / alpha */
+    double max_slide;      /* max horizontal displacement of the base centre from its start, m */
+    double final_slide;    /* same, at the end, m */
+    int uplifted;          /* 1 if the body ever lost contact over part of its base */
+    int slid;              /* 1 if any subcontact slipped while the body was loaded */
+} rd_body_summary;
+
+typedef struct rd_summary {
+    int nbodies;                 /* free bodies */
+    rd_body_summary body[RD_MAX_BODIES];
+    int any_overturned;
+    double end_time;             /* simulated time reached, s */
+    double dt;                   /* time step used, s */
+    double dt_critical;          /* estimated critical step, s */
+    long steps;                  /* steps taken in the shaking stage */
+    double settle_time;          /* simulated settling time, s */
+    double energy_residual_max;  /* max |balance residual| / energy scale */
+    double wall_seconds;         /* wall-clock time of the shaking stage, s */
+    rd_status status;
+} rd_summary;
+
+/* Something that happened during the run (also written to /events in the HDF5 file). */
+typedef struct rd_event {
+    double time;   /* s */
+    int body;      /* index among the free bodies (output order), -1 for the whole scene */
+    char type[16]; /* uplift, impact, slip, overturn, recover, unstable, unsettled */
+    double value;  /* uplift/overturn/recover: tilt (rad); impact: angular speed before (rad/s);
+                      slip: slide so far (m); unsettled: force ratio reached */
+} rd_event;
+
+typedef struct rd_sim rd_sim;
+
+/* Build the simulation (geometry, subcontact points, time step, output file). NULL on error. */
+rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
+
+/* Settle (if asked), then shake for the scenario's duration. Writes the HDF5 file as it goes. */
+rd_status rd_sim_run(rd_sim *sim);
+
+/* Fill the summary (valid after rd_sim_run, also after an early stop). */
+void rd_sim_summary(const rd_sim *sim, rd_summary *out);
+
+/* The message for an UNSTABLE or IO_ERROR status ("" otherwise). */
+const char *rd_sim_error(const rd_sim *sim);
+
+/* Ask a running simulation to stop at the next step (async-signal-safe). */
+void rd_sim_request_stop(void);
+
+/* Events so far (n receives the count); valid until the next run call or rd_sim_free. */
+const rd_event *rd_sim_events(const rd_sim *sim, int *n);
+
+/* State of free body k (output order): centre of mass x (m), orientation q (w,x,y,z),
+ * velocity v (m/s) and angular velocity w (rad/s), ground frame. Any pointer may be NULL. */
+void rd_sim_body_state(const rd_sim *sim, int k, double x[3], double q[4], double v[3], double w[3]);
+
+/* Energies of the last step, J, in the order kinetic, gravitational, elastic, friction,
+ * damping, ground_work, residual. */
+void rd_sim_energy(const rd_sim *sim, double e[7]);
+
+/* Number of subcontact points (all bodies) and the time step in use (s). */
+int rd_sim_point_count(const rd_sim *sim);
+double rd_sim_dt(const rd_sim *sim);
+
+/* Sum over the shaking steps of the active subcontacts (for ns per subcontact-step). */
+long rd_sim_active_point_steps(const rd_sim *sim);
+
+void rd_sim_free(rd_sim *sim);
+
+#endif

@@ -1,0 +1,152 @@
+/* rockdem — the scenario: everything a run needs, as plain definition structs (Box2D-style
+ * "*Def" structs with a defaults function). The parser (scenario.c) fills them from a text
+ * file; the engine (sim.c) only reads them. SI units everywhere: m, kg, s, N, Pa, rad.
+ */
+#ifndef ROCKDEM_SCENARIO_H
+#define ROCKDEM_SCENARIO_H
+
+#include "rockdem/error.h"
+
+#define RD_NAME_MAX 64
+#define RD_PATH_MAX 512
+#define RD_MAX_BODIES 256
+
+typedef enum rd_shape_kind {
+    RD_SHAPE_BRICK = 0 /* rectangular box, edge lengths size[0..2] along its local x, y, z */
+} rd_shape_kind;
+
+typedef struct rd_body_def {
+    char name[RD_NAME_MAX];     /* unique; default "block<k>" (k = 1-based creation order) */
+    rd_shape_kind shape;        /* RD_SHAPE_BRICK */
+    double size[3];             /* brick edge lengths, m (> 0) */
+    double position[3];         /* centroid in the ground frame, m (z up) */
+    double rotation[3];         /* initial orientation: rotations about world x, then y, then z, rad */
+    double density;             /* kg/m^3; <= 0 means "use rd_scenario.density" */
+    double mass;                /* kg; > 0 overrides density (density = mass / volume) */
+    int fixed;                  /* 1: pedestal, rigidly attached to the shaking ground */
+    double velocity[3];         /* initial velocity of the centre of mass, m/s */
+    double angular_velocity[3]; /* initial angular velocity, world frame, rad/s */
+    double tilt;                /* initial tilt about the base edge (pivot) on the side of
+                                   tilt_direction, rad (>= 0); 0 = none */
+    double tilt_direction;      /* horizontal direction the body leans towards, rad from +x */
+    int line;                   /* scenario line that created the body (for messages) */
+} rd_body_def;
+
+/* Contact law: 3DEC Coulomb-slip joint (seed 002 eqs. 1-2), one property set for all pairs. */
+typedef struct rd_contact_def {
+    double kn;        /* normal stiffness per unit area, Pa/m (default 1e10) */
+    double ks;        /* shear stiffness per unit area, Pa/m (default 1e9) */
+    double friction;  /* friction angle, rad (default 40 deg) */
+    double cohesion;  /* peak cohesion, Pa (default 0); drops to 0 at the first slip */
+    double tension;   /* peak tensile strength, Pa (default 0); drops to 0 at the first opening */
+    double spacing;   /* subcontact spacing on contact faces, m; 0 = face vertices only
+                         (3DEC's fewest-triangle default); default: automatic (< 0), one tenth
+                         of the smallest face dimension of the mobile bodies */
+} rd_contact_def;
+
+typedef enum rd_damping_kind {
+    RD_DAMPING_NONE = 0,    /* default, as in seed 002 */
+    RD_DAMPING_VISCOUS = 1, /* normal dashpot at each subcontact, ratio of critical damping of the
+                               active contact's normal mode */
+    RD_DAMPING_LOCAL = 2    /* Cundall local damping, F_d = -alpha |F| sign(v) per DOF */
+} rd_damping_kind;
+
+typedef struct rd_damping_def {
+    rd_damping_kind kind;
+    double value; /* viscous: critical-damping ratio (0..1]; local: alpha (0..1) */
+} rd_damping_def;
+
+typedef enum rd_pulse_kind {
+    RD_PULSE_NONE = 0,
+    RD_PULSE_ONE_SINE,    /* a sin(2 pi f t), one full cycle                          */
+    RD_PULSE_ONE_COSINE,  /* a cos(2 pi f t), one full cycle                          */
+    RD_PULSE_RECTANGULAR, /* a for 0 <= t < duration (one-sided)                      */
+    RD_PULSE_TRIANGLE,    /* rises linearly to a at duration/2, back to 0 at duration */
+    RD_PULSE_HARMONIC     /* a sin(2 pi f t) for `cycles` cycles                      */
+} rd_pulse_kind;
+
+typedef struct rd_pulse_def {
+    rd_pulse_kind kind;
+    double amplitude; /* m/s^2 (the parser converts g) */
+    double frequency; /* Hz (sine, cosine, harmonic) */
+    double duration;  /* s (rectangular, triangle); for the others derived from frequency */
+    double cycles;    /* harmonic only, default 1 */
+    double start;     /* time the pulse starts, s (default 0) */
+    double direction; /* horizontal pulses: direction of +acceleration, rad from +x (default 0) */
+    int line;         /* scenario line that defined it */
+} rd_pulse_def;
+
+typedef struct rd_motion_def {
+    rd_pulse_def horizontal; /* kind NONE = no horizontal motion */
+    rd_pulse_def vertical;   /* kind NONE = no vertical motion; + is up */
+} rd_motion_def;
+
+typedef enum rd_timestep_kind { RD_TIMESTEP_AUTO = 0, RD_TIMESTEP_FIXED = 1 } rd_timestep_kind;
+
+typedef struct rd_timestep_def {
+    rd_timestep_kind kind;
+    double safety; /* auto: fraction of the critical step (default 0.2, in (0, 1]) */
+    double dt;     /* fixed: the step, s; refused when above the stable limit */
+} rd_timestep_def;
+
+typedef struct rd_settle_def {
+    int enabled;     /* 1: bring the scene to rest under gravity before shaking (default 1) */
+    double ratio;    /* stop when max |unbalanced force| / weight < ratio (default 1e-6) */
+    double max_time; /* give up after this much settling time, s (default 5) */
+} rd_settle_def;
+
+typedef enum rd_overturn_kind {
+    RD_OVERTURN_TILT_RATIO = 0, /* tilt of the body's vertical axis / its alpha >= value (default 1.5) */
+    RD_OVERTURN_ANGLE = 1,      /* tilt >= value, rad */
+    RD_OVERTURN_HEIGHT = 2      /* centre of mass below value times its initial height */
+} rd_overturn_kind;
+
+typedef struct rd_overturn_def {
+    rd_overturn_kind kind;
+    double value;
+    int stop; /* 1: end the run when every free body has overturned (default 1) */
+} rd_overturn_def;
+
+typedef struct rd_output_def {
+    char path[RD_PATH_MAX]; /* HDF5 file; default "rockdem.h5" */
+    double interval;        /* s between samples; default 0.005 */
+} rd_output_def;
+
+typedef struct rd_scenario {
+    char file[RD_PATH_MAX]; /* file the scenario came from (for messages and output) */
+    char title[128];        /* free text, `model title '...'` */
+    char *text;             /* the scenario text as read, with overrides appended (owned) */
+    double gravity;         /* m/s^2, acts along -z (default 9.81) */
+    double density;         /* default body density, kg/m^3 (default 2700) */
+    int nbodies;
+    rd_body_def bodies[RD_MAX_BODIES];
+    rd_contact_def contact;
+    rd_damping_def damping;
+    rd_motion_def motion;
+    rd_timestep_def timestep;
+    rd_settle_def settle;
+    double duration; /* s of shaking + free motion after settling (`model solve time`), > 0 */
+    rd_overturn_def overturn;
+    rd_output_def output;
+} rd_scenario;
+
+/* Fill every field with its default (no bodies, no motion). */
+void rd_scenario_defaults(rd_scenario *sc);
+
+/* Parse a scenario file into sc (defaults first). Returns 0, or -1 with err = "file:line:col: ...". */
+int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err);
+
+/* Parse scenario text held in memory; `name` is used as the file name in messages. */
+int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_error *err);
+
+/* Apply a command-line override "section.key=value", e.g. "contact.stiffness-normal=1e10",
+ * "motion.amplitude=0.4g", "output.file=x.h5", "body.cask.density=2500". Returns 0 or -1. */
+int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err);
+
+/* Cross-field checks after all overrides (at least one free body, positive sizes, ...). */
+int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
+
+/* Free what rd_scenario_load/parse allocated (the text). */
+void rd_scenario_free(rd_scenario *sc);
+
+#endif

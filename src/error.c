@@ -1,0 +1,16 @@
+/* rockdem — rd_error: one line of text describing the last failure. */
+#include "rockdem/error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+int rd_error_set(rd_error *err, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        va_end(ap);
+    }
+    return -1;
+}

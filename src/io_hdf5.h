@@ -1,0 +1,86 @@
+/* rockdem (private) — HDF5 writer. The file is written incrementally: samples are buffered and
+ * appended to chunked, deflate-compressed, extendible datasets, then H5Fflush'ed, so a run that
+ * stops early (Ctrl-C, NaN, error) leaves a valid file with everything written so far.
+ *
+ * Layout (all SI):
+ *   /                      attributes: program, version, scenario (full text), scenario_file,
+ *                          title, dt, dt_critical, damping, overturn_criterion, contact law params
+ *   /bodies/names          [nb] fixed strings, free bodies in output order
+ *   /bodies/<name>/        attributes: mass, inertia_principal[3], size[3], alpha, fixed;
+ *                          datasets: vertices [nv][3] (body frame, about the centre of mass),
+ *                          faces [nf][3] (triangles, vertex indices)
+ *   /time                  [N]         s
+ *   /position              [N][nb][3]  centre of mass, ground frame, m
+ *   /quaternion            [N][nb][4]  w, x, y, z (body -> ground frame)
+ *   /velocity              [N][nb][3]  m/s, relative to the ground
+ *   /angular_velocity      [N][nb][3]  rad/s, ground frame
+ *   /tilt                  [N][nb]     angle of the body's initial vertical axis from vertical, rad
+ *   /ground/acceleration   [N][3]      m/s^2 as applied
+ *   /ground/velocity       [N][3]      m/s
+ *   /ground/displacement   [N][3]      m
+ *   /energy/<name>         [N]         J: kinetic, gravitational, elastic, friction, damping,
+ *                                      ground_work, residual (balance residual, J)
+ *   /events                compound [M]: time (s), body (index into names, -1 = none),
+ *                          type (string: uplift, impact, slip, overturn, unstable, ...), value
+ *   /summary               group, attributes from rd_summary (overturned, overturn_time,
+ *                          max_tilt, max_tilt_ratio, max_slide, ... per body as arrays)
+ */
+#ifndef RD_IO_HDF5_H
+#define RD_IO_HDF5_H
+
+#include "rockdem/rockdem.h"
+
+#define RD_NENERGY 7
+extern const char *const rd_energy_names[RD_NENERGY]; /* order of rd_h5_sample.energy */
+
+typedef struct rd_h5_body {
+    const char *name;
+    double mass;          /* kg */
+    double inertia[3];    /* principal moments, kg m^2 */
+    double size[3];       /* m (brick) */
+    double alpha;         /* static tipping angle, rad */
+    int nvert;
+    const double *vertices; /* [nvert][3], body frame, m */
+    int ntri;
+    const int *triangles;   /* [ntri][3] */
+} rd_h5_body;
+
+typedef struct rd_h5_meta {
+    const char *scenario_text;
+    const char *scenario_file;
+    const char *title;
+    double dt, dt_critical;
+    const char *damping;            /* e.g. "none", "viscous 0.05", "local 0.8" */
+    const char *overturn_criterion; /* e.g. "tilt-ratio 1.5" */
+    double kn, ks, friction, cohesion, tension, spacing; /* contact law, SI (friction in rad) */
+    int nbodies;                    /* free bodies written per sample */
+    const rd_h5_body *bodies;
+} rd_h5_meta;
+
+typedef struct rd_h5_sample {
+    double time;
+    const double *position;         /* [nb][3] */
+    const double *quaternion;       /* [nb][4] */
+    const double *velocity;         /* [nb][3] */
+    const double *angular_velocity; /* [nb][3] */
+    const double *tilt;             /* [nb] */
+    double ground_acc[3], ground_vel[3], ground_disp[3];
+    double energy[RD_NENERGY];
+} rd_h5_sample;
+
+typedef struct rd_h5 rd_h5;
+
+/* Create (truncate) the file and write the metadata. NULL with err filled on failure. */
+rd_h5 *rd_h5_open(const char *path, const rd_h5_meta *meta, rd_error *err);
+/* Append one sample (buffered; written and flushed every few hundred samples). 0 or -1. */
+int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err);
+/* Append one event row (written at the next flush). type is a short word. 0 or -1. */
+int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err);
+/* Write buffered samples and events, then H5Fflush. 0 or -1. */
+int rd_h5_flush(rd_h5 *h, rd_error *err);
+/* Write the /summary group (may be called more than once; last call wins). 0 or -1. */
+int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err);
+/* Flush and close; safe on NULL. */
+void rd_h5_close(rd_h5 *h);
+
+#endif

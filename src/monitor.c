@@ -1,0 +1,242 @@
+/* rockdem — watching the bodies: tilt, static tipping angle, slide, events and overturning.
+ *
+ * Tilt is the angle between the body's vertical axis at rest and its current one (rad); its
+ * lean direction is where that axis points. The static tipping angle alpha in the lean
+ * direction is atan(d / h): d is the distance from the centre of mass (projected on the
+ * support plane at rest) to the edge of the support polygon along the lean direction, h the
+ * height of the centre of mass above the support. Events (per free body):
+ *   uplift   the contact area drops below 60 % of its value at rest (rocking starts; with
+ *            corner subcontacts, losing one edge halves it)
+ *   impact   the signed rocking angle about the axis of the first rocking crosses zero
+ *   slip     every active subcontact of the body is at its Coulomb limit (sliding as a whole)
+ *   overturn the overturn criterion is first met; recover if the body comes back */
+#include "sim.h"
+#include "vec.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RD_FALLEN_TILT (85.0 * M_PI / 180.0) /* past this, a run may stop: the body is down */
+#define RD_ROCK_MIN 1e-3 /* rocking amplitudes below this fraction of alpha are noise, not impacts */
+
+void rd_event_add(rd_sim *s, double time, int body, const char *type, double value)
+{
+    if (s->nevent == s->cap_event) {
+        int cap = s->cap_event ? 2 * s->cap_event : 256;
+        rd_event *e = realloc(s->event, (size_t)cap * sizeof *e);
+        if (!e) return; /* events are diagnostics; losing one is not fatal */
+        s->event = e; s->cap_event = cap;
+    }
+    rd_event *e = &s->event[s->nevent++];
+    e->time = time; e->body = body; e->value = value;
+    snprintf(e->type, sizeof e->type, "%s", type);
+}
+
+/* Convex hull (monotone chain) of n 2-D points, counter-clockwise; returns its size. */
+static int hull2d(double (*p)[2], int n)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && (p[j][0] < p[j - 1][0] || (p[j][0] == p[j - 1][0] && p[j][1] < p[j - 1][1])); j--) {
+            double t0 = p[j][0], t1 = p[j][1];
+            p[j][0] = p[j - 1][0]; p[j][1] = p[j - 1][1]; p[j - 1][0] = t0; p[j - 1][1] = t1;
+        }
+    double h[34][2];
+    int k = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        int start = k;
+        for (int c = 0; c < n; c++) {
+            int i = pass ? n - 1 - c : c;
+            while (k >= start + 2 &&
+                   (h[k - 1][0] - h[k - 2][0]) * (p[i][1] - h[k - 2][1]) -
+                   (h[k - 1][1] - h[k - 2][1]) * (p[i][0] - h[k - 2][0]) <= 0) k--;
+            h[k][0] = p[i][0]; h[k][1] = p[i][1]; k++;
+        }
+        k--;
+    }
+    for (int i = 0; i < k; i++) { p[i][0] = h[i][0]; p[i][1] = h[i][1]; }
+    return k;
+}
+
+/* Distance from (cx, cy) to the polygon boundary along direction (dx, dy). */
+static double ray_to_edge(const rd_watch *w, double cx, double cy, double dx, double dy)
+{
+    double best = INFINITY;
+    for (int i = 0; i < w->nsupport; i++) {
+        const double *a = w->support[i], *b = w->support[(i + 1) % w->nsupport];
+        double ex = b[0] - a[0], ey = b[1] - a[1];
+        double den = dx * ey - dy * ex;
+        if (fabs(den) < 1e-15) continue;
+        double t = ((a[0] - cx) * ey - (a[1] - cy) * ex) / den;
+        double u = ((a[0] - cx) * dy - (a[1] - cy) * dx) / den;
+        if (t >= 0 && u >= -1e-9 && u <= 1 + 1e-9 && t < best) best = t;
+    }
+    return isfinite(best) ? best : 0.0;
+}
+
+static double alpha_toward(const rd_watch *w, double dx, double dy)
+{
+    double n = hypot(dx, dy);
+    if (n == 0) { dx = 1; dy = 0; } else { dx /= n; dy /= n; }
+    return atan2(ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy), w->h);
+}
+
+/* Rest state of body i: the lowest vertices form the support polygon. */
+static void watch_init(rd_sim *s, int k)
+{
+    int i = s->free_body[k];
+    rd_watch *w = &s->watch[k];
+    memcpy(w->q_ref, s->q[i], sizeof w->q_ref);
+    rd_copy3(s->x[i], w->x_ref);
+    double zmin = INFINITY;
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
+    double tol = 1e-4 * s->poly[i].radius;
+    double pts[32][2];
+    int n = 0;
+    for (int v = s->vert0[i]; v < s->vert0[i + 1] && n < 32; v++)
+        if (s->wv[v][2] < zmin + tol) { pts[n][0] = s->wv[v][0]; pts[n][1] = s->wv[v][1]; n++; }
+    n = hull2d(pts, n);
+    w->nsupport = n < 16 ? n : 16;
+    memcpy(w->support, pts, (size_t)w->nsupport * sizeof pts[0]);
+    w->h = s->x[i][2] - zmin;
+    double b[3] = {s->x[i][0], s->x[i][1], zmin}, d[3] = {0, 0, zmin - s->x[i][2]};
+    rd_copy3(b, w->base_ref);
+    rd_mat_tvec(s->R[i], d, w->base_local);
+    w->rest_area = w->area;
+    snprintf(w->sum.name, sizeof w->sum.name, "%s", s->sc.bodies[i].name);
+    w->sum.overturn_time = -1;
+    w->sum.alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
+}
+
+/* Tilt (rad) of body k, its lean direction (unit, horizontal) and the tilt vector axis*angle. */
+static double body_tilt(const rd_sim *s, int k, double lean[2], double tv[3])
+{
+    const rd_watch *w = &s->watch[k];
+    int i = s->free_body[k];
+    double qc[4] = {w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3]}, dq[4], z[3];
+    rd_quat_mul(s->q[i], qc, dq);
+    rd_quat_rotate(dq, (double[3]){0, 0, 1}, z);
+    double hz = hypot(z[0], z[1]);
+    double tilt = atan2(hz, z[2]);
+    lean[0] = hz > 0 ? z[0] / hz : 1; lean[1] = hz > 0 ? z[1] / hz : 0;
+    tv[0] = -lean[1] * tilt; tv[1] = lean[0] * tilt; tv[2] = 0;
+    return tilt;
+}
+
+void rd_monitor_rest(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) watch_init(s, k);
+}
+
+void rd_monitor_start(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        rd_watch *w = &s->watch[k];
+        double lean[2], tv[3];
+        body_tilt(s, k, lean, tv);
+        double n = rd_norm(tv);
+        w->rock_axis[0] = n > 0 ? tv[0] / n : 0;
+        w->rock_axis[1] = n > 0 ? tv[1] / n : 1;
+        w->rock_prev = rd_dot(tv, w->rock_axis);
+        w->rock_peak = fabs(w->rock_prev);
+        w->uplifted = n > 0;
+        w->sum.uplifted = n > 0;
+    }
+}
+
+void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip)
+{
+    for (int b = 0; b < 2; b++) {
+        int k = s->free_of[b ? other : owner];
+        if (k < 0) continue;
+        rd_watch *w = &s->watch[k];
+        w->area += area; w->nactive += nactive; w->nslip += nslip;
+    }
+}
+
+static int criterion_met(const rd_sim *s, int k, double tilt, double alpha)
+{
+    const rd_overturn_def *o = &s->sc.overturn;
+    int i = s->free_body[k];
+    switch (o->kind) {
+    case RD_OVERTURN_TILT_RATIO: return tilt >= o->value * alpha;
+    case RD_OVERTURN_ANGLE: return tilt >= o->value;
+    case RD_OVERTURN_HEIGHT: {
+        double z0 = s->watch[k].x_ref[2] - s->watch[k].base_ref[2];
+        return s->x[i][2] - s->watch[k].base_ref[2] < o->value * z0;
+    }
+    }
+    return 0;
+}
+
+static void watch_step(rd_sim *s, int k)
+{
+    rd_watch *w = &s->watch[k];
+    int i = s->free_body[k];
+    double lean[2], tv[3];
+    double tilt = body_tilt(s, k, lean, tv);
+    double alpha = alpha_toward(w, lean[0], lean[1]);
+    rd_body_summary *sum = &w->sum;
+    if (tilt > sum->max_tilt) sum->max_tilt = tilt;
+    if (alpha > 0 && tilt / alpha > sum->max_tilt_ratio) sum->max_tilt_ratio = tilt / alpha;
+    double b[3];
+    rd_mat_vec(s->R[i], w->base_local, b);
+    rd_axpy(1.0, s->x[i], b);
+    sum->final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
+    if (sum->final_slide > sum->max_slide) sum->max_slide = sum->final_slide;
+
+    if (w->rest_area > 0 && !w->uplifted && w->area < 0.6 * w->rest_area) {
+        w->uplifted = 1; sum->uplifted = 1;
+        rd_event_add(s, s->t, k, "uplift", tilt);
+        if (w->rock_peak < RD_ROCK_MIN * alpha && rd_norm(tv) > 0) { /* first rocking: its axis */
+            double n = rd_norm(tv);
+            w->rock_axis[0] = tv[0] / n; w->rock_axis[1] = tv[1] / n;
+        }
+    } else if (w->uplifted && w->area >= 0.9 * w->rest_area && tilt < 1e-3 * alpha) {
+        w->uplifted = 0;
+    }
+    double r = rd_dot(tv, w->rock_axis);
+    if (r * w->rock_prev < 0 && w->rock_peak >= RD_ROCK_MIN * alpha) {
+        double f = w->rock_prev / (w->rock_prev - r); /* linear interpolation of the crossing */
+        rd_event_add(s, s->t - s->dt + f * s->dt, k, "impact", rd_norm(s->w[i]));
+        w->rock_peak = 0;
+    }
+    w->rock_peak = fmax(w->rock_peak, fabs(r));
+    w->rock_prev = r;
+
+    int sliding = w->nactive > 0 && w->nslip == w->nactive;
+    if (sliding && !w->sliding) { rd_event_add(s, s->t, k, "slip", sum->final_slide); sum->slid = 1; }
+    w->sliding = sliding;
+
+    int over = criterion_met(s, k, tilt, alpha);
+    if (over && !w->over) { rd_event_add(s, s->t, k, "overturn", tilt); sum->overturn_time = s->t; }
+    if (!over && w->over) rd_event_add(s, s->t, k, "recover", tilt);
+    w->over = over;
+    sum->overturned = over;
+}
+
+void rd_monitor_step(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) watch_step(s, k);
+}
+
+int rd_monitor_all_fallen(const rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        double lean[2], tv[3];
+        double tilt = body_tilt(s, k, lean, tv);
+        int down = tilt >= RD_FALLEN_TILT ||
+                   (s->sc.overturn.kind == RD_OVERTURN_HEIGHT && s->watch[k].over);
+        if (!down) return 0;
+    }
+    return s->nfree > 0;
+}
+
+void rd_monitor_finish(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        rd_body_summary *sum = &s->watch[k].sum;
+        if (!sum->overturned) sum->overturn_time = -1;
+    }
+}

@@ -1,0 +1,392 @@
+/* rockdem — acceleration records: creation and the PEER .AT2 and text/CSV readers.
+ *
+ * Readers report malformed input as "file:line: message" and leave the record zeroed on
+ * failure. Values are converted to m/s^2 and integrated (rd_record_integrate) on success.
+ */
+#include "rockdem/record.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define SEPARATORS " \t\r\n,;"
+/* Two-column files: each time step may differ from the first by this fraction (times are
+ * printed with a few digits; a real change of step is far larger). */
+#define STEP_TOL 1e-3
+
+int rd_record_alloc(rd_record *r, size_t npts, double dt, rd_error *err)
+{
+    memset(r, 0, sizeof *r);
+    if (npts == 0)
+        return rd_error_set(err, "record: no samples");
+    if (!(dt > 0.0) || !isfinite(dt))
+        return rd_error_set(err, "record: time step %g s must be positive", dt);
+    r->acc = calloc(npts, sizeof *r->acc);
+    r->vel = calloc(npts, sizeof *r->vel);
+    r->disp = calloc(npts, sizeof *r->disp);
+    if (!r->acc || !r->vel || !r->disp) {
+        rd_record_free(r);
+        return rd_error_set(err, "record: out of memory for %zu samples", npts);
+    }
+    r->npts = npts;
+    r->dt = dt;
+    return 0;
+}
+
+void rd_record_free(rd_record *r)
+{
+    free(r->acc);
+    free(r->vel);
+    free(r->disp);
+    memset(r, 0, sizeof *r);
+}
+
+/* --- helpers shared by both readers ------------------------------------------------------ */
+
+/* A growable array of doubles. */
+typedef struct values {
+    double *v;
+    size_t n, cap;
+} values;
+
+static int values_push(values *a, double x)
+{
+    if (a->n == a->cap) {
+        size_t cap = a->cap ? 2 * a->cap : 1024;
+        double *v = realloc(a->v, cap * sizeof *v);
+        if (!v)
+            return -1;
+        a->v = v;
+        a->cap = cap;
+    }
+    a->v[a->n++] = x;
+    return 0;
+}
+
+/* A file being read line by line, with its name and the current line number for messages. */
+typedef struct reader {
+    const char *path;
+    FILE *f;
+    char *line;
+    size_t cap;
+    long lineno;
+} reader;
+
+static int reader_open(reader *rd, const char *path, rd_error *err)
+{
+    memset(rd, 0, sizeof *rd);
+    rd->path = path;
+    rd->f = fopen(path, "r");
+    if (!rd->f)
+        return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    return 0;
+}
+
+/* Next line (without its end-of-line characters), or NULL at the end of the file. */
+static char *reader_next(reader *rd)
+{
+    ssize_t len = getline(&rd->line, &rd->cap, rd->f);
+    if (len < 0)
+        return NULL;
+    rd->lineno++;
+    while (len > 0 && (rd->line[len - 1] == '\n' || rd->line[len - 1] == '\r'))
+        rd->line[--len] = '\0';
+    return rd->line;
+}
+
+static void reader_close(reader *rd)
+{
+    if (rd->f)
+        fclose(rd->f);
+    free(rd->line);
+}
+
+/* "file:line: message" at the reader's current line. */
+static int reader_fail(const reader *rd, rd_error *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int reader_fail(const reader *rd, rd_error *err, const char *fmt, ...)
+{
+    char msg[RD_ERROR_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return rd_error_set(err, "%s:%ld: %s", rd->path, rd->lineno, msg);
+}
+
+/* Parse a whole token as a finite number. */
+static int parse_number(const char *tok, double *x)
+{
+    char *end;
+    errno = 0;
+    *x = strtod(tok, &end);
+    return (end != tok && *end == '\0' && errno != ERANGE && isfinite(*x)) ? 0 : -1;
+}
+
+/* Record name: the file name without directories. */
+static void set_name(rd_record *r, const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    snprintf(r->name, sizeof r->name, "%s", slash ? slash + 1 : path);
+}
+
+/* Move the samples into r (step dt, values in `unit`), converted to m/s^2 and integrated. */
+static int finish(rd_record *r, const values *acc, double dt, rd_accel_unit unit, const char *path,
+                  rd_error *err)
+{
+    char source[RD_PATH_MAX];
+    snprintf(source, sizeof source, "%s", r->source);
+    rd_error alloc_err;
+    if (rd_record_alloc(r, acc->n, dt, &alloc_err))
+        return rd_error_set(err, "%s: %s", path, alloc_err.msg);
+    memcpy(r->acc, acc->v, acc->n * sizeof *acc->v);
+    memcpy(r->source, source, sizeof source);
+    set_name(r, path);
+    rd_record_scale(r, rd_accel_unit_factor(unit));
+    rd_record_integrate(r);
+    return 0;
+}
+
+/* --- PEER .AT2 ------------------------------------------------------------------------------ */
+
+/* Case-insensitive search for `key` in s; NULL when absent. */
+static const char *find_key(const char *s, const char *key)
+{
+    size_t n = strlen(key);
+    for (; *s; s++)
+        if (strncasecmp(s, key, n) == 0)
+            return s;
+    return NULL;
+}
+
+/* Value after "key=" (blanks allowed around '='); -1 when missing or not a number. */
+static int keyed_number(const char *line, const char *key, double *x)
+{
+    const char *p = find_key(line, key);
+    if (!p)
+        return -1;
+    p += strlen(key);
+    while (isspace((unsigned char)*p))
+        p++;
+    if (*p != '=')
+        return -1;
+    char *end;
+    *x = strtod(p + 1, &end);
+    return end == p + 1 ? -1 : 0;
+}
+
+/* NPTS and DT from the 4th header line in either NGA-West2 form. */
+static int parse_npts_dt(const char *line, double *npts, double *dt)
+{
+    if (keyed_number(line, "NPTS", npts) == 0 && keyed_number(line, "DT", dt) == 0)
+        return 0;
+    char *end1, *end2;
+    *npts = strtod(line, &end1);
+    *dt = strtod(end1, &end2);
+    if (end1 == line || end2 == end1 || !find_key(end2, "NPTS"))
+        return -1;
+    return 0;
+}
+
+/* Header (4 lines): keeps the event line in r->source, returns NPTS and DT. */
+static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, rd_error *err)
+{
+    char *line = NULL;
+    for (int k = 1; k <= 4; k++) {
+        line = reader_next(rd);
+        if (!line)
+            return reader_fail(rd, err, "file ends in the header: expected 4 header lines, found %d", k - 1);
+        if (k == 2)
+            snprintf(r->source, sizeof r->source, "%s", line);
+    }
+    double n;
+    if (parse_npts_dt(line, &n, dt))
+        return reader_fail(rd, err,
+                           "missing NPTS and DT: expected \"NPTS= <n>, DT= <s> SEC\" or \"<n> <s> NPTS, DT\", "
+                           "found \"%s\"",
+                           line);
+    if (!(n >= 1.0) || n != floor(n))
+        return reader_fail(rd, err, "NPTS must be a positive whole number, found %g", n);
+    if (!(*dt > 0.0) || !isfinite(*dt))
+        return reader_fail(rd, err, "DT must be positive, found %g s", *dt);
+    *npts = (size_t)n;
+    return 0;
+}
+
+/* Every value after the header, in g; checks the count against NPTS. */
+static int read_at2_values(reader *rd, size_t npts, values *acc, rd_error *err)
+{
+    long surplus_line = 0;
+    char *line, *save;
+    while ((line = reader_next(rd))) {
+        for (char *tok = strtok_r(line, SEPARATORS, &save); tok; tok = strtok_r(NULL, SEPARATORS, &save)) {
+            double x;
+            if (parse_number(tok, &x))
+                return reader_fail(rd, err, "non-numeric value '%s'", tok);
+            if (values_push(acc, x))
+                return reader_fail(rd, err, "out of memory");
+            if (acc->n == npts + 1)
+                surplus_line = rd->lineno;
+        }
+    }
+    if (acc->n != npts) {
+        if (surplus_line)
+            rd->lineno = surplus_line;
+        return reader_fail(rd, err, "expected %zu values (NPTS), found %zu", npts, acc->n);
+    }
+    return 0;
+}
+
+int rd_record_read_at2(rd_record *r, const char *path, rd_error *err)
+{
+    reader rd;
+    values acc = {0};
+    size_t npts = 0;
+    double dt = 0.0;
+    memset(r, 0, sizeof *r);
+    if (reader_open(&rd, path, err))
+        return -1;
+    int status = read_at2_header(&rd, r, &npts, &dt, err);
+    if (status == 0)
+        status = read_at2_values(&rd, npts, &acc, err);
+    if (status == 0)
+        status = finish(r, &acc, dt, RD_UNIT_G, path, err);
+    reader_close(&rd);
+    free(acc.v);
+    if (status)
+        memset(r, 0, sizeof *r);
+    return status;
+}
+
+/* --- one- and two-column text -------------------------------------------------------------- */
+
+/* State of a text read: columns seen, samples, time-step checks. */
+typedef struct text_state {
+    int ncol;            /* columns in the data (0 until the first data line) */
+    long first_line;     /* line of the first data row */
+    values t, acc;       /* time (two-column files) and acceleration */
+    double step;         /* first time step, s (two-column files) */
+    int header_possible; /* the next content line may be a header */
+} text_state;
+
+/* Time column: steps must be positive and uniform. */
+static int check_time(const reader *rd, text_state *st, double t, rd_error *err)
+{
+    if (st->t.n == 0)
+        return 0;
+    double prev = st->t.v[st->t.n - 1], h = t - prev;
+    if (!(h > 0.0))
+        return reader_fail(rd, err, "time %g s does not increase after %g s (time step %g s must be positive)", t,
+                           prev, h);
+    if (st->t.n == 1)
+        st->step = h;
+    else if (fabs(h - st->step) > STEP_TOL * st->step)
+        return reader_fail(rd, err, "non-uniform time step: %g s here, %g s at the start (line %ld)", h, st->step,
+                           st->first_line + 1);
+    return 0;
+}
+
+/* One data row already split into numbers. */
+static int text_row(const reader *rd, text_state *st, const double *x, int n, rd_error *err)
+{
+    if (n > 2)
+        return reader_fail(rd, err, "expected 1 or 2 columns (time, acceleration), found %d", n);
+    if (st->ncol == 0) {
+        st->ncol = n;
+        st->first_line = rd->lineno;
+    } else if (n != st->ncol) {
+        return reader_fail(rd, err, "expected %d column%s as on line %ld, found %d", st->ncol,
+                           st->ncol == 1 ? "" : "s", st->first_line, n);
+    }
+    if (n == 2 && check_time(rd, st, x[0], err))
+        return -1;
+    if ((n == 2 && values_push(&st->t, x[0])) || values_push(&st->acc, x[n - 1]))
+        return reader_fail(rd, err, "out of memory");
+    return 0;
+}
+
+/* Split a content line; a non-numeric first field on the first content line is a header. */
+static int text_line(const reader *rd, text_state *st, char *line, rd_error *err)
+{
+    double x[3];
+    int n = 0;
+    char *save;
+    int header = st->header_possible;
+    st->header_possible = 0;
+    for (char *tok = strtok_r(line, SEPARATORS, &save); tok; tok = strtok_r(NULL, SEPARATORS, &save), n++) {
+        double v;
+        if (parse_number(tok, &v)) {
+            if (header && n == 0)
+                return 0;
+            return reader_fail(rd, err, "non-numeric value '%s'", tok);
+        }
+        if (n < 3)
+            x[n] = v;
+    }
+    return text_row(rd, st, x, n, err);
+}
+
+static int is_content(const char *line)
+{
+    line += strspn(line, SEPARATORS);
+    return *line != '\0' && *line != '#';
+}
+
+/* Step of the samples: from the time column, or the given dt for one column. */
+static int text_step(const reader *rd, const text_state *st, double dt, double *step, rd_error *err)
+{
+    if (st->acc.n == 0)
+        return reader_fail(rd, err, "no data");
+    if (st->ncol == 1) {
+        if (!(dt > 0.0) || !isfinite(dt))
+            return rd_error_set(err, "%s:%ld: one column of accelerations needs a time step dt > 0, got %g s",
+                                rd->path, st->first_line, dt);
+        *step = dt;
+        return 0;
+    }
+    if (st->t.n < 2 && !(dt > 0.0))
+        return rd_error_set(err, "%s:%ld: one sample cannot define a time step", rd->path, st->first_line);
+    *step = st->t.n < 2 ? dt : (st->t.v[st->t.n - 1] - st->t.v[0]) / (double)(st->t.n - 1);
+    if (dt > 0.0 && fabs(*step - dt) > STEP_TOL * dt)
+        return rd_error_set(err, "%s:%ld: time step %g s in the file, %g s given", rd->path, st->first_line, *step,
+                            dt);
+    return 0;
+}
+
+int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, double dt, rd_error *err)
+{
+    reader rd;
+    text_state st;
+    memset(&st, 0, sizeof st);
+    st.header_possible = 1;
+    memset(r, 0, sizeof *r);
+    if (reader_open(&rd, path, err))
+        return -1;
+    int status = 0;
+    char *line;
+    while (status == 0 && (line = reader_next(&rd)))
+        if (is_content(line))
+            status = text_line(&rd, &st, line, err);
+    double step = 0.0;
+    if (status == 0)
+        status = text_step(&rd, &st, dt, &step, err);
+    if (status == 0) {
+        snprintf(r->source, sizeof r->source, "%s", path);
+        status = finish(r, &st.acc, step, unit, path, err);
+    }
+    reader_close(&rd);
+    free(st.t.v);
+    free(st.acc.v);
+    if (status)
+        memset(r, 0, sizeof *r);
+    return status;
+}

@@ -1,0 +1,1318 @@
+/* rockdem — the scenario parser: a 3DEC-flavoured command language into rd_scenario.
+ *
+ * One command per line, `noun verb keyword value ...`, keywords in any order after the verb
+ * (case-insensitive); `;` starts a comment; a `&` as the last token of a line continues the
+ * command on the next line; strings in single or double quotes. Angles in the file are degrees,
+ * accelerations may carry a `g` suffix (times standard gravity); everything stored is SI.
+ * Every error is one line "file:line:col: message" pointing at the offending token.
+ */
+#include "rockdem/scenario.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#if defined(__GNUC__)
+#define RD_PRINTF(f, a) __attribute__((format(printf, f, a)))
+#else
+#define RD_PRINTF(f, a)
+#endif
+
+#define MAX_TOKENS 64 /* tokens in one command, continuation lines included */
+
+static const double DEG = 3.14159265358979323846 / 180.0; /* rad per degree */
+static const double G0 = 9.80665;                         /* standard gravity, m/s^2 */
+
+/* ---- values: numbers, ranges, units (shared by the parser and rd_scenario_set) ---- */
+
+typedef enum range {
+    R_ANY,    /* any finite number */
+    R_POS,    /* > 0 */
+    R_NONNEG, /* >= 0 */
+    R_FRAC,   /* (0, 1] */
+    R_OPEN01, /* (0, 1) */
+    R_ANGLE,  /* [0, 90) degrees */
+    R_TURN    /* (0, 180] degrees */
+} range;
+
+typedef enum unit {
+    U_PLAIN, /* stored as written */
+    U_DEG,   /* written in degrees, stored in rad */
+    U_ACCEL  /* m/s^2, or a number with a `g` suffix times G0 */
+} unit;
+
+/* Parses s[0..len) as a C floating-point number; with accel a trailing 'g' multiplies by G0.
+ * Returns 0, or -1 when it is not a whole finite number. */
+static int parse_number(const char *s, size_t len, int accel, double *v)
+{
+    char buf[64], *end;
+    if (len == 0 || len >= sizeof buf || isspace((unsigned char)s[0]))
+        return -1;
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    double x = strtod(buf, &end);
+    if (end == buf)
+        return -1;
+    if (accel && end[0] == 'g' && end[1] == '\0') {
+        x *= G0;
+        end++;
+    }
+    if (*end != '\0' || !isfinite(x))
+        return -1;
+    *v = x;
+    return 0;
+}
+
+/* NULL when v (as written: degrees for angles) lies in r, else what it must be. */
+static const char *range_error(double v, range r)
+{
+    switch (r) {
+    case R_ANY: return NULL;
+    case R_POS: return v > 0 ? NULL : "must be > 0";
+    case R_NONNEG: return v >= 0 ? NULL : "must be >= 0";
+    case R_FRAC: return v > 0 && v <= 1 ? NULL : "must be in (0, 1]";
+    case R_OPEN01: return v > 0 && v < 1 ? NULL : "must be in (0, 1)";
+    case R_ANGLE: return v >= 0 && v < 90 ? NULL : "must be in [0, 90) degrees";
+    case R_TURN: return v > 0 && v <= 180 ? NULL : "must be in (0, 180] degrees";
+    }
+    return NULL;
+}
+
+static double unit_scale(unit u) { return u == U_DEG ? DEG : 1.0; }
+
+static int is_periodic(rd_pulse_kind k)
+{
+    return k == RD_PULSE_ONE_SINE || k == RD_PULSE_ONE_COSINE || k == RD_PULSE_HARMONIC;
+}
+
+/* Duration of a pulse, s: one period (cycles periods for harmonic) for the periodic shapes;
+ * 1/frequency or the given duration for rectangular and triangle. */
+static double pulse_duration(const rd_pulse_def *p)
+{
+    if (p->kind == RD_PULSE_HARMONIC)
+        return p->cycles / p->frequency;
+    if (is_periodic(p->kind) || p->frequency > 0)
+        return 1.0 / p->frequency;
+    return p->duration;
+}
+
+/* Block names double as override keys (block.<name>.density): letters, digits, '_' and '-'. */
+static int valid_name(const char *s, size_t len)
+{
+    if (len == 0 || len >= RD_NAME_MAX)
+        return 0;
+    for (size_t i = 0; i < len; i++)
+        if (!isalnum((unsigned char)s[i]) && s[i] != '_' && s[i] != '-')
+            return 0;
+    return 1;
+}
+
+static int find_body(const rd_scenario *sc, const char *name, size_t len)
+{
+    for (int i = 0; i < sc->nbodies; i++)
+        if (strlen(sc->bodies[i].name) == len && memcmp(sc->bodies[i].name, name, len) == 0)
+            return i;
+    return -1;
+}
+
+/* Appends ", word" (or "word" to an empty buf), truncating quietly. */
+static void append(char *buf, size_t size, const char *word)
+{
+    size_t n = strlen(buf);
+    if (n + 1 < size)
+        snprintf(buf + n, size - n, "%s%s", n ? ", " : "", word);
+}
+
+/* ---- lexer ---- */
+
+typedef struct token {
+    const char *s; /* text, quotes stripped; not NUL-terminated */
+    int len;
+    int line, col; /* 1-based position of the first character (the quote for strings) */
+    int quoted;
+} token;
+
+typedef struct parser {
+    rd_scenario *sc;
+    rd_error *err;
+    const char *name;       /* file name for messages */
+    const char *p;          /* next character */
+    const char *bol;        /* first character of the current line */
+    int line;               /* current line, 1-based */
+    token tok[MAX_TOKENS];  /* the current command */
+    int n;                  /* its tokens */
+    int cur;                /* next token to take */
+    char ctx[64];           /* "noun verb", for messages */
+} parser;
+
+static int perr(const parser *P, const token *t, const char *fmt, ...) RD_PRINTF(3, 4);
+
+static int perr(const parser *P, const token *t, const char *fmt, ...)
+{
+    char msg[RD_ERROR_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return rd_error_set(P->err, "%s:%d:%d: %s", P->name, t->line, t->col, msg);
+}
+
+static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+static int ends_word(char c) { return c == '\0' || c == '\n' || c == ';' || is_blank(c); }
+
+/* Scans the token at P->p into *t: a quoted string (to the matching quote on the same line)
+ * or a word (to the next blank, ';' or end of line). Returns 0 or -1. */
+static int lex_token(parser *P, token *t)
+{
+    const char *s = P->p, *e = s + 1;
+    *t = (token){s, 0, P->line, (int)(s - P->bol) + 1, *s == '\'' || *s == '"'};
+    if (!t->quoted) {
+        while (!ends_word(*P->p))
+            P->p++;
+        t->len = (int)(P->p - s);
+        return 0;
+    }
+    while (*e && *e != '\n' && *e != *s)
+        e++;
+    if (*e != *s)
+        return perr(P, t, "unterminated string (missing closing %c)", *s);
+    t->s = s + 1;
+    t->len = (int)(e - s - 1);
+    P->p = e + 1;
+    if (!ends_word(*P->p)) {
+        token g = {P->p, 1, P->line, (int)(P->p - P->bol) + 1, 0};
+        return perr(P, &g, "expected a space after the closing quote");
+    }
+    return 0;
+}
+
+/* Reads the next command (one line, or several joined by '&') into P->tok.
+ * Returns 1 when a command was read, 0 at the end of the text, -1 on error. */
+static int lex_command(parser *P)
+{
+    token amp = {0}, t; /* amp.s: a pending '&' on the current line */
+    P->n = P->cur = 0;
+    for (;;) {
+        char c = *P->p;
+        if (c == '\0' && amp.s)
+            return perr(P, &amp, "'&' continuation at end of file");
+        if (c == '\0')
+            return P->n > 0;
+        if (c == '\n') {
+            P->p++;
+            P->line++;
+            P->bol = P->p;
+            if (amp.s && *P->p == '\0')
+                return perr(P, &amp, "'&' continuation at end of file");
+            if (!amp.s && P->n > 0)
+                return 1;
+            amp.s = NULL;
+        } else if (is_blank(c)) {
+            P->p++;
+        } else if (c == ';') {
+            while (*P->p && *P->p != '\n')
+                P->p++;
+        } else {
+            if (lex_token(P, &t))
+                return -1;
+            if (amp.s)
+                return perr(P, &amp, "'&' must be the last token on its line");
+            if (!t.quoted && t.len == 1 && t.s[0] == '&')
+                amp = t;
+            else if (P->n == MAX_TOKENS)
+                return perr(P, &t, "too many tokens in one command (at most %d)", MAX_TOKENS);
+            else
+                P->tok[P->n++] = t;
+        }
+    }
+}
+
+/* ---- token helpers ---- */
+
+static const token *take(parser *P) { return P->cur < P->n ? &P->tok[P->cur++] : NULL; }
+
+static const token *verb_token(const parser *P) { return &P->tok[1]; }
+
+static int tok_is(const token *t, const char *word)
+{
+    return (size_t)t->len == strlen(word) && strncasecmp(t->s, word, (size_t)t->len) == 0;
+}
+
+static int find_word(const token *t, const char *const *names)
+{
+    for (int i = 0; names[i]; i++)
+        if (tok_is(t, names[i]))
+            return i;
+    return -1;
+}
+
+static void join(char *buf, size_t size, const char *const *names)
+{
+    buf[0] = '\0';
+    for (int i = 0; names[i]; i++)
+        append(buf, size, names[i]);
+}
+
+enum { KW_ERR = -1, KW_END = -2 };
+
+/* Takes the next keyword of the command: its index in names (NULL-terminated), KW_END after
+ * the last token, or KW_ERR for an unknown or repeated keyword. *seen collects the indices. */
+static int next_keyword(parser *P, const char *const *names, unsigned *seen, const token **kw)
+{
+    char list[256];
+    const token *t = take(P);
+    if (!t)
+        return KW_END;
+    int k = find_word(t, names);
+    if (k < 0) {
+        join(list, sizeof list, names);
+        return perr(P, t, "unknown keyword '%.*s' for '%s' (expected %s)", t->len, t->s, P->ctx,
+                    list);
+    }
+    if (*seen & (1u << k))
+        return perr(P, t, "keyword '%.*s' given twice", t->len, t->s);
+    *seen |= 1u << k;
+    *kw = t;
+    return k;
+}
+
+/* Error for a command that needs at least one of its keywords. */
+static int missing_keyword(parser *P, const char *const *names)
+{
+    char list[256];
+    join(list, sizeof list, names);
+    return perr(P, verb_token(P), "missing keyword after '%s' (expected %s)", P->ctx, list);
+}
+
+/* Keywords that exclude each other: remembers the first in *prev, refuses a second. */
+static int exclusive(parser *P, const token **prev, const token *kw)
+{
+    if (*prev)
+        return perr(P, kw, "'%.*s' cannot be combined with '%.*s'", kw->len, kw->s, (*prev)->len,
+                    (*prev)->s);
+    *prev = kw;
+    return 0;
+}
+
+static int expect_end(parser *P)
+{
+    const token *t = take(P);
+    if (t)
+        return perr(P, t, "unexpected '%.*s' after '%s'", t->len, t->s, P->ctx);
+    return 0;
+}
+
+/* Reads n numbers after keyword kw, each checked against r (as written) and converted to SI. */
+static int read_values(parser *P, const token *kw, int n, range r, unit u, double *v)
+{
+    for (int i = 0; i < n; i++) {
+        const token *t = take(P);
+        if (!t)
+            return perr(P, kw, "expected a number after '%.*s'", kw->len, kw->s);
+        if (parse_number(t->s, (size_t)t->len, u == U_ACCEL, &v[i]))
+            return perr(P, t, "expected a number after '%.*s', got '%.*s'", kw->len, kw->s,
+                        t->len, t->s);
+        const char *bad = range_error(v[i], r);
+        if (bad)
+            return perr(P, t, "'%.*s' %s, got %.*s", kw->len, kw->s, bad, t->len, t->s);
+        v[i] *= unit_scale(u);
+    }
+    return 0;
+}
+
+static int read_value(parser *P, const token *kw, range r, unit u, double *v)
+{
+    return read_values(P, kw, 1, r, u, v);
+}
+
+static int read_switch(parser *P, const token *kw, int *on)
+{
+    const token *t = take(P);
+    if (!t)
+        return perr(P, kw, "expected on or off after '%.*s'", kw->len, kw->s);
+    if (!tok_is(t, "on") && !tok_is(t, "off"))
+        return perr(P, t, "expected on or off after '%.*s', got '%.*s'", kw->len, kw->s, t->len,
+                    t->s);
+    *on = tok_is(t, "on");
+    return 0;
+}
+
+/* Reads a block name after kw into dst (RD_NAME_MAX); *name keeps its token for messages. */
+static int read_name(parser *P, const token *kw, const token **name, char *dst)
+{
+    const token *t = take(P);
+    if (!t)
+        return perr(P, kw, "expected a name after '%.*s'", kw->len, kw->s);
+    if (!valid_name(t->s, (size_t)t->len))
+        return perr(P, t, "invalid block name '%.*s' (1 to %d letters, digits, '_' or '-')",
+                    t->len, t->s, RD_NAME_MAX - 1);
+    memcpy(dst, t->s, (size_t)t->len);
+    dst[t->len] = '\0';
+    *name = t;
+    return 0;
+}
+
+/* Reads a text token (title, path) into dst of the given size; what names it in messages. */
+static int read_text(parser *P, const char *what, char *dst, size_t size)
+{
+    const token *t = take(P);
+    if (!t)
+        return perr(P, verb_token(P), "expected %s after '%s'", what, P->ctx);
+    if (t->len == 0)
+        return perr(P, t, "empty %s", what);
+    if ((size_t)t->len >= size)
+        return perr(P, t, "%s longer than %zu characters", what, size - 1);
+    memcpy(dst, t->s, (size_t)t->len);
+    dst[t->len] = '\0';
+    return 0;
+}
+
+/* ---- model ---- */
+
+static int model_title(parser *P)
+{
+    if (read_text(P, "a title", P->sc->title, sizeof P->sc->title))
+        return -1;
+    return expect_end(P);
+}
+
+static int model_gravity(parser *P)
+{
+    if (read_value(P, verb_token(P), R_NONNEG, U_ACCEL, &P->sc->gravity))
+        return -1;
+    return expect_end(P);
+}
+
+static int model_density(parser *P)
+{
+    if (read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->density))
+        return -1;
+    return expect_end(P);
+}
+
+static int model_damping(parser *P)
+{
+    static const char *const names[] = {"none", "viscous", "local", NULL};
+    static const range ranges[] = {R_ANY, R_FRAC, R_OPEN01};
+    rd_damping_def *d = &P->sc->damping;
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (exclusive(P, &prev, kw))
+            return -1;
+        d->kind = (rd_damping_kind)k;
+        d->value = 0;
+        if (k > 0 && read_value(P, kw, ranges[k], U_PLAIN, &d->value))
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    return prev ? 0 : missing_keyword(P, names);
+}
+
+static int model_timestep(parser *P)
+{
+    static const char *const names[] = {"auto", "fixed", "safety", NULL};
+    rd_timestep_def *ts = &P->sc->timestep;
+    const token *kw, *prev = NULL, *safety = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (k == 2) {
+            safety = kw;
+            if (read_value(P, kw, R_FRAC, U_PLAIN, &ts->safety))
+                return -1;
+            continue;
+        }
+        if (exclusive(P, &prev, kw))
+            return -1;
+        ts->kind = k == 0 ? RD_TIMESTEP_AUTO : RD_TIMESTEP_FIXED;
+        if (k == 1 && read_value(P, kw, R_POS, U_PLAIN, &ts->dt))
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    if (!prev)
+        return perr(P, verb_token(P), "expected auto or fixed after 'model timestep'");
+    if (safety && ts->kind == RD_TIMESTEP_FIXED)
+        return perr(P, safety, "'safety' applies only to 'model timestep auto'");
+    return 0;
+}
+
+static int model_settle(parser *P)
+{
+    static const char *const names[] = {"on", "off", "ratio", "time-limit", NULL};
+    rd_settle_def *st = &P->sc->settle;
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        if (k < 2) {
+            rc = exclusive(P, &prev, kw);
+            st->enabled = k == 0;
+        } else {
+            rc = read_value(P, kw, R_POS, U_PLAIN, k == 2 ? &st->ratio : &st->max_time);
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+static int model_solve(parser *P)
+{
+    static const char *const names[] = {"time", NULL};
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (read_value(P, kw, R_POS, U_PLAIN, &P->sc->duration))
+            return -1;
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+static int model_overturn(parser *P)
+{
+    static const char *const names[] = {"tilt-ratio", "angle", "height", "stop", NULL};
+    static const range ranges[] = {R_POS, R_TURN, R_OPEN01};
+    static const unit units[] = {U_PLAIN, U_DEG, U_PLAIN};
+    rd_overturn_def *ov = &P->sc->overturn;
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (k == 3) {
+            if (read_switch(P, kw, &ov->stop))
+                return -1;
+            continue;
+        }
+        if (exclusive(P, &prev, kw) || read_value(P, kw, ranges[k], units[k], &ov->value))
+            return -1;
+        ov->kind = (rd_overturn_kind)k;
+    }
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+/* ---- block ---- */
+
+/* Reads the keywords of `block create brick` into b; *name is the name token, if any. */
+static int block_keywords(parser *P, rd_body_def *b, const token **name)
+{
+    static const char *const names[] = {"size", "position", "rotation", "density",
+                                        "mass", "name",     "fixed",    NULL};
+    const token *kw, *dm = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_values(P, kw, 3, R_POS, U_PLAIN, b->size); break;
+        case 1: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, b->position); break;
+        case 2: rc = read_values(P, kw, 3, R_ANY, U_DEG, b->rotation); break;
+        case 3: rc = exclusive(P, &dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->density); break;
+        case 4: rc = exclusive(P, &dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->mass); break;
+        case 5: rc = read_name(P, kw, name, b->name); break;
+        default: b->fixed = 1; break;
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    if (!(seen & 1u))
+        return perr(P, &P->tok[2], "missing 'size' for 'block create brick'");
+    if (!(seen & 2u))
+        return perr(P, &P->tok[2], "missing 'position' for 'block create brick'");
+    return 0;
+}
+
+static int block_create(parser *P)
+{
+    rd_scenario *sc = P->sc;
+    const token *shape = take(P), *name = NULL;
+    if (!shape)
+        return perr(P, verb_token(P), "expected a shape after 'block create' (expected brick)");
+    if (!tok_is(shape, "brick"))
+        return perr(P, shape, "unknown shape '%.*s' for 'block create' (expected brick)",
+                    shape->len, shape->s);
+    if (sc->nbodies == RD_MAX_BODIES)
+        return perr(P, verb_token(P), "too many blocks (at most %d)", RD_MAX_BODIES);
+    rd_body_def b = {.shape = RD_SHAPE_BRICK, .line = P->tok[0].line};
+    if (block_keywords(P, &b, &name))
+        return -1;
+    if (!name)
+        snprintf(b.name, sizeof b.name, "block%d", sc->nbodies + 1);
+    int dup = find_body(sc, b.name, strlen(b.name));
+    if (dup >= 0 && name)
+        return perr(P, name, "duplicate block name '%s' (first created on line %d)", b.name,
+                    sc->bodies[dup].line);
+    if (dup >= 0)
+        return perr(P, shape,
+                    "default name '%s' is already taken (line %d); give this block a name",
+                    b.name, sc->bodies[dup].line);
+    sc->bodies[sc->nbodies++] = b;
+    return 0;
+}
+
+static int block_initial(parser *P)
+{
+    static const char *const names[] = {"name", "tilt", "direction", "velocity",
+                                        "angular-velocity", NULL};
+    const token *kw, *name = NULL;
+    char id[RD_NAME_MAX];
+    double tilt = 0, dir = 0, v[3] = {0}, w[3] = {0};
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_name(P, kw, &name, id); break;
+        case 1: rc = read_value(P, kw, R_ANGLE, U_DEG, &tilt); break;
+        case 2: rc = read_value(P, kw, R_ANY, U_DEG, &dir); break;
+        case 3: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, v); break;
+        default: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, w); break;
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    if (!name)
+        return perr(P, verb_token(P), "missing 'name' for 'block initial'");
+    int i = find_body(P->sc, id, strlen(id));
+    if (i < 0)
+        return perr(P, name, "unknown block '%s' (no 'block create ... name %s' before this line)",
+                    id, id);
+    rd_body_def *b = &P->sc->bodies[i];
+    if (b->fixed)
+        return perr(P, name, "block '%s' is fixed; 'block initial' applies only to free blocks",
+                    id);
+    if (seen & 2u)
+        b->tilt = tilt;
+    if (seen & 4u)
+        b->tilt_direction = dir;
+    if (seen & 8u)
+        memcpy(b->velocity, v, sizeof v);
+    if (seen & 16u)
+        memcpy(b->angular_velocity, w, sizeof w);
+    return 0;
+}
+
+/* ---- contact ---- */
+
+static int read_spacing(parser *P, const token *kw, double *v)
+{
+    const token *t = take(P);
+    if (!t)
+        return perr(P, kw, "expected a number, auto or vertices after 'spacing'");
+    if (tok_is(t, "auto") || tok_is(t, "vertices")) {
+        *v = tok_is(t, "auto") ? -1.0 : 0.0;
+        return 0;
+    }
+    if (parse_number(t->s, (size_t)t->len, 0, v))
+        return perr(P, t, "expected a number, auto or vertices after 'spacing', got '%.*s'",
+                    t->len, t->s);
+    if (*v < 0)
+        return perr(P, t, "'spacing' must be >= 0, got %.*s", t->len, t->s);
+    return 0;
+}
+
+static int contact_property(parser *P)
+{
+    static const char *const names[] = {"stiffness-normal", "stiffness-shear", "friction",
+                                        "cohesion",         "tension",         "spacing", NULL};
+    rd_contact_def *c = &P->sc->contact;
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_value(P, kw, R_POS, U_PLAIN, &c->kn); break;
+        case 1: rc = read_value(P, kw, R_POS, U_PLAIN, &c->ks); break;
+        case 2: rc = read_value(P, kw, R_ANGLE, U_DEG, &c->friction); break;
+        case 3: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->cohesion); break;
+        case 4: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->tension); break;
+        default: rc = read_spacing(P, kw, &c->spacing); break;
+        }
+        if (rc)
+            return -1;
+    }
+    return k == KW_ERR ? -1 : 0;
+}
+
+/* ---- ground motion ---- */
+
+enum { PK_AMPLITUDE, PK_FREQUENCY, PK_DURATION, PK_CYCLES, PK_START, PK_DIRECTION, PK_VERTICAL,
+       PK_COUNT };
+
+/* Which keywords each pulse shape takes; tk holds the keyword tokens given (NULL if absent). */
+static int pulse_check(parser *P, const token *shape, rd_pulse_kind kind, const token *const *tk)
+{
+    int periodic = is_periodic(kind);
+    if (!tk[PK_AMPLITUDE])
+        return perr(P, shape, "missing 'amplitude' for 'ground-motion pulse'");
+    if (tk[PK_CYCLES] && kind != RD_PULSE_HARMONIC)
+        return perr(P, tk[PK_CYCLES], "'cycles' applies only to harmonic pulses");
+    if (tk[PK_DIRECTION] && tk[PK_VERTICAL])
+        return perr(P, tk[PK_DIRECTION], "'direction' does not apply to a vertical pulse");
+    if (periodic && tk[PK_DURATION])
+        return perr(P, tk[PK_DURATION],
+                    "'duration' does not apply to a %.*s pulse (set 'frequency')",
+                    shape->len, shape->s);
+    if (periodic && !tk[PK_FREQUENCY])
+        return perr(P, shape, "a %.*s pulse needs 'frequency'", shape->len, shape->s);
+    if (!periodic && tk[PK_FREQUENCY] && tk[PK_DURATION])
+        return perr(P, tk[PK_DURATION], "'duration' cannot be combined with 'frequency'");
+    if (!periodic && !tk[PK_FREQUENCY] && !tk[PK_DURATION])
+        return perr(P, shape, "a %.*s pulse needs 'duration' (or 'frequency')", shape->len,
+                    shape->s);
+    return 0;
+}
+
+static int pulse_keywords(parser *P, rd_pulse_def *p, const token **tk)
+{
+    static const char *const names[] = {"amplitude", "frequency", "duration", "cycles",
+                                        "start",     "direction", "vertical", NULL};
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        tk[k] = kw;
+        switch (k) {
+        case PK_AMPLITUDE: rc = read_value(P, kw, R_ANY, U_ACCEL, &p->amplitude); break;
+        case PK_FREQUENCY: rc = read_value(P, kw, R_POS, U_PLAIN, &p->frequency); break;
+        case PK_DURATION: rc = read_value(P, kw, R_POS, U_PLAIN, &p->duration); break;
+        case PK_CYCLES: rc = read_value(P, kw, R_POS, U_PLAIN, &p->cycles); break;
+        case PK_START: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &p->start); break;
+        case PK_DIRECTION: rc = read_value(P, kw, R_ANY, U_DEG, &p->direction); break;
+        default: break;
+        }
+        if (rc)
+            return -1;
+    }
+    return k == KW_ERR ? -1 : 0;
+}
+
+static int motion_pulse(parser *P)
+{
+    static const char *const shapes[] = {"one-sine", "one-cosine", "rectangular", "triangle",
+                                         "harmonic", NULL};
+    char list[128];
+    const token *shape = take(P), *tk[PK_COUNT] = {0};
+    join(list, sizeof list, shapes);
+    if (!shape)
+        return perr(P, verb_token(P), "expected a shape after 'ground-motion pulse' (expected %s)",
+                    list);
+    int s = find_word(shape, shapes);
+    if (s < 0)
+        return perr(P, shape, "unknown pulse shape '%.*s' (expected %s)", shape->len, shape->s,
+                    list);
+    rd_pulse_def p = {.kind = (rd_pulse_kind)(s + 1), .cycles = 1, .line = P->tok[0].line};
+    if (pulse_keywords(P, &p, tk) || pulse_check(P, shape, p.kind, tk))
+        return -1;
+    const char *which = tk[PK_VERTICAL] ? "vertical" : "horizontal";
+    rd_pulse_def *slot = tk[PK_VERTICAL] ? &P->sc->motion.vertical : &P->sc->motion.horizontal;
+    if (slot->kind != RD_PULSE_NONE)
+        return perr(P, &P->tok[0], "a %s pulse is already defined (line %d)", which, slot->line);
+    p.duration = pulse_duration(&p);
+    *slot = p;
+    return 0;
+}
+
+/* ---- output ---- */
+
+static int output_hdf5(parser *P)
+{
+    static const char *const names[] = {"interval", NULL};
+    rd_output_def *o = &P->sc->output;
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    if (read_text(P, "a file name", o->path, sizeof o->path))
+        return -1;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (read_value(P, kw, R_POS, U_PLAIN, &o->interval))
+            return -1;
+    return k == KW_ERR ? -1 : 0;
+}
+
+/* ---- commands ---- */
+
+typedef int (*command_fn)(parser *P);
+
+static const struct command {
+    const char *noun, *verb;
+    command_fn fn;
+} commands[] = {
+    {"model", "title", model_title},
+    {"model", "gravity", model_gravity},
+    {"model", "density", model_density},
+    {"model", "damping", model_damping},
+    {"model", "timestep", model_timestep},
+    {"model", "settle", model_settle},
+    {"model", "solve", model_solve},
+    {"model", "overturn", model_overturn},
+    {"block", "create", block_create},
+    {"block", "initial", block_initial},
+    {"contact", "property", contact_property},
+    {"ground-motion", "pulse", motion_pulse},
+    {"output", "hdf5", output_hdf5},
+};
+
+#define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+/* The nouns (noun == NULL) or the verbs of one noun, comma-separated. */
+static void command_list(char *buf, size_t size, const token *noun)
+{
+    buf[0] = '\0';
+    for (size_t i = 0; i < NCOMMANDS; i++) {
+        if (!noun && (i == 0 || strcmp(commands[i].noun, commands[i - 1].noun) != 0))
+            append(buf, size, commands[i].noun);
+        if (noun && tok_is(noun, commands[i].noun))
+            append(buf, size, commands[i].verb);
+    }
+}
+
+static int run_command(parser *P)
+{
+    const token *noun = &P->tok[0], *verb = P->n > 1 ? &P->tok[1] : NULL;
+    char list[256];
+    int known = 0;
+    for (size_t i = 0; i < NCOMMANDS; i++) {
+        if (!tok_is(noun, commands[i].noun))
+            continue;
+        known = 1;
+        if (verb && tok_is(verb, commands[i].verb)) {
+            snprintf(P->ctx, sizeof P->ctx, "%s %s", commands[i].noun, commands[i].verb);
+            P->cur = 2;
+            return commands[i].fn(P);
+        }
+    }
+    command_list(list, sizeof list, known ? noun : NULL);
+    if (!known)
+        return perr(P, noun, "unknown command '%.*s' (expected %s)", noun->len, noun->s, list);
+    if (!verb)
+        return perr(P, noun, "missing verb after '%.*s' (expected %s)", noun->len, noun->s, list);
+    return perr(P, verb, "unknown verb '%.*s' for '%.*s' (expected %s)", verb->len, verb->s,
+                noun->len, noun->s, list);
+}
+
+/* ---- public: defaults, parse, load, free ---- */
+
+void rd_scenario_defaults(rd_scenario *sc)
+{
+    memset(sc, 0, sizeof *sc);
+    sc->gravity = 9.81;
+    sc->density = 2700.0;
+    sc->contact = (rd_contact_def){.kn = 1e10, .ks = 1e9, .friction = 40.0 * DEG, .spacing = -1.0};
+    sc->damping = (rd_damping_def){RD_DAMPING_NONE, 0.0};
+    sc->motion.horizontal.cycles = 1.0;
+    sc->motion.vertical.cycles = 1.0;
+    sc->timestep = (rd_timestep_def){RD_TIMESTEP_AUTO, 0.2, 0.0};
+    sc->settle = (rd_settle_def){1, 1e-6, 5.0};
+    sc->overturn = (rd_overturn_def){RD_OVERTURN_TILT_RATIO, 1.5, 1};
+    snprintf(sc->output.path, sizeof sc->output.path, "%s", "rockdem.h5");
+    sc->output.interval = 0.005;
+}
+
+int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_error *err)
+{
+    size_t len = strlen(text);
+    int rc;
+    rd_scenario_defaults(sc);
+    snprintf(sc->file, sizeof sc->file, "%s", name);
+    sc->text = malloc(len + 1);
+    if (!sc->text)
+        return rd_error_set(err, "%s: out of memory", name);
+    memcpy(sc->text, text, len + 1);
+    parser P = {.sc = sc, .err = err, .name = name, .p = sc->text, .bol = sc->text, .line = 1};
+    while ((rc = lex_command(&P)) > 0)
+        if (run_command(&P)) {
+            rc = -1;
+            break;
+        }
+    if (rc < 0) {
+        rd_scenario_free(sc);
+        return -1;
+    }
+    return 0;
+}
+
+/* Reads all of f into a NUL-terminated malloc'ed buffer; NULL when out of memory. */
+static char *slurp(FILE *f, size_t *len)
+{
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    while (buf && !feof(f) && !ferror(f)) {
+        if (n + 1 == cap) {
+            char *grown = realloc(buf, cap * 2);
+            if (!grown)
+                free(buf);
+            buf = grown;
+            cap *= 2;
+            continue;
+        }
+        n += fread(buf + n, 1, cap - n - 1, f);
+    }
+    if (buf)
+        buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+static int read_file(const char *path, char **out, size_t *len, rd_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    errno = 0;
+    *out = slurp(f, len);
+    int bad = ferror(f), e = errno;
+    fclose(f);
+    if (*out && bad) {
+        free(*out);
+        *out = NULL;
+        return rd_error_set(err, "%s: cannot read: %s", path, strerror(e));
+    }
+    if (!*out)
+        return rd_error_set(err, "%s: out of memory", path);
+    return 0;
+}
+
+int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err)
+{
+    char *text = NULL;
+    size_t len = 0;
+    rd_scenario_defaults(sc);
+    if (read_file(path, &text, &len, err))
+        return -1;
+    if (strlen(text) != len) {
+        free(text);
+        return rd_error_set(err, "%s: contains a NUL byte (not a text file?)", path);
+    }
+    int rc = rd_scenario_parse(sc, path, text, err);
+    free(text);
+    return rc;
+}
+
+void rd_scenario_free(rd_scenario *sc)
+{
+    free(sc->text);
+    sc->text = NULL;
+}
+
+/* ---- public: command-line overrides ---- */
+
+typedef enum set_kind {
+    S_NUMBER, /* a double at set_key.off */
+    S_PULSE,  /* a double in the pulse, duration re-derived */
+    S_SPACING,
+    S_DAMPING,
+    S_TIMESTEP,
+    S_SETTLE,
+    S_FILE
+} set_kind;
+
+typedef struct set_key {
+    const char *key;
+    set_kind kind;
+    size_t off; /* S_NUMBER: offset of the double in rd_scenario (rd_body_def for block keys);
+                   S_PULSE: in rd_pulse_def */
+    range range;
+    unit unit;
+} set_key;
+
+static const set_key set_keys[] = {
+    {"contact.stiffness-normal", S_NUMBER, offsetof(rd_scenario, contact.kn), R_POS, U_PLAIN},
+    {"contact.stiffness-shear", S_NUMBER, offsetof(rd_scenario, contact.ks), R_POS, U_PLAIN},
+    {"contact.friction", S_NUMBER, offsetof(rd_scenario, contact.friction), R_ANGLE, U_DEG},
+    {"contact.cohesion", S_NUMBER, offsetof(rd_scenario, contact.cohesion), R_NONNEG, U_PLAIN},
+    {"contact.tension", S_NUMBER, offsetof(rd_scenario, contact.tension), R_NONNEG, U_PLAIN},
+    {"contact.spacing", S_SPACING, 0, R_NONNEG, U_PLAIN},
+    {"model.gravity", S_NUMBER, offsetof(rd_scenario, gravity), R_NONNEG, U_ACCEL},
+    {"model.density", S_NUMBER, offsetof(rd_scenario, density), R_POS, U_PLAIN},
+    {"model.duration", S_NUMBER, offsetof(rd_scenario, duration), R_POS, U_PLAIN},
+    {"model.damping", S_DAMPING, 0, R_ANY, U_PLAIN},
+    {"model.timestep", S_TIMESTEP, 0, R_POS, U_PLAIN},
+    {"model.safety", S_NUMBER, offsetof(rd_scenario, timestep.safety), R_FRAC, U_PLAIN},
+    {"model.settle", S_SETTLE, 0, R_ANY, U_PLAIN},
+    {"motion.amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL},
+    {"motion.frequency", S_PULSE, offsetof(rd_pulse_def, frequency), R_POS, U_PLAIN},
+    {"motion.duration", S_PULSE, offsetof(rd_pulse_def, duration), R_POS, U_PLAIN},
+    {"motion.direction", S_PULSE, offsetof(rd_pulse_def, direction), R_ANY, U_DEG},
+    {"motion.cycles", S_PULSE, offsetof(rd_pulse_def, cycles), R_POS, U_PLAIN},
+    {"motion.start", S_PULSE, offsetof(rd_pulse_def, start), R_NONNEG, U_PLAIN},
+    {"motion.vertical-amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL},
+    {"output.file", S_FILE, 0, R_ANY, U_PLAIN},
+    {"output.interval", S_NUMBER, offsetof(rd_scenario, output.interval), R_POS, U_PLAIN},
+};
+
+static const set_key body_keys[] = {
+    {"density", S_NUMBER, offsetof(rd_body_def, density), R_POS, U_PLAIN},
+    {"mass", S_NUMBER, offsetof(rd_body_def, mass), R_POS, U_PLAIN},
+    {"tilt", S_NUMBER, offsetof(rd_body_def, tilt), R_ANGLE, U_DEG},
+    {"direction", S_NUMBER, offsetof(rd_body_def, tilt_direction), R_ANY, U_DEG},
+};
+
+#define NSET_KEYS (sizeof set_keys / sizeof set_keys[0])
+#define NBODY_KEYS (sizeof body_keys / sizeof body_keys[0])
+
+typedef struct setter {
+    rd_scenario *sc;
+    rd_error *err;
+    const char *a;     /* the whole assignment, for messages */
+    const char *value; /* after the '=' */
+} setter;
+
+static int serr(const setter *S, const char *fmt, ...) RD_PRINTF(2, 3);
+
+static int serr(const setter *S, const char *fmt, ...)
+{
+    char msg[RD_ERROR_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return rd_error_set(S->err, "--set %s: %s", S->a, msg);
+}
+
+static int same_key(const char *key, const char *s, size_t len)
+{
+    return strlen(key) == len && strncasecmp(key, s, len) == 0;
+}
+
+/* Parses text as a number in range r (as written) and converts it to SI. */
+static int set_parse(const setter *S, const char *text, range r, unit u, double *v)
+{
+    if (parse_number(text, strlen(text), u == U_ACCEL, v))
+        return serr(S, "expected a number, got '%s'", text);
+    const char *bad = range_error(*v, r);
+    if (bad)
+        return serr(S, "value %s", bad);
+    *v *= unit_scale(u);
+    return 0;
+}
+
+static double *field(void *base, size_t off) { return (double *)((char *)base + off); }
+
+static int set_pulse(const setter *S, const set_key *k)
+{
+    int vertical = strcmp(k->key, "motion.vertical-amplitude") == 0;
+    rd_pulse_def *p = vertical ? &S->sc->motion.vertical : &S->sc->motion.horizontal;
+    double v;
+    if (p->kind == RD_PULSE_NONE)
+        return serr(S, "the scenario has no %s ground-motion pulse",
+                    vertical ? "vertical" : "horizontal");
+    if (k->off == offsetof(rd_pulse_def, duration) && is_periodic(p->kind))
+        return serr(S, "motion.duration applies only to rectangular and triangle pulses "
+                       "(set motion.frequency)");
+    if (k->off == offsetof(rd_pulse_def, cycles) && p->kind != RD_PULSE_HARMONIC)
+        return serr(S, "motion.cycles applies only to harmonic pulses");
+    if (set_parse(S, S->value, k->range, k->unit, &v))
+        return -1;
+    *field(p, k->off) = v;
+    if (k->off == offsetof(rd_pulse_def, duration))
+        p->frequency = 0.0;
+    p->duration = pulse_duration(p);
+    return 0;
+}
+
+static int set_spacing(const setter *S)
+{
+    double v;
+    if (strcasecmp(S->value, "auto") == 0 || strcasecmp(S->value, "vertices") == 0) {
+        S->sc->contact.spacing = strcasecmp(S->value, "auto") == 0 ? -1.0 : 0.0;
+        return 0;
+    }
+    if (parse_number(S->value, strlen(S->value), 0, &v))
+        return serr(S, "expected a number, auto or vertices, got '%s'", S->value);
+    if (v < 0)
+        return serr(S, "value must be >= 0");
+    S->sc->contact.spacing = v;
+    return 0;
+}
+
+/* "none", "viscous <ratio>" or "local <alpha>". */
+static int set_damping(const setter *S)
+{
+    const char *v = S->value;
+    size_t wl = strcspn(v, " \t");
+    const char *arg = v + wl + strspn(v + wl, " \t");
+    rd_damping_def *d = &S->sc->damping;
+    double x = 0.0;
+    if (same_key("none", v, wl) && *arg == '\0')
+        d->kind = RD_DAMPING_NONE;
+    else if (same_key("viscous", v, wl) && *arg)
+        d->kind = RD_DAMPING_VISCOUS;
+    else if (same_key("local", v, wl) && *arg)
+        d->kind = RD_DAMPING_LOCAL;
+    else
+        return serr(S, "expected none, viscous <ratio> or local <alpha>, got '%s'", v);
+    if (d->kind != RD_DAMPING_NONE &&
+        set_parse(S, arg, d->kind == RD_DAMPING_VISCOUS ? R_FRAC : R_OPEN01, U_PLAIN, &x))
+        return -1;
+    d->value = x;
+    return 0;
+}
+
+static int set_timestep(const setter *S)
+{
+    rd_timestep_def *ts = &S->sc->timestep;
+    double dt;
+    if (strcasecmp(S->value, "auto") == 0) {
+        ts->kind = RD_TIMESTEP_AUTO;
+        return 0;
+    }
+    if (parse_number(S->value, strlen(S->value), 0, &dt))
+        return serr(S, "expected auto or a time step in s, got '%s'", S->value);
+    if (!(dt > 0))
+        return serr(S, "value must be > 0");
+    ts->kind = RD_TIMESTEP_FIXED;
+    ts->dt = dt;
+    return 0;
+}
+
+static int set_settle(const setter *S)
+{
+    if (strcasecmp(S->value, "on") != 0 && strcasecmp(S->value, "off") != 0)
+        return serr(S, "expected on or off, got '%s'", S->value);
+    S->sc->settle.enabled = strcasecmp(S->value, "on") == 0;
+    return 0;
+}
+
+static int set_file(const setter *S)
+{
+    size_t len = strlen(S->value);
+    if (len == 0)
+        return serr(S, "empty file name");
+    if (len >= RD_PATH_MAX)
+        return serr(S, "file name longer than %d characters", RD_PATH_MAX - 1);
+    memcpy(S->sc->output.path, S->value, len + 1);
+    return 0;
+}
+
+static int set_apply(const setter *S, const set_key *k)
+{
+    double v;
+    switch (k->kind) {
+    case S_NUMBER:
+        if (set_parse(S, S->value, k->range, k->unit, &v))
+            return -1;
+        *field(S->sc, k->off) = v;
+        return 0;
+    case S_PULSE: return set_pulse(S, k);
+    case S_SPACING: return set_spacing(S);
+    case S_DAMPING: return set_damping(S);
+    case S_TIMESTEP: return set_timestep(S);
+    case S_SETTLE: return set_settle(S);
+    case S_FILE: return set_file(S);
+    }
+    return 0;
+}
+
+/* Unknown key: lists the keys of its section, or the sections. */
+static int unknown_key(const setter *S, const char *key, size_t len)
+{
+    char list[RD_ERROR_MAX / 2] = "";
+    size_t sect = strcspn(key, ".=") + 1; /* section length with its dot */
+    for (size_t i = 0; i < NSET_KEYS; i++)
+        if (sect <= len && strncasecmp(set_keys[i].key, key, sect) == 0)
+            append(list, sizeof list, set_keys[i].key);
+    if (list[0] == '\0')
+        snprintf(list, sizeof list, "a key in contact, model, motion, output or block.<name>");
+    return serr(S, "unknown key '%.*s' (expected %s)", (int)len, key, list);
+}
+
+/* key = "<name>.<field>" after "block." */
+static int set_body(const setter *S, const char *key, size_t len)
+{
+    size_t nlen = len;
+    while (nlen > 0 && key[nlen - 1] != '.')
+        nlen--;
+    if (nlen < 2)
+        return serr(S, "expected block.<name>.<field>");
+    int i = find_body(S->sc, key, nlen - 1);
+    if (i < 0)
+        return serr(S, "unknown block '%.*s'", (int)(nlen - 1), key);
+    rd_body_def *b = &S->sc->bodies[i];
+    const char *f = key + nlen;
+    size_t flen = len - nlen;
+    for (size_t j = 0; j < NBODY_KEYS; j++) {
+        const set_key *k = &body_keys[j];
+        double v;
+        if (!same_key(k->key, f, flen))
+            continue;
+        if (b->fixed && k->unit == U_DEG)
+            return serr(S, "block '%s' is fixed; %s applies only to free blocks", b->name, k->key);
+        if (set_parse(S, S->value, k->range, k->unit, &v))
+            return -1;
+        *field(b, k->off) = v;
+        if (k->off == offsetof(rd_body_def, density))
+            b->mass = 0.0;
+        if (k->off == offsetof(rd_body_def, mass))
+            b->density = 0.0;
+        return 0;
+    }
+    return serr(S, "unknown key '%.*s' (expected block.%s.density, mass, tilt or direction)",
+                (int)flen, f, b->name);
+}
+
+/* Records the override in sc->text as a comment line "; --set <assignment>". */
+static int append_override(rd_scenario *sc, const char *a, rd_error *err)
+{
+    size_t old = sc->text ? strlen(sc->text) : 0;
+    int nl = old > 0 && sc->text[old - 1] != '\n';
+    char *t = realloc(sc->text, old + (size_t)nl + strlen(a) + sizeof "; --set \n");
+    if (!t)
+        return rd_error_set(err, "--set %s: out of memory", a);
+    sprintf(t + old, "%s; --set %s\n", nl ? "\n" : "", a);
+    sc->text = t;
+    return 0;
+}
+
+/* Length of a "block." or "body." prefix of key, else 0. */
+static size_t body_prefix(const char *key, size_t len)
+{
+    if (len > 6 && strncasecmp(key, "block.", 6) == 0)
+        return 6;
+    if (len > 5 && strncasecmp(key, "body.", 5) == 0)
+        return 5;
+    return 0;
+}
+
+static int set_key_value(const setter *S, const char *key, size_t len)
+{
+    size_t pre = body_prefix(key, len);
+    if (pre)
+        return set_body(S, key + pre, len - pre);
+    for (size_t i = 0; i < NSET_KEYS; i++)
+        if (same_key(set_keys[i].key, key, len))
+            return set_apply(S, &set_keys[i]);
+    return unknown_key(S, key, len);
+}
+
+int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err)
+{
+    setter S = {sc, err, assignment, NULL};
+    const char *eq = strchr(assignment, '=');
+    if (strchr(assignment, '\n'))
+        return serr(&S, "contains a line break");
+    if (!eq || eq == assignment)
+        return serr(&S, "expected section.key=value");
+    S.value = eq + 1;
+    if (set_key_value(&S, assignment, (size_t)(eq - assignment)))
+        return -1;
+    return append_override(sc, assignment, err);
+}
+
+/* ---- public: validation ---- */
+
+/* NULL, or what is wrong with the scenario-wide settings. */
+static const char *model_problem(const rd_scenario *sc)
+{
+    const rd_contact_def *c = &sc->contact;
+    const rd_damping_def *d = &sc->damping;
+    const double right = 90.0 * DEG;
+    if (sc->nbodies < 0 || sc->nbodies > RD_MAX_BODIES)
+        return "too many blocks";
+    if (!(sc->gravity >= 0))
+        return "gravity must be >= 0";
+    if (!(sc->density > 0))
+        return "density must be > 0";
+    if (!(c->kn > 0) || !(c->ks > 0))
+        return "contact stiffness-normal and stiffness-shear must be > 0";
+    if (!(c->friction >= 0 && c->friction < right))
+        return "contact friction must be in [0, 90) degrees";
+    if (!(c->cohesion >= 0) || !(c->tension >= 0))
+        return "contact cohesion and tension must be >= 0";
+    if (!isfinite(c->spacing))
+        return "contact spacing must be a number";
+    if (d->kind == RD_DAMPING_VISCOUS && !(d->value > 0 && d->value <= 1))
+        return "viscous damping ratio must be in (0, 1]";
+    if (d->kind == RD_DAMPING_LOCAL && !(d->value > 0 && d->value < 1))
+        return "local damping alpha must be in (0, 1)";
+    if (sc->timestep.kind == RD_TIMESTEP_AUTO &&
+        !(sc->timestep.safety > 0 && sc->timestep.safety <= 1))
+        return "timestep safety must be in (0, 1]";
+    if (sc->timestep.kind == RD_TIMESTEP_FIXED && !(sc->timestep.dt > 0))
+        return "fixed timestep must be > 0";
+    if (sc->settle.enabled && !(sc->settle.ratio > 0 && sc->settle.max_time > 0))
+        return "settle ratio and time-limit must be > 0";
+    if (!(sc->overturn.value > 0))
+        return "overturn criterion must be > 0";
+    if (sc->output.path[0] == '\0' || !(sc->output.interval > 0))
+        return "output needs a file name and an interval > 0";
+    return NULL;
+}
+
+static const char *body_problem(const rd_scenario *sc, int i)
+{
+    const rd_body_def *b = &sc->bodies[i];
+    if (!(b->size[0] > 0 && b->size[1] > 0 && b->size[2] > 0))
+        return "size must be > 0";
+    if (!(b->mass >= 0))
+        return "mass must be > 0 (or 0 to use the density)";
+    if (!(b->tilt >= 0 && b->tilt < 90.0 * DEG))
+        return "tilt must be in [0, 90) degrees";
+    if (find_body(sc, b->name, strlen(b->name)) != i)
+        return "name used by an earlier block";
+    if (!valid_name(b->name, strlen(b->name)))
+        return "invalid name";
+    return NULL;
+}
+
+static const char *pulse_problem(const rd_pulse_def *p)
+{
+    if (p->kind == RD_PULSE_NONE)
+        return NULL;
+    if (!isfinite(p->amplitude) || !(p->start >= 0))
+        return "amplitude must be a number and start >= 0";
+    if (is_periodic(p->kind) && !(p->frequency > 0))
+        return "frequency must be > 0";
+    if (p->kind == RD_PULSE_HARMONIC && !(p->cycles > 0))
+        return "cycles must be > 0";
+    if (!(p->duration > 0))
+        return "duration must be > 0";
+    return NULL;
+}
+
+int rd_scenario_validate(const rd_scenario *sc, rd_error *err)
+{
+    const char *f = sc->file, *bad;
+    int nfree = 0;
+    for (int i = 0; i < sc->nbodies && i < RD_MAX_BODIES; i++)
+        nfree += !sc->bodies[i].fixed;
+    if (nfree == 0)
+        return rd_error_set(err,
+                            "%s: no free block (add 'block create brick ...' without 'fixed')", f);
+    if (!(sc->duration > 0))
+        return rd_error_set(err, "%s: no duration (add 'model solve time <s>')", f);
+    if ((bad = model_problem(sc)))
+        return rd_error_set(err, "%s: %s", f, bad);
+    for (int i = 0; i < sc->nbodies; i++)
+        if ((bad = body_problem(sc, i)))
+            return rd_error_set(err, "%s:%d: block '%s': %s", f, sc->bodies[i].line,
+                                sc->bodies[i].name, bad);
+    if ((bad = pulse_problem(&sc->motion.horizontal)))
+        return rd_error_set(err, "%s:%d: horizontal pulse: %s", f, sc->motion.horizontal.line, bad);
+    if ((bad = pulse_problem(&sc->motion.vertical)))
+        return rd_error_set(err, "%s:%d: vertical pulse: %s", f, sc->motion.vertical.line, bad);
+    return 0;
+}

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Ctrl-C during a run: the program stops at the next step, says so, exits 130, and the HDF5
+# file is valid and holds the samples computed so far plus a summary with status interrupted.
+set -eu
+BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
+"$BIN" run scenarios/default.dat --set model.duration=600 -o "$T/int.h5" > "$T/int.out" 2> "$T/int.err" &
+pid=$!
+sleep 1.5
+kill -INT "$pid"
+rc=0; wait "$pid" || rc=$?
+[ "$rc" -eq 130 ]
+grep -q "interrupted at t =" "$T/int.err"
+/usr/bin/python3 - "$T/int.h5" <<'PY'
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+n = f["time"].shape[0]
+assert n > 10, n
+assert f["summary"].attrs["status"] in ("interrupted", b"interrupted")
+assert abs(f["summary"].attrs["end_time"] - f["time"][-1]) < 0.01
+PY

@@ -1,0 +1,349 @@
+/* Engine validation against independent values (closed forms and rigid-block mechanics).
+ * Each test states its tolerance and why. Scenes are written inline in the scenario language,
+ * so these also exercise the parser and the whole create -> settle -> shake path. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "rockdem/rockdem.h"
+
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static char tmpdir[64];
+
+static int setup_dir(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/rd_engine_XXXXXX");
+    return mkdtemp(tmpdir) ? 0 : -1;
+}
+
+static int remove_dir(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    return system(cmd);
+}
+
+/* Parse `text`, apply NULL-terminated overrides, run; returns the sim (caller frees). */
+static rd_sim *run_scene(const char *text, const char *const *sets, rd_scenario *sc, rd_status *st)
+{
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(sc, "test.dat", text, &err), 0);
+    char out[128];
+    snprintf(out, sizeof out, "output.file=%s/out.h5", tmpdir);
+    assert_int_equal(rd_scenario_set(sc, out, &err), 0);
+    for (int k = 0; sets && sets[k]; k++) {
+        if (rd_scenario_set(sc, sets[k], &err)) fail_msg("%s", err.msg);
+    }
+    rd_sim *sim = rd_sim_create(sc, &err);
+    if (!sim) fail_msg("%s", err.msg);
+    *st = rd_sim_run(sim);
+    return sim;
+}
+
+static void run_summary(const char *text, const char *const *sets, rd_summary *sum)
+{
+    rd_scenario sc;
+    rd_status st;
+    rd_sim *sim = run_scene(text, sets, &sc, &st);
+    rd_sim_summary(sim, sum);
+    assert_true(st == RD_STATUS_DONE || st == RD_STATUS_OVERTURNED);
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+}
+
+/* 0.4 x 0.4 x 1.6 m granite block on a base: b = 0.2, h = 0.8, alpha = atan(1/4). */
+static const char *slender =
+    "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+    "block create brick size 0.4 0.4 1.6 position 0 0 0.8 name b\n"
+    "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 spacing vertices\n"
+    "output hdf5 'x.h5' interval 0.01\n";
+
+/* ---- static tipping threshold a = g tan(alpha) ------------------------------------------ */
+/* A 2 s rectangular pulse with Cundall local damping 0.8 is a quasi-static load (the damping
+ * removes the dynamic overshoot of a suddenly applied load, as 3DEC's static solve). With
+ * corner subcontacts the trailing corners open exactly when the resultant reaches the edge,
+ * so the rigid-body threshold holds: 1 % below, the tilt stays elastic (micro-radians); 1 %
+ * above, the block tips (tilt grows by orders of magnitude). */
+static double tip_tilt(double factor)
+{
+    char text[1024], amp[64];
+    snprintf(text, sizeof text, "%s%s", slender,
+             "model damping local 0.8\nground-motion pulse rectangular amplitude 1 duration 2\n"
+             "model overturn angle 80\nmodel solve time 2\n");
+    snprintf(amp, sizeof amp, "motion.amplitude=%.17g", factor * 9.81 * 0.25);
+    const char *sets[] = {amp, NULL};
+    rd_summary sum;
+    run_summary(text, sets, &sum);
+    return sum.body[0].max_tilt;
+}
+
+static void test_static_tipping_threshold(void **state)
+{
+    (void)state;
+    double below = tip_tilt(0.99), above = tip_tilt(1.01);
+    double alpha = atan(0.25);
+    assert_true(below < 1e-3 * alpha);  /* elastic rotation only */
+    assert_true(above > 2e-2 * alpha);  /* tipping: >= 20x the elastic tilt bound */
+    assert_true(above > 100 * below);
+}
+
+/* ---- sliding threshold a = mu g ------------------------------------------------------------ */
+/* A squat 1 x 1 x 0.25 m block (alpha = 76 deg, cannot tip before it slides) with friction
+ * 20 deg under the same quasi-static load: 1 % below mu g only the elastic shear springs and a
+ * little local slip at the lightly loaded rear move it (< 0.1 mm); 1 % above it slides
+ * (millimetres within 1 s). */
+static double slide_at(double factor)
+{
+    char text[1024], amp[64];
+    snprintf(text, sizeof text,
+             "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+             "block create brick size 1 1 0.25 position 0 0 0.125 name b\n"
+             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 20\n"
+             "model damping local 0.8\nground-motion pulse rectangular amplitude 1 duration 1\n"
+             "model solve time 1\noutput hdf5 'x.h5' interval 0.01\n");
+    snprintf(amp, sizeof amp, "motion.amplitude=%.17g", factor * 9.81 * tan(20 * M_PI / 180));
+    const char *sets[] = {amp, NULL};
+    rd_summary sum;
+    run_summary(text, sets, &sum);
+    return sum.body[0].max_slide;
+}
+
+static void test_sliding_threshold(void **state)
+{
+    (void)state;
+    double below = slide_at(0.99), above = slide_at(1.01);
+    assert_true(below < 1e-4);
+    assert_true(above > 2e-3);
+}
+
+/* ---- free rocking: first impact time ---------------------------------------------------- */
+/* Rigid block released from rest at theta0 about its corner: from the energy integral
+ * 1/2 th'^2 + p^2 cos(alpha - th) = p^2 cos(alpha - th0), the time to reach th = 0 is
+ * int_0^th0 dth / sqrt(2 p^2 (cos(alpha - th0) - cos(alpha - th))). With th = th0 - s^2 the
+ * integrand is smooth; GSL's adaptive quadrature gives it to 1e-12. */
+typedef struct { double alpha, th0, p2; } rock_par;
+
+static double rock_integrand(double s, void *v)
+{
+    const rock_par *r = v;
+    double c = cos(r->alpha - r->th0) - cos(r->alpha - r->th0 + s * s);
+    if (s == 0) return 2.0 / sqrt(2 * r->p2 * sin(r->alpha - r->th0));
+    return 2 * s / sqrt(2 * r->p2 * c);
+}
+
+static double rigid_first_impact(double b, double h, double g, double th0)
+{
+    double R = hypot(b, h);
+    rock_par r = {atan2(b, h), th0, 3 * g / (4 * R)};
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
+    gsl_function F = {rock_integrand, &r};
+    double t, e;
+    gsl_integration_qag(&F, 0, sqrt(th0), 1e-13, 1e-12, 200, GSL_INTEG_GAUSS61, w, &t, &e);
+    gsl_integration_workspace_free(w);
+    return t;
+}
+
+static double dem_first_impact(double kn)
+{
+    char text[1024], set_kn[64], set_ks[64];
+    snprintf(text, sizeof text, "%s%s", slender,
+             "block initial name b tilt 7.0181217 direction 0\nmodel solve time 0.6\n");
+    snprintf(set_kn, sizeof set_kn, "contact.stiffness-normal=%g", kn);
+    snprintf(set_ks, sizeof set_ks, "contact.stiffness-shear=%g", 0.1 * kn);
+    const char *sets[] = {set_kn, set_ks, NULL};
+    rd_scenario sc;
+    rd_status st;
+    rd_sim *sim = run_scene(text, sets, &sc, &st);
+    int n;
+    const rd_event *ev = rd_sim_events(sim, &n);
+    double t = -1;
+    for (int k = 0; k < n && t < 0; k++)
+        if (!strcmp(ev[k].type, "impact")) t = ev[k].time;
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+    return t;
+}
+
+/* Tolerance: the issue asks for 1 % once KN is stiff; the remaining DEM error comes from the
+ * contact compliance (the pivot sinks by about m g / (KN A)) and the step, both shrinking with
+ * KN. KS = KN / 10 as usual in rock joints (seed 002: 10 and 1 GPa/m); with KS << KN and no
+ * damping the unloaded pivot spring rings after release and its shear spring slips. We require
+ * 1 % at KN >= 1e10 Pa/m and no growth of the error as KN rises 1e8 -> 1e11. */
+static void test_free_rocking_first_impact(void **state)
+{
+    (void)state;
+    double alpha = atan(0.25), th0 = 7.0181217 * M_PI / 180;
+    assert_true(fabs(th0 - 0.5 * alpha) < 1e-8);
+    double tr = rigid_first_impact(0.2, 0.8, 9.81, th0);
+    const double kns[] = {1e8, 1e9, 1e10, 1e11};
+    double err[4];
+    for (int k = 0; k < 4; k++) {
+        double t = dem_first_impact(kns[k]);
+        assert_true(t > 0);
+        err[k] = fabs(t - tr) / tr;
+        print_message("KN %-5g first impact %.6f s, rigid %.6f s, error %.3e\n", kns[k], t, tr, err[k]);
+    }
+    assert_true(err[2] < 0.01 && err[3] < 0.01);
+    for (int k = 0; k + 1 < 4; k++) assert_true(err[k + 1] < err[k]); /* converges with KN */
+}
+
+/* ---- energy balance, frictionless and undamped ------------------------------------------ */
+/* With no friction and no damping, nothing dissipates: kinetic + gravitational + elastic
+ * energy must stay constant up to the integration error of the explicit scheme, which is
+ * O(dt^2) and small at the default step. Bound from the issue: 0.1 % of the largest term. */
+static void test_energy_balance_frictionless(void **state)
+{
+    (void)state;
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", slender,
+             "block initial name b tilt 7 direction 30\nmodel solve time 1.5\n");
+    const char *sets[] = {"contact.friction=0", NULL};
+    rd_summary sum;
+    run_summary(text, sets, &sum);
+    print_message("frictionless energy residual %.3e\n", sum.energy_residual_max);
+    assert_true(sum.energy_residual_max < 1e-3);
+    assert_true(sum.body[0].uplifted);
+}
+
+/* ---- at rest stays at rest -------------------------------------------------------------- */
+/* 60 s of a settled block with no motion: the tilt must stay at round-off level and the block
+ * must not creep (slide) — any drift from the shear-spring update or the rotation integrator
+ * would accumulate over the ~1e6 steps. Bounds: 1e-9 rad and 1e-9 m (round-off is ~1e-15). */
+static void test_rest_stays_at_rest(void **state)
+{
+    (void)state;
+    const char *text =
+        "block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base\n"
+        "block create brick size 0.5 0.5 1.0 position 0.1 -0.2 0.5 rotation 0 0 30 name b\n"
+        "contact property stiffness-normal 1e9 stiffness-shear 1e8 friction 40\n"
+        "model solve time 60\noutput hdf5 'x.h5' interval 0.5\n";
+    rd_scenario sc;
+    rd_status st;
+    rd_sim *sim = run_scene(text, NULL, &sc, &st);
+    rd_summary sum;
+    rd_sim_summary(sim, &sum);
+    double v[3], w[3];
+    rd_sim_body_state(sim, 0, NULL, NULL, v, w);
+    print_message("60 s at rest: max tilt %.3e rad, max slide %.3e m, |v| %.3e m/s\n",
+                  sum.body[0].max_tilt, sum.body[0].max_slide, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    assert_int_equal(st, RD_STATUS_DONE);
+    assert_true(sum.end_time > 59.99);
+    assert_true(sum.body[0].max_tilt < 1e-9);
+    assert_true(sum.body[0].max_slide < 1e-9);
+    assert_true(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) < 1e-6);
+    int n;
+    rd_sim_events(sim, &n);
+    assert_int_equal(n, 0); /* no uplift, slip, impact or unsettled event */
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+}
+
+/* ---- determinism ------------------------------------------------------------------------ */
+static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *c = p;
+    for (size_t i = 0; i < n; i++) h = (h ^ c[i]) * 1099511628211ull;
+    return h;
+}
+
+static uint64_t final_hash(void)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", slender,
+             "ground-motion pulse one-sine amplitude 0.5g frequency 2 direction 20\n"
+             "model damping viscous 0.1\nmodel solve time 1\n");
+    rd_scenario sc;
+    rd_status st;
+    rd_sim *sim = run_scene(text, NULL, &sc, &st);
+    double x[3], q[4], v[3], w[3], e[7];
+    rd_sim_body_state(sim, 0, x, q, v, w);
+    rd_sim_energy(sim, e);
+    uint64_t h = 1469598103934665603ull;
+    h = fnv1a(h, x, sizeof x); h = fnv1a(h, q, sizeof q);
+    h = fnv1a(h, v, sizeof v); h = fnv1a(h, w, sizeof w); h = fnv1a(h, e, sizeof e);
+    int n;
+    const rd_event *ev = rd_sim_events(sim, &n);
+    for (int k = 0; k < n; k++) h = fnv1a(h, &ev[k].time, sizeof ev[k].time);
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+    return h;
+}
+
+static void test_determinism(void **state)
+{
+    (void)state;
+    uint64_t a = final_hash(), b = final_hash();
+    print_message("final-state hash %016llx\n", (unsigned long long)a);
+    assert_true(a == b);
+}
+
+/* ---- time step: a fixed step above the limit is refused, just below it is stable -------- */
+static void test_fixed_step_limit(void **state)
+{
+    (void)state;
+    rd_scenario sc;
+    rd_error err;
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", slender, "model timestep fixed 1e-3\nmodel solve time 0.1\n");
+    assert_int_equal(rd_scenario_parse(&sc, "t.dat", text, &err), 0);
+    assert_null(rd_sim_create(&sc, &err));
+    assert_non_null(strstr(err.msg, "above the stable limit"));
+    rd_scenario_free(&sc);
+
+    /* the estimate is an upper bound on the stiffest frequency, so 0.99 of it must run a hard
+       case (stiff contact, impacts) without blowing up */
+    snprintf(text, sizeof text, "%s%s", slender,
+             "block initial name b tilt 10 direction 0\nmodel timestep auto safety 0.99\nmodel solve time 1\n");
+    const char *sets[] = {"contact.stiffness-normal=1e12", "contact.stiffness-shear=1e12", NULL};
+    rd_status st;
+    rd_sim *sim = run_scene(text, sets, &sc, &st);
+    assert_int_equal(st, RD_STATUS_DONE);
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+}
+
+/* ---- overturning: strong pulse overturns, weak one does not ----------------------------- */
+/* Rigid-block theory (Housner): a 2 Hz one-sine pulse must exceed g tan(alpha) = 0.25 g even to
+ * uplift this block; at 0.2 g nothing moves, at 3 g it certainly overturns (far above the
+ * minimum-overturning curve, which is below 1.5 g at w/p = 3.5 for alpha = 0.245). */
+static void test_overturn_strong_not_weak(void **state)
+{
+    (void)state;
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", slender,
+             "ground-motion pulse one-sine amplitude 0.2g frequency 2\nmodel damping viscous 0.2\n"
+             "model solve time 4\n");
+    rd_summary sum;
+    run_summary(text, NULL, &sum);
+    assert_false(sum.body[0].overturned);
+    assert_true(sum.body[0].max_tilt < 1e-3);
+    const char *strong[] = {"motion.amplitude=3g", NULL};
+    run_summary(text, strong, &sum);
+    assert_true(sum.body[0].overturned);
+    assert_true(sum.body[0].overturn_time > 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_static_tipping_threshold),
+        cmocka_unit_test(test_sliding_threshold),
+        cmocka_unit_test(test_free_rocking_first_impact),
+        cmocka_unit_test(test_energy_balance_frictionless),
+        cmocka_unit_test(test_rest_stays_at_rest),
+        cmocka_unit_test(test_determinism),
+        cmocka_unit_test(test_fixed_step_limit),
+        cmocka_unit_test(test_overturn_strong_not_weak),
+    };
+    return cmocka_run_group_tests(tests, setup_dir, remove_dir);
+}

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages rockdem needs, only those that are missing. Needs root (or sudo).
+set -eu
+pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmocka-dev hdf5-tools
+      python3-h5py python3-numpy python3-scipy python3-matplotlib"
+missing=""
+for p in $pkgs; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+echo "rockdem: installing missing packages:$missing"
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+# shellcheck disable=SC2086
+$sudo apt-get install -y -qq --no-install-recommends $missing
