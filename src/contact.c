@@ -19,19 +19,28 @@
 #include "vec.h"
 
 #include <float.h>
+
+#define RD_AXIS_EVERY 8 /* steps between full searches for the common-plane face */
 #include <math.h>
 #include <string.h>
 
-/* Per-call context for one side of a pair (kept in registers / stack, no allocation). */
+/* Per-face context for one side of a pair: the other body's face planes that matter for this
+ * candidate face, expressed in the owner's body frame so a point's gap needs no transform.
+ * Aligned planes (n.u > 0) are pre-divided by n.u: gap = max_k (a_k . p - b_k). Lateral planes
+ * (n.u <= 0) only bound the other body sideways: the point must satisfy n . p <= d. Lateral
+ * planes that every vertex of the face already satisfies are dropped (linear, so no point of
+ * the face can cross them). */
 typedef struct side_ctx {
     int o, t;                 /* owner and other body */
-    double u[3];              /* unit normal from the other body towards the owner */
+    double u[3];              /* unit normal from the other body towards the owner, ground frame */
     double wa;                /* weight */
-    const double *tn;         /* other body's world face normals [nf][3] */
-    const double *td;         /* other body's world face offsets [nf] */
-    int tnf;                  /* its face count */
     double damp_coef;         /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
     double k_active;          /* accumulates KN A' over active points, N/m */
+    int nal, nlat;            /* aligned and lateral planes kept */
+    double al[RD_MAX_PLANES][4];  /* a (3), b: gap through an aligned plane, owner frame */
+    double lat[RD_MAX_PLANES][4]; /* n (3), d: a lateral plane, owner frame */
+    double rot[9];            /* rotation of stored shear forces (normal moved since last step) */
+    int rotate;               /* 1 when rot must be applied */
 } side_ctx;
 
 /* Forget a pair's contact history (shear forces, active flags); bonds are kept. */
@@ -67,8 +76,15 @@ static double face_separation(const rd_sim *s, int x, int f, int y)
     return sep;
 }
 
+/* Choose the common-plane face (full separating-axis search every RD_AXIS_EVERY steps or when
+ * the pair has no axis yet); in between the chosen face's normal simply follows its body. */
 static void pair_axis(rd_sim *s, rd_pair *pr)
 {
+    if (pr->axis_body >= 0 && ++pr->axis_age < RD_AXIS_EVERY) {
+        rd_copy3(s->wn[s->face0[pr->axis_body] + pr->axis_face], pr->n);
+        return;
+    }
+    pr->axis_age = 0;
     double best = -DBL_MAX, prev = -DBL_MAX;
     int bb = -1, bf = -1;
     for (int side = 0; side < 2; side++) {
@@ -83,50 +99,67 @@ static void pair_axis(rd_sim *s, rd_pair *pr)
         }
     }
     double hyst = 1e-4 * (s->poly[pr->a].radius + s->poly[pr->b].radius);
-    if (pr->axis_body >= 0 && prev >= best - hyst) return;
+    if (pr->axis_body >= 0 && prev >= best - hyst) {
+        rd_copy3(s->wn[s->face0[pr->axis_body] + pr->axis_face], pr->n);
+        return;
+    }
     pr->axis_body = bb;
     pr->axis_face = bf;
     rd_copy3(s->wn[s->face0[bb] + bf], pr->n);
 }
 
-/* Gap of world point p from the other body along u (m); +inf when p is beside it. */
+/* Keep the other body's planes that matter for candidate face cf (owner frame, see side_ctx).
+ * Returns the lower bound of the gap over the face (the gap through any aligned plane is
+ * linear in p, so its minimum over the convex face is at a vertex). */
+static double face_planes(const rd_sim *s, side_ctx *c, int cf)
+{
+    const rd_poly *po = &s->poly[c->o];
+    const double *R = s->R[c->o], *xo = s->x[c->o];
+    int f = s->cf_face[cf], nv = po->flen[f];
+    const int *ix = po->fidx + po->fstart[f];
+    const double (*wv)[3] = s->wv + s->vert0[c->o];
+    double lb = -DBL_MAX;
+    c->nal = c->nlat = 0;
+    for (int k = s->face0[c->t]; k < s->face0[c->t + 1]; k++) {
+        const double *n = s->wn[k];
+        double cu = rd_dot(n, c->u);
+        double emin = DBL_MAX, emax = -DBL_MAX;
+        for (int j = 0; j < nv; j++) { /* the face's vertices against this plane, world frame */
+            double e = rd_dot(n, wv[ix[j]]) - s->wd[k];
+            emin = rd_min(emin, e); emax = rd_max(emax, e);
+        }
+        if (cu <= 1e-9 && emax <= 0) continue; /* lateral plane no point of the face can cross */
+        double nb[3], db = s->wd[k] - rd_dot(n, xo);
+        rd_mat_tvec(R, n, nb);
+        if (cu > 1e-9) {
+            double *a = c->al[c->nal++];
+            for (int j = 0; j < 3; j++) a[j] = nb[j] / cu;
+            a[3] = db / cu;
+            lb = rd_max(lb, emin / cu); /* the gap is at least this plane's, whose min is emin/cu */
+        } else {
+            if (emin > 0) return DBL_MAX; /* the whole face is beside the other body */
+            double *l = c->lat[c->nlat++];
+            rd_copy3(nb, l);
+            l[3] = db;
+        }
+    }
+    return c->nal ? lb : DBL_MAX;
+}
+
+/* Gap of a point (owner frame) from the other body along u, m; +inf when beside it. */
 static inline double point_gap(const side_ctx *c, const double p[3])
 {
     double g = -DBL_MAX;
-    for (int f = 0; f < c->tnf; f++) {
-        const double *n = c->tn + 3 * f;
-        double cu = n[0] * c->u[0] + n[1] * c->u[1] + n[2] * c->u[2];
-        double e = n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - c->td[f];
-        if (cu > 1e-9) {
-            double r = e / cu;
-            if (r > g) g = r;
-        } else if (e > 0) {
-            return DBL_MAX;
-        }
+    for (int k = 0; k < c->nal; k++) {
+        const double *a = c->al[k];
+        double r = a[0] * p[0] + a[1] * p[1] + a[2] * p[2] - a[3];
+        if (r > g) g = r;
+    }
+    for (int k = 0; k < c->nlat; k++) {
+        const double *l = c->lat[k];
+        if (l[0] * p[0] + l[1] * p[1] + l[2] * p[2] > l[3]) return DBL_MAX;
     }
     return g;
-}
-
-/* Lower bound of the gap over a candidate face: the gap through the other body's face most
- * aligned with u is linear in p, so its minimum over the (convex) face is at a vertex. */
-static double face_gap_bound(const rd_sim *s, const side_ctx *c, int cf)
-{
-    int best = 0;
-    double cbest = -2;
-    for (int f = 0; f < c->tnf; f++) {
-        double cu = rd_dot(c->tn + 3 * f, c->u);
-        if (cu > cbest) { cbest = cu; best = f; }
-    }
-    if (cbest <= 1e-9) return DBL_MAX;
-    const rd_poly *po = &s->poly[c->o];
-    int f = s->cf_face[cf];
-    double lb = DBL_MAX;
-    for (int k = 0; k < po->flen[f]; k++) {
-        const double *v = s->wv[s->vert0[c->o] + po->fidx[po->fstart[f] + k]];
-        double g = (rd_dot(c->tn + 3 * best, v) - c->td[best]) / cbest;
-        if (g < lb) lb = g;
-    }
-    return lb;
 }
 
 /* An opening subcontact loses its shear force (3DEC); the spring energy it held is dissipated
@@ -141,11 +174,8 @@ static inline void drop_shear(rd_sim *s, int st, double sA)
 static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
 {
     const int o = c->o, t = c->t;
-    double p[3];
-    rd_mat_vec(s->R[o], s->pl[pt], p);
-    rd_axpy(1.0, s->x[o], p);
     unsigned char *flags = &s->pstate[st];
-    double g = point_gap(c, p);
+    double g = point_gap(c, s->pl[pt]);
     double A = c->wa * s->pa[pt];
     double kA = s->sc.contact.kn * A;
     if (g >= 0 && !((*flags & RD_PT_BONDED) && g < s->sc.contact.tension / s->sc.contact.kn)) {
@@ -156,8 +186,10 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
         return 0;
     }
     const double *u = c->u;
-    double ro[3] = {p[0] - s->x[o][0], p[1] - s->x[o][1], p[2] - s->x[o][2]};
-    double rt[3] = {p[0] - s->x[t][0], p[1] - s->x[t][1], p[2] - s->x[t][2]};
+    double ro[3];
+    rd_mat_vec(s->R[o], s->pl[pt], ro);
+    double rt[3] = {ro[0] + s->x[o][0] - s->x[t][0], ro[1] + s->x[o][1] - s->x[t][1],
+                    ro[2] + s->x[o][2] - s->x[t][2]};
     double vr[3], tmp[3];
     rd_cross(s->w[o], ro, vr);
     rd_axpy(1.0, s->v[o], vr);
@@ -177,26 +209,28 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     s->e_damp -= (fn - fel) * vn * s->dt * (fn != fel);
     c->k_active += kA;
 
-    /* shear: rotate last step's force into the current plane (keep its magnitude), then add
-       the elastic increment of the relative tangential displacement */
+    /* shear: turn last step's force with the contact plane, then add the elastic increment
+       of the relative tangential displacement */
     double *fs = s->fs[st];
-    double f0 = rd_norm(fs);
-    rd_axpy(-rd_dot(fs, u), u, fs);
-    double f1 = rd_norm(fs);
-    if (f1 > 0) { double r = f0 / f1; fs[0] *= r; fs[1] *= r; fs[2] *= r; }
+    if (c->rotate) rd_mat_vec(c->rot, fs, fs);
+    double prev2 = rd_dot(fs, fs);
     double sA = s->sc.contact.ks * A;
     for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * u[k]) * s->dt;
     double cohesion = (*flags & RD_PT_BONDED) ? s->sc.contact.cohesion * A : 0.0;
-    double lim = fmax(fn, 0.0) * s->tan_phi + cohesion;
-    double mag = rd_norm(fs);
+    double lim = rd_max(fn, 0.0) * s->tan_phi + cohesion;
+    double mag2 = rd_dot(fs, fs);
     *flags = (unsigned char)((*flags | RD_PT_ACTIVE) & ~RD_PT_SLIP);
-    if (mag > lim) {
-        double r = mag > 0 ? lim / mag : 0.0;
-        s->e_fric += (mag - lim) * lim / sA;   /* slip displacement times the limited force */
+    if (mag2 > lim * lim) {
+        /* slip d = (|F_trial| - F_lim) / (KS A) happens at a force between F_lim and the
+           smaller of |F_prev|, |F_trial|: this books lim*d when sliding steadily, the released
+           spring energy when the limit drops, and nothing when frictionless */
+        double mag = sqrt(mag2), r = lim / mag;
+        s->e_fric += (mag - lim) * (lim + rd_min(sqrt(prev2), mag)) / (2.0 * sA);
         fs[0] *= r; fs[1] *= r; fs[2] *= r;
+        mag2 = lim * lim;
         *flags = (unsigned char)((*flags | RD_PT_SLIP) & ~RD_PT_BONDED);
     }
-    s->e_elastic += 0.5 * fel * fel / kA + 0.5 * rd_dot(fs, fs) / sA;
+    s->e_elastic += 0.5 * (kA * g * g + mag2 / sA);
 
     double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};
     rd_axpy(1.0, F, s->f[o]);
@@ -223,15 +257,26 @@ static void clear_face(rd_sim *s, const rd_side *sd, int cf, int k)
     *na = 0;
 }
 
-static void side_step(rd_sim *s, rd_pair *pr, const rd_side *sd, double *k_active)
+/* Rotation matrix taking unit vector a to unit vector b about a x b (Rodrigues). */
+static void rotation_between(const double a[3], const double b[3], double m[9])
+{
+    double k[3], c = rd_dot(a, b);
+    rd_cross(a, b, k);
+    double f = c > -1 + 1e-12 ? 1.0 / (1.0 + c) : 0.0;
+    m[0] = c + f * k[0] * k[0];        m[1] = -k[2] + f * k[0] * k[1]; m[2] = k[1] + f * k[0] * k[2];
+    m[3] = k[2] + f * k[1] * k[0];     m[4] = c + f * k[1] * k[1];     m[5] = -k[0] + f * k[1] * k[2];
+    m[6] = -k[1] + f * k[2] * k[0];    m[7] = k[0] + f * k[2] * k[1];  m[8] = c + f * k[2] * k[2];
+}
+
+static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
 {
     side_ctx c;
     c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
     double sign = (sd->owner == pr->axis_body) ? -1.0 : 1.0;
     for (int k = 0; k < 3; k++) c.u[k] = sign * pr->n[k];
-    c.tn = s->wn[s->face0[c.t]];
-    c.td = &s->wd[s->face0[c.t]];
-    c.tnf = s->poly[c.t].nf;
+    c.rotate = rd_dot(sd->u_prev, sd->u_prev) > 0 && memcmp(c.u, sd->u_prev, sizeof c.u) != 0;
+    if (c.rotate) rotation_between(sd->u_prev, c.u, c.rot);
+    rd_copy3(c.u, sd->u_prev);
     c.k_active = 0;
     c.damp_coef = 0;
     if (s->sc.damping.kind == RD_DAMPING_VISCOUS && !s->settling) {
@@ -239,7 +284,8 @@ static void side_step(rd_sim *s, rd_pair *pr, const rd_side *sd, double *k_activ
         c.damp_coef = 2.0 * s->sc.damping.value * sqrt(pr->m_eff / K);
     }
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
-        if (s->can_cull && face_gap_bound(s, &c, cf) > 0) { clear_face(s, sd, cf, k); continue; }
+        double lb = face_planes(s, &c, cf);
+        if (s->can_cull && lb > 0) { clear_face(s, sd, cf, k); continue; }
         int na = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         double area = 0;

@@ -104,25 +104,38 @@ static void watch_init(rd_sim *s, int k)
     rd_copy3(b, w->base_ref);
     rd_mat_tvec(s->R[i], d, w->base_local);
     w->rest_area = w->area;
+    rd_mat_tvec(s->R[i], (double[3]){0, 0, 1}, w->zb);
     snprintf(w->sum.name, sizeof w->sum.name, "%s", s->sc.bodies[i].name);
     w->sum.overturn_time = -1;
+    double amin = M_PI / 2;
+    for (int d = 0; d < 72; d++) amin = fmin(amin, alpha_toward(w, cos(d * M_PI / 36), sin(d * M_PI / 36)));
+    w->alpha_min = amin;
     w->sum.alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
+    w->cos_max = 1;
+    w->cos_ratio_gate = 1;
+    const rd_overturn_def *o = &s->sc.overturn;
+    w->cos_over_gate = o->kind == RD_OVERTURN_TILT_RATIO ? cos(fmin(o->value * amin, M_PI))
+                     : o->kind == RD_OVERTURN_ANGLE ? cos(o->value) : -2;
 }
 
 /* Tilt (rad) of body k, its lean direction (unit, horizontal) and the tilt vector axis*angle. */
-static double body_tilt(const rd_sim *s, int k, double lean[2], double tv[3])
+/* The body's rest vertical in the ground frame now (uses the step's rotation matrix). */
+static void rest_vertical(const rd_sim *s, int k, double z[3])
 {
-    const rd_watch *w = &s->watch[k];
-    int i = s->free_body[k];
-    double qc[4] = {w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3]}, dq[4], z[3];
-    rd_quat_mul(s->q[i], qc, dq);
-    rd_quat_rotate(dq, (double[3]){0, 0, 1}, z);
+    rd_mat_vec(s->R[s->free_body[k]], s->watch[k].zb, z);
+}
+
+/* Tilt (rad) from the rest vertical z, lean direction (unit, horizontal) and the tilt vector
+ * axis * angle. */
+static double tilt_of(const double z[3], double lean[2], double tv[3])
+{
     double hz = hypot(z[0], z[1]);
     double tilt = atan2(hz, z[2]);
     lean[0] = hz > 0 ? z[0] / hz : 1; lean[1] = hz > 0 ? z[1] / hz : 0;
     tv[0] = -lean[1] * tilt; tv[1] = lean[0] * tilt; tv[2] = 0;
     return tilt;
 }
+
 
 void rd_monitor_rest(rd_sim *s)
 {
@@ -133,15 +146,16 @@ void rd_monitor_start(rd_sim *s)
 {
     for (int k = 0; k < s->nfree; k++) {
         rd_watch *w = &s->watch[k];
-        double lean[2], tv[3];
-        body_tilt(s, k, lean, tv);
-        double n = rd_norm(tv);
-        w->rock_axis[0] = n > 0 ? tv[0] / n : 0;
-        w->rock_axis[1] = n > 0 ? tv[1] / n : 1;
-        w->rock_prev = rd_dot(tv, w->rock_axis);
+        double z[3];
+        rest_vertical(s, k, z);
+        double n = hypot(z[0], z[1]); /* sine of the initial tilt */
+        int tilted = n > RD_ROCK_MIN * w->alpha_min;
+        w->rock_axis[0] = tilted ? -z[1] / n : 0;
+        w->rock_axis[1] = tilted ? z[0] / n : 1;
+        w->rock_prev = -z[1] * w->rock_axis[0] + z[0] * w->rock_axis[1];
         w->rock_peak = fabs(w->rock_prev);
-        w->uplifted = n > 0;
-        w->sum.uplifted = n > 0;
+        w->uplifted = tilted;
+        w->sum.uplifted = tilted;
     }
 }
 
@@ -155,63 +169,83 @@ void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactiv
     }
 }
 
-static int criterion_met(const rd_sim *s, int k, double tilt, double alpha)
+static int criterion_met(const rd_sim *s, int k, const double z[3])
 {
     const rd_overturn_def *o = &s->sc.overturn;
+    const rd_watch *w = &s->watch[k];
     int i = s->free_body[k];
-    switch (o->kind) {
-    case RD_OVERTURN_TILT_RATIO: return tilt >= o->value * alpha;
-    case RD_OVERTURN_ANGLE: return tilt >= o->value;
-    case RD_OVERTURN_HEIGHT: {
-        double z0 = s->watch[k].x_ref[2] - s->watch[k].base_ref[2];
-        return s->x[i][2] - s->watch[k].base_ref[2] < o->value * z0;
+    if (o->kind == RD_OVERTURN_HEIGHT)
+        return s->x[i][2] - w->base_ref[2] < o->value * (w->x_ref[2] - w->base_ref[2]);
+    if (z[2] >= w->cos_over_gate) return 0; /* below the smallest possible threshold */
+    if (o->kind == RD_OVERTURN_ANGLE) return 1;
+    double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+    return tilt >= o->value * alpha_toward(w, lean[0], lean[1]);
+}
+
+/* Extremes of tilt, tilt / alpha and slide. The angles cost an atan2 and a ray cast, so they
+ * are evaluated only when the cosine of the tilt passes a gate that a new extreme must pass. */
+static void track_extremes(rd_sim *s, int k, const double z[3])
+{
+    rd_watch *w = &s->watch[k];
+    rd_body_summary *sum = &w->sum;
+    int i = s->free_body[k];
+    if (z[2] < w->cos_max || z[2] < w->cos_ratio_gate) {
+        double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+        if (z[2] < w->cos_max) { sum->max_tilt = tilt; w->cos_max = z[2]; }
+        double ratio = tilt / alpha_toward(w, lean[0], lean[1]);
+        if (ratio > sum->max_tilt_ratio) {
+            sum->max_tilt_ratio = ratio;
+            w->cos_ratio_gate = cos(rd_min(ratio * w->alpha_min, M_PI));
+        }
     }
-    }
-    return 0;
+    double b[3];
+    rd_mat_vec(s->R[i], w->base_local, b);
+    rd_axpy(1.0, s->x[i], b);
+    double dx = b[0] - w->base_ref[0], dy = b[1] - w->base_ref[1], d2 = dx * dx + dy * dy;
+    if (d2 > sum->max_slide * sum->max_slide) sum->max_slide = sqrt(d2);
 }
 
 static void watch_step(rd_sim *s, int k)
 {
     rd_watch *w = &s->watch[k];
-    int i = s->free_body[k];
-    double lean[2], tv[3];
-    double tilt = body_tilt(s, k, lean, tv);
-    double alpha = alpha_toward(w, lean[0], lean[1]);
     rd_body_summary *sum = &w->sum;
-    if (tilt > sum->max_tilt) sum->max_tilt = tilt;
-    if (alpha > 0 && tilt / alpha > sum->max_tilt_ratio) sum->max_tilt_ratio = tilt / alpha;
-    double b[3];
-    rd_mat_vec(s->R[i], w->base_local, b);
-    rd_axpy(1.0, s->x[i], b);
-    sum->final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
-    if (sum->final_slide > sum->max_slide) sum->max_slide = sum->final_slide;
+    int i = s->free_body[k];
+    double z[3];
+    rest_vertical(s, k, z);
+    track_extremes(s, k, z);
+    w->down = z[2] < cos(RD_FALLEN_TILT);
 
     if (w->rest_area > 0 && !w->uplifted && w->area < 0.6 * w->rest_area) {
         w->uplifted = 1; sum->uplifted = 1;
+        double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
         rd_event_add(s, s->t, k, "uplift", tilt);
-        if (w->rock_peak < RD_ROCK_MIN * alpha && rd_norm(tv) > 0) { /* first rocking: its axis */
+        if (w->rock_peak < RD_ROCK_MIN * w->alpha_min && rd_norm(tv) > 0) { /* first rocking: its axis */
             double n = rd_norm(tv);
             w->rock_axis[0] = tv[0] / n; w->rock_axis[1] = tv[1] / n;
         }
-    } else if (w->uplifted && w->area >= 0.9 * w->rest_area && tilt < 1e-3 * alpha) {
+    } else if (w->uplifted && w->area >= 0.9 * w->rest_area && 1 - z[2] < 5e-7 * w->alpha_min * w->alpha_min) {
         w->uplifted = 0;
     }
-    double r = rd_dot(tv, w->rock_axis);
-    if (r * w->rock_prev < 0 && w->rock_peak >= RD_ROCK_MIN * alpha) {
+    /* signed rocking about the first rocking axis, sine-scaled: (z x e_z) . axis */
+    double r = -z[1] * w->rock_axis[0] + z[0] * w->rock_axis[1];
+    if (r * w->rock_prev < 0 && w->rock_peak >= RD_ROCK_MIN * w->alpha_min) {
         double f = w->rock_prev / (w->rock_prev - r); /* linear interpolation of the crossing */
         rd_event_add(s, s->t - s->dt + f * s->dt, k, "impact", rd_norm(s->w[i]));
         w->rock_peak = 0;
     }
-    w->rock_peak = fmax(w->rock_peak, fabs(r));
+    w->rock_peak = rd_max(w->rock_peak, fabs(r));
     w->rock_prev = r;
 
     int sliding = w->nactive > 0 && w->nslip == w->nactive;
-    if (sliding && !w->sliding) { rd_event_add(s, s->t, k, "slip", sum->final_slide); sum->slid = 1; }
+    if (sliding && !w->sliding) { rd_event_add(s, s->t, k, "slip", sum->max_slide); sum->slid = 1; }
     w->sliding = sliding;
 
-    int over = criterion_met(s, k, tilt, alpha);
-    if (over && !w->over) { rd_event_add(s, s->t, k, "overturn", tilt); sum->overturn_time = s->t; }
-    if (!over && w->over) rd_event_add(s, s->t, k, "recover", tilt);
+    int over = criterion_met(s, k, z);
+    if (over != w->over) {
+        double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+        rd_event_add(s, s->t, k, over ? "overturn" : "recover", tilt);
+        if (over) sum->overturn_time = s->t;
+    }
     w->over = over;
     sum->overturned = over;
 }
@@ -224,10 +258,7 @@ void rd_monitor_step(rd_sim *s)
 int rd_monitor_all_fallen(const rd_sim *s)
 {
     for (int k = 0; k < s->nfree; k++) {
-        double lean[2], tv[3];
-        double tilt = body_tilt(s, k, lean, tv);
-        int down = tilt >= RD_FALLEN_TILT ||
-                   (s->sc.overturn.kind == RD_OVERTURN_HEIGHT && s->watch[k].over);
+        int down = s->watch[k].down || (s->sc.overturn.kind == RD_OVERTURN_HEIGHT && s->watch[k].over);
         if (!down) return 0;
     }
     return s->nfree > 0;
@@ -236,7 +267,12 @@ int rd_monitor_all_fallen(const rd_sim *s)
 void rd_monitor_finish(rd_sim *s)
 {
     for (int k = 0; k < s->nfree; k++) {
-        rd_body_summary *sum = &s->watch[k].sum;
-        if (!sum->overturned) sum->overturn_time = -1;
+        rd_watch *w = &s->watch[k];
+        int i = s->free_body[k];
+        double b[3];
+        rd_mat_vec(s->R[i], w->base_local, b);
+        rd_axpy(1.0, s->x[i], b);
+        w->sum.final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
+        if (!w->sum.overturned) w->sum.overturn_time = -1;
     }
 }

@@ -57,6 +57,10 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
         return rd_error_set(err, "out of memory");
     for (int i = 0; i < nb; i++) {
         if (build_body(s, i, err)) return -1;
+        if (s->poly[i].nf > RD_MAX_PLANES)
+            return rd_error_set(err, "%s:%d: body '%s' has %d faces; at most %d are supported",
+                                s->sc.file, s->sc.bodies[i].line, s->sc.bodies[i].name,
+                                s->poly[i].nf, RD_MAX_PLANES);
         s->free_of[i] = s->fixed[i] ? -1 : s->nfree;
         if (!s->fixed[i]) s->free_body[s->nfree++] = i;
         s->vert0[i + 1] = s->vert0[i] + s->poly[i].nv;

@@ -10,6 +10,8 @@
 
 #include <signal.h>
 
+#define RD_MAX_PLANES 64 /* most faces a body may have to be a contact target (contact.c) */
+
 /* Per-subcontact state bits (rd_sim.pstate). */
 enum { RD_PT_ACTIVE = 1, RD_PT_BONDED = 2, RD_PT_SLIP = 4 };
 
@@ -21,6 +23,8 @@ typedef struct rd_side {
     double weight;    /* 1, or 1/2 when both bodies carry points (3DEC averaging of both sets) */
     int state0;       /* index of the owner's first point in rd_sim.fs / rd_sim.pstate */
     int face0;        /* index of the owner's first candidate face in rd_sim.face_nactive */
+    double u_prev[3]; /* contact normal of this side at the last step (stored shear forces lie
+                         in its plane) */
 } rd_side;
 
 /* A pair of bodies that may touch; its common-plane normal is a face normal of one of them
@@ -31,6 +35,7 @@ typedef struct rd_pair {
     rd_side side[2];
     int axis_body;     /* body whose face gives the normal, -1 before the first contact */
     int axis_face;     /* that face's index */
+    int axis_age;      /* steps since the face was last chosen */
     double n[3];       /* common-plane unit normal, ground frame, pointing away from axis_body */
     double m_eff;      /* reduced mass of the pair, kg (for viscous damping) */
     double k_active;   /* sum of KN*A over points active last step, N/m (viscous damping) */
@@ -44,6 +49,12 @@ typedef struct rd_watch {
     double base_local[3];/* point of the support plane below the centre of mass, body frame, m */
     double base_ref[3];  /* same point in the ground frame at rest, m */
     double h;            /* height of the centre of mass above its support plane at rest, m */
+    double zb[3];        /* the rest vertical in the body frame */
+    double alpha_min;    /* smallest static tipping angle over all lean directions, rad */
+    double cos_max;      /* cos(max tilt so far) */
+    double cos_ratio_gate; /* cos(max tilt ratio * alpha_min): a new max ratio needs z below it */
+    double cos_over_gate;  /* cos of the smallest tilt that can meet the overturn criterion */
+    int down;            /* tilted past 85 degrees: lying down */
     int nsupport;        /* support polygon at rest (ground xy, counter-clockwise), for alpha */
     double support[16][2];
     double rest_area;    /* contact area at rest, m^2 */
@@ -158,6 +169,7 @@ void rd_body_set_angular_velocity(rd_sim *s, int i, const double w[3]);
 double rd_timestep_critical(const rd_sim *s);
 
 /* energy.c */
+void rd_energy_step(rd_sim *s);
 void rd_energy_sample(rd_sim *s);
 
 /* monitor.c */
