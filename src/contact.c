@@ -64,6 +64,15 @@ void rd_contact_reset_body(rd_sim *s, int body)
         if (s->pair[p].a == body || s->pair[p].b == body) reset_pair(s, &s->pair[p]);
 }
 
+/* Pairs that were live last step but whose boxes no longer overlap lose their history. */
+static void reset_departed(rd_sim *s)
+{
+    for (int k = 0; k < s->nlive_prev; k++) {
+        rd_pair *pr = &s->pair[s->live_prev[k]];
+        if (pr->seen != s->stamp) reset_pair(s, pr);
+    }
+}
+
 /* Separation of body `y` from the plane of face f of body `x` (negative = overlap), m. */
 static double face_separation(const rd_sim *s, int x, int f, int y)
 {
@@ -303,21 +312,22 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
     *k_active += c.k_active;
 }
 
-void rd_contact_step(rd_sim *s)
+/* Broad phase, then every live pair: common plane and subcontact forces. 0, or -1 when the
+ * broad phase ran out of memory growing the pair cache. */
+int rd_contact_step(rd_sim *s)
 {
     s->e_elastic = 0;
-    for (int p = 0; p < s->npair; p++) {
-        rd_pair *pr = &s->pair[p];
-        double d[3] = {s->x[pr->b][0] - s->x[pr->a][0], s->x[pr->b][1] - s->x[pr->a][1],
-                       s->x[pr->b][2] - s->x[pr->a][2]};
-        double reach = s->poly[pr->a].radius + s->poly[pr->b].radius;
-        if (rd_dot(d, d) > reach * reach && s->can_cull) {
-            if (pr->axis_body >= 0) reset_pair(s, pr);
-            continue;
-        }
+    if (rd_pairs_update(s)) return -1;
+    reset_departed(s);
+    for (int k = 0; k < s->nlive; k++) {
+        rd_pair *pr = &s->pair[s->live[k]];
         pair_axis(s, pr);
         double k_active = 0;
-        for (int k = 0; k < pr->nside; k++) side_step(s, pr, &pr->side[k], &k_active);
+        for (int q = 0; q < pr->nside; q++) side_step(s, pr, &pr->side[q], &k_active);
         pr->k_active = k_active;
     }
+    int *t = s->live_prev; s->live_prev = s->live; s->live = t;
+    int c = s->cap_live_prev; s->cap_live_prev = s->cap_live; s->cap_live = c;
+    s->nlive_prev = s->nlive;
+    return 0;
 }

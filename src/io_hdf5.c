@@ -26,7 +26,7 @@ const char *const rd_energy_names[RD_NENERGY] = {
 /* Per-sample series, in rd_h5_sample order; energies follow. */
 enum {
     SER_TIME, SER_POSITION, SER_QUATERNION, SER_VELOCITY, SER_ANGULAR_VELOCITY, SER_TILT,
-    SER_GROUND_ACC, SER_GROUND_VEL, SER_GROUND_DISP, SER_ENERGY,
+    SER_ROTATION, SER_GROUND_ACC, SER_GROUND_VEL, SER_GROUND_DISP, SER_ENERGY,
     SER_COUNT = SER_ENERGY + RD_NENERGY
 };
 
@@ -44,6 +44,7 @@ static const rd_h5_series_spec series_spec[SER_ENERGY] = {
     {"velocity", 1, 3, "m/s"},
     {"angular_velocity", 1, 3, "rad/s"},
     {"tilt", 1, 0, "rad"},
+    {"rotation", 1, 3, "rad"}, /* in-plane rocking, out-of-plane rocking, twist */
     {"ground/acceleration", 0, 3, "m/s^2"},
     {"ground/velocity", 0, 3, "m/s"},
     {"ground/displacement", 0, 3, "m"},
@@ -80,7 +81,7 @@ struct rd_h5 {
 };
 
 static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
-                                           "io_error"};
+                                           "io_error", "error"};
 
 /* ---- attributes ---- */
 
@@ -372,6 +373,7 @@ int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
     put(&h->ser[SER_VELOCITY], r, s->velocity);
     put(&h->ser[SER_ANGULAR_VELOCITY], r, s->angular_velocity);
     put(&h->ser[SER_TILT], r, s->tilt);
+    put(&h->ser[SER_ROTATION], r, s->rotation);
     put(&h->ser[SER_GROUND_ACC], r, s->ground_acc);
     put(&h->ser[SER_GROUND_VEL], r, s->ground_vel);
     put(&h->ser[SER_GROUND_DISP], r, s->ground_disp);
@@ -446,6 +448,10 @@ static const rd_h5_body_field body_fields[] = {
     {"final_slide", offsetof(rd_body_summary, final_slide), 0},
     {"uplifted", offsetof(rd_body_summary, uplifted), 1},
     {"slid", offsetof(rd_body_summary, slid), 1},
+    {"max_rocking_in_plane", offsetof(rd_body_summary, max_rocking_in), 0},
+    {"max_rocking_out_of_plane", offsetof(rd_body_summary, max_rocking_out), 0},
+    {"max_twist", offsetof(rd_body_summary, max_twist), 0},
+    {"final_twist", offsetof(rd_body_summary, final_twist), 0},
 };
 
 /* order[i] = index in s->body of the body written as /bodies/names[i]. */

@@ -15,6 +15,10 @@
  *   /velocity              [N][nb][3]  m/s, relative to the ground
  *   /angular_velocity      [N][nb][3]  rad/s, ground frame
  *   /tilt                  [N][nb]     angle of the body's initial vertical axis from vertical, rad
+ *   /rotation              [N][nb][3]  rotation from rest split into in-plane rocking (about the
+ *                                      horizontal axis normal to the motion direction d, + tips
+ *                                      towards d), out-of-plane rocking (about d, + tips towards
+ *                                      z x d) and twist about the vertical (unwrapped), rad
  *   /ground/acceleration   [N][3]      m/s^2 as applied
  *   /ground/velocity       [N][3]      m/s
  *   /ground/displacement   [N][3]      m
@@ -64,6 +68,7 @@ typedef struct rd_h5_sample {
     const double *velocity;         /* [nb][3] */
     const double *angular_velocity; /* [nb][3] */
     const double *tilt;             /* [nb] */
+    const double *rotation;         /* [nb][3] in-plane rocking, out-of-plane rocking, twist */
     double ground_acc[3], ground_vel[3], ground_disp[3];
     double energy[RD_NENERGY];
 } rd_h5_sample;

@@ -22,7 +22,7 @@ static void on_signal(int sig)
 
 static const char *status_word(rd_status st)
 {
-    static const char *w[] = {"done", "overturned", "interrupted", "unstable", "io_error"};
+    static const char *w[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error"};
     return w[st];
 }
 
@@ -100,7 +100,7 @@ static int cmd_run(int argc, char **argv, int check_only)
             fprintf(stderr, "rockdem: warning: settling stopped at force ratio %.3g (asked %.3g)\n",
                     ev[k].value, sc.settle.ratio);
     int rc = 0;
-    if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR) {
+    if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR) {
         fprintf(stderr, "%s: %s\n", sc.file, rd_sim_error(sim));
         rc = 3;
     } else if (st == RD_STATUS_INTERRUPTED) {

@@ -9,7 +9,11 @@
  *            corner subcontacts, losing one edge halves it)
  *   impact   the signed rocking angle about the axis of the first rocking crosses zero
  *   slip     every active subcontact of the body is at its Coulomb limit (sliding as a whole)
- *   overturn the overturn criterion is first met; recover if the body comes back */
+ *   overturn the overturn criterion is first met; recover if the body comes back
+ * The rotation from rest is split (swing-twist) into a twist about the vertical and a swing
+ * about a horizontal axis; the swing's rotation vector gives in-plane rocking (about z x d,
+ * d = the motion's horizontal direction) and out-of-plane rocking (about -d), as in seed 002
+ * Figs. 9-10. Twist is unwrapped sample to sample, so accumulated spins exceed pi. */
 #include "sim.h"
 #include "vec.h"
 
@@ -275,4 +279,36 @@ void rd_monitor_finish(rd_sim *s)
         w->sum.final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
         if (!w->sum.overturned) w->sum.overturn_time = -1;
     }
+}
+
+/* Rotation of body k from rest: in-plane rocking, out-of-plane rocking, twist (rad). Called at
+ * output samples (twist unwrapping assumes less than half a turn between samples). */
+void rd_monitor_rotation(rd_sim *s, int k, double out[3])
+{
+    rd_watch *w = &s->watch[k];
+    int i = s->free_body[k];
+    double qc[4] = {w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3]}, dq[4];
+    rd_quat_mul(s->q[i], qc, dq);                 /* rotation since rest, ground frame */
+    double tn = hypot(dq[0], dq[3]);
+    double qt[4] = {tn > 0 ? dq[0] / tn : 1, 0, 0, tn > 0 ? dq[3] / tn : 0};
+    double qti[4] = {qt[0], 0, 0, -qt[3]}, qs[4];
+    rd_quat_mul(dq, qti, qs);                     /* swing = rotation * twist^-1 */
+    if (qs[0] < 0) for (int j = 0; j < 4; j++) qs[j] = -qs[j];
+    double sn = sqrt(qs[1] * qs[1] + qs[2] * qs[2] + qs[3] * qs[3]);
+    double ang = 2 * atan2(sn, qs[0]), f = sn > 0 ? ang / sn : 2.0;
+    double phi[2] = {f * qs[1], f * qs[2]};       /* horizontal swing rotation vector */
+    double dir = s->sc.motion.horizontal.direction, d[2] = {cos(dir), sin(dir)};
+    out[0] = -phi[0] * d[1] + phi[1] * d[0];      /* about z x d */
+    out[1] = -(phi[0] * d[0] + phi[1] * d[1]);    /* about -d */
+    double tw = 2 * atan2(qt[3], qt[0]);          /* in (-2 pi, 2 pi] */
+    double prev = w->twist_prev;
+    while (tw - prev > M_PI) tw -= 2 * M_PI;
+    while (tw - prev < -M_PI) tw += 2 * M_PI;
+    w->twist_prev = tw;
+    out[2] = tw;
+    rd_body_summary *sum = &w->sum;
+    sum->max_rocking_in = rd_max(sum->max_rocking_in, fabs(out[0]));
+    sum->max_rocking_out = rd_max(sum->max_rocking_out, fabs(out[1]));
+    sum->max_twist = rd_max(sum->max_twist, fabs(tw));
+    sum->final_twist = tw;
 }

@@ -5,7 +5,8 @@
  * down at the start (it may land on what is below) or lies on another body's face (a stack
  * joint). Fixed pedestals carry no points: a free body's own points already integrate the
  * joint over its footprint (weight 1); where two free bodies meet, both point sets carry half
- * the stiffness (3DEC's averaging of the two faces' subcontacts). */
+ * the stiffness (3DEC's averaging of the two faces' subcontacts). Pairs are made by the broad
+ * phase (pairs.c) when two bodies first come near each other. */
 #include "sim.h"
 #include "vec.h"
 
@@ -153,44 +154,13 @@ static int build_points(rd_sim *s, double spacing, rd_error *err)
     return 0;
 }
 
-static int build_pairs(rd_sim *s, rd_error *err)
-{
-    int nb = s->nb, np = 0, nstate = 0, nfs = 0;
-    if (!ALLOC(s->pair, nb * (nb - 1) / 2 + 1)) return rd_error_set(err, "out of memory");
-    for (int a = 0; a < nb; a++)
-        for (int b = a + 1; b < nb; b++) {
-            int pa = s->pt0[a + 1] > s->pt0[a], pb = s->pt0[b + 1] > s->pt0[b];
-            if (!pa && !pb) continue;
-            rd_pair *pr = &s->pair[np++];
-            memset(pr, 0, sizeof *pr);
-            pr->a = a; pr->b = b; pr->axis_body = -1;
-            double w = (pa && pb) ? 0.5 : 1.0;
-            for (int k = 0; k < 2; k++) {
-                int o = k ? b : a;
-                if (!(k ? pb : pa)) continue;
-                rd_side *sd = &pr->side[pr->nside++];
-                sd->owner = o; sd->other = k ? a : b; sd->weight = w;
-                sd->state0 = nstate; sd->face0 = nfs;
-                nstate += s->pt0[o + 1] - s->pt0[o];
-                nfs += s->cf0[o + 1] - s->cf0[o];
-            }
-            pr->m_eff = s->fixed[a] ? s->mass[b] : s->fixed[b] ? s->mass[a]
-                                    : s->mass[a] * s->mass[b] / (s->mass[a] + s->mass[b]);
-        }
-    s->npair = np; s->nstate = nstate; s->nface_state = nfs;
-    if (!ALLOC(s->fs, nstate) || !ALLOC(s->pstate, nstate) || !ALLOC(s->face_nactive, nfs))
-        return rd_error_set(err, "out of memory");
-    int bonded = s->sc.contact.tension > 0 || s->sc.contact.cohesion > 0;
-    for (int k = 0; k < nstate; k++) s->pstate[k] = bonded ? RD_PT_BONDED : 0;
-    s->can_cull = !bonded;
-    return 0;
-}
-
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     double spacing = s->sc.contact.spacing < 0 ? auto_spacing(s) : s->sc.contact.spacing;
     s->sc.contact.spacing = spacing;
     s->tan_phi = tan(s->sc.contact.friction);
-    if (build_points(s, spacing, err) || build_pairs(s, err)) return -1;
+    s->bonds = s->sc.contact.tension > 0 || s->sc.contact.cohesion > 0;
+    s->can_cull = !s->bonds;
+    if (build_points(s, spacing, err) || rd_pairs_init(s, err)) return -1;
     return 0;
 }

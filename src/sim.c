@@ -105,7 +105,8 @@ static int healthy(rd_sim *s)
 static int write_sample(rd_sim *s)
 {
     int nf = s->nfree;
-    double *pos = s->obuf, *quat = pos + 3 * nf, *vel = quat + 4 * nf, *ang = vel + 3 * nf, *tilt = ang + 3 * nf;
+    double *pos = s->obuf, *quat = pos + 3 * nf, *vel = quat + 4 * nf, *ang = vel + 3 * nf,
+           *tilt = ang + 3 * nf, *rot = tilt + nf;
     for (int k = 0; k < nf; k++) {
         int i = s->free_body[k];
         double Lm[3], lb[3];
@@ -122,9 +123,10 @@ static int write_sample(rd_sim *s)
         rd_quat_mul(s->q[i], qc, dq);
         rd_quat_rotate(dq, (double[3]){0, 0, 1}, z);
         tilt[k] = atan2(hypot(z[0], z[1]), z[2]);
+        rd_monitor_rotation(s, k, rot + 3 * k);
     }
     rd_h5_sample smp = {.time = s->t, .position = pos, .quaternion = quat, .velocity = vel,
-                        .angular_velocity = ang, .tilt = tilt};
+                        .angular_velocity = ang, .tilt = tilt, .rotation = rot};
     memcpy(smp.ground_acc, s->ag, sizeof s->ag);
     memcpy(smp.ground_vel, s->vg, sizeof s->vg);
     memcpy(smp.ground_disp, s->dg, sizeof s->dg);
@@ -148,7 +150,11 @@ static void step_once(rd_sim *s)
     if (!s->settling) rd_motion_eval(&s->sc.motion, s->t, s->ag, s->vg, s->dg);
     rd_bodies_refresh(s);
     forces_external(s);
-    rd_contact_step(s);
+    if (rd_contact_step(s)) {
+        snprintf(s->errmsg, sizeof s->errmsg, "out of memory growing the contact-pair cache at t = %g s", s->t);
+        s->status = RD_STATUS_ERROR;
+        return;
+    }
     if (s->settling) {
         s->settle_ratio = unbalance(s);
         damping_local(s, 0.8, 0);
@@ -178,7 +184,7 @@ static void settle(rd_sim *s)
     s->t = 0;
     memset(s->ag, 0, sizeof s->ag);
     s->settle_ratio = INFINITY;
-    while (s->t < s->sc.settle.max_time && !stop_requested) {
+    while (s->t < s->sc.settle.max_time && !stop_requested && s->status == RD_STATUS_DONE) {
         step_once(s);
         if (s->settle_ratio < s->sc.settle.ratio) break;
     }
@@ -299,7 +305,7 @@ rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
     s->sc = *sc;
     if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err)) goto fail;
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
-    s->obuf = calloc((size_t)s->nfree * 14 + 1, sizeof *s->obuf);
+    s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
     if (!s->watch || !s->obuf) { rd_error_set(err, "out of memory"); goto fail; }
     if (open_output(s, err)) goto fail;
     return s;
@@ -311,9 +317,10 @@ fail:
 static void write_summary(rd_sim *s)
 {
     rd_summary sum;
-    rd_sim_summary(s, &sum);
     rd_error err;
-    if (write_sample(s) == 0 && rd_h5_summary(s->h5, &sum, &err) == 0 && rd_h5_flush(s->h5, &err) == 0) return;
+    int rc = write_sample(s); /* the final state, which also completes the rotation extremes */
+    rd_sim_summary(s, &sum);
+    if (rc == 0 && rd_h5_summary(s->h5, &sum, &err) == 0 && rd_h5_flush(s->h5, &err) == 0) return;
     if (s->status != RD_STATUS_IO_ERROR) {
         snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
         s->status = RD_STATUS_IO_ERROR;
@@ -323,16 +330,17 @@ static void write_summary(rd_sim *s)
 rd_status rd_sim_run(rd_sim *s)
 {
     stop_requested = 0;
+    s->status = RD_STATUS_DONE;
     if (s->sc.settle.enabled) settle(s);
-    else rd_contact_step(s); /* contact areas at rest for the monitor */
+    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
     rd_bodies_refresh(s);
     rd_monitor_rest(s);
     apply_initial_conditions(s);
     rd_monitor_start(s);
-    s->status = RD_STATUS_DONE;
+    s->shaking = 1;
     s->e_fric = s->e_damp = s->e_work = 0;
     double t0 = wall_now(), end = s->sc.duration;
-    while (s->t < end - 0.5 * s->dt) {
+    while (s->status == RD_STATUS_DONE && s->t < end - 0.5 * s->dt) {
         if (stop_requested) { s->status = RD_STATUS_INTERRUPTED; break; }
         step_once(s);
         s->step++;
@@ -396,7 +404,8 @@ void rd_sim_free(rd_sim *s)
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed,
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
-                      s->pair, s->fs, s->pstate, s->face_nactive, s->watch, s->event, s->obuf};
+                      s->pair, s->fs, s->pstate, s->face_nactive, s->watch, s->event, s->obuf,
+                      s->aabb, s->order, s->hkey, s->live, s->live_prev};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) free(arrays[k]);
     free(s);
 }

@@ -38,6 +38,7 @@ typedef struct rd_pair {
     int axis_age;      /* steps since the face was last chosen */
     double n[3];       /* common-plane unit normal, ground frame, pointing away from axis_body */
     double m_eff;      /* reduced mass of the pair, kg (for viscous damping) */
+    long seen;         /* broad-phase stamp of the last step its boxes overlapped */
     double k_active;   /* sum of KN*A over points active last step, N/m (viscous damping) */
 } rd_pair;
 
@@ -55,6 +56,7 @@ typedef struct rd_watch {
     double cos_ratio_gate; /* cos(max tilt ratio * alpha_min): a new max ratio needs z below it */
     double cos_over_gate;  /* cos of the smallest tilt that can meet the overturn criterion */
     int down;            /* tilted past 85 degrees: lying down */
+    double twist_prev;   /* unwrapped twist at the last sample, rad */
     int nsupport;        /* support polygon at rest (ground xy, counter-clockwise), for alpha */
     double support[16][2];
     double rest_area;    /* contact area at rest, m^2 */
@@ -109,15 +111,28 @@ struct rd_sim {
     int *cf_face;          /* [ncf] face index on its body */
     int *cf_pt0;           /* [ncf+1] first point of each candidate face */
 
-    /* contact pairs and their per-point history */
-    int npair;
+    /* broad phase (pairs.c) */
+    double (*aabb)[6];     /* per body: min xyz, max xyz, grown by `margin`, m */
+    double margin;         /* m */
+    int *order;            /* bodies sorted by box minimum along sweep_axis */
+    int sweep_axis;
+    long stamp;            /* broad-phase step counter */
+    int *hkey;             /* hash map (a, b) -> pair index, -1 empty; hcap a power of 2 */
+    int hcap;
+    int *live, nlive, cap_live;       /* pairs whose boxes overlap this step */
+    int *live_prev, nlive_prev, cap_live_prev;
+
+    /* contact pairs and their per-point history (grown when two bodies first meet) */
+    int npair, cap_pair;
     rd_pair *pair;
-    int nstate;
+    int nstate, cap_state, cap_state_flags;
     double (*fs)[3];       /* shear force on the owner, ground frame, N */
     unsigned char *pstate; /* RD_PT_* bits */
-    int nface_state;
+    int nface_state, cap_face_state;
     int *face_nactive;     /* active points per (side, candidate face) last step */
+    int bonds;             /* 1 when cohesion or tension is set */
     int can_cull;          /* 0 when cohesion/tension bonds may act across open gaps */
+    int shaking;           /* 1 once the shaking stage has started */
     double tan_phi;        /* tan(friction angle) */
 
     /* time */
@@ -147,7 +162,7 @@ struct rd_sim {
     int nevent_written;
     rd_h5 *h5;
     double next_out;       /* time of the next output sample, s */
-    double *obuf;          /* [nfree * 14] staging buffer for one sample */
+    double *obuf;          /* [nfree * 17] staging buffer for one sample */
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
     double wall;           /* wall seconds of the shaking stage */
     double settle_ratio;   /* unbalanced-force ratio reached by the settle stage */
@@ -155,8 +170,12 @@ struct rd_sim {
     char errmsg[RD_ERROR_MAX];
 };
 
+/* pairs.c */
+int rd_pairs_init(rd_sim *s, rd_error *err);
+int rd_pairs_update(rd_sim *s);
+
 /* contact.c */
-void rd_contact_step(rd_sim *s);
+int rd_contact_step(rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
 
 /* integrate.c */
@@ -179,6 +198,7 @@ void rd_monitor_step(rd_sim *s);
 void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip);
 int rd_monitor_all_fallen(const rd_sim *s);
 void rd_monitor_finish(rd_sim *s);
+void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
 
 /* setup.c */

@@ -3,10 +3,11 @@
  * For springs k_p acting at points r_p of rigid bodies, the largest eigenvalue of M^-1 K is at
  * most sum_p k_p * mobility_p, where a point's mobility on body i is at most
  * G_i = 1/m_i + r_i^2 / I_min,i (translation plus rotation about the stiffest-to-turn axis;
- * r_i = distance of the farthest vertex). Per body, summing over every subcontact that can
- * touch it (all candidate points closed at once) bounds w_max^2; dt_crit = 2 / w_max, reduced
- * by sqrt(1 + l^2) - l for a normal dashpot of damping ratio l. The bound is rigorous (never
- * above the true limit), so a fixed step below it is stable. */
+ * r_i = distance of the farthest vertex). Per body, its own subcontacts all closed at once,
+ * each acting between it and the most mobile other body, bound w_max^2; dt_crit = 2 / w_max,
+ * reduced by sqrt(1 + l^2) - l for a normal dashpot of damping ratio l. A body's own points
+ * cover its joints (weight 1 on pedestals; two half-weight sets on a shared face), so the
+ * bound holds as contacts come and go. */
 #include "sim.h"
 
 #include <math.h>
@@ -19,22 +20,24 @@ static double mobility(const rd_sim *s, int i)
     return 1.0 / s->mass[i] + r * r / imin;
 }
 
+/* Largest mobility among the free bodies other than i (0 when i can only meet pedestals). */
+static double other_mobility(const rd_sim *s, int i)
+{
+    double g = 0;
+    for (int j = 0; j < s->nb; j++)
+        if (j != i && s->pt0[j + 1] > s->pt0[j]) g = fmax(g, mobility(s, j));
+    return g;
+}
+
 double rd_timestep_critical(const rd_sim *s)
 {
     double k = fmax(s->sc.contact.kn, s->sc.contact.ks), w2max = 0, lmax = 0;
     for (int i = 0; i < s->nb; i++) {
         if (s->fixed[i]) continue;
-        double w2 = 0;
-        for (int p = 0; p < s->npair; p++) {
-            const rd_pair *pr = &s->pair[p];
-            if (pr->a != i && pr->b != i) continue;
-            double K = 0;
-            for (int q = 0; q < pr->nside; q++) {
-                const rd_side *sd = &pr->side[q];
-                for (int j = s->pt0[sd->owner]; j < s->pt0[sd->owner + 1]; j++) K += k * sd->weight * s->pa[j];
-            }
-            w2 += K * (mobility(s, pr->a) + mobility(s, pr->b));
-        }
+        double area = 0; /* its own subcontacts at full weight: where two free bodies meet, the
+                            two half-weight sets together carry about the shared area */
+        for (int j = s->pt0[i]; j < s->pt0[i + 1]; j++) area += s->pa[j];
+        double w2 = k * area * (mobility(s, i) + other_mobility(s, i));
         if (w2 > w2max) w2max = w2;
         double l = s->sc.damping.kind == RD_DAMPING_VISCOUS
                        ? s->sc.damping.value * sqrt(s->mass[i] * mobility(s, i)) : 0.0;

@@ -333,6 +333,32 @@ static void test_overturn_strong_not_weak(void **state)
     assert_true(sum.body[0].overturn_time > 0);
 }
 
+/* ---- 3-D monitoring: a spinning block twists, it does not rock --------------------------- */
+/* A 0.5 x 0.5 x 1 m block spun at 3 rad/s about the vertical on its base. Coulomb friction
+ * under uniform pressure gives a torque mu m g r_mean, r_mean = a (sqrt 2 + ln(1 + sqrt 2)) / 6
+ * for a square of side a, against I_z = m a^2 / 6: it stops after turning
+ * w0^2 / (2 mu g r_mean 6 / a^2). The 11 x 11 bed integrates r_mean by the trapezoidal rule and
+ * the shear springs store a little twist, so allow 3 %. Rocking must stay at round-off. */
+static void test_spin_reports_twist(void **state)
+{
+    (void)state;
+    const char *text =
+        "block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base\n"
+        "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
+        "block initial name b angular-velocity 0 0 3\n"
+        "model solve time 0.5\noutput hdf5 'x.h5' interval 0.005\n";
+    rd_summary sum;
+    run_summary(text, NULL, &sum);
+    double a = 0.5, mu = tan(40 * M_PI / 180), rmean = a * (sqrt(2) + log(1 + sqrt(2))) / 6;
+    double expect = 9.0 / (2 * mu * 9.81 * rmean * 6 / (a * a));
+    print_message("spin: twist %.5f rad (Coulomb %.5f), rocking %.2e / %.2e rad\n",
+                  sum.body[0].final_twist, expect, sum.body[0].max_rocking_in, sum.body[0].max_rocking_out);
+    assert_true(fabs(sum.body[0].final_twist - expect) < 0.03 * expect);
+    assert_true(sum.body[0].max_rocking_in < 1e-9 && sum.body[0].max_rocking_out < 1e-9);
+    assert_false(sum.body[0].uplifted);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -344,6 +370,7 @@ int main(void)
         cmocka_unit_test(test_determinism),
         cmocka_unit_test(test_fixed_step_limit),
         cmocka_unit_test(test_overturn_strong_not_weak),
+        cmocka_unit_test(test_spin_reports_twist),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

@@ -22,7 +22,8 @@ typedef enum rd_status {
     RD_STATUS_OVERTURNED = 1,  /* stopped early: every free body overturned (criterion met) */
     RD_STATUS_INTERRUPTED = 2, /* stopped by a signal (Ctrl-C); output holds everything so far */
     RD_STATUS_UNSTABLE = 3,    /* NaN/Inf or runaway velocity: stopped, cause in rd_sim_error() */
-    RD_STATUS_IO_ERROR = 4     /* the output file could not be written */
+    RD_STATUS_IO_ERROR = 4,    /* the output file could not be written */
+    RD_STATUS_ERROR = 5        /* out of memory during the run: stopped, cause in rd_sim_error() */
 } rd_status;
 
 /* What a run found, per free body and overall (written as HDF5 summary attributes). */
@@ -36,7 +37,11 @@ typedef struct rd_body_summary {
     double max_slide;      /* max horizontal displacement of the base centre from its start, m */
     double final_slide;    /* same, at the end, m */
     int uplifted;          /* 1 if the body ever lost contact over part of its base */
-    int slid;              /* 1 if any subcontact slipped while the body was loaded */
+    int slid;              /* 1 if the body slid as a whole (every active subcontact slipping) */
+    double max_rocking_in; /* max |in-plane rocking| (about the axis normal to the motion), rad */
+    double max_rocking_out;/* max |out-of-plane rocking| (about the motion direction), rad */
+    double max_twist;      /* max |twist about the vertical|, rad */
+    double final_twist;    /* twist at the end (residual), rad */
 } rd_body_summary;
 
 typedef struct rd_summary {
