@@ -452,7 +452,23 @@ static const rd_h5_body_field body_fields[] = {
     {"max_rocking_out_of_plane", offsetof(rd_body_summary, max_rocking_out), 0},
     {"max_twist", offsetof(rd_body_summary, max_twist), 0},
     {"final_twist", offsetof(rd_body_summary, final_twist), 0},
+    {"alpha_min", offsetof(rd_body_summary, alpha_min), 0},
+    {"alpha_min_direction", offsetof(rd_body_summary, alpha_min_direction), 0},
+    {"tip_accel_min", offsetof(rd_body_summary, tip_accel_min), 0},
 };
+
+int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
+{
+    char path[RD_NAME_MAX + 16];
+    snprintf(path, sizeof path, "/bodies/%s", body);
+    hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
+    if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
+    if (H5Lexists(g, "precariousness", H5P_DEFAULT) > 0) H5Ldelete(g, "precariousness", H5P_DEFAULT);
+    int rc = write_table3(h, g, "precariousness", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, table,
+                          "rad, rad, m/s^2", err);
+    H5Gclose(g);
+    return rc;
+}
 
 /* order[i] = index in s->body of the body written as /bodies/names[i]. */
 static int summary_order(const rd_h5 *h, const rd_summary *s, int *order, rd_error *err)

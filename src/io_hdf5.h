@@ -85,6 +85,10 @@ int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value,
 int rd_h5_flush(rd_h5 *h, rd_error *err);
 /* Write the /summary group (may be called more than once; last call wins). 0 or -1. */
 int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err);
+/* Write /bodies/<body>/precariousness [n][3]: lean direction the body tips towards (rad from
+ * +x), static tipping angle alpha (rad) and quasi-static tipping acceleration g tan(alpha)
+ * (m/s^2, the ground acceleration pointing the opposite way). Replaces an earlier table. */
+int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err);
 /* Flush and close; safe on NULL. */
 void rd_h5_close(rd_h5 *h);
 

@@ -35,6 +35,11 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
         printf("; max tilt %.4g rad = %.3g alpha; max slide %.3g mm%s%s\n", b->max_tilt, b->max_tilt_ratio,
                1e3 * b->max_slide, b->slid ? "; slid" : "", b->uplifted && !b->overturned ? "; uplifted" : "");
+        if (!quiet)
+            printf("%s: precariousness: least tipping angle %.4g deg leaning towards %.0f deg "
+                   "(quasi-static tipping acceleration %.3g g); twist at end %.3g deg\n", b->name,
+                   b->alpha_min * 180 / M_PI, b->alpha_min_direction * 180 / M_PI,
+                   b->tip_accel_min / 9.80665, b->final_twist * 180 / M_PI);
     }
     if (quiet) return;
     double sim_s = s->steps * s->dt;

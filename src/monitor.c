@@ -38,15 +38,21 @@ void rd_event_add(rd_sim *s, double time, int body, const char *type, double val
     snprintf(e->type, sizeof e->type, "%s", type);
 }
 
-/* Convex hull (monotone chain) of n 2-D points, counter-clockwise; returns its size. */
+static int lex_less(const double *a, const double *b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+
+static int cmp_xy(const void *a, const void *b)
+{
+    return lex_less(a, b) ? -1 : lex_less(b, a) ? 1 : 0;
+}
+
+/* Convex hull (monotone chain) of n 2-D points, counter-clockwise, written over p; returns its
+ * size, or -1 without memory. */
 static int hull2d(double (*p)[2], int n)
 {
-    for (int i = 1; i < n; i++)
-        for (int j = i; j > 0 && (p[j][0] < p[j - 1][0] || (p[j][0] == p[j - 1][0] && p[j][1] < p[j - 1][1])); j--) {
-            double t0 = p[j][0], t1 = p[j][1];
-            p[j][0] = p[j - 1][0]; p[j][1] = p[j - 1][1]; p[j - 1][0] = t0; p[j - 1][1] = t1;
-        }
-    double h[34][2];
+    if (n < 3) return n;
+    qsort(p, (size_t)n, sizeof p[0], cmp_xy);
+    double (*h)[2] = malloc((size_t)(2 * n + 1) * sizeof *h);
+    if (!h) return -1;
     int k = 0;
     for (int pass = 0; pass < 2; pass++) {
         int start = k;
@@ -59,7 +65,8 @@ static int hull2d(double (*p)[2], int n)
         }
         k--;
     }
-    for (int i = 0; i < k; i++) { p[i][0] = h[i][0]; p[i][1] = h[i][1]; }
+    memcpy(p, h, (size_t)k * sizeof *h);
+    free(h);
     return k;
 }
 
@@ -86,7 +93,60 @@ static double alpha_toward(const rd_watch *w, double dx, double dy)
     return atan2(ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy), w->h);
 }
 
-/* Rest state of body i: the lowest vertices form the support polygon. */
+/* Ground-frame xy of the subcontact points touching body i at rest (its own and those of the
+ * bodies it rests on); returns the count written into a malloc'ed *out, or -1. */
+static int contact_points(const rd_sim *s, int i, double (**out)[2])
+{
+    int cap = 64, n = 0;
+    double (*p)[2] = malloc((size_t)cap * sizeof *p);
+    if (!p) return -1;
+    for (int k = 0; k < s->nlive_prev; k++) {
+        const rd_pair *pr = &s->pair[s->live_prev[k]];
+        if (pr->a != i && pr->b != i) continue;
+        for (int q = 0; q < pr->nside; q++) {
+            const rd_side *sd = &pr->side[q];
+            for (int j = s->pt0[sd->owner]; j < s->pt0[sd->owner + 1]; j++) {
+                if (!(s->pstate[sd->state0 + j - s->pt0[sd->owner]] & RD_PT_ACTIVE)) continue;
+                if (n == cap) {
+                    double (*t)[2] = realloc(p, (size_t)(cap *= 2) * sizeof *p);
+                    if (!t) { free(p); return -1; }
+                    p = t;
+                }
+                double x[3];
+                rd_mat_vec(s->R[sd->owner], s->pl[j], x);
+                p[n][0] = x[0] + s->x[sd->owner][0];
+                p[n][1] = x[1] + s->x[sd->owner][1];
+                n++;
+            }
+        }
+    }
+    *out = p;
+    return n;
+}
+
+/* Support polygon at rest: the hull of the contact points, or of the lowest vertices when
+ * nothing is pressed yet (scene placed exactly touching and not settled). */
+static void support_polygon(rd_sim *s, int k, double zmin)
+{
+    int i = s->free_body[k];
+    rd_watch *w = &s->watch[k];
+    double (*pts)[2] = NULL;
+    int n = contact_points(s, i, &pts);
+    if (n < 3) {
+        free(pts);
+        n = 0;
+        pts = malloc((size_t)s->poly[i].nv * sizeof *pts);
+        double tol = 1e-4 * s->poly[i].radius;
+        for (int v = s->vert0[i]; pts && v < s->vert0[i + 1]; v++)
+            if (s->wv[v][2] < zmin + tol) { pts[n][0] = s->wv[v][0]; pts[n][1] = s->wv[v][1]; n++; }
+    }
+    free(w->support);
+    w->nsupport = pts ? hull2d(pts, n) : 0;
+    if (w->nsupport < 0) w->nsupport = 0;
+    w->support = pts;
+}
+
+/* Rest state of body k: support polygon, height of the centre of mass, tipping angles. */
 static void watch_init(rd_sim *s, int k)
 {
     int i = s->free_body[k];
@@ -95,14 +155,7 @@ static void watch_init(rd_sim *s, int k)
     rd_copy3(s->x[i], w->x_ref);
     double zmin = INFINITY;
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
-    double tol = 1e-4 * s->poly[i].radius;
-    double pts[32][2];
-    int n = 0;
-    for (int v = s->vert0[i]; v < s->vert0[i + 1] && n < 32; v++)
-        if (s->wv[v][2] < zmin + tol) { pts[n][0] = s->wv[v][0]; pts[n][1] = s->wv[v][1]; n++; }
-    n = hull2d(pts, n);
-    w->nsupport = n < 16 ? n : 16;
-    memcpy(w->support, pts, (size_t)w->nsupport * sizeof pts[0]);
+    support_polygon(s, k, zmin);
     w->h = s->x[i][2] - zmin;
     double b[3] = {s->x[i][0], s->x[i][1], zmin}, d[3] = {0, 0, zmin - s->x[i][2]};
     rd_copy3(b, w->base_ref);
@@ -112,8 +165,16 @@ static void watch_init(rd_sim *s, int k)
     snprintf(w->sum.name, sizeof w->sum.name, "%s", s->sc.bodies[i].name);
     w->sum.overturn_time = -1;
     double amin = M_PI / 2;
-    for (int d = 0; d < 72; d++) amin = fmin(amin, alpha_toward(w, cos(d * M_PI / 36), sin(d * M_PI / 36)));
+    for (int d = 0; d < RD_NPREC; d++) {
+        double psi = 2 * M_PI * d / RD_NPREC, a = alpha_toward(w, cos(psi), sin(psi));
+        w->prec[d][0] = psi;
+        w->prec[d][1] = a;
+        w->prec[d][2] = s->sc.gravity * tan(a);
+        if (a < amin) { amin = a; w->sum.alpha_min_direction = psi; }
+    }
     w->alpha_min = amin;
+    w->sum.alpha_min = amin;
+    w->sum.tip_accel_min = s->sc.gravity * tan(amin);
     w->sum.alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
     w->cos_max = 1;
     w->cos_ratio_gate = 1;

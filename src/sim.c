@@ -314,6 +314,18 @@ fail:
     return NULL;
 }
 
+/* Static tipping angle and acceleration around the vertical, per body, into the output. */
+static void write_precariousness(rd_sim *s)
+{
+    rd_error err;
+    for (int k = 0; k < s->nfree && s->status == RD_STATUS_DONE; k++)
+        if (rd_h5_precariousness(s->h5, s->sc.bodies[s->free_body[k]].name, &s->watch[k].prec[0][0],
+                                 RD_NPREC, &err)) {
+            snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
+            s->status = RD_STATUS_IO_ERROR;
+        }
+}
+
 static void write_summary(rd_sim *s)
 {
     rd_summary sum;
@@ -335,6 +347,7 @@ rd_status rd_sim_run(rd_sim *s)
     else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
     rd_bodies_refresh(s);
     rd_monitor_rest(s);
+    write_precariousness(s);
     apply_initial_conditions(s);
     rd_monitor_start(s);
     s->shaking = 1;
@@ -401,6 +414,7 @@ void rd_sim_free(rd_sim *s)
     if (!s) return;
     rd_h5_close(s->h5);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
+    for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed,
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,

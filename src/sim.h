@@ -11,6 +11,7 @@
 #include <signal.h>
 
 #define RD_MAX_PLANES 64 /* most faces a body may have to be a contact target (contact.c) */
+#define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
 enum { RD_PT_ACTIVE = 1, RD_PT_BONDED = 2, RD_PT_SLIP = 4 };
@@ -57,8 +58,10 @@ typedef struct rd_watch {
     double cos_over_gate;  /* cos of the smallest tilt that can meet the overturn criterion */
     int down;            /* tilted past 85 degrees: lying down */
     double twist_prev;   /* unwrapped twist at the last sample, rad */
-    int nsupport;        /* support polygon at rest (ground xy, counter-clockwise), for alpha */
-    double support[16][2];
+    int nsupport;        /* support polygon at rest: hull of the contact points (ground xy,
+                            counter-clockwise), for alpha */
+    double (*support)[2];
+    double prec[RD_NPREC][3]; /* precariousness: lean direction (rad), alpha (rad), g tan(alpha) */
     double rest_area;    /* contact area at rest, m^2 */
     double area;         /* contact area this step, m^2 */
     int nslip, nactive;  /* slipping / active subcontacts this step */
@@ -166,6 +169,8 @@ struct rd_sim {
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
     double wall;           /* wall seconds of the shaking stage */
     double settle_ratio;   /* unbalanced-force ratio reached by the settle stage */
+    double rest_since;     /* tail: time since which every free body has been at rest, s
+                              (-1 while something moves) */
     rd_status status;
     char errmsg[RD_ERROR_MAX];
 };
@@ -190,6 +195,10 @@ double rd_timestep_critical(const rd_sim *s);
 /* energy.c */
 void rd_energy_step(rd_sim *s);
 void rd_energy_sample(rd_sim *s);
+
+/* rest.c: the free-vibration tail (`model solve time T tail D`) */
+double rd_rest_end(rd_sim *s);
+int rd_rest_reached(rd_sim *s);
 
 /* monitor.c */
 void rd_monitor_rest(rd_sim *s);

@@ -359,6 +359,29 @@ static void test_spin_reports_twist(void **state)
     assert_false(sum.body[0].uplifted);
 }
 
+/* ---- precariousness: tipping angle around the vertical ---------------------------------- */
+/* A 0.4 x 0.6 x 1.6 m brick turned 30 deg about z: the least static tipping angle is
+ * atan(0.2 / 0.8) leaning along its short axis (30 or 210 deg), the quasi-static tipping
+ * acceleration g tan(alpha) = g / 4; the support polygon comes from the contact points at rest,
+ * so this is exact up to the settled compression (1e-9 relative). */
+static void test_precariousness(void **state)
+{
+    (void)state;
+    const char *text =
+        "block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base\n"
+        "block create brick size 0.4 0.6 1.6 position 0 0 0.8 rotation 0 0 30 name b\n"
+        "model solve time 0.01\noutput hdf5 'x.h5' interval 0.005\n";
+    rd_summary sum;
+    run_summary(text, NULL, &sum);
+    const rd_body_summary *b = &sum.body[0];
+    double dir = fmod(b->alpha_min_direction * 180 / M_PI, 180.0);
+    print_message("alpha_min %.9f rad towards %.1f deg, a_tip %.6f m/s^2\n", b->alpha_min,
+                  b->alpha_min_direction * 180 / M_PI, b->tip_accel_min);
+    assert_true(fabs(b->alpha_min - atan(0.25)) < 1e-6 * atan(0.25));
+    assert_true(fabs(dir - 30) < 1e-9);
+    assert_true(fabs(b->tip_accel_min - 9.81 * 0.25) < 1e-5);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -371,6 +394,7 @@ int main(void)
         cmocka_unit_test(test_fixed_step_limit),
         cmocka_unit_test(test_overturn_strong_not_weak),
         cmocka_unit_test(test_spin_reports_twist),
+        cmocka_unit_test(test_precariousness),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

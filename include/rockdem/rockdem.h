@@ -32,7 +32,10 @@ typedef struct rd_body_summary {
     int overturned;        /* 1 if the overturn criterion was met */
     double overturn_time;  /* s, -1 if never */
     double max_tilt;       /* max angle between the body's initial and current vertical axis, rad */
-    double alpha;          /* static tipping angle of the body about its base edge, rad */
+    double alpha;          /* static tipping angle about its base edge (least of +-x, +-y), rad */
+    double alpha_min;      /* least static tipping angle over all lean directions, rad */
+    double alpha_min_direction; /* lean direction of alpha_min, rad from +x */
+    double tip_accel_min;  /* quasi-static tipping acceleration g tan(alpha_min), m/s^2 */
     double max_tilt_ratio; /* max_tilt / alpha */
     double max_slide;      /* max horizontal displacement of the base centre from its start, m */
     double final_slide;    /* same, at the end, m */
