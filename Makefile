@@ -8,7 +8,7 @@ PKGCFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lhdf5_hl
 SUNLIBS := -lsundials_cvode -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense
 ALL_CFLAGS = $(WFLAGS) $(CFLAGS) $(SAN) -Iinclude -Isrc $(PKGCFLAGS)
-LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lm
+LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lqhull_r -lm
 
 BUILD   ?= build
 BIN     ?= bin
@@ -19,7 +19,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all run test asan bench deps clean
+.PHONY: all run test asan bench study deps clean
 
 all: $(BIN)/rockdem
 
@@ -56,6 +56,10 @@ asan:
 
 bench: $(BIN)/rockdem
 	@bash bench/run.sh $(BIN)
+
+# error against run time of the DEM vs the rigid references: docs/study.md, docs/study.png
+study: $(BIN)/rockdem
+	@bash bench/study.sh $(BIN)
 
 clean:
 	rm -rf build build-asan bin

@@ -127,6 +127,9 @@ static double face_planes(const rd_sim *s, side_ctx *c, int cf)
     int f = s->cf_face[cf], nv = po->flen[f];
     const int *ix = po->fidx + po->fstart[f];
     const double (*wv)[3] = s->wv + s->vert0[c->o];
+    /* a point on the other body's edge (coincident faces of equal blocks) is inside it: lateral
+       planes get a tolerance far above round-off and far below any subcontact spacing */
+    double tol = 1e-9 * (1.0 + s->poly[c->t].radius);
     double lb = -DBL_MAX;
     c->nal = c->nlat = 0;
     for (int k = s->face0[c->t]; k < s->face0[c->t + 1]; k++) {
@@ -137,7 +140,7 @@ static double face_planes(const rd_sim *s, side_ctx *c, int cf)
             double e = rd_dot(n, wv[ix[j]]) - s->wd[k];
             emin = rd_min(emin, e); emax = rd_max(emax, e);
         }
-        if (cu <= 1e-9 && emax <= 0) continue; /* lateral plane no point of the face can cross */
+        if (cu <= 1e-9 && emax <= tol) continue; /* lateral plane no point of the face crosses */
         double nb[3], db = s->wd[k] - rd_dot(n, xo);
         rd_mat_tvec(R, n, nb);
         if (cu > 1e-9) {
@@ -146,10 +149,10 @@ static double face_planes(const rd_sim *s, side_ctx *c, int cf)
             a[3] = db / cu;
             lb = rd_max(lb, emin / cu); /* the gap is at least this plane's, whose min is emin/cu */
         } else {
-            if (emin > 0) return DBL_MAX; /* the whole face is beside the other body */
+            if (emin > tol) return DBL_MAX; /* the whole face is beside the other body */
             double *l = c->lat[c->nlat++];
             rd_copy3(nb, l);
-            l[3] = db;
+            l[3] = db + tol;
         }
     }
     return c->nal ? lb : DBL_MAX;

@@ -50,8 +50,7 @@ void rd_poly_update(rd_poly *p)
     p->ntri = t;
 }
 
-/* Allocate arrays for nv vertices, nf faces with nidx face-vertex indices in total. */
-static int poly_alloc(rd_poly *p, int nv, int nf, int nidx, rd_error *err)
+int rd_poly_alloc(rd_poly *p, int nv, int nf, int nidx, rd_error *err)
 {
     poly_zero(p);
     p->nv = nv; p->nf = nf;
@@ -76,7 +75,7 @@ int rd_poly_brick(rd_poly *p, const double size[3], rd_error *err)
         {0, 1, 5, 4}, /* -y */          {2, 6, 7, 3}, /* +y */
         {0, 4, 6, 2}, /* -x */          {1, 3, 7, 5}  /* +x */
     };
-    if (poly_alloc(p, 8, 6, 24, err)) return -1;
+    if (rd_poly_alloc(p, 8, 6, 24, err)) return -1;
     for (int i = 0; i < 8; i++) {
         p->v[i][0] = (i & 1 ? 0.5 : -0.5) * size[0];
         p->v[i][1] = (i & 2 ? 0.5 : -0.5) * size[1];
@@ -253,6 +252,45 @@ static int mesh_grid(pts *s, const double *o, const double *a, const double *b, 
     return 0;
 }
 
+/* Area centroid of face f. */
+static void face_centroid(const rd_poly *p, int f, double c[3])
+{
+    const int *ix = p->fidx + p->fstart[f];
+    double a = 0;
+    c[0] = c[1] = c[2] = 0;
+    for (int k = 1; k + 1 < p->flen[f]; k++) {
+        double tn[3];
+        tri_normal(p->v[ix[0]], p->v[ix[k]], p->v[ix[k + 1]], tn);
+        double t = rd_norm(tn);
+        for (int j = 0; j < 3; j++) c[j] += t * (p->v[ix[0]][j] + p->v[ix[k]][j] + p->v[ix[k + 1]][j]) / 3;
+        a += t;
+    }
+    for (int j = 0; j < 3; j++) c[j] /= a;
+}
+
+/* Other polygons: triangles from the face centroid to each edge (a uniform fan), refined so
+ * no edge exceeds the spacing; without spacing, each vertex takes half of the two centroid
+ * triangles beside it (a triangle: one third of its area per vertex, 3DEC's rule). */
+static int mesh_polygon(pts *s, const rd_poly *p, int f, double spacing)
+{
+    const int *ix = p->fidx + p->fstart[f];
+    int n = p->flen[f];
+    double c[3];
+    face_centroid(p, f, c);
+    for (int k = 0; k < n; k++) {
+        const double *a = p->v[ix[k]], *b = p->v[ix[(k + 1) % n]];
+        if (spacing > 0) {
+            if (mesh_triangle(s, c, a, b, spacing)) return -1;
+            continue;
+        }
+        double tn[3];
+        tri_normal(c, a, b, tn);
+        double half = 0.25 * rd_norm(tn); /* half of the triangle's area */
+        if (pts_add(s, a, half) || pts_add(s, b, half)) return -1;
+    }
+    return 0;
+}
+
 int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area, int cap)
 {
     const int *ix = p->fidx + p->fstart[f];
@@ -263,8 +301,7 @@ int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3
     if (is_parallelogram(p, f, tol))
         rc = mesh_grid(&s, p->v[ix[0]], p->v[ix[1]], p->v[ix[3]], spacing);
     else
-        for (int k = 1; k + 1 < p->flen[f] && rc == 0; k++)
-            rc = mesh_triangle(&s, p->v[ix[0]], p->v[ix[k]], p->v[ix[k + 1]], spacing);
+        rc = mesh_polygon(&s, p, f, spacing);
     int n = rc ? -1 : s.n;
     if (n > 0 && cap > 0) {
         if (n > cap) n = -1;

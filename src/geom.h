@@ -48,13 +48,54 @@ void rd_poly_free(rd_poly *p);
 /* Subcontact points on face f: spacing <= 0 gives the face's own vertices (3DEC's fewest-
  * triangle default); spacing > 0 refines the face so no edge exceeds it. Parallelogram faces
  * get a structured grid whose nodes take a quarter of each cell around them (symmetric);
- * other faces subdivide their fan triangles and each point takes one third of the area of
- * the triangles around it (3DEC's rule). Either way the areas sum to the face area.
+ * other faces are split into triangles from their centroid, refined, each point taking one
+ * third of the area of the triangles around it (3DEC's rule); in vertex mode each vertex
+ * takes half of the two centroid triangles beside it. The areas sum to the face area.
  * Writes at most `cap` points into xyz[][3] and area[]; returns the count, or -1 if cap is too
  * small (call with cap = 0 to learn the count). */
 int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area, int cap);
 
 /* Area of face f, m^2. */
 double rd_poly_face_area(const rd_poly *p, int f);
+
+/* Allocate (zeroed) arrays for nv vertices and nf faces using nidx face-vertex indices in
+ * total; the caller fills v, fstart, flen, fidx and calls rd_poly_update. 0 or -1. */
+int rd_poly_alloc(rd_poly *p, int nv, int nf, int nidx, rd_error *err);
+
+/* --- shapes.c: more solids, all closed with outward counter-clockwise polygonal faces --- */
+
+/* Right prism or frustum with nsides >= 3 sides (a drum: a cylinder approximated by N sides,
+ * optionally tapered). Axis along z, base (a regular n-gon of circumradius radius_bottom, m)
+ * at z = -height/2, top (circumradius radius_top, m) at z = +height/2, first vertex of each
+ * ring on +x; the centroid is at the origin only for a prism (call rd_poly_mass and
+ * rd_poly_to_frame). Vertices 0..n-1 form the base ring, n..2n-1 the top ring; face 0 is the
+ * base (one n-gon), face 1 the top, faces 2.. the quadrilateral sides. 0 or -1. */
+int rd_poly_prism(rd_poly *p, int nsides, double radius_bottom, double radius_top, double height,
+                  rd_error *err);
+
+/* Convex hull of n >= 4 points pts[n][3] (m) by qhull, coplanar triangles merged into one
+ * polygonal face; only hull vertices are kept. Fails on fewer than 4 or coplanar points. */
+int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err);
+
+/* Polyhedron from explicit faces: face f uses idx[face_start[f] .. + face_len[f] - 1], counter-
+ * clockwise seen from outside. Checked by rd_poly_check (named "faces"). 0 or -1. */
+int rd_poly_from_faces(rd_poly *p, const double (*v)[3], int nv, const int *face_start,
+                       const int *face_len, const int *idx, int nf, rd_error *err);
+
+/* Check a polyhedron (non-convex allowed): every vertex used; faces of >= 3 vertices, not
+ * degenerate (area > 1e-12 L^2, L the bounding-box diagonal), planar (within 1e-6 L) and
+ * convex; every edge shared by exactly two faces that traverse it in opposite directions
+ * (closed, manifold, consistently oriented); positive volume (outward). Messages start with
+ * `what` (a file name) and count faces and vertices from `base` (1 for OBJ, else 0). */
+int rd_poly_check(const rd_poly *p, const char *what, int base, rd_error *err);
+
+/* --- mesh_io.c --- */
+
+/* Read a closed triangle/polygon mesh from OBJ, PLY (ASCII or binary) or STL (ASCII or
+ * binary), chosen by the file extension, in double precision. The bounding-box centre is
+ * subtracted from every vertex (map coordinates ~1e6 m keep their precision) and returned in
+ * offset (m; may be NULL): file coordinates = vertex + offset. STL vertices are merged by
+ * exact coordinate match; unused vertices are dropped. The result passes rd_poly_check. */
+int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err);
 
 #endif

@@ -18,23 +18,28 @@ static void omega_from(const double R[9], const double I[3], const double L[3], 
     rd_mat_vec(R, lb, w);
 }
 
+/* Rotation matrix, world vertices and world face planes of body i. */
+void rd_body_refresh(rd_sim *s, int i)
+{
+    rd_quat_to_mat(s->q[i], s->R[i]);
+    const rd_poly *p = &s->poly[i];
+    for (int k = 0; k < p->nv; k++) {
+        double *out = s->wv[s->vert0[i] + k];
+        rd_mat_vec(s->R[i], p->v[k], out);
+        rd_axpy(1.0, s->x[i], out);
+    }
+    for (int f = 0; f < p->nf; f++) {
+        int j = s->face0[i] + f;
+        rd_mat_vec(s->R[i], p->fn[f], s->wn[j]);
+        s->wd[j] = p->fd[f] + rd_dot(s->wn[j], s->x[i]);
+    }
+}
+
+/* World geometry of every free body (fixed bodies never move in the ground frame). */
 void rd_bodies_refresh(rd_sim *s)
 {
-    for (int i = 0; i < s->nb; i++) {
-        if (s->fixed[i]) continue;
-        rd_quat_to_mat(s->q[i], s->R[i]);
-        const rd_poly *p = &s->poly[i];
-        for (int k = 0; k < p->nv; k++) {
-            double *out = s->wv[s->vert0[i] + k];
-            rd_mat_vec(s->R[i], p->v[k], out);
-            rd_axpy(1.0, s->x[i], out);
-        }
-        for (int f = 0; f < p->nf; f++) {
-            int j = s->face0[i] + f;
-            rd_mat_vec(s->R[i], p->fn[f], s->wn[j]);
-            s->wd[j] = p->fd[f] + rd_dot(s->wn[j], s->x[i]);
-        }
-    }
+    for (int i = 0; i < s->nb; i++)
+        if (!s->fixed[i]) rd_body_refresh(s, i);
 }
 
 void rd_integrate_kick(rd_sim *s)

@@ -545,3 +545,42 @@ void rd_h5_close(rd_h5 *h)
     rd_h5_flush(h, &ignored);
     destroy(h);
 }
+
+/* ---- intensity measures of the applied ground motion ---- */
+
+/* Attributes "<c>_pga", ... of one applied component c on the open group g. */
+static int write_component_im(const rd_h5 *h, hid_t g, const rd_motion_def *m, int c, rd_error *err)
+{
+    const char *cn = rd_motion_component_name(c);
+    const rd_record *r = m->record[c].applied;
+    rd_im im;
+    double sa[2];
+    if (rd_motion_im(m, c, &im, sa, err)) return -1;
+    const struct { const char *key; double v; } f[] = {
+        {"pga", im.pga}, {"pgv", im.pgv}, {"pgd", im.pgd}, {"pgv_pga", im.pgv_pga},
+        {"arias", im.arias}, {"d5_95", im.d5_95}, {"sa_0.2s", sa[0]}, {"sa_1s", sa[1]},
+        {"dt", r->dt}, {"duration", rd_record_duration(r)}};
+    char name[64];
+    for (size_t i = 0; i < sizeof f / sizeof f[0]; i++) {
+        snprintf(name, sizeof name, "%s_%s", cn, f[i].key);
+        if (attr_double(h, g, name, f[i].v, err)) return -1;
+    }
+    snprintf(name, sizeof name, "%s_record", cn);
+    if (attr_str(h, g, name, r->name, err)) return -1;
+    snprintf(name, sizeof name, "%s_source", cn);
+    return attr_str(h, g, name, r->source, err);
+}
+
+int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
+{
+    if (!rd_motion_has_records(m)) return 0;
+    hid_t g = H5Gopen2(h->file, "/ground", H5P_DEFAULT);
+    if (g < 0) return rd_error_set(err, "%s: cannot open group '/ground'", h->path);
+    int rc = attr_double(h, g, "direction", m->direction, err) ||
+             attr_double(h, g, "scale_factor", m->factor, err) ||
+             attr_int(h, g, "baseline_degree", m->baseline, err) ? -1 : 0;
+    for (int c = 0; c < RD_NCOMPONENTS && !rc; c++)
+        if (m->record[c].applied) rc = write_component_im(h, g, m, c, err);
+    H5Gclose(g);
+    return rc;
+}

@@ -22,6 +22,7 @@
  *   /ground/acceleration   [N][3]      m/s^2 as applied
  *   /ground/velocity       [N][3]      m/s
  *   /ground/displacement   [N][3]      m
+ *   /ground                attributes (records only): intensity measures, see rd_h5_ground_im
  *   /energy/<name>         [N]         J: kinetic, gravitational, elastic, friction, damping,
  *                                      ground_work, residual (balance residual, J)
  *   /events                compound [M]: time (s), body (index into names, -1 = none),
@@ -81,6 +82,11 @@ rd_h5 *rd_h5_open(const char *path, const rd_h5_meta *meta, rd_error *err);
 int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err);
 /* Append one event row (written at the next flush). type is a short word. 0 or -1. */
 int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err);
+/* Attributes of /ground describing the applied records (none for pulses): direction (rad),
+ * scale_factor, baseline_degree, and per component c in h1, h2, vertical: c_pga (m/s^2), c_pgv
+ * (m/s), c_pgd (m), c_pgv_pga (s), c_arias (m/s), c_d5_95 (s), c_sa_0.2s and c_sa_1s (5 %
+ * damped PSA, m/s^2), c_dt (s), c_duration (s), c_record, c_source. 0 or -1. */
+int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err);
 /* Write buffered samples and events, then H5Fflush. 0 or -1. */
 int rd_h5_flush(rd_h5 *h, rd_error *err);
 /* Write the /summary group (may be called more than once; last call wins). 0 or -1. */

@@ -3,6 +3,7 @@
  *   rockdem check FILE [--set key=value]...                  parse and validate only
  *   rockdem --version | --help */
 #include "rockdem/rockdem.h"
+#include "cli.h"
 
 #include <math.h>
 #include <signal.h>
@@ -12,6 +13,10 @@
 static const char *usage =
     "usage: rockdem run FILE [--set key=value]... [-o OUT.h5] [-q]\n"
     "       rockdem check FILE [--set key=value]...\n"
+    "       rockdem reference FILE [--set key=value]... [-o OUT.h5]   rigid Housner/Kounadis run\n"
+    "       rockdem threshold FILE --engine dem|reference [--lo A] [--hi A] [--rtol 0.005] [--steps 24]\n"
+    "       rockdem restitution FILE [--target r] [--theta0 rad]   measure and calibrate restitution\n"
+    "       rockdem study FILE [--set key=value]...   error against run time of your settings\n"
     "       rockdem --version\n";
 
 static void on_signal(int sig)
@@ -90,6 +95,7 @@ static int cmd_run(int argc, char **argv, int check_only)
         return 0;
     }
     rd_error err;
+    if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) { fprintf(stderr, "%s\n", err.msg); rd_scenario_free(&sc); return 2; }
     signal(SIGINT, on_signal);
@@ -130,6 +136,10 @@ int main(int argc, char **argv)
     }
     if (argc >= 3 && !strcmp(argv[1], "run")) return cmd_run(argc, argv, 0);
     if (argc >= 3 && !strcmp(argv[1], "check")) return cmd_run(argc, argv, 1);
+    if (argc >= 3 && !strcmp(argv[1], "reference")) return rd_cli_reference(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "threshold")) return rd_cli_threshold(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "restitution")) return rd_cli_restitution(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "study")) return rd_cli_study(argc, argv);
     fputs(usage, stderr);
     return 2;
 }

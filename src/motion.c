@@ -7,6 +7,7 @@
  * moving: the engine runs in the ground frame, so only a matters for the bodies).
  */
 #include "rockdem/motion.h"
+#include "rockdem/record.h"
 
 #include <math.h>
 
@@ -111,6 +112,26 @@ double rd_pulse_end(const rd_pulse_def *p)
     return p->start + pulse_length(p);
 }
 
+/* Adds the applied records at t: h1 along (cos, sin) of m->direction, h2 along (-sin, cos),
+ * vertical along z. Absent components cost nothing. */
+static void add_records(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3])
+{
+    double c = cos(m->direction), s = sin(m->direction);
+    const double axis[RD_NCOMPONENTS][3] = {{c, s, 0}, {-s, c, 0}, {0, 0, 1}};
+    for (int k = 0; k < RD_NCOMPONENTS; k++) {
+        const rd_record *r = m->record[k].applied;
+        double a, v, d;
+        if (!r)
+            continue;
+        rd_record_eval(r, t, &a, &v, &d);
+        for (int j = 0; j < 3; j++) {
+            acc[j] += a * axis[k][j];
+            vel[j] += v * axis[k][j];
+            disp[j] += d * axis[k][j];
+        }
+    }
+}
+
 void rd_motion_eval(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3])
 {
     double ah, vh, dh, az, vz, dz;
@@ -120,9 +141,14 @@ void rd_motion_eval(const rd_motion_def *m, double t, double acc[3], double vel[
     acc[0] = ah * c, acc[1] = ah * s, acc[2] = az;
     vel[0] = vh * c, vel[1] = vh * s, vel[2] = vz;
     disp[0] = dh * c, disp[1] = dh * s, disp[2] = dz;
+    add_records(m, t, acc, vel, disp);
 }
 
 double rd_motion_end(const rd_motion_def *m)
 {
-    return fmax(rd_pulse_end(&m->horizontal), rd_pulse_end(&m->vertical));
+    double end = fmax(rd_pulse_end(&m->horizontal), rd_pulse_end(&m->vertical));
+    for (int k = 0; k < RD_NCOMPONENTS; k++)
+        if (m->record[k].applied)
+            end = fmax(end, rd_record_duration(m->record[k].applied));
+    return end;
 }

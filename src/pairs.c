@@ -57,11 +57,11 @@ static int reserve(void **arr, int *cap, int n, size_t size)
     return 0;
 }
 
-/* New slot for bodies a < b; -1 when they cannot touch (no points on either) or no memory. */
+/* New slot for bodies a < b (they can touch); -1 without memory. */
 static int pair_create(rd_sim *s, int a, int b)
 {
-    int pa = s->pt0[a + 1] > s->pt0[a], pb = s->pt0[b + 1] > s->pt0[b];
-    if (!pa && !pb) return -1;
+    /* a body's points are tested against the other body only if that one is convex */
+    int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b], pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
     int ns = (pa ? s->pt0[a + 1] - s->pt0[a] : 0) + (pb ? s->pt0[b + 1] - s->pt0[b] : 0);
     int nf = (pa ? s->cf0[a + 1] - s->cf0[a] : 0) + (pb ? s->cf0[b + 1] - s->cf0[b] : 0);
     if ((s->npair + 1) * 2 > s->hcap && hash_grow(s)) return -1;
@@ -123,7 +123,8 @@ static int touch(rd_sim *s, int i, int j)
     int a = i < j ? i : j, b = i < j ? j : i;
     int p = hash_find(s, a, b);
     if (p < 0) {
-        if (s->pt0[a + 1] == s->pt0[a] && s->pt0[b + 1] == s->pt0[b]) return 0;
+        int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b], pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
+        if (!pa && !pb) return 0; /* cannot touch (e.g. two meshes: not modelled) */
         if ((p = pair_create(s, a, b)) < 0) return -1;
     }
     s->pair[p].seen = s->stamp;

@@ -7,6 +7,7 @@
  * Every error is one line "file:line:col: message" pointing at the offending token.
  */
 #include "rockdem/scenario.h"
+#include "rockdem/motion.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -149,6 +150,7 @@ typedef struct parser {
     int n;                  /* its tokens */
     int cur;                /* next token to take */
     char ctx[64];           /* "noun verb", for messages */
+    int motion_line[3];     /* lines that set the records' direction, scale, baseline (0: none) */
 } parser;
 
 static int perr(const parser *P, const token *t, const char *fmt, ...) RD_PRINTF(3, 4);
@@ -472,12 +474,12 @@ static int model_settle(parser *P)
 
 static int model_solve(parser *P)
 {
-    static const char *const names[] = {"time", NULL};
+    static const char *const names[] = {"time", "tail", NULL};
     const token *kw;
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (read_value(P, kw, R_POS, U_PLAIN, &P->sc->duration))
+        if (read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail))
             return -1;
     if (k == KW_ERR)
         return -1;
@@ -503,6 +505,21 @@ static int model_overturn(parser *P)
             return -1;
         ov->kind = (rd_overturn_kind)k;
     }
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+/* `model reference restitution e`: the rigid reference solvers' impact restitution. */
+static int model_reference(parser *P)
+{
+    static const char *const names[] = {"restitution", NULL};
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
+            return -1;
     if (k == KW_ERR)
         return -1;
     return seen ? 0 : missing_keyword(P, names);
@@ -731,9 +748,296 @@ static int motion_pulse(parser *P)
     rd_pulse_def *slot = tk[PK_VERTICAL] ? &P->sc->motion.vertical : &P->sc->motion.horizontal;
     if (slot->kind != RD_PULSE_NONE)
         return perr(P, &P->tok[0], "a %s pulse is already defined (line %d)", which, slot->line);
+    for (int c = tk[PK_VERTICAL] ? RD_VERTICAL : RD_H1; c <= (tk[PK_VERTICAL] ? RD_VERTICAL : RD_H2); c++)
+        if (P->sc->motion.record[c].source != RD_SOURCE_NONE)
+            return perr(P, &P->tok[0], "a %s record is already defined (line %d); use a pulse or a record",
+                        rd_motion_component_name(c), P->sc->motion.record[c].line);
     p.duration = pulse_duration(&p);
     *slot = p;
     return 0;
+}
+
+/* ---- ground motion: records (`ground-motion import`, `ground-motion stochastic`) ---- */
+
+/* Keywords shared by import and stochastic (first in both keyword lists). */
+enum { MK_COMPONENT, MK_DIRECTION, MK_SCALE, MK_SCALE_PGA, MK_SCALE_PGV, MK_BASELINE, MK_COMMON };
+
+/* What one record command says about the motion as a whole. */
+typedef struct motion_cmd {
+    const token *tk[MK_COMMON]; /* keyword tokens given (NULL if absent) */
+    const token *comp;          /* the component's value token */
+    const token *scale;         /* the scale keyword given, if any */
+    double direction;           /* rad */
+    double scale_value;         /* factor, m/s^2 or m/s */
+    int baseline;               /* 0 (off) or the degree */
+} motion_cmd;
+
+/* `baseline <degree>|off`: degree an integer in 2..8 (rd_record_baseline). */
+static int read_baseline(parser *P, const token *kw, int *degree)
+{
+    const token *t = take(P);
+    double v;
+    if (!t)
+        return perr(P, kw, "expected a degree (2 to 8) or off after 'baseline'");
+    if (tok_is(t, "off")) {
+        *degree = 0;
+        return 0;
+    }
+    if (parse_number(t->s, (size_t)t->len, 0, &v) || v != floor(v) || v < 2 || v > 8)
+        return perr(P, t, "expected a degree (2 to 8) or off after 'baseline', got '%.*s'", t->len,
+                    t->s);
+    *degree = (int)v;
+    return 0;
+}
+
+/* Reads the value of common keyword k into mc. */
+static int common_keyword(parser *P, int k, const token *kw, motion_cmd *mc)
+{
+    mc->tk[k] = kw;
+    switch (k) {
+    case MK_COMPONENT:
+        if (!(mc->comp = take(P)))
+            return perr(P, kw, "expected a component after 'component'");
+        return 0;
+    case MK_DIRECTION: return read_value(P, kw, R_ANY, U_DEG, &mc->direction);
+    case MK_BASELINE: return read_baseline(P, kw, &mc->baseline);
+    default: break;
+    }
+    if (exclusive(P, &mc->scale, kw))
+        return -1;
+    return read_value(P, kw, R_POS, k == MK_SCALE_PGA ? U_ACCEL : U_PLAIN, &mc->scale_value);
+}
+
+/* Motion-wide settings may be given once, on any record line. */
+static int once(parser *P, const token *kw, int *line)
+{
+    if (*line)
+        return perr(P, kw, "'%.*s' already given on line %d (it applies to the whole ground motion)",
+                    kw->len, kw->s, *line);
+    *line = kw->line;
+    return 0;
+}
+
+static int apply_common(parser *P, const motion_cmd *mc)
+{
+    static const rd_scale_kind kinds[] = {RD_SCALE_FACTOR, RD_SCALE_PGA, RD_SCALE_PGV};
+    rd_motion_def *m = &P->sc->motion;
+    if (mc->tk[MK_DIRECTION] && once(P, mc->tk[MK_DIRECTION], &P->motion_line[0]))
+        return -1;
+    if (mc->scale && once(P, mc->scale, &P->motion_line[1]))
+        return -1;
+    if (mc->tk[MK_BASELINE] && once(P, mc->tk[MK_BASELINE], &P->motion_line[2]))
+        return -1;
+    if (mc->tk[MK_DIRECTION])
+        m->direction = mc->direction;
+    if (mc->scale) {
+        m->scale = kinds[find_word(mc->scale, (const char *const[]){"scale", "scale-pga", "scale-pgv", NULL})];
+        m->scale_value = mc->scale_value;
+    }
+    if (mc->tk[MK_BASELINE])
+        m->baseline = mc->baseline;
+    return 0;
+}
+
+/* The slot of the command's component: h1 (default), h2 or vertical; a FEMA set names its
+ * horizontal components a (into h1) and b (into h2). */
+static int component_slot(parser *P, const motion_cmd *mc, int fema, int *slot)
+{
+    static const char *const plain[] = {"h1", "h2", "vertical", NULL};
+    static const char *const ab[] = {"a", "b", NULL};
+    *slot = RD_H1;
+    if (!mc->comp)
+        return 0;
+    *slot = find_word(mc->comp, fema ? ab : plain);
+    if (*slot < 0)
+        return perr(P, mc->comp, "unknown component '%.*s' (expected %s)", mc->comp->len, mc->comp->s,
+                    fema ? "a or b for a FEMA P695 set" : "h1, h2 or vertical");
+    return 0;
+}
+
+/* Stores d in its slot and reads or generates its samples; errors point at `at`. */
+static int define_component(parser *P, int slot, const rd_component_def *d, const token *at)
+{
+    rd_motion_def *m = &P->sc->motion;
+    rd_error e;
+    if (m->record[slot].source != RD_SOURCE_NONE)
+        return perr(P, &P->tok[0], "a %s record is already defined (line %d)%s",
+                    rd_motion_component_name(slot), m->record[slot].line,
+                    slot == RD_H1 ? "; add 'component h2' for the second horizontal component" : "");
+    if ((slot == RD_VERTICAL ? m->vertical.kind : m->horizontal.kind) != RD_PULSE_NONE)
+        return perr(P, &P->tok[0], "a %s pulse is already defined (line %d); use a pulse or a record",
+                    slot == RD_VERTICAL ? "vertical" : "horizontal",
+                    slot == RD_VERTICAL ? m->vertical.line : m->horizontal.line);
+    m->record[slot] = *d;
+    m->record[slot].line = P->tok[0].line;
+    if (rd_motion_load(m, slot, &e)) {
+        m->record[slot].source = RD_SOURCE_NONE;
+        return perr(P, at, "%s", e.msg);
+    }
+    return 0;
+}
+
+/* Resolves a file name relative to the directory of the scenario file `base` into dst. */
+static int resolve_path(const char *base, const char *file, char *dst, size_t size)
+{
+    const char *slash = strrchr(base, '/');
+    int dir = file[0] != '/' && slash ? (int)(slash - base) + 1 : 0;
+    int n = snprintf(dst, size, "%.*s%s", dir, base, file);
+    return n >= 0 && (size_t)n < size ? 0 : -1;
+}
+
+/* Format from the file's extension: .at2, .h5/.hdf5 (FEMA P695 set), else text. */
+static rd_record_source source_of(const char *file)
+{
+    const char *dot = strrchr(file, '.');
+    if (dot && strcasecmp(dot, ".at2") == 0)
+        return RD_SOURCE_AT2;
+    if (dot && (strcasecmp(dot, ".h5") == 0 || strcasecmp(dot, ".hdf5") == 0))
+        return RD_SOURCE_FEMA;
+    return RD_SOURCE_TEXT;
+}
+
+/* Format from the `format` token, else from the file's extension. */
+static int record_format(parser *P, const token *fmt, const char *file, rd_record_source *src)
+{
+    static const char *const names[] = {"at2", "csv", "text", "fema", NULL};
+    static const rd_record_source kinds[] = {RD_SOURCE_AT2, RD_SOURCE_TEXT, RD_SOURCE_TEXT,
+                                             RD_SOURCE_FEMA};
+    int k = fmt ? find_word(fmt, names) : -1;
+    if (fmt && k < 0)
+        return perr(P, fmt, "unknown format '%.*s' (expected at2, csv, text or fema)", fmt->len,
+                    fmt->s);
+    *src = fmt ? kinds[k] : source_of(file);
+    return 0;
+}
+
+static int read_units(parser *P, const token *kw, double *unit)
+{
+    static const char *const names[] = {"g", "m/s2", "cm/s2", NULL};
+    static const double factor[] = {9.80665, 1.0, 0.01}; /* m/s^2 per unit */
+    const token *t = take(P);
+    int k = t ? find_word(t, names) : -1;
+    if (!t)
+        return perr(P, kw, "expected g, m/s2 or cm/s2 after 'units'");
+    if (k < 0)
+        return perr(P, t, "unknown units '%.*s' (expected g, m/s2 or cm/s2)", t->len, t->s);
+    *unit = factor[k];
+    return 0;
+}
+
+enum { IK_FORMAT = MK_COMMON, IK_UNITS, IK_DT, IK_RECORD };
+
+/* Checks which import keywords fit the format. */
+static int import_check(parser *P, rd_record_source src, const token *const *tk)
+{
+    if (src == RD_SOURCE_FEMA && !tk[IK_RECORD])
+        return perr(P, verb_token(P), "a FEMA P695 set needs 'record <id>'");
+    if (src != RD_SOURCE_FEMA && tk[IK_RECORD])
+        return perr(P, tk[IK_RECORD], "'record' applies only to FEMA P695 sets (format fema)");
+    if (src != RD_SOURCE_TEXT && tk[IK_UNITS])
+        return perr(P, tk[IK_UNITS], "'units' applies only to text/CSV records (AT2 and FEMA are in g)");
+    if (src != RD_SOURCE_TEXT && tk[IK_DT])
+        return perr(P, tk[IK_DT], "'dt' applies only to text/CSV records");
+    return 0;
+}
+
+static int motion_import(parser *P)
+{
+    static const char *const names[] = {"component", "direction", "scale", "scale-pga", "scale-pgv",
+                                        "baseline", "format", "units", "dt", "record", NULL};
+    rd_component_def d = {.unit = 9.80665};
+    motion_cmd mc = {0};
+    const token *kw, *tk[IK_RECORD + 1] = {0}, *file = P->cur < P->n ? &P->tok[P->cur] : NULL, *id = NULL;
+    char name[RD_PATH_MAX];
+    unsigned seen = 0;
+    int k, slot;
+    if (read_text(P, "a file name", name, sizeof name))
+        return -1;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        tk[k] = kw;
+        switch (k) {
+        case IK_FORMAT:
+            rc = (tk[k] = take(P)) ? 0 : perr(P, kw, "expected at2, csv, text or fema after 'format'");
+            break;
+        case IK_UNITS: rc = read_units(P, kw, &d.unit); break;
+        case IK_DT: rc = read_value(P, kw, R_POS, U_PLAIN, &d.dt); break;
+        case IK_RECORD:
+            id = P->cur < P->n ? &P->tok[P->cur] : NULL;
+            rc = read_text(P, "a record id", d.record, sizeof d.record);
+            break;
+        default: rc = common_keyword(P, k, kw, &mc); break;
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR || record_format(P, tk[IK_FORMAT], name, &d.source) ||
+        import_check(P, d.source, tk) || component_slot(P, &mc, d.source == RD_SOURCE_FEMA, &slot))
+        return -1;
+    if (resolve_path(P->name, name, d.path, sizeof d.path))
+        return perr(P, file, "file name too long with the scenario's directory");
+    FILE *f = fopen(d.path, "rb");
+    if (!f)
+        return perr(P, file, "%s: cannot open: %s", d.path, strerror(errno));
+    fclose(f);
+    d.fema_b = d.source == RD_SOURCE_FEMA && slot == RD_H2;
+    /* the file opens: a FEMA reader error is about the record id, any other about the file */
+    return apply_common(P, &mc) || define_component(P, slot, &d, id ? id : file);
+}
+
+enum { SK_SEED = MK_COMMON, SK_PGA, SK_DURATION, SK_DT, SK_FREQUENCY, SK_DAMPING, SK_HIGHPASS,
+       SK_HIGHPASS_DAMPING, SK_PEAK_TIME, SK_END_LEVEL };
+
+/* Reads one Kanai-Tajimi parameter (keyword k) into def. */
+static int stochastic_value(parser *P, int k, const token *kw, rd_stochastic_def *def)
+{
+    double seed;
+    switch (k) {
+    case SK_SEED:
+        if (read_value(P, kw, R_NONNEG, U_PLAIN, &seed))
+            return -1;
+        if (seed != floor(seed) || seed > 4294967295.0)
+            return perr(P, &P->tok[P->cur - 1], "'seed' must be a whole number in [0, 2^32)");
+        def->seed = (unsigned long)seed;
+        return 0;
+    case SK_PGA: return read_value(P, kw, R_POS, U_ACCEL, &def->pga);
+    case SK_DURATION: return read_value(P, kw, R_POS, U_PLAIN, &def->duration);
+    case SK_DT: return read_value(P, kw, R_POS, U_PLAIN, &def->dt);
+    case SK_FREQUENCY: return read_value(P, kw, R_POS, U_PLAIN, &def->frequency);
+    case SK_DAMPING: return read_value(P, kw, R_OPEN01, U_PLAIN, &def->damping);
+    case SK_HIGHPASS: return read_value(P, kw, R_NONNEG, U_PLAIN, &def->highpass);
+    case SK_HIGHPASS_DAMPING: return read_value(P, kw, R_OPEN01, U_PLAIN, &def->highpass_damping);
+    case SK_PEAK_TIME: return read_value(P, kw, R_OPEN01, U_PLAIN, &def->peak_time);
+    default: return read_value(P, kw, R_OPEN01, U_PLAIN, &def->end_level);
+    }
+}
+
+static int motion_stochastic(parser *P)
+{
+    static const char *const names[] = {
+        "component", "direction", "scale",    "scale-pga", "scale-pgv",        "baseline",
+        "seed",      "pga",       "duration", "dt",        "frequency",        "damping",
+        "highpass",  "highpass-damping",      "peak-time", "end-level",        NULL};
+    rd_component_def d = {.source = RD_SOURCE_STOCHASTIC};
+    motion_cmd mc = {0};
+    const token *kw;
+    unsigned seen = 0;
+    int k, slot;
+    rd_stochastic_defaults(&d.stochastic);
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (k < MK_COMMON ? common_keyword(P, k, kw, &mc) : stochastic_value(P, k, kw, &d.stochastic))
+            return -1;
+    if (k == KW_ERR)
+        return -1;
+    static const int needed[] = {SK_SEED, SK_PGA, SK_DURATION};
+    for (int i = 0; i < 3; i++)
+        if (!(seen & (1u << needed[i])))
+            return perr(P, verb_token(P), "missing '%s' for 'ground-motion stochastic'", names[needed[i]]);
+    if (d.stochastic.dt >= d.stochastic.duration)
+        return perr(P, verb_token(P), "'dt' must be shorter than 'duration'");
+    if (component_slot(P, &mc, 0, &slot))
+        return -1;
+    return apply_common(P, &mc) || define_component(P, slot, &d, verb_token(P));
 }
 
 /* ---- output ---- */
@@ -769,10 +1073,13 @@ static const struct command {
     {"model", "settle", model_settle},
     {"model", "solve", model_solve},
     {"model", "overturn", model_overturn},
+    {"model", "reference", model_reference},
     {"block", "create", block_create},
     {"block", "initial", block_initial},
     {"contact", "property", contact_property},
     {"ground-motion", "pulse", motion_pulse},
+    {"ground-motion", "import", motion_import},
+    {"ground-motion", "stochastic", motion_stochastic},
     {"output", "hdf5", output_hdf5},
 };
 
@@ -825,11 +1132,23 @@ void rd_scenario_defaults(rd_scenario *sc)
     sc->damping = (rd_damping_def){RD_DAMPING_NONE, 0.0};
     sc->motion.horizontal.cycles = 1.0;
     sc->motion.vertical.cycles = 1.0;
+    sc->motion.baseline = 4;
+    sc->motion.factor = 1.0;
     sc->timestep = (rd_timestep_def){RD_TIMESTEP_AUTO, 0.2, 0.0};
     sc->settle = (rd_settle_def){1, 1e-6, 5.0};
     sc->overturn = (rd_overturn_def){RD_OVERTURN_TILT_RATIO, 1.5, 1};
+    sc->ref_restitution = -1.0;
     snprintf(sc->output.path, sizeof sc->output.path, "%s", "rockdem.h5");
     sc->output.interval = 0.005;
+}
+
+/* Baseline-corrects and scales the records once all of them are read; errors "name: ...". */
+static int prepare_records(rd_scenario *sc, const char *name, rd_error *err)
+{
+    rd_error e;
+    if (!rd_motion_has_records(&sc->motion) || rd_motion_prepare(&sc->motion, &e) == 0)
+        return 0;
+    return rd_error_set(err, "%s: %s", name, e.msg);
 }
 
 int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_error *err)
@@ -848,6 +1167,8 @@ int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_er
             rc = -1;
             break;
         }
+    if (rc >= 0 && prepare_records(sc, name, err))
+        rc = -1;
     if (rc < 0) {
         rd_scenario_free(sc);
         return -1;
@@ -914,6 +1235,7 @@ int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err)
 
 void rd_scenario_free(rd_scenario *sc)
 {
+    rd_motion_release(&sc->motion);
     free(sc->text);
     sc->text = NULL;
 }
@@ -927,7 +1249,8 @@ typedef enum set_kind {
     S_DAMPING,
     S_TIMESTEP,
     S_SETTLE,
-    S_FILE
+    S_FILE,
+    S_RECORD  /* a record setting: the records are re-read and/or re-processed */
 } set_kind;
 
 typedef struct set_key {
@@ -956,12 +1279,21 @@ static const set_key set_keys[] = {
     {"motion.amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL},
     {"motion.frequency", S_PULSE, offsetof(rd_pulse_def, frequency), R_POS, U_PLAIN},
     {"motion.duration", S_PULSE, offsetof(rd_pulse_def, duration), R_POS, U_PLAIN},
-    {"motion.direction", S_PULSE, offsetof(rd_pulse_def, direction), R_ANY, U_DEG},
+    {"motion.direction", S_RECORD, offsetof(rd_pulse_def, direction), R_ANY, U_DEG},
     {"motion.cycles", S_PULSE, offsetof(rd_pulse_def, cycles), R_POS, U_PLAIN},
     {"motion.start", S_PULSE, offsetof(rd_pulse_def, start), R_NONNEG, U_PLAIN},
     {"motion.vertical-amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL},
+    {"motion.scale", S_RECORD, 0, R_POS, U_PLAIN},
+    {"motion.scale-pga", S_RECORD, 0, R_POS, U_ACCEL},
+    {"motion.scale-pgv", S_RECORD, 0, R_POS, U_PLAIN},
+    {"motion.baseline", S_RECORD, 0, R_ANY, U_PLAIN},
+    {"motion.file", S_RECORD, 0, R_ANY, U_PLAIN},
+    {"motion.record", S_RECORD, 0, R_ANY, U_PLAIN},
+    {"motion.seed", S_RECORD, 0, R_NONNEG, U_PLAIN},
+    {"model.tail", S_NUMBER, offsetof(rd_scenario, tail), R_NONNEG, U_PLAIN},
     {"output.file", S_FILE, 0, R_ANY, U_PLAIN},
     {"output.interval", S_NUMBER, offsetof(rd_scenario, output.interval), R_POS, U_PLAIN},
+    {"reference.restitution", S_NUMBER, offsetof(rd_scenario, ref_restitution), R_FRAC, U_PLAIN},
 };
 
 static const set_key body_keys[] = {
@@ -1108,6 +1440,109 @@ static int set_file(const setter *S)
     return 0;
 }
 
+/* The text of a --set value into dst (size), refusing empty or too long ones. */
+static int set_text(const setter *S, char *dst, size_t size)
+{
+    size_t len = strlen(S->value);
+    if (len == 0 || len >= size)
+        return serr(S, "expected 1 to %zu characters", size - 1);
+    memcpy(dst, S->value, len + 1);
+    return 0;
+}
+
+/* motion.file (h1's file, relative to the scenario's directory), motion.seed (h1's generator),
+ * motion.record (every FEMA component): change the source and re-read it. */
+static int set_record_source(const setter *S, const char *key)
+{
+    rd_motion_def *m = &S->sc->motion;
+    rd_component_def *h1 = &m->record[RD_H1];
+    rd_error e;
+    double seed;
+    int n = 0;
+    if (strcmp(key, "motion.record") == 0) {
+        for (int c = 0; c < RD_NCOMPONENTS; c++) {
+            if (m->record[c].source != RD_SOURCE_FEMA)
+                continue;
+            if (set_text(S, m->record[c].record, sizeof m->record[c].record))
+                return -1;
+            if (rd_motion_load(m, c, &e))
+                return serr(S, "%s", e.msg);
+            n++;
+        }
+        return n ? 0 : serr(S, "no ground-motion record comes from a FEMA P695 set");
+    }
+    if (strcmp(key, "motion.seed") == 0) {
+        if (h1->source != RD_SOURCE_STOCHASTIC)
+            return serr(S, "the h1 ground motion is not 'ground-motion stochastic'");
+        if (set_parse(S, S->value, R_NONNEG, U_PLAIN, &seed))
+            return -1;
+        if (seed != floor(seed) || seed > 4294967295.0)
+            return serr(S, "expected a whole number in [0, 2^32)");
+        h1->stochastic.seed = (unsigned long)seed;
+    } else if (h1->source == RD_SOURCE_NONE || h1->source == RD_SOURCE_STOCHASTIC) {
+        return serr(S, "the h1 ground motion is not 'ground-motion import'");
+    } else if (!S->value[0] || resolve_path(S->sc->file, S->value, h1->path, sizeof h1->path)) {
+        return serr(S, "expected a file name of at most %d characters", RD_PATH_MAX - 1);
+    } else if ((h1->source == RD_SOURCE_FEMA) != (source_of(S->value) == RD_SOURCE_FEMA)) {
+        return serr(S, "motion.file keeps the kind of file: a FEMA P695 set (.h5) or a record");
+    } else {
+        h1->source = source_of(S->value); /* the extension picks AT2 or text */
+    }
+    return rd_motion_load(m, RD_H1, &e) ? serr(S, "%s", e.msg) : 0;
+}
+
+/* motion.baseline: a degree 2..8 or off. */
+static int set_baseline(const setter *S, int *degree)
+{
+    double v;
+    if (strcasecmp(S->value, "off") == 0) {
+        *degree = 0;
+        return 0;
+    }
+    if (parse_number(S->value, strlen(S->value), 0, &v) || v != floor(v) || v < 2 || v > 8)
+        return serr(S, "expected a degree (2 to 8) or off, got '%s'", S->value);
+    *degree = (int)v;
+    return 0;
+}
+
+/* Record settings: re-read (file, record, seed) and re-process (every key) the records. */
+static int set_record(const setter *S, const set_key *k)
+{
+    static const char *const scales[] = {"motion.scale", "motion.scale-pga", "motion.scale-pgv", NULL};
+    static const rd_scale_kind kinds[] = {RD_SCALE_FACTOR, RD_SCALE_PGA, RD_SCALE_PGV};
+    rd_motion_def *m = &S->sc->motion;
+    rd_error e;
+    int rc = 0;
+    if (!rd_motion_has_records(m)) {
+        if (strcmp(k->key, "motion.direction") == 0)
+            return set_pulse(S, k);
+        return serr(S, "the scenario has no ground-motion record (ground-motion import or stochastic)");
+    }
+    if (strcmp(k->key, "motion.direction") == 0) {
+        double v;
+        if (set_parse(S, S->value, k->range, k->unit, &v))
+            return -1;
+        m->direction = v;
+        return 0;
+    }
+    for (int i = 0; scales[i]; i++) {
+        double v;
+        if (strcmp(k->key, scales[i]) != 0)
+            continue;
+        if (set_parse(S, S->value, k->range, k->unit, &v))
+            return -1;
+        m->scale = kinds[i];
+        m->scale_value = v;
+    }
+    if (strcmp(k->key, "motion.baseline") == 0)
+        rc = set_baseline(S, &m->baseline);
+    else if (strncmp(k->key, "motion.scale", 12) != 0)
+        rc = set_record_source(S, k->key);
+    if (rc)
+        return -1;
+    return rd_motion_prepare(m, &e) ? serr(S, "%s", e.msg) : 0;
+}
+
 static int set_apply(const setter *S, const set_key *k)
 {
     double v;
@@ -1123,6 +1558,7 @@ static int set_apply(const setter *S, const set_key *k)
     case S_TIMESTEP: return set_timestep(S);
     case S_SETTLE: return set_settle(S);
     case S_FILE: return set_file(S);
+    case S_RECORD: return set_record(S, k);
     }
     return 0;
 }
@@ -1265,8 +1701,14 @@ static const char *model_problem(const rd_scenario *sc)
 static const char *body_problem(const rd_scenario *sc, int i)
 {
     const rd_body_def *b = &sc->bodies[i];
-    if (!(b->size[0] > 0 && b->size[1] > 0 && b->size[2] > 0))
+    if (b->shape == RD_SHAPE_BRICK && !(b->size[0] > 0 && b->size[1] > 0 && b->size[2] > 0))
         return "size must be > 0";
+    if (b->shape == RD_SHAPE_PRISM && !(b->sides >= 3 && b->radius > 0 && b->radius_top > 0 && b->size[2] > 0))
+        return "a prism needs sides >= 3, radii > 0 and height > 0";
+    if (b->shape == RD_SHAPE_HULL && !(b->nverts >= 4 && b->verts))
+        return "a polyhedron needs at least 4 vertices";
+    if (b->shape == RD_SHAPE_MESH && b->mesh[0] == '\0')
+        return "a mesh needs a file";
     if (!(b->mass >= 0))
         return "mass must be > 0 (or 0 to use the density)";
     if (!(b->tilt >= 0 && b->tilt < 90.0 * DEG))
@@ -1293,6 +1735,20 @@ static const char *pulse_problem(const rd_pulse_def *p)
     return NULL;
 }
 
+static const char *records_problem(const rd_motion_def *m)
+{
+    for (int c = 0; c < RD_NCOMPONENTS; c++)
+        if (m->record[c].source != RD_SOURCE_NONE && !m->record[c].applied)
+            return "a ground-motion record is defined but not loaded";
+    if (m->baseline != 0 && (m->baseline < 2 || m->baseline > 8))
+        return "record baseline degree must be 2 to 8 (or off)";
+    if (m->scale != RD_SCALE_NONE && !(m->scale_value > 0))
+        return "record scale must be > 0";
+    if (!isfinite(m->direction))
+        return "record direction must be a number";
+    return NULL;
+}
+
 int rd_scenario_validate(const rd_scenario *sc, rd_error *err)
 {
     const char *f = sc->file, *bad;
@@ -1314,5 +1770,9 @@ int rd_scenario_validate(const rd_scenario *sc, rd_error *err)
         return rd_error_set(err, "%s:%d: horizontal pulse: %s", f, sc->motion.horizontal.line, bad);
     if ((bad = pulse_problem(&sc->motion.vertical)))
         return rd_error_set(err, "%s:%d: vertical pulse: %s", f, sc->motion.vertical.line, bad);
+    if ((bad = records_problem(&sc->motion)))
+        return rd_error_set(err, "%s: %s", f, bad);
+    if (!(sc->tail >= 0))
+        return rd_error_set(err, "%s: solve tail must be >= 0", f);
     return 0;
 }

@@ -307,7 +307,7 @@ rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
     s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
     if (!s->watch || !s->obuf) { rd_error_set(err, "out of memory"); goto fail; }
-    if (open_output(s, err)) goto fail;
+    if (open_output(s, err) || rd_h5_ground_im(s->h5, &s->sc.motion, err)) goto fail;
     return s;
 fail:
     rd_sim_free(s);
@@ -352,13 +352,14 @@ rd_status rd_sim_run(rd_sim *s)
     rd_monitor_start(s);
     s->shaking = 1;
     s->e_fric = s->e_damp = s->e_work = 0;
-    double t0 = wall_now(), end = s->sc.duration;
+    double t0 = wall_now(), end = rd_rest_end(s);
     while (s->status == RD_STATUS_DONE && s->t < end - 0.5 * s->dt) {
         if (stop_requested) { s->status = RD_STATUS_INTERRUPTED; break; }
         step_once(s);
         s->step++;
         if (s->status != RD_STATUS_DONE || !healthy(s)) break;
         if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) { s->status = RD_STATUS_OVERTURNED; break; }
+        if (rd_rest_reached(s)) break; /* free-vibration tail: everything at rest */
     }
     s->wall = wall_now() - t0;
     rd_monitor_finish(s);
@@ -415,7 +416,7 @@ void rd_sim_free(rd_sim *s)
     rd_h5_close(s->h5);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
-    void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed,
+    void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
                       s->pair, s->fs, s->pstate, s->face_nactive, s->watch, s->event, s->obuf,

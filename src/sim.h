@@ -10,7 +10,7 @@
 
 #include <signal.h>
 
-#define RD_MAX_PLANES 64 /* most faces a body may have to be a contact target (contact.c) */
+#define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
@@ -92,6 +92,7 @@ struct rd_sim {
     double *mass;          /* kg */
     double (*inertia)[3];  /* principal moments, kg m^2 */
     int *fixed;            /* 1 for pedestals (move with the ground: at rest in this frame) */
+    int *convex;           /* 1 for convex bodies: only they can be contact targets */
     double (*f)[3];        /* force accumulator, N */
     double (*tq)[3];       /* torque accumulator about the centre of mass, N m */
     double (*v_old)[3];    /* previous half-step velocity (energy at integer steps) */
@@ -184,6 +185,7 @@ int rd_contact_step(rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
 
 /* integrate.c */
+void rd_body_refresh(rd_sim *s, int i);
 void rd_bodies_refresh(rd_sim *s);
 void rd_integrate_kick(rd_sim *s);
 void rd_integrate_drift(rd_sim *s);

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages rockdem needs, only those that are missing. Needs root (or sudo).
 set -eu
-pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmocka-dev hdf5-tools
-      python3-h5py python3-numpy python3-scipy python3-matplotlib"
+pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmocka-dev libqhull-dev hdf5-tools
+      python3-h5py python3-numpy python3-scipy python3-matplotlib
+      hdf5-filter-plugin-blosc-serial"  # BLOSC: the FEMA P695 record sets (src/record_fema.c)
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

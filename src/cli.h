@@ -1,0 +1,29 @@
+/* rockdem (private) — subcommands of the command-line program beyond run/check (src/main.c
+ * dispatches to these). Each returns the process exit status: 0 ok, 2 bad input, 3 failure. */
+#ifndef RD_CLI_H
+#define RD_CLI_H
+
+#include "rockdem/rockdem.h"
+
+/* Option handler of one subcommand: consume argv[*i] (and its value, advancing *i) and return
+ * 0; return 1 when the option is not its own, -1 when its value is bad (after printing why). */
+typedef int (*rd_cli_option_fn)(void *ctx, int argc, char **argv, int *i);
+
+/* Load argv[2] as a scenario, apply --set k=v overrides and -o OUT (when out is not NULL),
+ * hand every other option to `opt` (may be NULL), then validate. Prints one line and returns
+ * -1 on error. */
+int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt, void *ctx,
+                    const char **out);
+
+/* Parse a number (optionally with a 'g' suffix: times 9.80665 m/s^2) for option `name`. */
+int rd_cli_number(const char *name, const char *text, int accel, double *v);
+
+int rd_cli_reference(int argc, char **argv);   /* rockdem reference SCENARIO ... */
+int rd_cli_threshold(int argc, char **argv);   /* rockdem threshold SCENARIO ... */
+int rd_cli_restitution(int argc, char **argv); /* rockdem restitution SCENARIO ... */
+int rd_cli_study(int argc, char **argv);       /* rockdem study SCENARIO ... */
+
+/* One line of intensity measures per applied record component (cli_motion.c). 0 or -1. */
+int rd_cli_print_motion(const rd_motion_def *m);
+
+#endif

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Remake the example figures of docs/TOOLS.md from real rockdem runs (about 15 s).
+#   bash tools/doc_figures.sh [path/to/rockdem] [workdir]
+set -eu
+BIN=${1:-bin/rockdem}; W=${2:-$(mktemp -d)}
+PY=/usr/bin/python3
+mkdir -p "$W/sweep"
+# 1. one run that overturns: the default cask, 1.1 g one-sine at 0.7 Hz
+"$BIN" run scenarios/default.dat --set motion.amplitude=1.1g --set motion.frequency=0.7 -q -o "$W/over.h5"
+$PY tools/rdplot.py "$W/over.h5" -o docs/rdplot_example.png --dpi 72
+# 2. an 8 x 8 sweep of one-sine pulses (amplitude x frequency, PGV/PGA = 1/(pi f)); the
+#    runs go on after overturning ('stop off') so every run sees the whole pulse
+sed 's/^model overturn tilt-ratio 1.0$/model overturn tilt-ratio 1.0 stop off/' scenarios/default.dat > "$W/sweep.dat"
+for a in 0.5 0.8 1.1 1.4 1.7 2.0 2.5 3.0; do for f in 0.25 0.35 0.5 0.7 1.0 1.4 2.0 2.8; do
+    echo "$a $f"; done; done |
+    xargs -P "$(nproc)" -n 2 sh -c '"$0" run "$1" --set motion.amplitude=${3}g --set motion.frequency=$4 \
+        --set model.duration=8 -q -o "$2/a${3}_f$4.h5" >/dev/null' "$BIN" "$W/sweep.dat" "$W/sweep"
+$PY tools/rdtable.py "$W"/sweep/*.h5 --csv "$W/sweep.csv" -q
+$PY tools/rdfragility.py "$W/sweep.csv" --outcome ever_overturned -o docs/rdfragility_example.png
