@@ -19,7 +19,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all run test asan bench study deps clean
+.PHONY: all run test asan bench study deps clean check-yade mpi
 
 all: $(BIN)/rockdem
 
@@ -47,6 +47,10 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/librockdem.a $(HEADERS)
 run: $(BIN)/rockdem
 	$(BIN)/rockdem run scenarios/default.dat
 
+# the shipped PBR's mesh comes from a seeded generator (no mesh is committed)
+scenarios/pbr.obj: tools/make_pbr.py
+	/usr/bin/python3 tools/make_pbr.py --seed 1 -o $@
+
 test: $(BIN)/rockdem $(TESTBIN)
 	@bash tests/run.sh $(BUILD) $(BIN)
 
@@ -57,9 +61,22 @@ asan:
 bench: $(BIN)/rockdem
 	@bash bench/run.sh $(BIN)
 
+# regenerate the stored YADE cross-check results in tests/data/yade/ (needs yade): docs/YADE.md
+check-yade: $(BIN)/rockdem
+	/usr/bin/python3 tools/yade/regen.py
+	@RD_BIN=$(BIN)/rockdem bash tests/cli/yade_compare.sh
+
 # error against run time of the DEM vs the rigid references: docs/study.md, docs/study.png
 study: $(BIN)/rockdem
 	@bash bench/study.sh $(BIN)
+
+# bin/rockdem-mpi: `mpirun -n N rockdem-mpi sweep ...` (docs/FRAGILITY.md); needs mpicc
+# (Debian libopenmpi-dev, openmpi-bin); the normal build does not
+MPICC ?= mpicc
+mpi: $(BIN)/rockdem-mpi
+$(BIN)/rockdem-mpi: src/mpi/rockdem_mpi.c $(BUILD)/librockdem.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(MPICC) $(ALL_CFLAGS) $< $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 clean:
 	rm -rf build build-asan bin

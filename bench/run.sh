@@ -130,3 +130,6 @@ cpu=$(sed -n 's/^model name[[:space:]]*:[[:space:]]*//p' /proc/cpuinfo 2>/dev/nu
 echo
 cat "$tmp/table"
 cp "$tmp/table" "$results"
+# multi-body scenes (two-block stack, 4-drum column), same step in both codes: bench/scenes.sh
+{ echo; echo "multi-body scenes (bench/scenes.sh; ratio = YADE / rockdem wall s per simulated s):"
+  bash "$here/scenes.sh" "$bindir"; } | tee -a "$results"

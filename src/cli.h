@@ -22,6 +22,7 @@ int rd_cli_reference(int argc, char **argv);   /* rockdem reference SCENARIO ...
 int rd_cli_threshold(int argc, char **argv);   /* rockdem threshold SCENARIO ... */
 int rd_cli_restitution(int argc, char **argv); /* rockdem restitution SCENARIO ... */
 int rd_cli_study(int argc, char **argv);       /* rockdem study SCENARIO ... */
+int rd_cli_sweep(int argc, char **argv);       /* rockdem sweep SCENARIO ... (cli_sweep.c) */
 
 /* One line of intensity measures per applied record component (cli_motion.c). 0 or -1. */
 int rd_cli_print_motion(const rd_motion_def *m);

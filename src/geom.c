@@ -25,6 +25,18 @@ static void tri_normal(const double a[3], const double b[3], const double c[3], 
     rd_cross(u, w, n); /* |n| = twice the triangle area */
 }
 
+/* Twice the vector area of face f (sum of its fan triangles' cross products). */
+static void area_vector(const rd_poly *p, int f, double n[3])
+{
+    const int *ix = p->fidx + p->fstart[f];
+    n[0] = n[1] = n[2] = 0;
+    for (int k = 1; k + 1 < p->flen[f]; k++) {
+        double tn[3];
+        tri_normal(p->v[ix[0]], p->v[ix[k]], p->v[ix[k + 1]], tn);
+        rd_axpy(1.0, tn, n);
+    }
+}
+
 void rd_poly_update(rd_poly *p)
 {
     int t = 0;
@@ -35,11 +47,9 @@ void rd_poly_update(rd_poly *p)
     }
     for (int f = 0; f < p->nf; f++) {
         const int *ix = p->fidx + p->fstart[f];
-        double n[3] = {0, 0, 0};
+        double n[3];
+        area_vector(p, f, n);
         for (int k = 1; k + 1 < p->flen[f]; k++) {
-            double tn[3];
-            tri_normal(p->v[ix[0]], p->v[ix[k]], p->v[ix[k + 1]], tn);
-            rd_axpy(1.0, tn, n);
             p->tri[t][0] = ix[0]; p->tri[t][1] = ix[k]; p->tri[t][2] = ix[k + 1];
             t++;
         }
@@ -157,13 +167,8 @@ void rd_poly_to_frame(rd_poly *p, const rd_mass *m)
 
 double rd_poly_face_area(const rd_poly *p, int f)
 {
-    const int *ix = p->fidx + p->fstart[f];
-    double n[3] = {0, 0, 0};
-    for (int k = 1; k + 1 < p->flen[f]; k++) {
-        double tn[3];
-        tri_normal(p->v[ix[0]], p->v[ix[k]], p->v[ix[k + 1]], tn);
-        rd_axpy(1.0, tn, n);
-    }
+    double n[3];
+    area_vector(p, f, n);
     return 0.5 * rd_norm(n);
 }
 

@@ -17,6 +17,8 @@ static const char *usage =
     "       rockdem threshold FILE --engine dem|reference [--lo A] [--hi A] [--rtol 0.005] [--steps 24]\n"
     "       rockdem restitution FILE [--target r] [--theta0 rad]   measure and calibrate restitution\n"
     "       rockdem study FILE [--set key=value]...   error against run time of your settings\n"
+    "       rockdem sweep FILE [--set k=v]... --axis KEY=V1,V2 [--records F1,F2] [--scales S1,S2]\n"
+    "             [--directions D1,D2] [-j N] [--keep-runs DIR] [-q] -o TABLE.h5   fragility sweep\n"
     "       rockdem --version\n";
 
 static void on_signal(int sig)
@@ -140,6 +142,7 @@ int main(int argc, char **argv)
     if (argc >= 3 && !strcmp(argv[1], "threshold")) return rd_cli_threshold(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "restitution")) return rd_cli_restitution(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "study")) return rd_cli_study(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "sweep")) return rd_cli_sweep(argc, argv);
     fputs(usage, stderr);
     return 2;
 }

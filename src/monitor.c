@@ -124,6 +124,20 @@ static int contact_points(const rd_sim *s, int i, double (**out)[2])
     return n;
 }
 
+/* The body that body i rests on: among its contact partners at rest, the one whose centre is
+ * lowest (-1 if it touches nothing). */
+static int resting_on(const rd_sim *s, int i)
+{
+    int best = -1;
+    for (int k = 0; k < s->nlive_prev; k++) {
+        const rd_pair *pr = &s->pair[s->live_prev[k]];
+        int other = pr->a == i ? pr->b : pr->b == i ? pr->a : -1;
+        if (other >= 0 && s->x[other][2] < s->x[i][2] && (best < 0 || s->x[other][2] < s->x[best][2]))
+            best = other;
+    }
+    return best;
+}
+
 /* Support polygon at rest: the hull of the contact points, or of the lowest vertices when
  * nothing is pressed yet (scene placed exactly touching and not settled). */
 static void support_polygon(rd_sim *s, int k, double zmin)
@@ -156,6 +170,7 @@ static void watch_init(rd_sim *s, int k)
     double zmin = INFINITY;
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
     support_polygon(s, k, zmin);
+    w->rests_on = resting_on(s, i);
     w->h = s->x[i][2] - zmin;
     double b[3] = {s->x[i][0], s->x[i][1], zmin}, d[3] = {0, 0, zmin - s->x[i][2]};
     rd_copy3(b, w->base_ref);
@@ -176,8 +191,8 @@ static void watch_init(rd_sim *s, int k)
     w->sum.alpha_min = amin;
     w->sum.tip_accel_min = s->sc.gravity * tan(amin);
     w->sum.alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
-    w->cos_max = 1;
-    w->cos_ratio_gate = 1;
+    w->key_max = 0;
+    w->key_ratio_gate = 0;
     const rd_overturn_def *o = &s->sc.overturn;
     w->cos_over_gate = o->kind == RD_OVERTURN_TILT_RATIO ? cos(fmin(o->value * amin, M_PI))
                      : o->kind == RD_OVERTURN_ANGLE ? cos(o->value) : -2;
@@ -241,26 +256,47 @@ static int criterion_met(const rd_sim *s, int k, const double z[3])
     int i = s->free_body[k];
     if (o->kind == RD_OVERTURN_HEIGHT)
         return s->x[i][2] - w->base_ref[2] < o->value * (w->x_ref[2] - w->base_ref[2]);
+    if (o->kind == RD_OVERTURN_OFF) {
+        if (w->rests_on < 0) return 0;
+        const double *b = s->aabb[w->rests_on]; /* grown by the broad-phase margin */
+        double grow = o->value * s->poly[i].radius;
+        return s->x[i][0] < b[0] - grow || s->x[i][0] > b[3] + grow ||
+               s->x[i][1] < b[1] - grow || s->x[i][1] > b[4] + grow;
+    }
     if (z[2] >= w->cos_over_gate) return 0; /* below the smallest possible threshold */
     if (o->kind == RD_OVERTURN_ANGLE) return 1;
     double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
     return tilt >= o->value * alpha_toward(w, lean[0], lean[1]);
 }
 
+/* A number that grows with the tilt over [0, pi] and resolves small tilts to round-off: the
+ * squared horizontal part of the rest vertical, mirrored past 90 degrees. */
+static double tilt_key(const double z[3])
+{
+    double h2 = z[0] * z[0] + z[1] * z[1];
+    return z[2] >= 0 ? h2 : 2 - h2;
+}
+
+static double key_of_angle(double a)
+{
+    return a <= M_PI / 2 ? sin(a) * sin(a) : 2 - sin(a) * sin(a);
+}
+
 /* Extremes of tilt, tilt / alpha and slide. The angles cost an atan2 and a ray cast, so they
- * are evaluated only when the cosine of the tilt passes a gate that a new extreme must pass. */
+ * are evaluated only when the tilt passes a gate that a new extreme must pass. */
 static void track_extremes(rd_sim *s, int k, const double z[3])
 {
     rd_watch *w = &s->watch[k];
     rd_body_summary *sum = &w->sum;
     int i = s->free_body[k];
-    if (z[2] < w->cos_max || z[2] < w->cos_ratio_gate) {
+    double key = tilt_key(z);
+    if (key > w->key_max || key > w->key_ratio_gate) {
         double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
-        if (z[2] < w->cos_max) { sum->max_tilt = tilt; w->cos_max = z[2]; }
+        if (key > w->key_max) { sum->max_tilt = tilt; w->key_max = key; }
         double ratio = tilt / alpha_toward(w, lean[0], lean[1]);
         if (ratio > sum->max_tilt_ratio) {
             sum->max_tilt_ratio = ratio;
-            w->cos_ratio_gate = cos(rd_min(ratio * w->alpha_min, M_PI));
+            w->key_ratio_gate = key_of_angle(rd_min(ratio * w->alpha_min, M_PI));
         }
     }
     double b[3];
@@ -323,7 +359,8 @@ void rd_monitor_step(rd_sim *s)
 int rd_monitor_all_fallen(const rd_sim *s)
 {
     for (int k = 0; k < s->nfree; k++) {
-        int down = s->watch[k].down || (s->sc.overturn.kind == RD_OVERTURN_HEIGHT && s->watch[k].over);
+        rd_overturn_kind kind = s->sc.overturn.kind;
+        int down = s->watch[k].down || ((kind == RD_OVERTURN_HEIGHT || kind == RD_OVERTURN_OFF) && s->watch[k].over);
         if (!down) return 0;
     }
     return s->nfree > 0;

@@ -8,6 +8,7 @@
  * the stiffness (3DEC's averaging of the two faces' subcontacts). Pairs are made by the broad
  * phase (pairs.c) when two bodies first come near each other. */
 #include "sim.h"
+#include "perturb.h"
 #include "vec.h"
 
 #include <math.h>
@@ -31,24 +32,13 @@ static void initial_orientation(const double rot[3], const double axes[9], doubl
     rd_quat_mul(t2, qa, q);
 }
 
-/* Mesh paths are relative to the scenario file's folder. */
-static void resolve_path(const rd_scenario *sc, const char *path, char *out, size_t n)
+static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
 {
-    const char *slash = strrchr(sc->file, '/');
-    if (path[0] == '/' || !slash) snprintf(out, n, "%s", path);
-    else snprintf(out, n, "%.*s/%s", (int)(slash - sc->file), sc->file, path);
-}
-
-static int build_shape(const rd_scenario *sc, const rd_body_def *d, rd_poly *p, rd_error *err)
-{
-    char path[2 * RD_PATH_MAX];
     switch (d->shape) {
     case RD_SHAPE_BRICK: return rd_poly_brick(p, d->size, err);
     case RD_SHAPE_PRISM: return rd_poly_prism(p, d->sides, d->radius, d->radius_top, d->size[2], err);
     case RD_SHAPE_HULL: return rd_poly_hull(p, (const double (*)[3])d->verts, d->nverts, err);
-    case RD_SHAPE_MESH:
-        resolve_path(sc, d->mesh, path, sizeof path);
-        return rd_mesh_read(p, path, NULL, err);
+    case RD_SHAPE_MESH: return rd_mesh_read(p, d->mesh, NULL, err); /* path resolved by the parser */
     }
     return rd_error_set(err, "unknown shape");
 }
@@ -68,7 +58,7 @@ static int build_body(rd_sim *s, int i, rd_error *err)
 {
     const rd_body_def *d = &s->sc.bodies[i];
     rd_mass m;
-    if (build_shape(&s->sc, d, &s->poly[i], err) || rd_poly_mass(&s->poly[i], &m, err)) {
+    if (build_shape(d, &s->poly[i], err) || rd_poly_mass(&s->poly[i], &m, err)) {
         char msg[RD_ERROR_MAX];
         snprintf(msg, sizeof msg, "%s", err->msg);
         return rd_error_set(err, "%s:%d: block '%s': %s", s->sc.file, d->line, d->name, msg);
@@ -256,6 +246,6 @@ int rd_setup_contacts(rd_sim *s, rd_error *err)
     s->tan_phi = tan(s->sc.contact.friction);
     s->bonds = s->sc.contact.tension > 0 || s->sc.contact.cohesion > 0;
     s->can_cull = !s->bonds;
-    if (build_points(s, err) || rd_pairs_init(s, err)) return -1;
+    if (build_points(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err)) return -1;
     return 0;
 }

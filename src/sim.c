@@ -249,7 +249,7 @@ static const char *damping_text(const rd_damping_def *d, char *buf, size_t n)
 
 static const char *overturn_text(const rd_overturn_def *o, char *buf, size_t n)
 {
-    static const char *kind[] = {"tilt-ratio", "angle", "height"};
+    static const char *kind[] = {"tilt-ratio", "angle", "height", "off-pedestal"};
     double v = o->kind == RD_OVERTURN_ANGLE ? o->value * 180.0 / M_PI : o->value;
     snprintf(buf, n, "%s %g%s", kind[o->kind], v, o->kind == RD_OVERTURN_ANGLE ? " deg" : "");
     return buf;

@@ -53,10 +53,11 @@ typedef struct rd_watch {
     double h;            /* height of the centre of mass above its support plane at rest, m */
     double zb[3];        /* the rest vertical in the body frame */
     double alpha_min;    /* smallest static tipping angle over all lean directions, rad */
-    double cos_max;      /* cos(max tilt so far) */
-    double cos_ratio_gate; /* cos(max tilt ratio * alpha_min): a new max ratio needs z below it */
+    double key_max;      /* tilt key (monitor.c: tilt_key) of the max tilt so far */
+    double key_ratio_gate; /* key of max tilt ratio * alpha_min: a new max ratio must exceed it */
     double cos_over_gate;  /* cos of the smallest tilt that can meet the overturn criterion */
     int down;            /* tilted past 85 degrees: lying down */
+    int rests_on;        /* body it rested on at rest (off-pedestal criterion), -1 none */
     double twist_prev;   /* unwrapped twist at the last sample, rad */
     int nsupport;        /* support polygon at rest: hull of the contact points (ground xy,
                             counter-clockwise), for alpha */

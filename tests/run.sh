@@ -4,7 +4,9 @@
 set -u
 BUILD=${1:-build}
 BIN=${2:-bin}
-export RD_BIN="$BIN/rockdem" RD_TMP=$(mktemp -d)
+RD_BIN="$(cd "$(dirname "$BIN/rockdem")" 2>/dev/null && pwd)/rockdem"  # absolute: scripts may cd
+RD_BUILD="$(cd "$BUILD" 2>/dev/null && pwd)"  # tests/cli/sweep_mpi.sh builds bin/rockdem-mpi from it
+export RD_BIN RD_BUILD RD_TMP=$(mktemp -d)
 trap 'rm -rf "$RD_TMP"' EXIT
 pass=0; fail=0
 for t in "$BUILD"/tests/test_*; do

@@ -142,6 +142,12 @@ static void test_strong_and_fast_motion(void **state)
                "ground-motion pulse one-sine amplitude 3g frequency 2\nmodel solve time 0.8\n", NULL);
     block_case("long harmonic 0.3 g 1 Hz 20 cycles", 1.0, 1.0,
                "ground-motion pulse harmonic amplitude 0.3g frequency 1 cycles 20\nmodel solve time 20\n", NULL);
+    /* a 10-minute record: generated, baseline-corrected and scaled in full (60 000 samples);
+       the test runs its first 10 s (`--set model.duration=10` is the flag; a full run takes
+       about a minute) */
+    const char *ten_s[] = {"model.duration=10", NULL};
+    block_case("10-minute stochastic record, 0.4 g", 1.0, 1.0,
+               "ground-motion stochastic seed 7 pga 0.4g duration 600\nmodel solve time 600\n", ten_s);
 }
 
 /* A blow-up: a 2e5 m/s^2 rectangular pulse drags the block across its base (friction holds at

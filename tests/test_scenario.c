@@ -421,8 +421,8 @@ static void test_error_unknown_and_missing_verb(void **state)
 {
     (void)state;
     parse_fails("  block crate brick\n",
-                "run.dat:1:9: unknown verb 'crate' for 'block' (expected create, initial)");
-    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property)");
+                "run.dat:1:9: unknown verb 'crate' for 'block' (expected create, import, initial)");
+    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation)");
 }
 
 static void test_error_unknown_keyword(void **state)
@@ -513,11 +513,11 @@ static void test_error_block_shape_and_required(void **state)
 {
     (void)state;
     parse_fails("block create sphere size 1\n",
-                "run.dat:1:14: unknown shape 'sphere' for 'block create' (expected brick)");
+                "run.dat:1:14: unknown shape 'sphere' for 'block create' (expected brick, prism, polyhedron, column or stack)");
     parse_fails("block create brick position 0 0 0\n",
                 "run.dat:1:14: missing 'size' for 'block create brick'");
     parse_fails("block create brick size 1 1 1\n",
-                "run.dat:1:14: missing 'position' for 'block create brick'");
+                "run.dat:1:14: missing 'position' or 'seat-on' for 'block create brick'");
 }
 
 static void test_error_duplicate_block_name(void **state)
@@ -686,7 +686,8 @@ static void test_set_bad_key(void **state)
     set_fails("contact.frction=30",
               "--set contact.frction=30: unknown key 'contact.frction' (expected "
               "contact.stiffness-normal, contact.stiffness-shear, contact.friction, "
-              "contact.cohesion, contact.tension, contact.spacing)");
+              "contact.cohesion, contact.tension, contact.spacing, contact.interface-seed, "
+              "contact.interface-remove, contact.interface-raise, contact.interface-scatter)");
     set_fails("solver.dt=1", "--set solver.dt=1: unknown key 'solver.dt' (expected a key in "
                              "contact, model, motion, output or block.<name>)");
     set_fails("model.gravity", "--set model.gravity: expected section.key=value");

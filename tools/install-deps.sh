@@ -3,7 +3,8 @@
 set -eu
 pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmocka-dev libqhull-dev hdf5-tools
       python3-h5py python3-numpy python3-scipy python3-matplotlib
-      hdf5-filter-plugin-blosc-serial"  # BLOSC: the FEMA P695 record sets (src/record_fema.c)
+      hdf5-filter-plugin-blosc-serial
+      libopenmpi-dev openmpi-bin"  # BLOSC: FEMA P695 sets (src/record_fema.c); MPI: make mpi
 missing=""
 for p in $pkgs; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -43,6 +43,19 @@ typedef struct rd_body_def {
     int line;                   /* scenario line that created the body (for messages) */
 } rd_body_def;
 
+/* Seeded perturbation of the subcontact points when they are built (src/perturb.c;
+ * `contact interface-perturbation seed S remove F raise H raise-fraction P scatter C
+ * keep-corners on|off`): an uncertain interface, swept with `rockdem sweep --axis interface=K`. */
+typedef struct rd_perturb_def {
+    double seed;           /* gsl_rng_mt19937 seed, a whole number; 0 = off (default) */
+    double remove;         /* fraction of each body's points removed, [0, 1) (default 0) */
+    double raise;          /* a raised point moves up to this far into its body, m (default 0) */
+    double raise_fraction; /* fraction of the kept points raised, [0, 1] (default 0.5) */
+    double scatter;        /* c.o.v. of a mean-1 lognormal factor on each point's area, so on
+                              its normal and shear stiffness (default 0) */
+    int keep_corners;      /* 1: the corners of each contact face are never removed (default 0) */
+} rd_perturb_def;
+
 /* Contact law: 3DEC Coulomb-slip joint (seed 002 eqs. 1-2), one property set for all pairs. */
 typedef struct rd_contact_def {
     double kn;        /* normal stiffness per unit area, Pa/m (default 1e10) */
@@ -53,6 +66,7 @@ typedef struct rd_contact_def {
     double spacing;   /* subcontact spacing on contact faces, m; 0 = face vertices only
                          (3DEC's fewest-triangle default); < 0 (default) = automatic per body:
                          a tenth of its narrowest contact face (a mesh: its own vertices) */
+    rd_perturb_def perturb; /* interface perturbation (default: off) */
 } rd_contact_def;
 
 typedef enum rd_damping_kind {
@@ -165,7 +179,9 @@ typedef struct rd_settle_def {
 typedef enum rd_overturn_kind {
     RD_OVERTURN_TILT_RATIO = 0, /* tilt of the body's vertical axis / its alpha >= value (default 1.5) */
     RD_OVERTURN_ANGLE = 1,      /* tilt >= value, rad */
-    RD_OVERTURN_HEIGHT = 2      /* centre of mass below value times its initial height */
+    RD_OVERTURN_HEIGHT = 2,     /* centre of mass below value times its initial height */
+    RD_OVERTURN_OFF = 3         /* centre of mass no longer above the body it rested on (its
+                                   bounding box at rest, grown by value times the body's size) */
 } rd_overturn_kind;
 
 typedef struct rd_overturn_def {

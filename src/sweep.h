@@ -1,0 +1,152 @@
+/* rockdem (private) — parameter sweeps for fragility (`rockdem sweep`, docs/FRAGILITY.md).
+ *
+ * A plan is the cartesian product of its axes (records x scales x directions x --axis lists,
+ * the last axis varying fastest); case k is one DEM run of the scenario with the base --set
+ * overrides and then one value of every axis applied by rd_scenario_set on a fresh parse.
+ * Workers (forked processes, or MPI ranks in bin/rockdem-mpi) run cases and send back one
+ * fixed-size rd_sweep_result each; the coordinator appends it to the HDF5 table (/sweep). */
+#ifndef RD_SWEEP_H
+#define RD_SWEEP_H
+
+#include "rockdem/rockdem.h"
+
+#define RD_SWEEP_MAX_AXES 16
+#define RD_SWEEP_TEXT 128 /* bytes of a text column value (record names, text axis values) */
+#define RD_SWEEP_MSG 200  /* bytes of a case's error message */
+
+typedef enum rd_axis_kind {
+    RD_AXIS_SET = 0,    /* --axis section.key=v1,v2: rd_scenario_set("section.key=v") */
+    RD_AXIS_RECORD,     /* --records: motion.file (path as given, relative to the current dir) */
+    RD_AXIS_SCALE,      /* --scales: "0.3g" = target PGA, "2" = factor (see rd_sweep_assignment) */
+    RD_AXIS_DIRECTION,  /* --directions: motion.direction, degrees */
+    RD_AXIS_INTERFACE   /* --axis interface=K: contact.interface-seed = 1..K */
+} rd_axis_kind;
+
+typedef struct rd_sweep_axis {
+    rd_axis_kind kind;
+    char key[RD_NAME_MAX]; /* column name: the --set key, or record, scale, direction, interface */
+    int n;                 /* number of values (>= 1) */
+    char **value;          /* the values as written (owned) */
+    double *number;        /* numeric value of each (SI: scales in m/s^2 or factors); NULL for a
+                              text axis (owned) */
+    const char *units;     /* of the numeric column ("" if none) */
+} rd_sweep_axis;
+
+typedef struct rd_sweep_plan {
+    const char *path;       /* scenario file */
+    char *text;             /* the scenario file as read (owned) */
+    int nsets;
+    char **sets;            /* base --set assignments (argv strings) */
+    int naxes;
+    rd_sweep_axis axis[RD_SWEEP_MAX_AXES];
+    long ncases;            /* product of the axis lengths */
+    char *axes_text;        /* canonical "key=v1,v2\n" per axis, then "--set a\n" (owned) */
+    int nbodies;            /* free bodies */
+    char body[RD_MAX_BODIES][RD_NAME_MAX];
+    int pulse;              /* 1: the scenario's horizontal motion is a pulse (no records) */
+    double amplitude;       /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
+    int perturbed;          /* 1: the scenario's interface perturbation removes, raises or scatters */
+    const char *keep_dir;   /* --keep-runs DIR, or NULL: per-case run files are deleted */
+} rd_sweep_plan;
+
+enum { RD_IM_PGA, RD_IM_PGV, RD_IM_PGD, RD_IM_PGV_PGA, RD_IM_ARIAS, RD_IM_D5_95, RD_SWEEP_NIM };
+
+/* What one case found: sent through a pipe or MPI as raw bytes (a homogeneous machine set). */
+typedef struct rd_sweep_result {
+    long index;                  /* case index */
+    unsigned long long hash;     /* rd_sweep_hash of the case */
+    int status;                  /* rd_status; -1: the case could not be set up (message) */
+    char message[RD_SWEEP_MSG];
+    double im[RD_SWEEP_NIM];     /* pga m/s^2, pgv m/s, pgd m, pgv/pga s, arias m/s, d5-95 s */
+    int overturned;              /* 1 if any free body overturned */
+    double overturn_time;        /* first overturn, s (-1 if none) */
+    double max_tilt_ratio;       /* max over bodies of max tilt / alpha */
+    double max_slide;            /* max over bodies, m */
+    double final_twist;          /* the largest |twist at the end| over bodies, signed, rad */
+    double energy_residual;      /* max |balance residual| / energy scale */
+    double end_time;             /* simulated time reached, s */
+    double wall_seconds;         /* wall time of the whole case (setup + run), s */
+    int nbodies;
+    int b_overturned[RD_MAX_BODIES];
+    double b_overturn_time[RD_MAX_BODIES], b_max_tilt_ratio[RD_MAX_BODIES];
+    double b_max_slide[RD_MAX_BODIES], b_final_twist[RD_MAX_BODIES];
+} rd_sweep_result;
+
+/* --- sweep.c ----------------------------------------------------------------------------- */
+
+/* Add an axis from "KEY=V1,V2,..." (--axis) or a list (kind RECORD, SCALE, DIRECTION). Prints
+ * nothing; -1 with err = "rockdem sweep: ...". */
+int rd_sweep_add_axis(rd_sweep_plan *p, rd_axis_kind kind, const char *spec, rd_error *err);
+
+/* Read the scenario, check every axis value once on a fresh parse, count the cases, and make
+ * axes_text. -1 with err. */
+int rd_sweep_plan_finish(rd_sweep_plan *p, rd_error *err);
+
+void rd_sweep_plan_free(rd_sweep_plan *p);
+
+/* Value index of axis a in case k. */
+int rd_sweep_value_index(const rd_sweep_plan *p, long k, int a);
+
+/* FNV-1a 64 of the case's overrides as written (base --set, then "key=value" per axis). */
+unsigned long long rd_sweep_hash(const rd_sweep_plan *p, long k);
+
+/* Run case k (fresh scenario, overrides, DEM run; the run file goes to tmpdir or keep_dir and
+ * is deleted from tmpdir). Always fills r (status -1 and message on a setup error). */
+void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sweep_result *r);
+
+/* Ask the case running in this process to stop (async-signal-safe); later cases are skipped. */
+void rd_sweep_request_stop(void);
+
+/* --- sweep_pool.c: fork + pipes ------------------------------------------------------------ */
+
+/* How the coordinator talks to its workers (fork pool, MPI). */
+typedef struct rd_sweep_pool {
+    int nworkers;
+    void *ctx;
+    int (*send)(void *ctx, int worker, long index);   /* index -1: stop; 0 or -1 */
+    /* Wait up to wait_ms for a result: 1 (r, *worker set), 0 (none yet), -1 (worker *worker
+       died; its case is lost) */
+    int (*recv)(void *ctx, int wait_ms, int *worker, rd_sweep_result *r);
+    void (*interrupt)(void *ctx);                     /* pass Ctrl-C on to the workers */
+    void (*finish)(void *ctx);                        /* stop and reap the workers, free ctx */
+} rd_sweep_pool;
+
+/* Fork n workers. -1 with err. */
+int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_error *err);
+
+/* A private temporary folder for run files ($TMPDIR or /tmp); "" on failure. */
+void rd_sweep_tmpdir(char *dir, size_t size);
+
+/* --- sweep_table.c: the HDF5 table --------------------------------------------------------- */
+
+typedef struct rd_sweep_table rd_sweep_table;
+
+/* Create the table, or open an existing one for the same scenario and axes (done[k] = 1 for
+ * cases already in it; done has ncases entries). NULL with err. */
+rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err);
+
+/* Append one result row and flush the file. -1 with err. */
+int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err);
+
+/* Rows on disk. */
+long rd_sweep_table_rows(const rd_sweep_table *t);
+
+/* Reorder the rows by case index (a complete sweep reads the same whatever -j). -1 with err. */
+int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err);
+
+void rd_sweep_table_close(rd_sweep_table *t);
+
+/* --- cli_sweep.c ----------------------------------------------------------------------------- */
+
+/* A distributed backend (bin/rockdem-mpi): rank > 0 serves cases; rank 0 opens a pool. */
+typedef struct rd_sweep_backend {
+    int rank;
+    int size;
+    int (*serve)(const rd_sweep_plan *p);                       /* worker ranks: exit status */
+    int (*open)(const rd_sweep_plan *p, rd_sweep_pool *pool);   /* coordinator: 0 or -1 */
+} rd_sweep_backend;
+
+/* rockdem sweep with the given backend (NULL: the fork pool). Returns the exit status. */
+int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b);
+
+#endif

@@ -1,0 +1,122 @@
+/* Interface perturbation (src/perturb.c): removal of all but the corners gives the corner-only
+ * static tipping threshold; a random removal lowers it to the remaining points' value; the same
+ * seed gives identical points; a scatter of 0 changes nothing. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "rockdem/rockdem.h"
+#include "sim.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* 0.4 x 0.4 x 1 m brick on a pad, a 5 x 5 bed of points (spacing 0.1), no motion: settle only. */
+static const char *brick =
+    "block create brick size 2 2 0.2 position 0 0 -0.1 fixed name pad\n"
+    "block create brick size 0.4 0.4 1.0 position 0 0 0.5 density 2500 name brick\n"
+    "contact property stiffness-normal 1e9 stiffness-shear 1e8 friction 40 spacing %s\n"
+    "model damping viscous 0.2\n"
+    "model solve time 0.01\n"
+    "output hdf5 '%s' interval 0.005\n"
+    "%s\n";
+
+static char out[64];
+static int nout; /* run files made: one per simulation alive at a time */
+
+static rd_sim *make(const char *spacing, const char *perturb)
+{
+    char text[2048];
+    rd_scenario sc;
+    rd_error err;
+    char path[80];
+    snprintf(path, sizeof path, "%s.%d.h5", out, nout++ % 4);
+    snprintf(text, sizeof text, brick, spacing, path, perturb);
+    assert_int_equal(rd_scenario_parse(&sc, "perturb.dat", text, &err), 0);
+    rd_sim *s = rd_sim_create(&sc, &err);
+    if (!s) fprintf(stderr, "%s\n", err.msg);
+    rd_scenario_free(&sc);
+    assert_non_null(s);
+    return s;
+}
+
+/* Quasi-static tipping acceleration of the brick at rest, m/s^2. */
+static double tip_accel(const char *spacing, const char *perturb)
+{
+    rd_sim *s = make(spacing, perturb);
+    rd_summary sum;
+    rd_sim_run(s);
+    rd_sim_summary(s, &sum);
+    rd_sim_free(s);
+    return sum.body[0].tip_accel_min;
+}
+
+static void test_corners_threshold(void **state)
+{
+    (void)state;
+    double g = 9.81, corners = tip_accel("0", ""), bed = tip_accel("0.1", "");
+    double kept = tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.99 keep-corners on");
+    double random = tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.9");
+    assert_true(fabs(corners - 0.4 * g) < 1e-3 * g); /* g b/h, b/h = 0.4 */
+    assert_true(fabs(bed - corners) < 1e-3 * g);
+    assert_true(fabs(kept - corners) < 1e-6 * g);
+    assert_true(random < 0.9 * corners); /* the outer points are gone: a smaller support */
+}
+
+static void test_same_seed_same_points(void **state)
+{
+    (void)state;
+    const char *p = "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4";
+    rd_sim *a = make("0.1", p), *b = make("0.1", p), *c = make("0.1", "");
+    rd_sim *d = make("0.1", "contact interface-perturbation seed 12 remove 0.3 raise 0.001 scatter 0.4");
+    assert_int_equal(a->npts, b->npts);
+    assert_int_equal(a->npts, c->npts - (int)floor(0.3 * c->npts));
+    assert_memory_equal(a->pl, b->pl, (size_t)a->npts * sizeof *a->pl);
+    assert_memory_equal(a->pa, b->pa, (size_t)a->npts * sizeof *a->pa);
+    assert_true(a->npts != d->npts || memcmp(a->pl, d->pl, (size_t)a->npts * sizeof *a->pl) != 0);
+    rd_sim_free(a); rd_sim_free(b); rd_sim_free(c); rd_sim_free(d);
+}
+
+static void test_zero_scatter_noop(void **state)
+{
+    (void)state;
+    rd_sim *a = make("0.1", "contact interface-perturbation seed 5 scatter 0");
+    rd_sim *b = make("0.1", "");
+    assert_int_equal(a->npts, b->npts);
+    assert_memory_equal(a->pl, b->pl, (size_t)a->npts * sizeof *a->pl);
+    assert_memory_equal(a->pa, b->pa, (size_t)a->npts * sizeof *a->pa);
+    rd_sim_free(a); rd_sim_free(b);
+}
+
+static void test_bad_settings(void **state)
+{
+    (void)state;
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "p.dat", "contact interface-perturbation remove 1\n", &err), -1);
+    assert_non_null(strstr(err.msg, "p.dat:1:"));
+    rd_scenario_free(&sc);
+}
+
+int main(void)
+{
+    snprintf(out, sizeof out, "/tmp/rd_perturb_%d", (int)getpid());
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_corners_threshold),
+        cmocka_unit_test(test_same_seed_same_points),
+        cmocka_unit_test(test_zero_scatter_noop),
+        cmocka_unit_test(test_bad_settings),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    for (int k = 0; k < 4; k++) {
+        char path[80];
+        snprintf(path, sizeof path, "%s.%d.h5", out, k);
+        unlink(path);
+    }
+    return rc;
+}
