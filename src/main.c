@@ -15,6 +15,7 @@ static const char *usage =
     "       rockdem check FILE [--set key=value]...\n"
     "       rockdem reference FILE [--set key=value]... [-o OUT.h5]   rigid Housner/Kounadis run\n"
     "       rockdem threshold FILE --engine dem|reference [--lo A] [--hi A] [--rtol 0.005] [--steps 24]\n"
+    "             [--frequencies F1,F2,...]   minimum overturning amplitude (a curve against w/p)\n"
     "       rockdem restitution FILE [--target r] [--theta0 rad]   measure and calibrate restitution\n"
     "       rockdem study FILE [--set key=value]...   error against run time of your settings\n"
     "       rockdem sweep FILE [--set k=v]... --axis KEY=V1,V2 [--records F1,F2] [--scales S1,S2]\n"
@@ -132,10 +133,11 @@ int main(int argc, char **argv)
         printf("rockdem %s\n", RD_VERSION);
         return 0;
     }
-    if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "help"))) {
-        fputs(usage, stdout);
-        return 0;
-    }
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || (i == 1 && !strcmp(argv[i], "help"))) {
+            fputs(usage, stdout);
+            return 0;
+        }
     if (argc >= 3 && !strcmp(argv[1], "run")) return cmd_run(argc, argv, 0);
     if (argc >= 3 && !strcmp(argv[1], "check")) return cmd_run(argc, argv, 1);
     if (argc >= 3 && !strcmp(argv[1], "reference")) return rd_cli_reference(argc, argv);

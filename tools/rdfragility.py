@@ -42,13 +42,16 @@ def main():
                    help="0/1 column taken as the simulated outcome (default overturned; "
                         "ever_overturned counts a body that fell and tumbled on)")
     p.add_argument("--body", metavar="NAME", help="use only the rows of this body")
+    p.add_argument("--where", metavar="COL=VALUE", action="append",
+                   help="use only the rows whose column COL equals VALUE (sweep tables and CSVs; "
+                        "repeatable), e.g. --where direction=0")
     p.add_argument("--bootstrap", type=int, default=0, metavar="N",
                    help="lognormal 95 %% bands from N bootstrap resamples instead of the Fisher information")
     a = p.parse_args()
 
     import numpy as np
     from rdtools import fragility as F
-    from rdtools.fraginput import load, arrays
+    from rdtools.fraginput import load, arrays, select
 
     edges = None
     if a.bin_edges:
@@ -64,7 +67,7 @@ def main():
         if out:
             cli.ensure_writable(out)
 
-    rows = load(a.inputs, a.observed, a.body, a.outcome)
+    rows = select(load(a.inputs, a.observed, a.body, a.outcome), a.where)
     pga_si, pgv, y, obs, ok = arrays(rows)
     if (~ok).any():
         sys.stderr.write("rdfragility: warning: %d rows without a positive finite pga/pgv skipped\n"

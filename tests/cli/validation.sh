@@ -33,6 +33,10 @@ three="$T/val_three.dat"
 err=$("$BIN" reference "$three" 2>&1 >/dev/null); rc=$?
 { [ "$rc" -eq 2 ] && [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] && printf '%s' "$err" | grep -q "does not stand on"; } ||
     fail "unstacked pair: rc=$rc $err"
+# the minimum-overturning curve: rises with w/p (Housner), 2 Hz gives the single threshold above
+curve=$("$BIN" threshold "$blk" --engine reference --frequencies 1,1.5,2) || fail "curve: $curve"
+printf '%s\n' "$curve" | awk 'NR > 2 { if (NR > 3 && $3 <= prev) bad = 1; prev = $3; g = $4 }
+    END { exit !(NR == 5 && !bad && g > 1.25 && g < 1.27) }' || fail "curve not rising to 1.26 g: $curve"
 err=$("$BIN" threshold "$blk" --engine nope 2>&1 >/dev/null); rc=$?
 [ "$rc" -eq 2 ] || fail "bad engine accepted: $err"
 [ "$fails" -eq 0 ]

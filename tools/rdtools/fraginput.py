@@ -56,7 +56,7 @@ def _rows_from_csv(path, observed, outcome="overturned"):
         w = "%s:%d" % (path, i)
         d = dict(pga=parse_float(r["pga"], w + ": pga"), pgv=parse_float(r["pgv"], w + ": pgv"),
                  overturned=parse_bool(r[outcome], w + ": " + outcome),
-                 body=r.get("body", ""), source=path, im_source=r.get("im_source", ""))
+                 body=r.get("body", ""), source=path, im_source=r.get("im_source", ""), cols=r)
         if observed:
             d["observed"] = parse_bool(r[observed], w + ": " + observed)
         out.append(d)
@@ -91,11 +91,34 @@ def _rows_from_sweep(path, f, observed, outcome="overturned"):
     for i in range(n):
         d = dict(pga=float(fields["pga"][i]) * scale, pgv=float(fields["pgv"][i]),
                  overturned=parse_bool(fields[outcome][i], "%s:/sweep[%d].%s" % (path, i, outcome)),
-                 body=as_str(fields["body"][i]) if "body" in fields else "", source=path)
+                 body=as_str(fields["body"][i]) if "body" in fields else "", source=path,
+                 cols={k: v[i] for k, v in fields.items()})
         if observed:
             d["observed"] = parse_bool(fields[observed][i], "%s:/sweep[%d].%s" % (path, i, observed))
         out.append(d)
     return out
+
+
+def _matches(value, want):
+    """A table cell equals the text of --where: numerically if both are numbers."""
+    try:
+        return float(value) == float(want)
+    except (TypeError, ValueError):
+        return as_str(value) == want
+
+
+def select(rows, where):
+    """Rows whose column COL equals VALUE for every "COL=VALUE" in where (sweep tables, CSVs)."""
+    for w in where or []:
+        col, sep, want = w.partition("=")
+        if not sep or not col:
+            raise RDError("--where: expected COL=VALUE, got '%s'" % w)
+        if any(col not in r.get("cols", {}) for r in rows):
+            raise RDError("--where: no column '%s' in the input" % col)
+        rows = [r for r in rows if _matches(r["cols"][col], want)]
+        if not rows:
+            raise RDError("--where %s: no rows left" % w)
+    return rows
 
 
 def load(paths, observed=None, body=None, outcome="overturned"):
