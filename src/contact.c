@@ -297,12 +297,14 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
     c.k_active = 0;
     c.damp_coef = 0;
     if (s->sc.damping.kind == RD_DAMPING_VISCOUS && !s->settling) {
-        double K = pr->k_active > 0 ? pr->k_active : 1.0 / 0.0;
+        double K = pr->k_active > 0 ? pr->k_active : INFINITY; /* a new contact: undamped step */
         c.damp_coef = 2.0 * s->sc.damping.value * sqrt(pr->m_eff / K);
     }
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double lb = face_planes(s, &c, cf);
-        if (s->can_cull && lb > 0) { clear_face(s, sd, cf, k); continue; }
+        /* beside the other body (plane lists incomplete): no contact, bonds or not; otherwise
+           a face wholly above the other body is skipped unless bonds may act across gaps */
+        if (lb == DBL_MAX || (s->can_cull && lb > 0)) { clear_face(s, sd, cf, k); continue; }
         int na = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         double area = 0;

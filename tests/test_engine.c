@@ -382,6 +382,38 @@ static void test_precariousness(void **state)
     assert_true(fabs(b->tip_accel_min - 9.81 * 0.25) < 1e-5);
 }
 
+/* ---- bonded joints: tension and cohesion hold a block that tips without them ------------- */
+/* The 0.4 x 0.4 x 1.6 m block under a quasi-static 0.35 g (above g tan alpha = 0.25 g): bare,
+ * it tips. Bonded, the base is a linear-elastic section until its far edge reaches the tensile
+ * strength T: with the weight's pressure p = m g / A = 42 kPa, it carries a moment up to
+ * (T + p) I / (b/2), I = 0.4^4 / 12: 5.8 kN m for T = 0.5 MPa, three times the overturning
+ * moment m a h = 1.9 kN m, so it stays (elastic tilt only); with T = 0.1 MPa (1.5 kN m) it
+ * peels and tips. */
+static double glued_tilt(const char *tension)
+{
+    char text[1024], set[64];
+    snprintf(text, sizeof text,
+             "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+             "block create brick size 0.4 0.4 1.6 position 0 0 0.8 name b\n"
+             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
+             "model damping local 0.8\nground-motion pulse rectangular amplitude 0.35g duration 1\n"
+             "model overturn angle 80\nmodel solve time 1\noutput hdf5 'x.h5' interval 0.01\n");
+    snprintf(set, sizeof set, "contact.tension=%s", tension);
+    const char *sets[] = {set, "contact.cohesion=5e5", NULL};
+    rd_summary sum;
+    run_summary(text, sets, &sum);
+    return sum.body[0].max_tilt;
+}
+
+static void test_bonded_joint(void **state)
+{
+    (void)state;
+    double bare = glued_tilt("0"), weak = glued_tilt("1e5"), glued = glued_tilt("5e5");
+    print_message("0.35 g: tilt bare %.3e, T 0.1 MPa %.3e, T 0.5 MPa %.3e rad\n", bare, weak, glued);
+    assert_true(bare > 1e-2 && weak > 1e-2);
+    assert_true(glued < 1e-3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -395,6 +427,7 @@ int main(void)
         cmocka_unit_test(test_overturn_strong_not_weak),
         cmocka_unit_test(test_spin_reports_twist),
         cmocka_unit_test(test_precariousness),
+        cmocka_unit_test(test_bonded_joint),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }
