@@ -76,7 +76,7 @@ int rd_cli_restitution(int argc, char **argv)
                         : sc.contact.spacing != 0 ? "a bed of many subcontacts rolls the pivot across the "
                           "base and saturates near 0.82-0.85; use corner subcontacts (contact property "
                           "spacing vertices)"
-                        : "the strongest damping accepted (ratio 1) cannot remove more at impact";
+                        : "the strongest damping accepted (ratio 10) cannot remove more at impact";
         printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at damping "
                "ratio %g: %s\n", target, reached, zeta, why);
     }

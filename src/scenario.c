@@ -37,6 +37,7 @@ typedef enum range {
     R_POS,    /* > 0 */
     R_NONNEG, /* >= 0 */
     R_FRAC,   /* (0, 1] */
+    R_DAMP,   /* (0, 10]: a viscous damping ratio (above 1: over-critical contact dashpots) */
     R_OPEN01, /* (0, 1) */
     R_ANGLE,  /* [0, 90) degrees */
     R_TURN    /* (0, 180] degrees */
@@ -78,6 +79,7 @@ static const char *range_error(double v, range r)
     case R_POS: return v > 0 ? NULL : "must be > 0";
     case R_NONNEG: return v >= 0 ? NULL : "must be >= 0";
     case R_FRAC: return v > 0 && v <= 1 ? NULL : "must be in (0, 1]";
+    case R_DAMP: return v > 0 && v <= 10 ? NULL : "must be in (0, 10]";
     case R_OPEN01: return v > 0 && v < 1 ? NULL : "must be in (0, 1)";
     case R_ANGLE: return v >= 0 && v < 90 ? NULL : "must be in [0, 90) degrees";
     case R_TURN: return v > 0 && v <= 180 ? NULL : "must be in (0, 180] degrees";
@@ -402,7 +404,7 @@ static int model_density(parser *P)
 static int model_damping(parser *P)
 {
     static const char *const names[] = {"none", "viscous", "local", NULL};
-    static const range ranges[] = {R_ANY, R_FRAC, R_OPEN01};
+    static const range ranges[] = {R_ANY, R_DAMP, R_OPEN01};
     rd_damping_def *d = &P->sc->damping;
     const token *kw, *prev = NULL;
     unsigned seen = 0;
@@ -1694,7 +1696,7 @@ static int set_damping(const setter *S)
     else
         return serr(S, "expected none, viscous <ratio> or local <alpha>, got '%s'", v);
     if (d->kind != RD_DAMPING_NONE &&
-        set_parse(S, arg, d->kind == RD_DAMPING_VISCOUS ? R_FRAC : R_OPEN01, U_PLAIN, &x))
+        set_parse(S, arg, d->kind == RD_DAMPING_VISCOUS ? R_DAMP : R_OPEN01, U_PLAIN, &x))
         return -1;
     d->value = x;
     return 0;
@@ -1976,8 +1978,8 @@ static const char *model_problem(const rd_scenario *sc)
         return "contact cohesion and tension must be >= 0";
     if (!isfinite(c->spacing))
         return "contact spacing must be a number";
-    if (d->kind == RD_DAMPING_VISCOUS && !(d->value > 0 && d->value <= 1))
-        return "viscous damping ratio must be in (0, 1]";
+    if (d->kind == RD_DAMPING_VISCOUS && !(d->value > 0 && d->value <= 10))
+        return "viscous damping ratio must be in (0, 10]";
     if (d->kind == RD_DAMPING_LOCAL && !(d->value > 0 && d->value < 1))
         return "local damping alpha must be in (0, 1)";
     if (sc->timestep.kind == RD_TIMESTEP_AUTO &&

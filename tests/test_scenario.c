@@ -474,7 +474,7 @@ static void test_error_out_of_range(void **state)
                 "run.dat:1:27: 'size' must be > 0, got -2");
     parse_fails("model timestep auto safety 1.5\n",
                 "run.dat:1:28: 'safety' must be in (0, 1], got 1.5");
-    parse_fails("model damping viscous 0\n", "run.dat:1:23: 'viscous' must be in (0, 1], got 0");
+    parse_fails("model damping viscous 0\n", "run.dat:1:23: 'viscous' must be in (0, 10], got 0");
     parse_fails("model damping local 1\n", "run.dat:1:21: 'local' must be in (0, 1), got 1");
     parse_fails("output hdf5 x.h5 interval 0\n", "run.dat:1:27: 'interval' must be > 0, got 0");
     parse_fails("contact property spacing -0.1\n", "run.dat:1:26: 'spacing' must be >= 0, got -0.1");
@@ -708,7 +708,7 @@ static void test_set_bad_value(void **state)
     set_fails("contact.friction=abc", "--set contact.friction=abc: expected a number, got 'abc'");
     set_fails("contact.spacing=some",
               "--set contact.spacing=some: expected a number, auto or vertices, got 'some'");
-    set_fails("model.damping=viscous 2", "--set model.damping=viscous 2: value must be in (0, 1]");
+    set_fails("model.damping=viscous 12", "--set model.damping=viscous 12: value must be in (0, 10]");
     set_fails("model.damping=sticky",
               "--set model.damping=sticky: expected none, viscous <ratio> or local <alpha>, got "
               "'sticky'");

@@ -37,6 +37,14 @@ err=$("$BIN" reference "$three" 2>&1 >/dev/null); rc=$?
 curve=$("$BIN" threshold "$blk" --engine reference --frequencies 1,1.5,2) || fail "curve: $curve"
 printf '%s\n' "$curve" | awk 'NR > 2 { if (NR > 3 && $3 <= prev) bad = 1; prev = $3; g = $4 }
     END { exit !(NR == 5 && !bad && g > 1.25 && g < 1.27) }' || fail "curve not rising to 1.26 g: $curve"
+# restitution: the damping ratio that gives Housner's r = 1 - 1.5 sin^2(alpha) = 0.70 for the
+# 0.5 x 0.5 x 1 m block with corner subcontacts (over-critical, about 4.3), within the
+# calibration tolerance
+free="$T/val_free.dat"
+grep -v "ground-motion" "$blk" | sed 's/^model solve time .*/model solve time 3/' > "$free"
+cal=$("$BIN" restitution "$free" | grep '^calibrated:') || fail "no Housner calibration: $cal"
+r=$(printf '%s' "$cal" | sed -n 's/.* gives r = \([0-9.]*\) .*/\1/p')
+awk -v r="$r" 'BEGIN { exit !(r > 0.69 && r < 0.71) }' || fail "calibrated r $r, expected 0.70"
 err=$("$BIN" threshold "$blk" --engine nope 2>&1 >/dev/null); rc=$?
 [ "$rc" -eq 2 ] || fail "bad engine accepted: $err"
 [ "$fails" -eq 0 ]
