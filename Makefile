@@ -60,6 +60,7 @@ asan:
 
 bench: $(BIN)/rockdem
 	@bash bench/run.sh $(BIN)
+	@bash bench/columns.sh $(BIN)
 
 # regenerate the stored YADE cross-check results in tests/data/yade/ (needs yade): docs/YADE.md
 check-yade: $(BIN)/rockdem
