@@ -93,16 +93,16 @@ static double alpha_toward(const rd_watch *w, double dx, double dy)
     return atan2(ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy), w->h);
 }
 
-/* Ground-frame xy of the subcontact points touching body i at rest (its own and those of the
- * bodies it rests on); returns the count written into a malloc'ed *out, or -1. */
-static int contact_points(const rd_sim *s, int i, double (**out)[2])
+/* Ground-frame xy of the subcontact points pressed between body i and the body `below` it
+ * at rest (either side's points); returns the count written into a malloc'ed *out, or -1. */
+static int contact_points(const rd_sim *s, int i, int below, double (**out)[2])
 {
     int cap = 64, n = 0;
     double (*p)[2] = malloc((size_t)cap * sizeof *p);
     if (!p) return -1;
     for (int k = 0; k < s->nlive_prev; k++) {
         const rd_pair *pr = &s->pair[s->live_prev[k]];
-        if (pr->a != i && pr->b != i) continue;
+        if (!((pr->a == i && pr->b == below) || (pr->b == i && pr->a == below))) continue;
         for (int q = 0; q < pr->nside; q++) {
             const rd_side *sd = &pr->side[q];
             for (int j = s->pt0[sd->owner]; j < s->pt0[sd->owner + 1]; j++) {
@@ -138,14 +138,15 @@ static int resting_on(const rd_sim *s, int i)
     return best;
 }
 
-/* Support polygon at rest: the hull of the contact points, or of the lowest vertices when
- * nothing is pressed yet (scene placed exactly touching and not settled). */
+/* Support polygon at rest: after settling, the hull of the points pressed against the body
+ * underneath; without settling (bodies as placed, joints at zero gap, where round-off decides
+ * which points touch) or with fewer than three such points, the hull of the lowest vertices. */
 static void support_polygon(rd_sim *s, int k, double zmin)
 {
     int i = s->free_body[k];
     rd_watch *w = &s->watch[k];
     double (*pts)[2] = NULL;
-    int n = contact_points(s, i, &pts);
+    int n = s->sc.settle.enabled && w->rests_on >= 0 ? contact_points(s, i, w->rests_on, &pts) : 0;
     if (n < 3) {
         free(pts);
         n = 0;
@@ -169,8 +170,8 @@ static void watch_init(rd_sim *s, int k)
     rd_copy3(s->x[i], w->x_ref);
     double zmin = INFINITY;
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
-    support_polygon(s, k, zmin);
     w->rests_on = resting_on(s, i);
+    support_polygon(s, k, zmin);
     w->h = s->x[i][2] - zmin;
     double b[3] = {s->x[i][0], s->x[i][1], zmin}, d[3] = {0, 0, zmin - s->x[i][2]};
     rd_copy3(b, w->base_ref);

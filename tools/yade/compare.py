@@ -3,16 +3,19 @@
 tools/yade/translate.py, or two YADE runs at different steps).
 
     /usr/bin/python3 tools/yade/compare.py free    A.h5 B.h5 [--tol-time S] [--tol-amp REL]
-    /usr/bin/python3 tools/yade/compare.py outcome A.h5 B.h5 [--tol-tilt REL] [--body NAME]
+    /usr/bin/python3 tools/yade/compare.py outcome A.h5 B.h5 [--tol-tilt REL] [--body NAME] [--fell-tilt RAD]
     /usr/bin/python3 tools/yade/compare.py slide   A.h5 B.h5 [--tol REL] [--body NAME]
     /usr/bin/python3 tools/yade/compare.py show    A.h5 [B.h5 ...]
+    /usr/bin/python3 tools/yade/compare.py overturned A.h5 [--body NAME]   (prints 0 or 1)
 
 free:    first impact time t1 (first sign change of the signed rocking angle, linear
          interpolation between samples) and the peak |tilt| between the first and second
          impacts (amplitude after one impact), both bodies' first free body.
 outcome: per free body, overturned (must agree) and, for bodies standing in both runs, max tilt
          (relative difference <= --tol-tilt, measured against max(max tilt) so that two tiny
-         tilts do not fail on noise: an absolute floor of 1e-3 rad).
+         tilts do not fail on noise: an absolute floor of 1e-3 rad). --fell-tilt RAD judges
+         "overturned" as max tilt >= RAD in both files instead of the stored flags (drum columns:
+         rockdem's tilt-ratio flag needs a per-body alpha, which it gives as 0 for the bottom drum).
 slide:   max slide (horizontal drift of the base centre), relative difference.
 Prints one line per metric: `metric A B diff tol ok|FAIL`; exit 1 when any metric fails.
 """
@@ -115,9 +118,12 @@ def outcome(A, B, args):
     names = [args.body] if args.body else A.names
     for n in names:
         ka, kb = A.body(n), B.body(n)
-        oa, ob = int(A.sumval("overturned", ka)), int(B.sumval("overturned", kb))
-        ok &= line("%s overturned" % n, oa, ob, ob - oa, 0, oa == ob)
         ma, mb = A.sumval("max_tilt", ka), B.sumval("max_tilt", kb)
+        if args.fell_tilt is not None:
+            oa, ob = int(ma >= args.fell_tilt), int(mb >= args.fell_tilt)
+        else:
+            oa, ob = int(A.sumval("overturned", ka)), int(B.sumval("overturned", kb))
+        ok &= line("%s overturned" % n, oa, ob, ob - oa, 0, oa == ob)
         if not oa and not ob:
             ref = max(ma, mb, 1e-3)
             ok &= line("%s max tilt (rad)" % n, ma, mb, (mb - ma) / ref, args.tol_tilt,
@@ -148,16 +154,21 @@ def show(paths):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mode", choices=["free", "outcome", "slide", "show"])
+    ap.add_argument("mode", choices=["free", "outcome", "slide", "show", "overturned"])
     ap.add_argument("files", nargs="+")
     ap.add_argument("--body")
     ap.add_argument("--tol-time", type=float, default=0.01)
     ap.add_argument("--tol-amp", type=float, default=0.1)
     ap.add_argument("--tol-tilt", type=float, default=0.25)
     ap.add_argument("--tol", type=float, default=0.1)
+    ap.add_argument("--fell-tilt", type=float)
     a = ap.parse_args(argv)
     if a.mode == "show":
         show(a.files)
+        return 0
+    if a.mode == "overturned":
+        R = RunFile(a.files[0])
+        print(int(R.sumval("overturned", R.body(a.body))))
         return 0
     if len(a.files) != 2:
         raise SystemExit("compare: %s needs two files" % a.mode)

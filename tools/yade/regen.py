@@ -22,9 +22,9 @@ PY = "/usr/bin/python3"
 # (case, scenario, amplitudes (None = scenario's), halve-the-step check, extra translate args)
 CASES = [
     ("free", "free.dat", [None], True, []),
-    ("overturn", "overturn.dat", ["0.70g", "0.76g"], True, []),
+    ("overturn", "overturn.dat", ["0.77g", "0.78g"], True, []),
     ("stack", "stack.dat", ["0.3g", "0.6g", "1.0g"], True, []),
-    ("column", "column.dat", ["0.4g", "1.0g"], True, ["--set", "model.duration=2.5"]),
+    ("column", "column.dat", ["0.4g", "0.7g", "1.0g", "1.6g"], True, []),
     ("slide", "slide.dat", [None], True, []),
     ("creep", "creep.dat", [None], False, []),
     ("creep-nohook", "creep.dat", [None], False, ["--no-hook"]),

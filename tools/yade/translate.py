@@ -102,7 +102,7 @@ class Scenario:
 
 
 KEYWORDS = {"size", "position", "rotation", "density", "mass", "name", "fixed", "sides", "radius",
-            "radius-top", "height", "seat-on", "vertices"}
+            "radius-top", "height", "seat-on", "at", "vertices"}
 
 
 def parse(text, path="scenario"):
@@ -245,6 +245,8 @@ def parse_block(rest, where, sc):
             b["sides"] = int(rest[i + 1]); i += 2
         elif k in ("name", "seat-on"):
             b[k.replace("-", "_")] = rest[i + 1]; i += 2
+        elif k == "at":  # seat-on NAME at X Y: the centre of mass above (X, Y)
+            b["seat_at"] = [num(x, where) for x in rest[i + 1:i + 3]]; i += 3
         elif k == "vertices":
             j = i + 1
             vals = []
@@ -256,8 +258,14 @@ def parse_block(rest, where, sc):
             i = j
         else:
             raise TranslateError("%s: unknown block keyword '%s'" % (where, k))
+    if "position" in b and b["seat_on"]:
+        raise TranslateError("%s: 'position' and 'seat-on' are exclusive" % where)
+    if b.get("seat_at") and not b["seat_on"]:
+        raise TranslateError("%s: 'at' needs 'seat-on'" % where)
     if "position" not in b:
         b["position"] = [0.0, 0.0, 0.0]
+    else:
+        b["position_given"] = True
     if shape == "brick":
         lx, ly, lz = b["size"]
         b["local_vertices"] = np.array([[i * lx / 2, j * ly / 2, k * lz / 2]
@@ -267,7 +275,10 @@ def parse_block(rest, where, sc):
         rt = b["radius_top"] or r
         v = [[r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n), -h / 2] for k in range(n)]
         v += [[rt * math.cos(2 * math.pi * k / n), rt * math.sin(2 * math.pi * k / n), h / 2] for k in range(n)]
-        b["local_vertices"] = np.array(v)
+        # rockdem's position is the centre of mass: a frustum's lies (h/4)(r²+2r·rt+3rt²)/(r²+r·rt+rt²)
+        # above the bottom, below mid-height when tapered
+        zc = h * (r * r + 2 * r * rt + 3 * rt * rt) / (4 * (r * r + r * rt + rt * rt)) - h / 2
+        b["local_vertices"] = np.array(v) - np.array([0.0, 0.0, zc])
     elif shape in ("polyhedron", "hull"):
         if "local_vertices" not in b:
             raise TranslateError("%s: 'block create %s' needs 'vertices'" % (where, shape))
@@ -351,7 +362,12 @@ def build_geometry(sc, lift):
             base = by_name.get(b["seat_on"])
             if base is None:
                 raise TranslateError("block '%s': seat-on '%s' must name an earlier block" % (b["name"], b["seat_on"]))
+            if b.get("seat_at"):
+                pos[0], pos[1] = b["seat_at"]
+            elif "position_given" not in b:  # default: above the base's centre
+                pos[0], pos[1] = base["position_xy"]
             pos[2] = base["world"][:, 2].max() - local[:, 2].min()
+        b["position_xy"] = [float(pos[0]), float(pos[1])]
         w = local + pos
         if not b["fixed"]:
             w = w + np.array([0, 0, 0.0])
