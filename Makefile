@@ -16,7 +16,7 @@ LIBSRC  := $(filter-out src/main.c,$(wildcard src/*.c))
 LIBOBJ  := $(LIBSRC:src/%.c=$(BUILD)/obj/%.o)
 TESTSRC := $(wildcard tests/test_*.c)
 TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
-HEADERS := $(wildcard include/rockdem/*.h src/*.h)
+HEADERS := $(wildcard include/rockdem/*.h src/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all run test asan bench study deps clean check-yade mpi

@@ -16,22 +16,7 @@
 #include <string.h>
 #include <unistd.h>
 
-static char tmpdir[64];
-
-static int setup_dir(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/rd_engine_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int remove_dir(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd);
-}
+#include "tmpdir.h"
 
 /* Parse `text`, apply NULL-terminated overrides, run; returns the sim (caller frees). */
 static rd_sim *run_scene(const char *text, const char *const *sets, rd_scenario *sc, rd_status *st)

@@ -14,22 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
-static char tmpdir[64];
-
-static int setup_dir(void **state)
-{
-    (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/rd_scenes_XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
-}
-
-static int remove_dir(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    return system(cmd);
-}
+#include "tmpdir.h"
 
 /* A drum (n-sided prism) seated on the body `on`, axis above (x, y). */
 static void add_drum(rd_scenario *sc, const char *name, const char *on, double r, double h, int sides)
