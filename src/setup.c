@@ -202,29 +202,29 @@ static double face_width(const rd_poly *p, int f)
 /* Subcontact spacing of body i: the scenario's, or automatically a tenth of the narrowest
  * candidate face (an 11 x 11 bed on a square base); a mesh's own vertices already sample its
  * surface, so automatic spacing uses them. */
-static double body_spacing(const rd_sim *s, int i)
+static double body_spacing(const rd_sim *s, int i, const char *cand)
 {
     if (s->sc.contact.spacing >= 0) return s->sc.contact.spacing;
     if (s->sc.bodies[i].shape == RD_SHAPE_MESH) return 0;
     double w = INFINITY;
     for (int f = 0; f < s->poly[i].nf; f++)
-        if (is_candidate(s, i, f)) w = fmin(w, face_width(&s->poly[i], f));
+        if (cand[s->face0[i] + f]) w = fmin(w, face_width(&s->poly[i], f));
     return isfinite(w) ? w / 10.0 : 0.0;
 }
 
-static int build_points(rd_sim *s, rd_error *err)
+/* Count the points of every candidate face (pass 0), then mesh them into place (pass 1).
+ * cand[face0[i] + f] marks candidate faces; spacing[i] is body i's spacing. */
+static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, rd_error *err)
 {
     int nb = s->nb, npts = 0, ncf = 0;
-    if (!ALLOC(s->pt0, nb + 1) || !ALLOC(s->cf0, nb + 1)) return rd_error_set(err, "out of memory");
     for (int pass = 0; pass < 2; pass++) {
         npts = ncf = 0;
         for (int i = 0; i < nb; i++) {
             s->pt0[i] = npts; s->cf0[i] = ncf;
-            double spacing = body_spacing(s, i);
             for (int f = 0; f < s->poly[i].nf; f++) {
-                if (!is_candidate(s, i, f)) continue;
-                int n = pass ? rd_poly_face_points(&s->poly[i], f, spacing, s->pl + npts, s->pa + npts, s->npts - npts)
-                             : rd_poly_face_points(&s->poly[i], f, spacing, NULL, NULL, 0);
+                if (!cand[s->face0[i] + f]) continue;
+                int n = pass ? rd_poly_face_points(&s->poly[i], f, spacing[i], s->pl + npts, s->pa + npts, s->npts - npts)
+                             : rd_poly_face_points(&s->poly[i], f, spacing[i], NULL, NULL, 0);
                 if (n < 0) return rd_error_set(err, "cannot mesh face %d of body '%s'", f, s->sc.bodies[i].name);
                 if (pass) { s->cf_face[ncf] = f; s->cf_pt0[ncf] = npts; }
                 npts += n; ncf++;
@@ -239,6 +239,25 @@ static int build_points(rd_sim *s, rd_error *err)
     }
     s->cf_pt0[ncf] = npts;
     return 0;
+}
+
+/* Subcontact points of every body, on its candidate faces (each face judged once). */
+static int build_points(rd_sim *s, rd_error *err)
+{
+    char *cand = calloc((size_t)s->face0[s->nb] + 1, 1);
+    double *spacing = calloc((size_t)s->nb + 1, sizeof *spacing);
+    int rc = -1;
+    if (!cand || !spacing || !ALLOC(s->pt0, s->nb + 1) || !ALLOC(s->cf0, s->nb + 1)) {
+        rd_error_set(err, "out of memory");
+    } else {
+        for (int i = 0; i < s->nb; i++)
+            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)is_candidate(s, i, f);
+        for (int i = 0; i < s->nb; i++) spacing[i] = body_spacing(s, i, cand);
+        rc = mesh_candidates(s, cand, spacing, err);
+    }
+    free(cand);
+    free(spacing);
+    return rc;
 }
 
 int rd_setup_contacts(rd_sim *s, rd_error *err)
