@@ -12,11 +12,14 @@ LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lqhull_r -lm
 
 BUILD   ?= build
 BIN     ?= bin
-LIBSRC  := $(filter-out src/main.c,$(wildcard src/*.c))
+# the engine library: every concept folder of src/ but the command-line program (src/cli/)
+LIBSRC  := $(filter-out src/cli/%,$(wildcard src/*/*.c))
 LIBOBJ  := $(LIBSRC:src/%.c=$(BUILD)/obj/%.o)
+CLISRC  := $(filter-out src/cli/main.c src/cli/rockdem_mpi.c,$(wildcard src/cli/*.c))
+CLIOBJ  := $(CLISRC:src/%.c=$(BUILD)/obj/%.o)
 TESTSRC := $(wildcard tests/test_*.c)
 TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
-HEADERS := $(wildcard include/rockdem/*.h src/*.h tests/*.h)
+HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 .PHONY: all run test asan bench study deps clean check-yade mpi
@@ -36,9 +39,9 @@ $(BUILD)/librockdem.a: $(LIBOBJ)
 	@mkdir -p $(dir $@)
 	ar rcs $@ $^
 
-$(BIN)/rockdem: src/main.c $(BUILD)/librockdem.a $(HEADERS)
+$(BIN)/rockdem: src/cli/main.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) src/main.c $(BUILD)/librockdem.a $(LDLIBS) -o $@
+	$(CC) $(ALL_CFLAGS) src/cli/main.c $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 $(BUILD)/tests/%: tests/%.c $(BUILD)/librockdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
@@ -75,9 +78,9 @@ study: $(BIN)/rockdem
 # (Debian libopenmpi-dev, openmpi-bin); the normal build does not
 MPICC ?= mpicc
 mpi: $(BIN)/rockdem-mpi
-$(BIN)/rockdem-mpi: src/mpi/rockdem_mpi.c $(BUILD)/librockdem.a $(HEADERS)
+$(BIN)/rockdem-mpi: src/cli/rockdem_mpi.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(MPICC) $(ALL_CFLAGS) $< $(BUILD)/librockdem.a $(LDLIBS) -o $@
+	$(MPICC) $(ALL_CFLAGS) $< $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 clean:
 	rm -rf build build-asan bin

@@ -5,7 +5,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "geom.h"
+#include "geometry/geom.h"
 
 #include <math.h>
 #include <stdlib.h>

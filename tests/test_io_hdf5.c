@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "io_hdf5.h"
+#include "io/io_hdf5.h"
 
 #define NB 2
 #define NSAMPLES 1000

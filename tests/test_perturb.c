@@ -8,7 +8,7 @@
 #include <cmocka.h>
 
 #include "rockdem/rockdem.h"
-#include "sim.h"
+#include "engine/sim.h"
 
 #include <math.h>
 #include <stdio.h>

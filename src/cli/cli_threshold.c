@@ -1,0 +1,121 @@
+/* rockdem — `rockdem threshold SCENARIO --engine dem|reference [--lo A] [--hi A] [--rtol r]
+ * [--steps n] [--frequencies f1,f2,...] [--set k=v]...`: minimum overturning amplitude of the
+ * scenario's horizontal pulse (src/threshold.c), printed in m/s^2, g and a / (g tan alpha),
+ * with w / p; with --frequencies, one row per pulse frequency: the minimum-overturning curve
+ * a / (g tan alpha) against w / p. */
+#include "cli/cli.h"
+#include "rockdem/validate.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define RD_MAX_FREQS 64
+
+typedef struct threshold_args {
+    rd_engine engine;
+    rd_threshold_opts opts;
+    int nfreq;
+    double freq[RD_MAX_FREQS]; /* Hz */
+} threshold_args;
+
+/* "f1,f2,..." into a->freq; 0, or -1 with a message. */
+static int read_frequencies(threshold_args *a, const char *v)
+{
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", v);
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        if (a->nfreq == RD_MAX_FREQS) {
+            fprintf(stderr, "rockdem: --frequencies: at most %d values\n", RD_MAX_FREQS);
+            return -1;
+        }
+        if (rd_cli_number("--frequencies", tok, 1, &a->freq[a->nfreq])) return -1;
+        a->nfreq++;
+    }
+    return 0;
+}
+
+static int threshold_option(void *ctx, int argc, char **argv, int *i)
+{
+    threshold_args *a = ctx;
+    if (*i + 1 >= argc) return 1;
+    const char *o = argv[*i], *v = argv[*i + 1];
+    double x;
+    if (!strcmp(o, "--engine")) {
+        if (strcmp(v, "dem") && strcmp(v, "reference")) {
+            fprintf(stderr, "rockdem: --engine expects dem or reference, got '%s'\n", v);
+            return -1;
+        }
+        a->engine = strcmp(v, "dem") ? RD_ENGINE_REFERENCE : RD_ENGINE_DEM;
+    } else if (!strcmp(o, "--lo") || !strcmp(o, "--hi")) {
+        if (rd_cli_number(o, v, 1, &x)) return -1;
+        *(o[2] == 'l' ? &a->opts.lo : &a->opts.hi) = x;
+    } else if (!strcmp(o, "--rtol")) {
+        if (rd_cli_number(o, v, 0, &a->opts.rtol)) return -1;
+    } else if (!strcmp(o, "--frequencies")) {
+        if (read_frequencies(a, v)) return -1;
+    } else if (!strcmp(o, "--steps")) {
+        if (rd_cli_number(o, v, 0, &x)) return -1;
+        a->opts.nscan = (int)x;
+    } else {
+        return 1;
+    }
+    (*i)++;
+    return 0;
+}
+
+/* One row of the minimum-overturning curve at pulse frequency f (Hz). */
+static int curve_row(rd_scenario *sc, const threshold_args *a, double f)
+{
+    char set[64];
+    rd_error err;
+    rd_threshold_result r;
+    snprintf(set, sizeof set, "motion.frequency=%.17g", f);
+    if (rd_scenario_set(sc, set, &err) || rd_threshold(sc, a->engine, &a->opts, &r, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
+        return -1;
+    }
+    if (r.found)
+        printf("%10.4g %10.4f %14.4f %12.4f %6d\n", f, r.w_over_p, r.amplitude / r.static_amp,
+               r.amplitude / 9.80665, r.runs);
+    else
+        printf("%10.4g %10.4f %14s %12s %6d\n", f, r.w_over_p, "none", "-", r.runs);
+    return 0;
+}
+
+static void print_single(const rd_scenario *sc, const threshold_args *a, const rd_threshold_result *r)
+{
+    if (!r->found) {
+        printf("no overturning up to the top of the range (%d runs); raise --hi\n", r->runs);
+        return;
+    }
+    printf("engine %s: minimum overturning amplitude %.5g m/s^2 = %.4f g "
+           "(bracket %.5g .. %.5g m/s^2, %d runs)\n", a->engine == RD_ENGINE_DEM ? "dem" : "reference",
+           r->amplitude, r->amplitude / 9.80665, r->below, r->amplitude, r->runs);
+    printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2; g tan alpha for one "
+           "block)   w / p = %.4f\n", r->amplitude / r->static_amp, r->static_amp, r->w_over_p);
+    if (r->amplitude == r->below)
+        printf("note: the lowest amplitude tried (%.4g m/s^2 = %.4f g) already overturns; lower --lo\n",
+               r->amplitude, r->amplitude / sc->gravity);
+}
+
+int rd_cli_threshold(int argc, char **argv)
+{
+    rd_scenario sc;
+    threshold_args a = {RD_ENGINE_DEM, rd_threshold_opts_default(), 0, {0}};
+    if (rd_cli_scenario(&sc, argc, argv, threshold_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
+    int rc = 0;
+    if (a.nfreq > 0) {
+        printf("engine %s: minimum-overturning curve\n%10s %10s %14s %12s %6s\n",
+               a.engine == RD_ENGINE_DEM ? "dem" : "reference", "f (Hz)", "w/p", "a/a_uplift", "a (g)", "runs");
+        for (int k = 0; k < a.nfreq && rc == 0; k++) rc = curve_row(&sc, &a, a.freq[k]);
+    } else {
+        rd_error err;
+        rd_threshold_result r;
+        rc = rd_threshold(&sc, a.engine, &a.opts, &r, &err);
+        if (rc) fprintf(stderr, "%s\n", err.msg);
+        else print_single(&sc, &a, &r);
+    }
+    rd_scenario_free(&sc);
+    return rc ? 3 : 0;
+}

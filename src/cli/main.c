@@ -1,0 +1,150 @@
+/* rockdem — command-line program.
+ *   rockdem run FILE [--set key=value]... [-o OUT.h5] [-q]   settle, shake, write HDF5, summarise
+ *   rockdem check FILE [--set key=value]...                  parse and validate only
+ *   rockdem --version | --help */
+#include "rockdem/rockdem.h"
+#include "cli/cli.h"
+
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char *usage =
+    "usage: rockdem run FILE [--set key=value]... [-o OUT.h5] [-q]\n"
+    "       rockdem check FILE [--set key=value]...\n"
+    "       rockdem reference FILE [--set key=value]... [-o OUT.h5]   rigid Housner/Kounadis run\n"
+    "       rockdem threshold FILE --engine dem|reference [--lo A] [--hi A] [--rtol 0.005] [--steps 24]\n"
+    "             [--frequencies F1,F2,...]   minimum overturning amplitude (a curve against w/p)\n"
+    "       rockdem restitution FILE [--target r] [--theta0 rad]   measure and calibrate restitution\n"
+    "       rockdem study FILE [--set key=value]...   error against run time of your settings\n"
+    "       rockdem sweep FILE [--set k=v]... --axis KEY=V1,V2 [--records F1,F2] [--scales S1,S2]\n"
+    "             [--directions D1,D2] [-j N] [--keep-runs DIR] [-q] -o TABLE.h5   fragility sweep\n"
+    "       rockdem --version\n";
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    rd_sim_request_stop();
+}
+
+static const char *status_word(rd_status st)
+{
+    static const char *w[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error"};
+    return w[st];
+}
+
+static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
+{
+    for (int k = 0; k < s->nbodies; k++) {
+        const rd_body_summary *b = &s->body[k];
+        const char *what = b->overturned ? "OVERTURNED" : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
+        printf("%s: %s", b->name, what);
+        if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
+        printf("; max tilt %.4g rad = %.3g alpha; max slide %.3g mm%s%s\n", b->max_tilt, b->max_tilt_ratio,
+               1e3 * b->max_slide, b->slid ? "; slid" : "", b->uplifted && !b->overturned ? "; uplifted" : "");
+        if (!quiet)
+            printf("%s: precariousness: least tipping angle %.4g deg leaning towards %.0f deg "
+                   "(quasi-static tipping acceleration %.3g g); twist at end %.3g deg\n", b->name,
+                   b->alpha_min * 180 / M_PI, b->alpha_min_direction * 180 / M_PI,
+                   b->tip_accel_min / 9.80665, b->final_twist * 180 / M_PI);
+    }
+    if (quiet) return;
+    double sim_s = s->steps * s->dt;
+    long aps = rd_sim_active_point_steps(sim);
+    printf("run: status %s, t = %.4g s, dt = %.3g s (limit %.3g s), %ld steps, settle %.3g s, "
+           "energy residual %.2e\n", status_word(s->status), s->end_time, s->dt, s->dt_critical, s->steps,
+           s->settle_time, s->energy_residual_max);
+    printf("perf: steps=%ld wall_s=%.6f steps_per_s=%.6g ns_per_subcontact_step=%.4g "
+           "mean_active_subcontacts=%.4g wall_per_sim_s=%.6g\n", s->steps, s->wall_seconds,
+           s->wall_seconds > 0 ? s->steps / s->wall_seconds : 0.0,
+           aps > 0 ? 1e9 * s->wall_seconds / (double)aps : 0.0,
+           s->steps > 0 ? (double)aps / (double)s->steps : 0.0,
+           sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
+}
+
+static int load(rd_scenario *sc, int argc, char **argv, const char **out, int *quiet)
+{
+    rd_error err;
+    if (rd_scenario_load(sc, argv[2], &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+    for (int i = 3; i < argc; i++) {
+        if (!strcmp(argv[i], "--set") && i + 1 < argc) {
+            if (rd_scenario_set(sc, argv[++i], &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+        } else if (!strncmp(argv[i], "--set=", 6)) {
+            if (rd_scenario_set(sc, argv[i] + 6, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+        } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+            *out = argv[++i];
+        } else if (!strcmp(argv[i], "-q")) {
+            *quiet = 1;
+        } else {
+            fprintf(stderr, "rockdem: unknown option '%s' (see rockdem --help)\n", argv[i]);
+            return -1;
+        }
+    }
+    if (*out) snprintf(sc->output.path, sizeof sc->output.path, "%s", *out);
+    if (rd_scenario_validate(sc, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+    return 0;
+}
+
+static int cmd_run(int argc, char **argv, int check_only)
+{
+    rd_scenario sc;
+    const char *out = NULL;
+    int quiet = 0;
+    if (load(&sc, argc, argv, &out, &quiet)) { rd_scenario_free(&sc); return 2; }
+    if (check_only) {
+        printf("%s: ok (%d bodies, %.4g s)\n", sc.file, sc.nbodies, sc.duration);
+        rd_scenario_free(&sc);
+        return 0;
+    }
+    rd_error err;
+    if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }
+    rd_sim *sim = rd_sim_create(&sc, &err);
+    if (!sim) { fprintf(stderr, "%s\n", err.msg); rd_scenario_free(&sc); return 2; }
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    rd_status st = rd_sim_run(sim);
+    rd_summary s;
+    rd_sim_summary(sim, &s);
+    print_summary(sim, &s, quiet);
+    int n;
+    const rd_event *ev = rd_sim_events(sim, &n);
+    for (int k = 0; k < n; k++)
+        if (!strcmp(ev[k].type, "unsettled"))
+            fprintf(stderr, "rockdem: warning: settling stopped at force ratio %.3g (asked %.3g)\n",
+                    ev[k].value, sc.settle.ratio);
+    int rc = 0;
+    if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR) {
+        fprintf(stderr, "%s: %s\n", sc.file, rd_sim_error(sim));
+        rc = 3;
+    } else if (st == RD_STATUS_INTERRUPTED) {
+        fprintf(stderr, "rockdem: interrupted at t = %.4g s; %s holds everything so far\n", s.end_time, sc.output.path);
+        rc = 130;
+    }
+    if (!quiet) printf("output: %s\n", sc.output.path);
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version"))) {
+        printf("rockdem %s\n", RD_VERSION);
+        return 0;
+    }
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || (i == 1 && !strcmp(argv[i], "help"))) {
+            fputs(usage, stdout);
+            return 0;
+        }
+    if (argc >= 3 && !strcmp(argv[1], "run")) return cmd_run(argc, argv, 0);
+    if (argc >= 3 && !strcmp(argv[1], "check")) return cmd_run(argc, argv, 1);
+    if (argc >= 3 && !strcmp(argv[1], "reference")) return rd_cli_reference(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "threshold")) return rd_cli_threshold(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "restitution")) return rd_cli_restitution(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "study")) return rd_cli_study(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "sweep")) return rd_cli_sweep(argc, argv);
+    fputs(usage, stderr);
+    return 2;
+}

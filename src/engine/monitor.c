@@ -1,0 +1,413 @@
+/* rockdem — watching the bodies: tilt, static tipping angle, slide, events and overturning.
+ *
+ * Tilt is the angle between the body's vertical axis at rest and its current one (rad); its
+ * lean direction is where that axis points. The static tipping angle alpha in the lean
+ * direction is atan(d / h): d is the distance from the centre of mass (projected on the
+ * support plane at rest) to the edge of the support polygon along the lean direction, h the
+ * height of the centre of mass above the support. Events (per free body):
+ *   uplift   the contact area drops below 60 % of its value at rest (rocking starts; with
+ *            corner subcontacts, losing one edge halves it)
+ *   impact   the signed rocking angle about the axis of the first rocking crosses zero
+ *   slip     every active subcontact of the body is at its Coulomb limit (sliding as a whole)
+ *   overturn the overturn criterion is first met; recover if the body comes back
+ * The rotation from rest is split (swing-twist) into a twist about the vertical and a swing
+ * about a horizontal axis; the swing's rotation vector gives in-plane rocking (about z x d,
+ * d = the motion's horizontal direction) and out-of-plane rocking (about -d), as in seed 002
+ * Figs. 9-10. Twist is unwrapped sample to sample, so accumulated spins exceed pi. */
+#include "engine/sim.h"
+#include "base/vec.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RD_FALLEN_TILT (85.0 * M_PI / 180.0) /* past this, a run may stop: the body is down */
+#define RD_ROCK_MIN 1e-3 /* rocking amplitudes below this fraction of alpha are noise, not impacts */
+
+void rd_event_add(rd_sim *s, double time, int body, const char *type, double value)
+{
+    if (s->nevent == s->cap_event) {
+        int cap = s->cap_event ? 2 * s->cap_event : 256;
+        rd_event *e = realloc(s->event, (size_t)cap * sizeof *e);
+        if (!e) return; /* events are diagnostics; losing one is not fatal */
+        s->event = e; s->cap_event = cap;
+    }
+    rd_event *e = &s->event[s->nevent++];
+    e->time = time; e->body = body; e->value = value;
+    snprintf(e->type, sizeof e->type, "%s", type);
+}
+
+static int lex_less(const double *a, const double *b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+
+static int cmp_xy(const void *a, const void *b)
+{
+    return lex_less(a, b) ? -1 : lex_less(b, a) ? 1 : 0;
+}
+
+/* Convex hull (monotone chain) of n 2-D points, counter-clockwise, written over p; returns its
+ * size, or -1 without memory. */
+static int hull2d(double (*p)[2], int n)
+{
+    if (n < 3) return n;
+    qsort(p, (size_t)n, sizeof p[0], cmp_xy);
+    double (*h)[2] = malloc((size_t)(2 * n + 1) * sizeof *h);
+    if (!h) return -1;
+    int k = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        int start = k;
+        for (int c = 0; c < n; c++) {
+            int i = pass ? n - 1 - c : c;
+            while (k >= start + 2 &&
+                   (h[k - 1][0] - h[k - 2][0]) * (p[i][1] - h[k - 2][1]) -
+                   (h[k - 1][1] - h[k - 2][1]) * (p[i][0] - h[k - 2][0]) <= 0) k--;
+            h[k][0] = p[i][0]; h[k][1] = p[i][1]; k++;
+        }
+        k--;
+    }
+    memcpy(p, h, (size_t)k * sizeof *h);
+    free(h);
+    return k;
+}
+
+/* Distance from (cx, cy) to the polygon boundary along direction (dx, dy). */
+static double ray_to_edge(const rd_watch *w, double cx, double cy, double dx, double dy)
+{
+    double best = INFINITY;
+    for (int i = 0; i < w->nsupport; i++) {
+        const double *a = w->support[i], *b = w->support[(i + 1) % w->nsupport];
+        double ex = b[0] - a[0], ey = b[1] - a[1];
+        double den = dx * ey - dy * ex;
+        if (fabs(den) < 1e-15) continue;
+        double t = ((a[0] - cx) * ey - (a[1] - cy) * ex) / den;
+        double u = ((a[0] - cx) * dy - (a[1] - cy) * dx) / den;
+        if (t >= 0 && u >= -1e-9 && u <= 1 + 1e-9 && t < best) best = t;
+    }
+    return isfinite(best) ? best : 0.0;
+}
+
+static double alpha_toward(const rd_watch *w, double dx, double dy)
+{
+    double n = hypot(dx, dy);
+    if (n == 0) { dx = 1; dy = 0; } else { dx /= n; dy /= n; }
+    return atan2(ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy), w->h);
+}
+
+/* Ground-frame xy of the subcontact points pressed between body i and the body `below` it
+ * at rest (either side's points); returns the count written into a malloc'ed *out, or -1. */
+static int contact_points(const rd_sim *s, int i, int below, double (**out)[2])
+{
+    int cap = 64, n = 0;
+    double (*p)[2] = malloc((size_t)cap * sizeof *p);
+    if (!p) return -1;
+    for (int k = 0; k < s->nlive_prev; k++) {
+        const rd_pair *pr = &s->pair[s->live_prev[k]];
+        if (!((pr->a == i && pr->b == below) || (pr->b == i && pr->a == below))) continue;
+        for (int q = 0; q < pr->nside; q++) {
+            const rd_side *sd = &pr->side[q];
+            for (int j = s->pt0[sd->owner]; j < s->pt0[sd->owner + 1]; j++) {
+                if (!(s->pstate[sd->state0 + j - s->pt0[sd->owner]] & RD_PT_ACTIVE)) continue;
+                if (n == cap) {
+                    double (*t)[2] = realloc(p, (size_t)(cap *= 2) * sizeof *p);
+                    if (!t) { free(p); return -1; }
+                    p = t;
+                }
+                double x[3];
+                rd_mat_vec(s->R[sd->owner], s->pl[j], x);
+                p[n][0] = x[0] + s->x[sd->owner][0];
+                p[n][1] = x[1] + s->x[sd->owner][1];
+                n++;
+            }
+        }
+    }
+    *out = p;
+    return n;
+}
+
+/* The body that body i rests on: among its contact partners at rest, the one whose centre is
+ * lowest (-1 if it touches nothing). */
+static int resting_on(const rd_sim *s, int i)
+{
+    int best = -1;
+    for (int k = 0; k < s->nlive_prev; k++) {
+        const rd_pair *pr = &s->pair[s->live_prev[k]];
+        int other = pr->a == i ? pr->b : pr->b == i ? pr->a : -1;
+        if (other >= 0 && s->x[other][2] < s->x[i][2] && (best < 0 || s->x[other][2] < s->x[best][2]))
+            best = other;
+    }
+    return best;
+}
+
+/* Support polygon at rest: after settling, the hull of the points pressed against the body
+ * underneath; without settling (bodies as placed, joints at zero gap, where round-off decides
+ * which points touch) or with fewer than three such points, the hull of the lowest vertices. */
+static void support_polygon(rd_sim *s, int k, double zmin)
+{
+    int i = s->free_body[k];
+    rd_watch *w = &s->watch[k];
+    double (*pts)[2] = NULL;
+    int n = s->sc.settle.enabled && w->rests_on >= 0 ? contact_points(s, i, w->rests_on, &pts) : 0;
+    if (n < 3) {
+        free(pts);
+        n = 0;
+        pts = malloc((size_t)s->poly[i].nv * sizeof *pts);
+        double tol = 1e-4 * s->poly[i].radius;
+        for (int v = s->vert0[i]; pts && v < s->vert0[i + 1]; v++)
+            if (s->wv[v][2] < zmin + tol) { pts[n][0] = s->wv[v][0]; pts[n][1] = s->wv[v][1]; n++; }
+    }
+    free(w->support);
+    w->nsupport = pts ? hull2d(pts, n) : 0;
+    if (w->nsupport < 0) w->nsupport = 0;
+    w->support = pts;
+}
+
+/* Rest state of body k: support polygon, height of the centre of mass, tipping angles. */
+static void watch_init(rd_sim *s, int k)
+{
+    int i = s->free_body[k];
+    rd_watch *w = &s->watch[k];
+    memcpy(w->q_ref, s->q[i], sizeof w->q_ref);
+    rd_copy3(s->x[i], w->x_ref);
+    double zmin = INFINITY;
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
+    w->rests_on = resting_on(s, i);
+    support_polygon(s, k, zmin);
+    w->h = s->x[i][2] - zmin;
+    double b[3] = {s->x[i][0], s->x[i][1], zmin}, d[3] = {0, 0, zmin - s->x[i][2]};
+    rd_copy3(b, w->base_ref);
+    rd_mat_tvec(s->R[i], d, w->base_local);
+    w->rest_area = w->area;
+    rd_mat_tvec(s->R[i], (double[3]){0, 0, 1}, w->zb);
+    snprintf(w->sum.name, sizeof w->sum.name, "%s", s->sc.bodies[i].name);
+    w->sum.overturn_time = -1;
+    double amin = M_PI / 2;
+    for (int d = 0; d < RD_NPREC; d++) {
+        double psi = 2 * M_PI * d / RD_NPREC, a = alpha_toward(w, cos(psi), sin(psi));
+        w->prec[d][0] = psi;
+        w->prec[d][1] = a;
+        w->prec[d][2] = s->sc.gravity * tan(a);
+        if (a < amin) { amin = a; w->sum.alpha_min_direction = psi; }
+    }
+    w->alpha_min = amin;
+    w->sum.alpha_min = amin;
+    w->sum.tip_accel_min = s->sc.gravity * tan(amin);
+    w->sum.alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
+    w->key_max = 0;
+    w->key_ratio_gate = 0;
+    const rd_overturn_def *o = &s->sc.overturn;
+    w->cos_over_gate = o->kind == RD_OVERTURN_TILT_RATIO ? cos(fmin(o->value * amin, M_PI))
+                     : o->kind == RD_OVERTURN_ANGLE ? cos(o->value) : -2;
+}
+
+/* Tilt (rad) of body k, its lean direction (unit, horizontal) and the tilt vector axis*angle. */
+/* The body's rest vertical in the ground frame now (uses the step's rotation matrix). */
+static void rest_vertical(const rd_sim *s, int k, double z[3])
+{
+    rd_mat_vec(s->R[s->free_body[k]], s->watch[k].zb, z);
+}
+
+/* Tilt (rad) from the rest vertical z, lean direction (unit, horizontal) and the tilt vector
+ * axis * angle. */
+static double tilt_of(const double z[3], double lean[2], double tv[3])
+{
+    double hz = hypot(z[0], z[1]);
+    double tilt = atan2(hz, z[2]);
+    lean[0] = hz > 0 ? z[0] / hz : 1; lean[1] = hz > 0 ? z[1] / hz : 0;
+    tv[0] = -lean[1] * tilt; tv[1] = lean[0] * tilt; tv[2] = 0;
+    return tilt;
+}
+
+
+void rd_monitor_rest(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) watch_init(s, k);
+}
+
+void rd_monitor_start(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        rd_watch *w = &s->watch[k];
+        double z[3];
+        rest_vertical(s, k, z);
+        double n = hypot(z[0], z[1]); /* sine of the initial tilt */
+        int tilted = n > RD_ROCK_MIN * w->alpha_min;
+        w->rock_axis[0] = tilted ? -z[1] / n : 0;
+        w->rock_axis[1] = tilted ? z[0] / n : 1;
+        w->rock_prev = -z[1] * w->rock_axis[0] + z[0] * w->rock_axis[1];
+        w->rock_peak = fabs(w->rock_prev);
+        w->uplifted = tilted;
+        w->sum.uplifted = tilted;
+    }
+}
+
+void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip)
+{
+    for (int b = 0; b < 2; b++) {
+        int k = s->free_of[b ? other : owner];
+        if (k < 0) continue;
+        rd_watch *w = &s->watch[k];
+        w->area += area; w->nactive += nactive; w->nslip += nslip;
+    }
+}
+
+static int criterion_met(const rd_sim *s, int k, const double z[3])
+{
+    const rd_overturn_def *o = &s->sc.overturn;
+    const rd_watch *w = &s->watch[k];
+    int i = s->free_body[k];
+    if (o->kind == RD_OVERTURN_HEIGHT)
+        return s->x[i][2] - w->base_ref[2] < o->value * (w->x_ref[2] - w->base_ref[2]);
+    if (o->kind == RD_OVERTURN_OFF) {
+        if (w->rests_on < 0) return 0;
+        const double *b = s->aabb[w->rests_on]; /* grown by the broad-phase margin */
+        double grow = o->value * s->poly[i].radius;
+        return s->x[i][0] < b[0] - grow || s->x[i][0] > b[3] + grow ||
+               s->x[i][1] < b[1] - grow || s->x[i][1] > b[4] + grow;
+    }
+    if (z[2] >= w->cos_over_gate) return 0; /* below the smallest possible threshold */
+    if (o->kind == RD_OVERTURN_ANGLE) return 1;
+    double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+    return tilt >= o->value * alpha_toward(w, lean[0], lean[1]);
+}
+
+/* A number that grows with the tilt over [0, pi] and resolves small tilts to round-off: the
+ * squared horizontal part of the rest vertical, mirrored past 90 degrees. */
+static double tilt_key(const double z[3])
+{
+    double h2 = z[0] * z[0] + z[1] * z[1];
+    return z[2] >= 0 ? h2 : 2 - h2;
+}
+
+static double key_of_angle(double a)
+{
+    return a <= M_PI / 2 ? sin(a) * sin(a) : 2 - sin(a) * sin(a);
+}
+
+/* Extremes of tilt, tilt / alpha and slide. The angles cost an atan2 and a ray cast, so they
+ * are evaluated only when the tilt passes a gate that a new extreme must pass. */
+static void track_extremes(rd_sim *s, int k, const double z[3])
+{
+    rd_watch *w = &s->watch[k];
+    rd_body_summary *sum = &w->sum;
+    int i = s->free_body[k];
+    double key = tilt_key(z);
+    if (key > w->key_max || key > w->key_ratio_gate) {
+        double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+        if (key > w->key_max) { sum->max_tilt = tilt; w->key_max = key; }
+        double ratio = tilt / alpha_toward(w, lean[0], lean[1]);
+        if (ratio > sum->max_tilt_ratio) {
+            sum->max_tilt_ratio = ratio;
+            w->key_ratio_gate = key_of_angle(rd_min(ratio * w->alpha_min, M_PI));
+        }
+    }
+    double b[3];
+    rd_mat_vec(s->R[i], w->base_local, b);
+    rd_axpy(1.0, s->x[i], b);
+    double dx = b[0] - w->base_ref[0], dy = b[1] - w->base_ref[1], d2 = dx * dx + dy * dy;
+    if (d2 > sum->max_slide * sum->max_slide) sum->max_slide = sqrt(d2);
+}
+
+static void watch_step(rd_sim *s, int k)
+{
+    rd_watch *w = &s->watch[k];
+    rd_body_summary *sum = &w->sum;
+    int i = s->free_body[k];
+    double z[3];
+    rest_vertical(s, k, z);
+    track_extremes(s, k, z);
+    w->down = z[2] < cos(RD_FALLEN_TILT);
+
+    if (w->rest_area > 0 && !w->uplifted && w->area < 0.6 * w->rest_area) {
+        w->uplifted = 1; sum->uplifted = 1;
+        double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+        rd_event_add(s, s->t, k, "uplift", tilt);
+        if (w->rock_peak < RD_ROCK_MIN * w->alpha_min && rd_norm(tv) > 0) { /* first rocking: its axis */
+            double n = rd_norm(tv);
+            w->rock_axis[0] = tv[0] / n; w->rock_axis[1] = tv[1] / n;
+        }
+    } else if (w->uplifted && w->area >= 0.9 * w->rest_area && 1 - z[2] < 5e-7 * w->alpha_min * w->alpha_min) {
+        w->uplifted = 0;
+    }
+    /* signed rocking about the first rocking axis, sine-scaled: (z x e_z) . axis */
+    double r = -z[1] * w->rock_axis[0] + z[0] * w->rock_axis[1];
+    if (r * w->rock_prev < 0 && w->rock_peak >= RD_ROCK_MIN * w->alpha_min) {
+        double f = w->rock_prev / (w->rock_prev - r); /* linear interpolation of the crossing */
+        rd_event_add(s, s->t - s->dt + f * s->dt, k, "impact", rd_norm(s->w[i]));
+        w->rock_peak = 0;
+    }
+    w->rock_peak = rd_max(w->rock_peak, fabs(r));
+    w->rock_prev = r;
+
+    int sliding = w->nactive > 0 && w->nslip == w->nactive;
+    if (sliding && !w->sliding) { rd_event_add(s, s->t, k, "slip", sum->max_slide); sum->slid = 1; }
+    w->sliding = sliding;
+
+    int over = criterion_met(s, k, z);
+    if (over != w->over) {
+        double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
+        rd_event_add(s, s->t, k, over ? "overturn" : "recover", tilt);
+        if (over) sum->overturn_time = s->t;
+    }
+    w->over = over;
+    sum->overturned = over;
+}
+
+void rd_monitor_step(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) watch_step(s, k);
+}
+
+int rd_monitor_all_fallen(const rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        rd_overturn_kind kind = s->sc.overturn.kind;
+        int down = s->watch[k].down || ((kind == RD_OVERTURN_HEIGHT || kind == RD_OVERTURN_OFF) && s->watch[k].over);
+        if (!down) return 0;
+    }
+    return s->nfree > 0;
+}
+
+void rd_monitor_finish(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        rd_watch *w = &s->watch[k];
+        int i = s->free_body[k];
+        double b[3];
+        rd_mat_vec(s->R[i], w->base_local, b);
+        rd_axpy(1.0, s->x[i], b);
+        w->sum.final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
+        if (!w->sum.overturned) w->sum.overturn_time = -1;
+    }
+}
+
+/* Rotation of body k from rest: in-plane rocking, out-of-plane rocking, twist (rad). Called at
+ * output samples (twist unwrapping assumes less than half a turn between samples). */
+void rd_monitor_rotation(rd_sim *s, int k, double out[3])
+{
+    rd_watch *w = &s->watch[k];
+    int i = s->free_body[k];
+    double qc[4] = {w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3]}, dq[4];
+    rd_quat_mul(s->q[i], qc, dq);                 /* rotation since rest, ground frame */
+    double tn = hypot(dq[0], dq[3]);
+    double qt[4] = {tn > 0 ? dq[0] / tn : 1, 0, 0, tn > 0 ? dq[3] / tn : 0};
+    double qti[4] = {qt[0], 0, 0, -qt[3]}, qs[4];
+    rd_quat_mul(dq, qti, qs);                     /* swing = rotation * twist^-1 */
+    if (qs[0] < 0) for (int j = 0; j < 4; j++) qs[j] = -qs[j];
+    double sn = sqrt(qs[1] * qs[1] + qs[2] * qs[2] + qs[3] * qs[3]);
+    double ang = 2 * atan2(sn, qs[0]), f = sn > 0 ? ang / sn : 2.0;
+    double phi[2] = {f * qs[1], f * qs[2]};       /* horizontal swing rotation vector */
+    double dir = s->sc.motion.horizontal.direction, d[2] = {cos(dir), sin(dir)};
+    out[0] = -phi[0] * d[1] + phi[1] * d[0];      /* about z x d */
+    out[1] = -(phi[0] * d[0] + phi[1] * d[1]);    /* about -d */
+    double tw = 2 * atan2(qt[3], qt[0]);          /* in (-2 pi, 2 pi] */
+    double prev = w->twist_prev;
+    while (tw - prev > M_PI) tw -= 2 * M_PI;
+    while (tw - prev < -M_PI) tw += 2 * M_PI;
+    w->twist_prev = tw;
+    out[2] = tw;
+    rd_body_summary *sum = &w->sum;
+    sum->max_rocking_in = rd_max(sum->max_rocking_in, fabs(out[0]));
+    sum->max_rocking_out = rd_max(sum->max_rocking_out, fabs(out[1]));
+    sum->max_twist = rd_max(sum->max_twist, fabs(tw));
+    sum->final_twist = tw;
+}

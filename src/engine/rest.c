@@ -1,0 +1,45 @@
+/* rockdem — the free-vibration tail: `model solve time T tail D` shakes for T s (or to the end
+ * of the motion, whichever is later), then runs on until every free body is at rest, for at
+ * most D s more. "At rest" means, for every free body, no uplift (the monitor's contact-area
+ * test) and kinetic energy below RD_REST_KE times m g r (r: its bounding radius), held for
+ * RD_REST_HOLD s so that one quiet instant of a rocking or ringing body does not count.
+ * In the ground frame after the motion ends the ground velocity is constant (zero after
+ * baseline correction), so this frame is inertial and the kinetic energy is the physical one. */
+#include "engine/sim.h"
+#include "base/vec.h"
+
+#define RD_REST_KE 1e-7  /* kinetic energy / (m g r): about 1 mm/s for r = 0.5 m */
+#define RD_REST_HOLD 0.1 /* s the rest must last */
+
+/* Time after which the tail may stop the run, s. */
+static double tail_start(const rd_sim *s)
+{
+    return fmax(s->sc.duration, rd_motion_end(&s->sc.motion));
+}
+
+double rd_rest_end(rd_sim *s)
+{
+    s->rest_since = -1.0;
+    return s->sc.tail > 0 ? tail_start(s) + s->sc.tail : s->sc.duration;
+}
+
+static int body_at_rest(const rd_sim *s, int k)
+{
+    int i = s->free_body[k];
+    double ke = 0.5 * s->mass[i] * rd_dot(s->v[i], s->v[i]) + 0.5 * rd_dot(s->w[i], s->L[i]); /* J */
+    return !s->watch[k].uplifted && ke <= RD_REST_KE * s->mass[i] * s->sc.gravity * s->poly[i].radius;
+}
+
+int rd_rest_reached(rd_sim *s)
+{
+    if (!(s->sc.tail > 0) || s->t < tail_start(s))
+        return 0;
+    for (int k = 0; k < s->nfree; k++)
+        if (!body_at_rest(s, k)) {
+            s->rest_since = -1.0;
+            return 0;
+        }
+    if (s->rest_since < 0)
+        s->rest_since = s->t;
+    return s->t - s->rest_since >= RD_REST_HOLD;
+}

@@ -1,0 +1,270 @@
+/* rockdem — building a simulation from a scenario: bodies (shape, mass properties, pose),
+ * subcontact points on the faces that can touch, and the contact pairs with their history.
+ *
+ * Leave out what the scene does not need: a face carries subcontact points only if it faces
+ * down at the start (it may land on what is below) or lies on another body's face (a stack
+ * joint). Fixed pedestals carry no points: a free body's own points already integrate the
+ * joint over its footprint (weight 1); where two free bodies meet, both point sets carry half
+ * the stiffness (3DEC's averaging of the two faces' subcontacts). Pairs are made by the broad
+ * phase (pairs.c) when two bodies first come near each other. */
+#include "engine/sim.h"
+#include "geometry/perturb.h"
+#include "base/vec.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define ALLOC(ptr, n) ((ptr) = calloc((size_t)(n) > 0 ? (size_t)(n) : 1, sizeof *(ptr)))
+
+/* Orientation from rotations about x, then y, then z (extrinsic, rad), times the principal axes. */
+static void initial_orientation(const double rot[3], const double axes[9], double q[4])
+{
+    double qx[4], qy[4], qz[4], qa[4], t1[4], t2[4];
+    double ex[3] = {rot[0], 0, 0}, ey[3] = {0, rot[1], 0}, ez[3] = {0, 0, rot[2]};
+    rd_quat_from_rotvec(ex, qx);
+    rd_quat_from_rotvec(ey, qy);
+    rd_quat_from_rotvec(ez, qz);
+    rd_quat_from_mat(axes, qa);
+    rd_quat_mul(qy, qx, t1);
+    rd_quat_mul(qz, t1, t2);
+    rd_quat_mul(t2, qa, q);
+}
+
+static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
+{
+    switch (d->shape) {
+    case RD_SHAPE_BRICK: return rd_poly_brick(p, d->size, err);
+    case RD_SHAPE_PRISM: return rd_poly_prism(p, d->sides, d->radius, d->radius_top, d->size[2], err);
+    case RD_SHAPE_HULL: return rd_poly_hull(p, (const double (*)[3])d->verts, d->nverts, err);
+    case RD_SHAPE_MESH: return rd_mesh_read(p, d->mesh, NULL, err); /* path resolved by the parser */
+    }
+    return rd_error_set(err, "unknown shape");
+}
+
+/* Is the polyhedron convex (every vertex behind every face plane)? Only convex bodies can be
+ * contact targets: a point's gap is measured against their face planes. */
+static int is_convex(const rd_poly *p)
+{
+    double tol = 1e-9 * (1.0 + p->radius);
+    for (int f = 0; f < p->nf; f++)
+        for (int v = 0; v < p->nv; v++)
+            if (rd_dot(p->fn[f], p->v[v]) - p->fd[f] > tol) return 0;
+    return 1;
+}
+
+static int build_body(rd_sim *s, int i, rd_error *err)
+{
+    const rd_body_def *d = &s->sc.bodies[i];
+    rd_mass m;
+    if (build_shape(d, &s->poly[i], err) || rd_poly_mass(&s->poly[i], &m, err)) {
+        char msg[RD_ERROR_MAX];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        return rd_error_set(err, "%s:%d: block '%s': %s", s->sc.file, d->line, d->name, msg);
+    }
+    rd_poly_to_frame(&s->poly[i], &m);
+    double density = d->mass > 0 ? d->mass / m.volume : (d->density > 0 ? d->density : s->sc.density);
+    s->mass[i] = density * m.volume;
+    for (int k = 0; k < 3; k++) s->inertia[i][k] = density * m.principal[k];
+    initial_orientation(d->rotation, m.axes, s->q[i]);
+    rd_copy3(d->position, s->x[i]); /* the centre of mass */
+    s->fixed[i] = d->fixed;
+    s->convex[i] = is_convex(&s->poly[i]);
+    if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES)
+        return rd_error_set(err, "%s:%d: block '%s' has %d faces; a convex body may have at most %d",
+                            s->sc.file, d->line, d->name, s->poly[i].nf, RD_MAX_PLANES);
+    return 0;
+}
+
+/* Place body i so its lowest vertex rests on the highest point of the body it is seated on,
+ * centre of mass above position[0..1] (a rock on its pedestal, a drum on the drum below). */
+static int seat_body(rd_sim *s, int i, rd_error *err)
+{
+    const rd_body_def *d = &s->sc.bodies[i];
+    int j = -1;
+    for (int k = 0; k < i && j < 0; k++)
+        if (!strcmp(s->sc.bodies[k].name, d->seat_on)) j = k;
+    if (j < 0)
+        return rd_error_set(err, "%s:%d: block '%s' sits on '%s', which is not defined before it",
+                            s->sc.file, d->line, d->name, d->seat_on);
+    double top = -INFINITY, low = INFINITY;
+    for (int v = s->vert0[j]; v < s->vert0[j + 1]; v++) top = fmax(top, s->wv[v][2]);
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) low = fmin(low, s->wv[v][2]);
+    s->x[i][2] += top - low;
+    rd_body_refresh(s, i);
+    return 0;
+}
+
+int rd_setup_bodies(rd_sim *s, rd_error *err)
+{
+    int nb = s->nb = s->sc.nbodies;
+    if (!ALLOC(s->poly, nb) || !ALLOC(s->x, nb) || !ALLOC(s->q, nb) || !ALLOC(s->v, nb) ||
+        !ALLOC(s->L, nb) || !ALLOC(s->w, nb) || !ALLOC(s->R, nb) || !ALLOC(s->mass, nb) ||
+        !ALLOC(s->inertia, nb) || !ALLOC(s->fixed, nb) || !ALLOC(s->f, nb) || !ALLOC(s->tq, nb) ||
+        !ALLOC(s->v_old, nb) || !ALLOC(s->L_old, nb) || !ALLOC(s->free_body, nb) ||
+        !ALLOC(s->free_of, nb) || !ALLOC(s->vert0, nb + 1) || !ALLOC(s->face0, nb + 1) ||
+        !ALLOC(s->convex, nb))
+        return rd_error_set(err, "out of memory");
+    for (int i = 0; i < nb; i++) {
+        if (build_body(s, i, err)) return -1;
+        s->free_of[i] = s->fixed[i] ? -1 : s->nfree;
+        if (!s->fixed[i]) s->free_body[s->nfree++] = i;
+        s->vert0[i + 1] = s->vert0[i] + s->poly[i].nv;
+        s->face0[i + 1] = s->face0[i] + s->poly[i].nf;
+    }
+    if (!ALLOC(s->wv, s->vert0[nb]) || !ALLOC(s->wn, s->face0[nb]) || !ALLOC(s->wd, s->face0[nb]))
+        return rd_error_set(err, "out of memory");
+    /* world geometry of every body, once here (fixed bodies never change), in order, so a
+       body can be seated on one defined before it */
+    for (int i = 0; i < nb; i++) {
+        rd_body_refresh(s, i);
+        if (s->sc.bodies[i].seat_on[0] && seat_body(s, i, err)) return -1;
+    }
+    return 0;
+}
+
+/* Does face f of body i lie on a face of another body (antiparallel normals, coplanar)? */
+/* Bounding box of face f of body i (world), grown by tol: lo[3], hi[3]. */
+static void face_box(const rd_sim *s, int i, int f, double tol, double lo[3], double hi[3])
+{
+    const rd_poly *p = &s->poly[i];
+    for (int k = 0; k < 3; k++) { lo[k] = INFINITY; hi[k] = -INFINITY; }
+    for (int k = 0; k < p->flen[f]; k++) {
+        const double *v = s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]];
+        for (int c = 0; c < 3; c++) { lo[c] = fmin(lo[c], v[c] - tol); hi[c] = fmax(hi[c], v[c] + tol); }
+    }
+}
+
+static int face_touches(const rd_sim *s, int i, int f, double tol)
+{
+    const double *n = s->wn[s->face0[i] + f];
+    const rd_poly *p = &s->poly[i];
+    double lo[3], hi[3], lo2[3], hi2[3];
+    face_box(s, i, f, tol, lo, hi);
+    for (int j = 0; j < s->nb; j++) {
+        if (j == i) continue;
+        for (int g = 0; g < s->poly[j].nf; g++) {
+            const double *m = s->wn[s->face0[j] + g];
+            double dg = s->wd[s->face0[j] + g];
+            if (rd_dot(n, m) > -0.999) continue;
+            int on = 1;
+            for (int k = 0; k < p->flen[f] && on; k++)
+                on = fabs(rd_dot(m, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]]) - dg) < tol;
+            if (!on) continue;
+            face_box(s, j, g, tol, lo2, hi2); /* coplanar: do the two faces overlap? */
+            if (lo[0] <= hi2[0] && lo2[0] <= hi[0] && lo[1] <= hi2[1] && lo2[1] <= hi[1] &&
+                lo[2] <= hi2[2] && lo2[2] <= hi[2])
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* A face carries subcontact points if it lies on another body's face, or if it faces down
+ * and lies in the lowest fifth of the body (a rock's base region, not its overhangs). */
+static int is_candidate(const rd_sim *s, int i, int f)
+{
+    if (s->fixed[i]) return 0;
+    const rd_poly *p = &s->poly[i];
+    const double *n = s->wn[s->face0[i] + f];
+    if (face_touches(s, i, f, 1e-6 * (1.0 + p->radius))) return 1;
+    if (n[2] >= -0.5) return 0;
+    double zmin = INFINITY, zmax = -INFINITY, fmin_z = INFINITY;
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) {
+        zmin = fmin(zmin, s->wv[v][2]);
+        zmax = fmax(zmax, s->wv[v][2]);
+    }
+    for (int k = 0; k < p->flen[f]; k++) fmin_z = fmin(fmin_z, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]][2]);
+    return fmin_z <= zmin + 0.2 * (zmax - zmin);
+}
+
+/* Width of face f: the smallest, over its edges, of the farthest vertex from that edge's line
+ * (a rectangle: its short side; a regular polygon: about its diameter). */
+static double face_width(const rd_poly *p, int f)
+{
+    const int *ix = p->fidx + p->fstart[f];
+    int n = p->flen[f];
+    double w = INFINITY;
+    for (int k = 0; k < n; k++) {
+        const double *a = p->v[ix[k]], *b = p->v[ix[(k + 1) % n]];
+        double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, len = rd_norm(e), far = 0;
+        for (int j = 0; j < n; j++) {
+            double d[3] = {p->v[ix[j]][0] - a[0], p->v[ix[j]][1] - a[1], p->v[ix[j]][2] - a[2]}, c[3];
+            rd_cross(e, d, c);
+            far = fmax(far, rd_norm(c) / len);
+        }
+        w = fmin(w, far);
+    }
+    return w;
+}
+
+/* Subcontact spacing of body i: the scenario's, or automatically a tenth of the narrowest
+ * candidate face (an 11 x 11 bed on a square base); a mesh's own vertices already sample its
+ * surface, so automatic spacing uses them. */
+static double body_spacing(const rd_sim *s, int i, const char *cand)
+{
+    if (s->sc.contact.spacing >= 0) return s->sc.contact.spacing;
+    if (s->sc.bodies[i].shape == RD_SHAPE_MESH) return 0;
+    double w = INFINITY;
+    for (int f = 0; f < s->poly[i].nf; f++)
+        if (cand[s->face0[i] + f]) w = fmin(w, face_width(&s->poly[i], f));
+    return isfinite(w) ? w / 10.0 : 0.0;
+}
+
+/* Count the points of every candidate face (pass 0), then mesh them into place (pass 1).
+ * cand[face0[i] + f] marks candidate faces; spacing[i] is body i's spacing. */
+static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, rd_error *err)
+{
+    int nb = s->nb, npts = 0, ncf = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        npts = ncf = 0;
+        for (int i = 0; i < nb; i++) {
+            s->pt0[i] = npts; s->cf0[i] = ncf;
+            for (int f = 0; f < s->poly[i].nf; f++) {
+                if (!cand[s->face0[i] + f]) continue;
+                int n = pass ? rd_poly_face_points(&s->poly[i], f, spacing[i], s->pl + npts, s->pa + npts, s->npts - npts)
+                             : rd_poly_face_points(&s->poly[i], f, spacing[i], NULL, NULL, 0);
+                if (n < 0) return rd_error_set(err, "cannot mesh face %d of body '%s'", f, s->sc.bodies[i].name);
+                if (pass) { s->cf_face[ncf] = f; s->cf_pt0[ncf] = npts; }
+                npts += n; ncf++;
+            }
+        }
+        s->pt0[nb] = npts; s->cf0[nb] = ncf;
+        if (!pass) {
+            s->npts = npts; s->ncf = ncf;
+            if (!ALLOC(s->pl, npts) || !ALLOC(s->pa, npts) || !ALLOC(s->cf_face, ncf) || !ALLOC(s->cf_pt0, ncf + 1))
+                return rd_error_set(err, "out of memory");
+        }
+    }
+    s->cf_pt0[ncf] = npts;
+    return 0;
+}
+
+/* Subcontact points of every body, on its candidate faces (each face judged once). */
+static int build_points(rd_sim *s, rd_error *err)
+{
+    char *cand = calloc((size_t)s->face0[s->nb] + 1, 1);
+    double *spacing = calloc((size_t)s->nb + 1, sizeof *spacing);
+    int rc = -1;
+    if (!cand || !spacing || !ALLOC(s->pt0, s->nb + 1) || !ALLOC(s->cf0, s->nb + 1)) {
+        rd_error_set(err, "out of memory");
+    } else {
+        for (int i = 0; i < s->nb; i++)
+            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)is_candidate(s, i, f);
+        for (int i = 0; i < s->nb; i++) spacing[i] = body_spacing(s, i, cand);
+        rc = mesh_candidates(s, cand, spacing, err);
+    }
+    free(cand);
+    free(spacing);
+    return rc;
+}
+
+int rd_setup_contacts(rd_sim *s, rd_error *err)
+{
+    s->tan_phi = tan(s->sc.contact.friction);
+    s->bonds = s->sc.contact.tension > 0 || s->sc.contact.cohesion > 0;
+    s->can_cull = !s->bonds;
+    if (build_points(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err)) return -1;
+    return 0;
+}

@@ -1,0 +1,426 @@
+/* rockdem — the simulation: create, settle, shake, stop, summarise.
+ *
+ * One step (the table of contents of the engine):
+ *   ground motion at t  ->  world geometry  ->  gravity and ground pseudo-force
+ *   ->  contacts (common plane, subcontact law)  ->  damping  ->  kick velocities
+ *   ->  energies, monitoring, output at t  ->  drift positions  ->  health check
+ * The frame of reference moves with the ground, so pedestals are at rest and every free body
+ * feels the pseudo-force -m a_g(t) (exact for a translating frame). */
+#include "engine/sim.h"
+#include "base/vec.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static volatile sig_atomic_t stop_requested;
+
+void rd_sim_request_stop(void) { stop_requested = 1; }
+
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Gravity and the ground pseudo-force on every free body; clears the accumulators. */
+static void forces_external(rd_sim *s)
+{
+    for (int i = 0; i < s->nb; i++) {
+        s->tq[i][0] = s->tq[i][1] = s->tq[i][2] = 0;
+        double m = s->mass[i];
+        s->f[i][0] = -m * s->ag[0];
+        s->f[i][1] = -m * s->ag[1];
+        s->f[i][2] = -m * (s->sc.gravity + s->ag[2]);
+    }
+    for (int k = 0; k < s->nfree; k++) {
+        rd_watch *w = &s->watch[k];
+        w->area = 0; w->nactive = 0; w->nslip = 0;
+    }
+}
+
+/* Cundall local damping: each force/torque component is reduced by alpha |F| against the
+ * velocity component (velocity-proportional terms are absent: it does not resist steady
+ * motion and leaves free rocking periods unchanged). */
+static void damping_local(rd_sim *s, double alpha, int account)
+{
+    for (int i = 0; i < s->nb; i++) {
+        if (s->fixed[i]) continue;
+        for (int k = 0; k < 3; k++) {
+            double df = -alpha * fabs(s->f[i][k]) * (s->v[i][k] > 0 ? 1.0 : s->v[i][k] < 0 ? -1.0 : 0.0);
+            double dt = -alpha * fabs(s->tq[i][k]) * (s->w[i][k] > 0 ? 1.0 : s->w[i][k] < 0 ? -1.0 : 0.0);
+            s->f[i][k] += df;
+            s->tq[i][k] += dt;
+            if (account) s->e_damp -= (df * s->v[i][k] + dt * s->w[i][k]) * s->dt;
+        }
+    }
+}
+
+/* Largest unbalanced force / weight and torque / (weight * size) over the free bodies. */
+static double unbalance(const rd_sim *s)
+{
+    double r = 0;
+    for (int i = 0; i < s->nb; i++) {
+        if (s->fixed[i]) continue;
+        double wgt = s->mass[i] * s->sc.gravity;
+        r = fmax(r, rd_norm(s->f[i]) / wgt);
+        r = fmax(r, rd_norm(s->tq[i]) / (wgt * s->poly[i].radius));
+    }
+    return r;
+}
+
+static int healthy(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        int i = s->free_body[k];
+        double r = s->poly[i].radius;
+        double v2 = rd_dot(s->v[i], s->v[i]) + rd_dot(s->w[i], s->w[i]) * r * r;
+        double sum = s->x[i][0] + s->x[i][1] + s->x[i][2] + s->q[i][0] + s->q[i][1] + s->q[i][2] +
+                     s->q[i][3] + v2; /* NaN or Inf anywhere makes the sum non-finite */
+        if (isfinite(sum) && v2 <= 1e6) continue;
+        const char *cause = NULL;
+        double speed = sqrt(v2);
+        if (!isfinite(sum)) cause = "has a non-finite state (NaN/Inf)";
+        char buf[96];
+        if (!cause) {
+            snprintf(buf, sizeof buf, "moves at %.3g m/s (runaway)", speed);
+            cause = buf;
+        }
+        if (cause) {
+            snprintf(s->errmsg, sizeof s->errmsg,
+                     "unstable at step %ld (t = %.6g s): body '%s' %s; contact forces blew up — "
+                     "time step %.3g s, estimated stable limit %.3g s", s->step, s->t,
+                     s->sc.bodies[i].name, cause, s->dt, s->dt_crit);
+            rd_event_add(s, s->t, k, "unstable", speed);
+            s->status = RD_STATUS_UNSTABLE;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static int write_sample(rd_sim *s)
+{
+    int nf = s->nfree;
+    double *pos = s->obuf, *quat = pos + 3 * nf, *vel = quat + 4 * nf, *ang = vel + 3 * nf,
+           *tilt = ang + 3 * nf, *rot = tilt + nf;
+    for (int k = 0; k < nf; k++) {
+        int i = s->free_body[k];
+        double Lm[3], lb[3];
+        for (int j = 0; j < 3; j++) {
+            pos[3 * k + j] = s->x[i][j];
+            vel[3 * k + j] = 0.5 * (s->v[i][j] + s->v_old[i][j]);
+            Lm[j] = 0.5 * (s->L[i][j] + s->L_old[i][j]);
+        }
+        rd_mat_tvec(s->R[i], Lm, lb);
+        for (int j = 0; j < 3; j++) lb[j] /= s->inertia[i][j];
+        rd_mat_vec(s->R[i], lb, ang + 3 * k);
+        memcpy(quat + 4 * k, s->q[i], 4 * sizeof(double));
+        double qc[4] = {s->watch[k].q_ref[0], -s->watch[k].q_ref[1], -s->watch[k].q_ref[2], -s->watch[k].q_ref[3]}, dq[4], z[3];
+        rd_quat_mul(s->q[i], qc, dq);
+        rd_quat_rotate(dq, (double[3]){0, 0, 1}, z);
+        tilt[k] = atan2(hypot(z[0], z[1]), z[2]);
+        rd_monitor_rotation(s, k, rot + 3 * k);
+    }
+    rd_h5_sample smp = {.time = s->t, .position = pos, .quaternion = quat, .velocity = vel,
+                        .angular_velocity = ang, .tilt = tilt, .rotation = rot};
+    memcpy(smp.ground_acc, s->ag, sizeof s->ag);
+    memcpy(smp.ground_vel, s->vg, sizeof s->vg);
+    memcpy(smp.ground_disp, s->dg, sizeof s->dg);
+    memcpy(smp.energy, s->energy, sizeof s->energy);
+    rd_error err;
+    int rc = rd_h5_append(s->h5, &smp, &err);
+    for (; rc == 0 && s->nevent_written < s->nevent; s->nevent_written++) {
+        const rd_event *e = &s->event[s->nevent_written];
+        rc = rd_h5_event(s->h5, e->time, e->body, e->type, e->value, &err);
+    }
+    if (rc) {
+        snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
+        s->status = RD_STATUS_IO_ERROR;
+    }
+    return rc;
+}
+
+/* One explicit step from t to t + dt. */
+static void step_once(rd_sim *s)
+{
+    if (!s->settling) rd_motion_eval(&s->sc.motion, s->t, s->ag, s->vg, s->dg);
+    rd_bodies_refresh(s);
+    forces_external(s);
+    if (rd_contact_step(s)) {
+        snprintf(s->errmsg, sizeof s->errmsg, "out of memory growing the contact-pair cache at t = %g s", s->t);
+        s->status = RD_STATUS_ERROR;
+        return;
+    }
+    if (s->settling) {
+        s->settle_ratio = unbalance(s);
+        damping_local(s, 0.8, 0);
+    } else if (s->sc.damping.kind == RD_DAMPING_LOCAL) {
+        damping_local(s, s->sc.damping.value, 1);
+    }
+    rd_integrate_kick(s);
+    if (!s->settling) {
+        rd_energy_step(s);
+        rd_monitor_step(s);
+        if (s->t >= s->next_out - 1e-9 * s->dt) {
+            rd_energy_sample(s);
+            write_sample(s);
+            s->next_out += s->sc.output.interval;
+        }
+    }
+    rd_integrate_drift(s);
+    memcpy(s->ag_prev, s->ag, sizeof s->ag);
+    s->t += s->dt;
+}
+
+/* Bring the scene to rest under gravity (local damping 0.8, no shaking), like 3DEC's solve to
+ * a force ratio; then clear velocities. Contacts keep their history. */
+static void settle(rd_sim *s)
+{
+    s->settling = 1;
+    s->t = 0;
+    memset(s->ag, 0, sizeof s->ag);
+    s->settle_ratio = INFINITY;
+    while (s->t < s->sc.settle.max_time && !stop_requested && s->status == RD_STATUS_DONE) {
+        step_once(s);
+        if (s->settle_ratio < s->sc.settle.ratio) break;
+    }
+    s->settle_time = s->t;
+    for (int i = 0; i < s->nb; i++) {
+        memset(s->v[i], 0, sizeof s->v[i]);
+        memset(s->L[i], 0, sizeof s->L[i]);
+        memset(s->w[i], 0, sizeof s->w[i]);
+    }
+    if (s->settle_ratio >= s->sc.settle.ratio) rd_event_add(s, 0, -1, "unsettled", s->settle_ratio);
+    s->settling = 0;
+    s->t = 0;
+    /* bonds exist only where the joint is closed at rest: a re-created contact starts from zero */
+    for (int k = 0; k < s->nstate; k++)
+        if (!(s->pstate[k] & RD_PT_ACTIVE)) s->pstate[k] &= (unsigned char)~RD_PT_BONDED;
+}
+
+/* Rotate body k about the edge of its support on the side it leans to. */
+static void apply_tilt(rd_sim *s, int k, double tilt, double dir)
+{
+    const rd_watch *w = &s->watch[k];
+    int i = s->free_body[k];
+    double d[2] = {cos(dir), sin(dir)}, best = -INFINITY, piv[3] = {0, 0, w->base_ref[2]};
+    int n = 0;
+    for (int j = 0; j < w->nsupport; j++) best = fmax(best, d[0] * w->support[j][0] + d[1] * w->support[j][1]);
+    for (int j = 0; j < w->nsupport; j++)
+        if (d[0] * w->support[j][0] + d[1] * w->support[j][1] > best - 1e-9 * (1 + fabs(best))) {
+            piv[0] += w->support[j][0]; piv[1] += w->support[j][1]; n++;
+        }
+    piv[0] /= n; piv[1] /= n;
+    double axis[3] = {-d[1] * tilt, d[0] * tilt, 0}, Q[4], r[3], qn[4];
+    rd_quat_from_rotvec(axis, Q);
+    double rel[3] = {s->x[i][0] - piv[0], s->x[i][1] - piv[1], s->x[i][2] - piv[2]};
+    rd_quat_rotate(Q, rel, r);
+    for (int j = 0; j < 3; j++) s->x[i][j] = piv[j] + r[j];
+    rd_quat_mul(Q, s->q[i], qn);
+    memcpy(s->q[i], qn, sizeof qn);
+}
+
+static void apply_initial_conditions(rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        int i = s->free_body[k];
+        const rd_body_def *d = &s->sc.bodies[i];
+        if (d->tilt > 0) {
+            apply_tilt(s, k, d->tilt, d->tilt_direction);
+            rd_contact_reset_body(s, i);
+        }
+        rd_copy3(d->velocity, s->v[i]);
+        rd_body_set_angular_velocity(s, i, d->angular_velocity);
+    }
+    rd_bodies_refresh(s);
+}
+
+static const char *damping_text(const rd_damping_def *d, char *buf, size_t n)
+{
+    if (d->kind == RD_DAMPING_VISCOUS) snprintf(buf, n, "viscous %g", d->value);
+    else if (d->kind == RD_DAMPING_LOCAL) snprintf(buf, n, "local %g", d->value);
+    else snprintf(buf, n, "none");
+    return buf;
+}
+
+static const char *overturn_text(const rd_overturn_def *o, char *buf, size_t n)
+{
+    static const char *kind[] = {"tilt-ratio", "angle", "height", "off-pedestal"};
+    double v = o->kind == RD_OVERTURN_ANGLE ? o->value * 180.0 / M_PI : o->value;
+    snprintf(buf, n, "%s %g%s", kind[o->kind], v, o->kind == RD_OVERTURN_ANGLE ? " deg" : "");
+    return buf;
+}
+
+static int open_output(rd_sim *s, rd_error *err)
+{
+    rd_h5_body *hb = calloc((size_t)s->nfree, sizeof *hb);
+    if (!hb) return rd_error_set(err, "out of memory");
+    for (int k = 0; k < s->nfree; k++) {
+        int i = s->free_body[k];
+        const rd_poly *p = &s->poly[i];
+        hb[k] = (rd_h5_body){.name = s->sc.bodies[i].name, .mass = s->mass[i], .nvert = p->nv,
+                             .vertices = &p->v[0][0], .ntri = p->ntri, .triangles = &p->tri[0][0]};
+        memcpy(hb[k].inertia, s->inertia[i], sizeof hb[k].inertia);
+        memcpy(hb[k].size, s->sc.bodies[i].size, sizeof hb[k].size);
+        hb[k].alpha = atan2(0.5 * fmin(hb[k].size[0], hb[k].size[1]), 0.5 * hb[k].size[2]);
+    }
+    char dbuf[64], obuf[64];
+    const rd_contact_def *c = &s->sc.contact;
+    rd_h5_meta meta = {.scenario_text = s->sc.text ? s->sc.text : "", .scenario_file = s->sc.file,
+                       .title = s->sc.title, .dt = s->dt, .dt_critical = s->dt_crit,
+                       .damping = damping_text(&s->sc.damping, dbuf, sizeof dbuf),
+                       .overturn_criterion = overturn_text(&s->sc.overturn, obuf, sizeof obuf),
+                       .kn = c->kn, .ks = c->ks, .friction = c->friction, .cohesion = c->cohesion,
+                       .tension = c->tension, .spacing = c->spacing, .nbodies = s->nfree, .bodies = hb};
+    s->h5 = rd_h5_open(s->sc.output.path, &meta, err);
+    free(hb);
+    return s->h5 ? 0 : -1;
+}
+
+static int choose_timestep(rd_sim *s, rd_error *err)
+{
+    s->dt_crit = rd_timestep_critical(s);
+    const rd_timestep_def *ts = &s->sc.timestep;
+    if (ts->kind == RD_TIMESTEP_FIXED) {
+        if (ts->dt > s->dt_crit)
+            return rd_error_set(err, "%s: fixed time step %g s is above the stable limit %.4g s "
+                                     "(from mass, inertia and contact stiffness); use at most %.4g s "
+                                     "or 'model timestep auto'", s->sc.file, ts->dt, s->dt_crit, s->dt_crit);
+        s->dt = ts->dt;
+    } else {
+        s->dt = isfinite(s->dt_crit) ? ts->safety * s->dt_crit : s->sc.output.interval / 10.0;
+    }
+    return 0;
+}
+
+rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
+{
+    if (rd_scenario_validate(sc, err)) return NULL;
+    rd_sim *s = calloc(1, sizeof *s);
+    if (!s) { rd_error_set(err, "out of memory"); return NULL; }
+    s->sc = *sc;
+    if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err)) goto fail;
+    s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
+    s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
+    if (!s->watch || !s->obuf) { rd_error_set(err, "out of memory"); goto fail; }
+    if (open_output(s, err) || rd_h5_ground_im(s->h5, &s->sc.motion, err)) goto fail;
+    return s;
+fail:
+    rd_sim_free(s);
+    return NULL;
+}
+
+/* Static tipping angle and acceleration around the vertical, per body, into the output. */
+static void write_precariousness(rd_sim *s)
+{
+    rd_error err;
+    for (int k = 0; k < s->nfree && s->status == RD_STATUS_DONE; k++)
+        if (rd_h5_precariousness(s->h5, s->sc.bodies[s->free_body[k]].name, &s->watch[k].prec[0][0],
+                                 RD_NPREC, &err)) {
+            snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
+            s->status = RD_STATUS_IO_ERROR;
+        }
+}
+
+static void write_summary(rd_sim *s)
+{
+    rd_summary sum;
+    rd_error err;
+    int rc = write_sample(s); /* the final state, which also completes the rotation extremes */
+    rd_sim_summary(s, &sum);
+    if (rc == 0 && rd_h5_summary(s->h5, &sum, &err) == 0 && rd_h5_flush(s->h5, &err) == 0) return;
+    if (s->status != RD_STATUS_IO_ERROR) {
+        snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
+        s->status = RD_STATUS_IO_ERROR;
+    }
+}
+
+rd_status rd_sim_run(rd_sim *s)
+{
+    stop_requested = 0;
+    s->status = RD_STATUS_DONE;
+    if (s->sc.settle.enabled) settle(s);
+    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
+    rd_bodies_refresh(s);
+    rd_monitor_rest(s);
+    write_precariousness(s);
+    apply_initial_conditions(s);
+    rd_monitor_start(s);
+    s->shaking = 1;
+    s->e_fric = s->e_damp = s->e_work = 0;
+    double t0 = wall_now(), end = rd_rest_end(s);
+    while (s->status == RD_STATUS_DONE && s->t < end - 0.5 * s->dt) {
+        if (stop_requested) { s->status = RD_STATUS_INTERRUPTED; break; }
+        step_once(s);
+        s->step++;
+        if (s->status != RD_STATUS_DONE || !healthy(s)) break;
+        if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) { s->status = RD_STATUS_OVERTURNED; break; }
+        if (rd_rest_reached(s)) break; /* free-vibration tail: everything at rest */
+    }
+    s->wall = wall_now() - t0;
+    rd_monitor_finish(s);
+    write_summary(s);
+    return s->status;
+}
+
+void rd_sim_summary(const rd_sim *s, rd_summary *out)
+{
+    memset(out, 0, sizeof *out);
+    out->nbodies = s->nfree;
+    for (int k = 0; k < s->nfree; k++) {
+        out->body[k] = s->watch[k].sum;
+        out->any_overturned |= out->body[k].overturned;
+    }
+    out->end_time = s->t;
+    out->dt = s->dt;
+    out->dt_critical = s->dt_crit;
+    out->steps = s->step;
+    out->settle_time = s->settle_time;
+    out->energy_residual_max = s->resid_max;
+    out->wall_seconds = s->wall;
+    out->status = s->status;
+}
+
+const char *rd_sim_error(const rd_sim *s) { return s->errmsg; }
+
+const rd_event *rd_sim_events(const rd_sim *s, int *n)
+{
+    *n = s->nevent;
+    return s->event;
+}
+
+void rd_sim_body_state(const rd_sim *s, int k, double x[3], double q[4], double v[3], double w[3])
+{
+    int i = s->free_body[k];
+    if (x) memcpy(x, s->x[i], 3 * sizeof(double));
+    if (q) memcpy(q, s->q[i], 4 * sizeof(double));
+    if (v) memcpy(v, s->v[i], 3 * sizeof(double));
+    if (w) memcpy(w, s->w[i], 3 * sizeof(double));
+}
+
+void rd_sim_energy(const rd_sim *s, double e[7]) { memcpy(e, s->energy, 7 * sizeof(double)); }
+
+int rd_sim_point_count(const rd_sim *s) { return s->npts; }
+
+double rd_sim_dt(const rd_sim *s) { return s->dt; }
+
+long rd_sim_active_point_steps(const rd_sim *s) { return s->active_point_steps; }
+
+void rd_sim_free(rd_sim *s)
+{
+    if (!s) return;
+    rd_h5_close(s->h5);
+    for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
+    for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
+    void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,
+                      s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
+                      s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
+                      s->pair, s->fs, s->pstate, s->face_nactive, s->watch, s->event, s->obuf,
+                      s->aabb, s->order, s->hkey, s->live, s->live_prev};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) free(arrays[k]);
+    free(s);
+}

@@ -1,0 +1,220 @@
+/* rockdem (private) — the simulation object. One struct, every field commented (REBOUND
+ * style); per-body and per-point data are flat arrays (structs of arrays) indexed by body or
+ * point, so the contact loop streams through memory and never allocates. */
+#ifndef RD_SIM_H
+#define RD_SIM_H
+
+#include "rockdem/rockdem.h"
+#include "geometry/geom.h"
+#include "io/io_hdf5.h"
+
+#include <signal.h>
+
+#define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
+#define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
+
+/* Per-subcontact state bits (rd_sim.pstate). */
+enum { RD_PT_ACTIVE = 1, RD_PT_BONDED = 2, RD_PT_SLIP = 4 };
+
+/* One side of a contact pair: the owner's subcontact points tested against the other body's
+ * surface. Contact history is keyed by (pair, side, point index on the owner): a stable key,
+ * because subcontact points are fixed on their body for the whole run. */
+typedef struct rd_side {
+    int owner, other; /* body indices */
+    double weight;    /* 1, or 1/2 when both bodies carry points (3DEC averaging of both sets) */
+    int state0;       /* index of the owner's first point in rd_sim.fs / rd_sim.pstate */
+    int face0;        /* index of the owner's first candidate face in rd_sim.face_nactive */
+    double u_prev[3]; /* contact normal of this side at the last step (stored shear forces lie
+                         in its plane) */
+} rd_side;
+
+/* A pair of bodies that may touch; its common-plane normal is a face normal of one of them
+ * (separating-axis choice with hysteresis, updated every step). */
+typedef struct rd_pair {
+    int a, b;          /* body indices, a < b */
+    int nside;         /* 1 (one body carries points) or 2 */
+    rd_side side[2];
+    int axis_body;     /* body whose face gives the normal, -1 before the first contact */
+    int axis_face;     /* that face's index */
+    int axis_age;      /* steps since the face was last chosen */
+    double n[3];       /* common-plane unit normal, ground frame, pointing away from axis_body */
+    double m_eff;      /* reduced mass of the pair, kg (for viscous damping) */
+    long seen;         /* broad-phase stamp of the last step its boxes overlapped */
+    double k_active;   /* sum of KN*A over points active last step, N/m (viscous damping) */
+} rd_pair;
+
+
+/* Monitoring state of one free body (events, overturning, summary). */
+typedef struct rd_watch {
+    double q_ref[4];     /* orientation at rest (after settling, before initial conditions) */
+    double x_ref[3];     /* centre of mass at rest, m */
+    double base_local[3];/* point of the support plane below the centre of mass, body frame, m */
+    double base_ref[3];  /* same point in the ground frame at rest, m */
+    double h;            /* height of the centre of mass above its support plane at rest, m */
+    double zb[3];        /* the rest vertical in the body frame */
+    double alpha_min;    /* smallest static tipping angle over all lean directions, rad */
+    double key_max;      /* tilt key (monitor.c: tilt_key) of the max tilt so far */
+    double key_ratio_gate; /* key of max tilt ratio * alpha_min: a new max ratio must exceed it */
+    double cos_over_gate;  /* cos of the smallest tilt that can meet the overturn criterion */
+    int down;            /* tilted past 85 degrees: lying down */
+    int rests_on;        /* body it rested on at rest (off-pedestal criterion), -1 none */
+    double twist_prev;   /* unwrapped twist at the last sample, rad */
+    int nsupport;        /* support polygon at rest: hull of the contact points (ground xy,
+                            counter-clockwise), for alpha */
+    double (*support)[2];
+    double prec[RD_NPREC][3]; /* precariousness: lean direction (rad), alpha (rad), g tan(alpha) */
+    double rest_area;    /* contact area at rest, m^2 */
+    double area;         /* contact area this step, m^2 */
+    int nslip, nactive;  /* slipping / active subcontacts this step */
+    int uplifted;        /* currently rocking (contact area < 60 % of the area at rest) */
+    double rock_axis[3]; /* horizontal unit axis of the rocking that started at the last uplift */
+    double rock_prev;    /* signed rocking angle about rock_axis at the previous step, rad */
+    double rock_peak;    /* largest |rocking angle| since the last impact, rad */
+    int sliding;         /* currently sliding as a whole (every active point at the Coulomb limit) */
+    int over;            /* currently beyond the overturn criterion */
+    rd_body_summary sum; /* what the run found */
+} rd_watch;
+
+struct rd_sim {
+    rd_scenario sc;        /* copy of the scenario (text pointer borrowed from the caller) */
+    int nb;                /* bodies, fixed and free, in scenario order */
+    int nfree;             /* free bodies */
+    int *free_body;        /* [nfree] body index of each free body (output order) */
+    int *free_of;          /* [nb] index among free bodies, -1 for fixed bodies */
+    rd_poly *poly;         /* [nb] shape in the body frame (centre of mass, principal axes) */
+
+    /* body state (ground frame: the frame moving with the ground) */
+    double (*x)[3];        /* centre of mass, m */
+    double (*q)[4];        /* orientation, body -> ground */
+    double (*v)[3];        /* velocity at the half step, m/s */
+    double (*L)[3];        /* angular momentum about the centre of mass at the half step, kg m^2/s */
+    double (*w)[3];        /* angular velocity at the half step, rad/s */
+    double (*R)[9];        /* rotation matrix of q, refreshed each step */
+    double *mass;          /* kg */
+    double (*inertia)[3];  /* principal moments, kg m^2 */
+    int *fixed;            /* 1 for pedestals (move with the ground: at rest in this frame) */
+    int *convex;           /* 1 for convex bodies: only they can be contact targets */
+    double (*f)[3];        /* force accumulator, N */
+    double (*tq)[3];       /* torque accumulator about the centre of mass, N m */
+    double (*v_old)[3];    /* previous half-step velocity (energy at integer steps) */
+    double (*L_old)[3];
+
+    /* world geometry, refreshed each step for free bodies */
+    int *vert0;            /* [nb+1] first world vertex of each body */
+    double (*wv)[3];       /* world vertices, m */
+    int *face0;            /* [nb+1] first world face of each body */
+    double (*wn)[3];       /* world face normals */
+    double *wd;            /* world face offsets, m */
+
+    /* subcontact points, grouped by body, then by candidate face */
+    int npts;
+    double (*pl)[3];       /* point in the body frame, m */
+    double *pa;            /* tributary area, m^2 */
+    int *pt0;              /* [nb+1] first point of each body */
+    int ncf;               /* candidate faces (faces that carry points), all bodies */
+    int *cf0;              /* [nb+1] first candidate face of each body */
+    int *cf_face;          /* [ncf] face index on its body */
+    int *cf_pt0;           /* [ncf+1] first point of each candidate face */
+
+    /* broad phase (pairs.c) */
+    double (*aabb)[6];     /* per body: min xyz, max xyz, grown by `margin`, m */
+    double margin;         /* m */
+    int *order;            /* bodies sorted by box minimum along sweep_axis */
+    int sweep_axis;
+    long stamp;            /* broad-phase step counter */
+    int *hkey;             /* hash map (a, b) -> pair index, -1 empty; hcap a power of 2 */
+    int hcap;
+    int *live, nlive, cap_live;       /* pairs whose boxes overlap this step */
+    int *live_prev, nlive_prev, cap_live_prev;
+
+    /* contact pairs and their per-point history (grown when two bodies first meet) */
+    int npair, cap_pair;
+    rd_pair *pair;
+    int nstate, cap_state, cap_state_flags;
+    double (*fs)[3];       /* shear force on the owner, ground frame, N */
+    unsigned char *pstate; /* RD_PT_* bits */
+    int nface_state, cap_face_state;
+    int *face_nactive;     /* active points per (side, candidate face) last step */
+    int bonds;             /* 1 when cohesion or tension is set */
+    int can_cull;          /* 0 when cohesion/tension bonds may act across open gaps */
+    int shaking;           /* 1 once the shaking stage has started */
+    double tan_phi;        /* tan(friction angle) */
+
+    /* time */
+    double t;              /* s, 0 at the start of shaking */
+    double dt;             /* s */
+    double dt_crit;        /* estimated critical step, s */
+    long step;             /* steps taken while shaking */
+    int settling;          /* 1 during the settle stage */
+    double settle_time;    /* s */
+
+    /* ground motion this step (m/s^2, m/s, m) */
+    double ag[3], vg[3], dg[3];
+    double ag_prev[3];     /* ground acceleration at the previous step, m/s^2 */
+
+    /* energy bookkeeping, J */
+    double e_fric, e_damp, e_work; /* accumulated friction, damping dissipation, ground work */
+    double e_elastic;               /* spring energy at the current step */
+    double e0;                      /* total mechanical energy at the start of shaking */
+    double e_scale;                 /* largest energy term seen (to normalise the residual) */
+    double resid_max;               /* max |residual| / e_scale */
+    double energy[RD_NENERGY];      /* last sample */
+
+    /* monitoring and output */
+    rd_watch *watch;       /* [nfree] */
+    int nevent, cap_event;
+    rd_event *event;
+    int nevent_written;
+    rd_h5 *h5;
+    double next_out;       /* time of the next output sample, s */
+    double *obuf;          /* [nfree * 17] staging buffer for one sample */
+    long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
+    double wall;           /* wall seconds of the shaking stage */
+    double settle_ratio;   /* unbalanced-force ratio reached by the settle stage */
+    double rest_since;     /* tail: time since which every free body has been at rest, s
+                              (-1 while something moves) */
+    rd_status status;
+    char errmsg[RD_ERROR_MAX];
+};
+
+/* pairs.c */
+int rd_pairs_init(rd_sim *s, rd_error *err);
+int rd_pairs_update(rd_sim *s);
+
+/* contact.c */
+int rd_contact_step(rd_sim *s);
+void rd_contact_reset_body(rd_sim *s, int body);
+
+/* integrate.c */
+void rd_body_refresh(rd_sim *s, int i);
+void rd_bodies_refresh(rd_sim *s);
+void rd_integrate_kick(rd_sim *s);
+void rd_integrate_drift(rd_sim *s);
+void rd_body_set_angular_velocity(rd_sim *s, int i, const double w[3]);
+
+/* timestep.c */
+double rd_timestep_critical(const rd_sim *s);
+
+/* energy.c */
+void rd_energy_step(rd_sim *s);
+void rd_energy_sample(rd_sim *s);
+
+/* rest.c: the free-vibration tail (`model solve time T tail D`) */
+double rd_rest_end(rd_sim *s);
+int rd_rest_reached(rd_sim *s);
+
+/* monitor.c */
+void rd_monitor_rest(rd_sim *s);
+void rd_monitor_start(rd_sim *s);
+void rd_monitor_step(rd_sim *s);
+void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip);
+int rd_monitor_all_fallen(const rd_sim *s);
+void rd_monitor_finish(rd_sim *s);
+void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
+void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
+
+/* setup.c */
+int rd_setup_bodies(rd_sim *s, rd_error *err);
+int rd_setup_contacts(rd_sim *s, rd_error *err);
+
+#endif

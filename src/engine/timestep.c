@@ -1,0 +1,48 @@
+/* rockdem — the critical time step of the explicit scheme.
+ *
+ * For springs k_p acting at points r_p of rigid bodies, the largest eigenvalue of M^-1 K is at
+ * most sum_p k_p * mobility_p, where a point's mobility on body i is at most
+ * G_i = 1/m_i + r_i^2 / I_min,i (translation plus rotation about the stiffest-to-turn axis;
+ * r_i = distance of the farthest vertex). Per body, its own subcontacts all closed at once,
+ * each acting between it and the most mobile other body, bound w_max^2; dt_crit = 2 / w_max,
+ * reduced by sqrt(1 + l^2) - l for a normal dashpot of damping ratio l. A body's own points
+ * cover its joints (weight 1 on pedestals; two half-weight sets on a shared face), so the
+ * bound holds as contacts come and go. */
+#include "engine/sim.h"
+
+#include <math.h>
+
+static double mobility(const rd_sim *s, int i)
+{
+    if (s->fixed[i]) return 0.0;
+    double imin = fmin(s->inertia[i][0], fmin(s->inertia[i][1], s->inertia[i][2]));
+    double r = s->poly[i].radius;
+    return 1.0 / s->mass[i] + r * r / imin;
+}
+
+/* Largest mobility among the free bodies other than i (0 when i can only meet pedestals). */
+static double other_mobility(const rd_sim *s, int i)
+{
+    double g = 0;
+    for (int j = 0; j < s->nb; j++)
+        if (j != i && s->pt0[j + 1] > s->pt0[j]) g = fmax(g, mobility(s, j));
+    return g;
+}
+
+double rd_timestep_critical(const rd_sim *s)
+{
+    double k = fmax(s->sc.contact.kn, s->sc.contact.ks), w2max = 0, lmax = 0;
+    for (int i = 0; i < s->nb; i++) {
+        if (s->fixed[i]) continue;
+        double area = 0; /* its own subcontacts at full weight: where two free bodies meet, the
+                            two half-weight sets together carry about the shared area */
+        for (int j = s->pt0[i]; j < s->pt0[i + 1]; j++) area += s->pa[j];
+        double w2 = k * area * (mobility(s, i) + other_mobility(s, i));
+        if (w2 > w2max) w2max = w2;
+        double l = s->sc.damping.kind == RD_DAMPING_VISCOUS
+                       ? s->sc.damping.value * sqrt(s->mass[i] * mobility(s, i)) : 0.0;
+        if (l > lmax) lmax = l;
+    }
+    if (w2max <= 0) return INFINITY;
+    return 2.0 / sqrt(w2max) * (sqrt(1.0 + lmax * lmax) - lmax);
+}

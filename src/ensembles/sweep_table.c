@@ -1,0 +1,364 @@
+/* rockdem — the sweep table (src/sweep.h, layout in docs/FRAGILITY.md): group /sweep of
+ * equal-length 1-D datasets, one row per finished case (the form tools/rdtools/fraginput.py
+ * reads), plus 2-D per-body datasets body_* [rows][free bodies]. A row is appended column by
+ * column and committed by the `case` column, written last, then the file is flushed: a file
+ * left by a killed sweep is trimmed back to its committed rows when it is opened again. */
+#include "ensembles/sweep.h"
+
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RD_SWEEP_CHUNK 64 /* rows per chunk */
+
+typedef enum col_type { C_I32, C_I64, C_U64, C_F64, C_STR, C_STATUS } col_type;
+
+typedef struct col_spec {
+    const char *name;
+    col_type type;
+    size_t off;       /* in rd_sweep_result */
+    int per_body;     /* 1: [rows][nbodies] */
+    const char *units;
+} col_spec;
+
+#define R(f) offsetof(rd_sweep_result, f)
+static const col_spec outcome_cols[] = {
+    {"pga", C_F64, R(im[RD_IM_PGA]), 0, "m/s^2"},
+    {"pgv", C_F64, R(im[RD_IM_PGV]), 0, "m/s"},
+    {"pgd", C_F64, R(im[RD_IM_PGD]), 0, "m"},
+    {"pgv_pga", C_F64, R(im[RD_IM_PGV_PGA]), 0, "s"},
+    {"arias", C_F64, R(im[RD_IM_ARIAS]), 0, "m/s"},
+    {"d5_95", C_F64, R(im[RD_IM_D5_95]), 0, "s"},
+    {"overturned", C_I32, R(overturned), 0, "1"},
+    {"overturn_time", C_F64, R(overturn_time), 0, "s"},
+    {"max_tilt_ratio", C_F64, R(max_tilt_ratio), 0, "1"},
+    {"max_slide", C_F64, R(max_slide), 0, "m"},
+    {"final_twist", C_F64, R(final_twist), 0, "rad"},
+    {"status", C_STATUS, R(status), 0, ""},
+    {"energy_residual", C_F64, R(energy_residual), 0, "1"},
+    {"end_time", C_F64, R(end_time), 0, "s"},
+    {"wall_seconds", C_F64, R(wall_seconds), 0, "s"},
+    {"hash", C_U64, R(hash), 0, ""},
+    {"body_overturned", C_I32, R(b_overturned), 1, "1"},
+    {"body_overturn_time", C_F64, R(b_overturn_time), 1, "s"},
+    {"body_max_tilt_ratio", C_F64, R(b_max_tilt_ratio), 1, "1"},
+    {"body_max_slide", C_F64, R(b_max_slide), 1, "m"},
+    {"body_final_twist", C_F64, R(b_final_twist), 1, "rad"},
+    {"case", C_I64, R(index), 0, ""}, /* last: writing it commits the row */
+};
+#define NOUT (int)(sizeof outcome_cols / sizeof outcome_cols[0])
+
+typedef struct column {
+    char name[RD_NAME_MAX];
+    hid_t dset;
+    hid_t mtype;   /* memory type of one element */
+    size_t size;   /* bytes of one element */
+    int width;     /* elements per row */
+    int axis;      /* axis index, or -1 */
+    const col_spec *spec;
+} column;
+
+struct rd_sweep_table {
+    char path[RD_PATH_MAX];
+    hid_t file, group, str;
+    const rd_sweep_plan *plan;
+    int ncols;
+    column col[RD_SWEEP_MAX_AXES + NOUT];
+    long rows;
+};
+
+static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error"};
+
+static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty, int width)
+{
+    snprintf(c->name, sizeof c->name, "%s", name);
+    c->width = width;
+    c->axis = -1;
+    c->dset = -1;
+    c->mtype = ty == C_I32 ? H5T_NATIVE_INT : ty == C_I64 ? H5T_NATIVE_LONG : ty == C_U64 ? H5T_NATIVE_ULLONG
+             : ty == C_F64 ? H5T_NATIVE_DOUBLE : t->str;
+    c->size = H5Tget_size(c->mtype);
+}
+
+static void layout(rd_sweep_table *t)
+{
+    const rd_sweep_plan *p = t->plan;
+    t->ncols = 0;
+    for (int a = 0; a < p->naxes; a++) {
+        column *c = &t->col[t->ncols++];
+        col_init(t, c, p->axis[a].key, p->axis[a].number ? C_F64 : C_STR, 1);
+        c->axis = a;
+    }
+    for (int i = 0; i < NOUT; i++) {
+        const col_spec *s = &outcome_cols[i];
+        column *c = &t->col[t->ncols++];
+        col_init(t, c, s->name, s->type, s->per_body ? (p->nbodies > 0 ? p->nbodies : 1) : 1);
+        c->spec = s;
+    }
+}
+
+static int h5fail(rd_sweep_table *t, rd_error *err, const char *what)
+{
+    return rd_error_set(err, "rockdem sweep: %s: %s", t->path, what);
+}
+
+static int attr_text(hid_t obj, const char *name, const char *text)
+{
+    hid_t ty = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
+    H5Tset_size(ty, strlen(text) + 1);
+    hid_t a = H5Acreate2(obj, name, ty, sp, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = a >= 0 && H5Awrite(a, ty, text) >= 0 ? 0 : -1;
+    if (a >= 0) H5Aclose(a);
+    H5Sclose(sp);
+    H5Tclose(ty);
+    return rc;
+}
+
+/* A string attribute (fixed-length) as a malloc'd text, or NULL. */
+static char *attr_read(hid_t obj, const char *name)
+{
+    if (H5Aexists(obj, name) <= 0) return NULL;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT), ty = H5Aget_type(a);
+    char *s = NULL;
+    if (H5Tget_class(ty) == H5T_STRING && !H5Tis_variable_str(ty)) {
+        size_t n = H5Tget_size(ty);
+        if ((s = calloc(n + 1, 1)) && H5Aread(a, ty, s) < 0) { free(s); s = NULL; }
+    }
+    H5Tclose(ty);
+    H5Aclose(a);
+    return s;
+}
+
+static int create_column(rd_sweep_table *t, column *c)
+{
+    int rank = c->width > 1 || (c->spec && c->spec->per_body) ? 2 : 1;
+    hsize_t dims[2] = {0, (hsize_t)c->width}, maxd[2] = {H5S_UNLIMITED, (hsize_t)c->width};
+    hsize_t chunk[2] = {RD_SWEEP_CHUNK, (hsize_t)c->width};
+    hid_t sp = H5Screate_simple(rank, dims, maxd), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, rank, chunk);
+    c->dset = H5Dcreate2(t->group, c->name, c->mtype, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    H5Pclose(dcpl);
+    H5Sclose(sp);
+    if (c->dset < 0) return -1;
+    const char *units = c->axis >= 0 ? t->plan->axis[c->axis].units : c->spec->units;
+    return units[0] ? attr_text(c->dset, "units", units) : 0;
+}
+
+static int write_meta(rd_sweep_table *t)
+{
+    const rd_sweep_plan *p = t->plan;
+    char bodies[RD_MAX_BODIES * RD_NAME_MAX] = "", num[32];
+    for (int k = 0; k < p->nbodies; k++) {
+        strcat(bodies, p->body[k]);
+        if (k + 1 < p->nbodies) strcat(bodies, ",");
+    }
+    snprintf(num, sizeof num, "%ld", p->ncases);
+    return attr_text(t->file, "scenario", p->text) || attr_text(t->file, "scenario_file", p->path) ||
+           attr_text(t->file, "axes", p->axes_text) || attr_text(t->file, "program", "rockdem " RD_VERSION) ||
+           attr_text(t->group, "bodies", bodies) || attr_text(t->group, "ncases", num) ||
+           attr_text(t->group, "status_values", "done,overturned,unstable,io_error,error") ||
+           attr_text(t->group, "im_source", p->pulse ? "pulse: sampled along its direction"
+                                                     : "records: max over horizontal components") ? -1 : 0;
+}
+
+static int create_table(rd_sweep_table *t, rd_error *err)
+{
+    t->file = H5Fcreate(t->path, H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+    if (t->file < 0) return h5fail(t, err, "cannot create the table");
+    t->group = H5Gcreate2(t->file, "sweep", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (t->group < 0 || write_meta(t)) return h5fail(t, err, "cannot write the table header");
+    for (int i = 0; i < t->ncols; i++)
+        if (create_column(t, &t->col[i])) return h5fail(t, err, "cannot create a column");
+    return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
+}
+
+/* The rows committed (length of `case`); other columns are trimmed to it. */
+static int trim(rd_sweep_table *t, rd_error *err)
+{
+    hsize_t dims[2];
+    hid_t sp = H5Dget_space(t->col[t->ncols - 1].dset);
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    H5Sclose(sp);
+    t->rows = (long)dims[0];
+    for (int i = 0; i < t->ncols; i++) {
+        hsize_t d[2] = {dims[0], (hsize_t)t->col[i].width};
+        if (H5Dset_extent(t->col[i].dset, d) < 0) return h5fail(t, err, "cannot trim a column");
+    }
+    return 0;
+}
+
+static int check_same(rd_sweep_table *t, const char *attr, const char *now, const char *what, rd_error *err)
+{
+    char *was = attr_read(t->file, attr);
+    int same = was && !strcmp(was, now);
+    if (!same && !was)
+        rd_error_set(err, "rockdem sweep: %s: not a sweep table of rockdem (no '%s' attribute); "
+                          "choose another -o", t->path, attr);
+    else if (!same)
+        rd_error_set(err, "rockdem sweep: %s holds a sweep with other %s; re-run with the same ones "
+                          "or choose another -o (it has:\n%s)", t->path, what, was);
+    free(was);
+    return same ? 0 : -1;
+}
+
+static const column *find_col(const rd_sweep_table *t, const char *name)
+{
+    for (int i = 0; i < t->ncols; i++)
+        if (t->col[i].axis < 0 && !strcmp(t->col[i].name, name)) return &t->col[i];
+    return NULL;
+}
+
+/* Mark done[] from the committed rows, checking each case's hash. */
+static int read_done(rd_sweep_table *t, char *done, rd_error *err)
+{
+    const column *ck = find_col(t, "case"), *ch = find_col(t, "hash");
+    long n = t->rows;
+    long *k = malloc((size_t)(n > 0 ? n : 1) * sizeof *k);
+    unsigned long long *h = malloc((size_t)(n > 0 ? n : 1) * sizeof *h);
+    int rc = !k || !h ? h5fail(t, err, "out of memory") : 0;
+    if (!rc && n > 0 && (H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) < 0 ||
+                         H5Dread(ch->dset, ch->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, h) < 0))
+        rc = h5fail(t, err, "cannot read the case and hash columns");
+    for (long i = 0; !rc && i < n; i++) {
+        if (k[i] < 0 || k[i] >= t->plan->ncases || h[i] != rd_sweep_hash(t->plan, k[i]))
+            rc = rd_error_set(err, "rockdem sweep: %s: row %ld (case %ld) does not match this sweep's "
+                                   "overrides; choose another -o", t->path, i, k[i]);
+        else done[k[i]] = 1;
+    }
+    free(k);
+    free(h);
+    return rc;
+}
+
+static int open_table(rd_sweep_table *t, char *done, rd_error *err)
+{
+    htri_t is = H5Fis_hdf5(t->path);
+    if (is <= 0) return h5fail(t, err, "exists and is not an HDF5 file; choose another -o");
+    t->file = H5Fopen(t->path, H5F_ACC_RDWR, H5P_DEFAULT);
+    if (t->file < 0) return h5fail(t, err, "cannot open for writing");
+    if (check_same(t, "axes", t->plan->axes_text, "axes or --set overrides", err) ||
+        check_same(t, "scenario", t->plan->text, "scenario text", err))
+        return -1;
+    if ((t->group = H5Gopen2(t->file, "sweep", H5P_DEFAULT)) < 0) return h5fail(t, err, "no /sweep group");
+    for (int i = 0; i < t->ncols; i++)
+        if ((t->col[i].dset = H5Dopen2(t->group, t->col[i].name, H5P_DEFAULT)) < 0)
+            return h5fail(t, err, "a column of /sweep is missing");
+    return trim(t, err) || read_done(t, done, err) ? -1 : 0;
+}
+
+rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+{
+    rd_sweep_table *t = calloc(1, sizeof *t);
+    if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
+    snprintf(t->path, sizeof t->path, "%s", path);
+    t->plan = p;
+    t->file = t->group = -1;
+    t->str = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t->str, RD_SWEEP_TEXT);
+    layout(t);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported by us, in one line */
+    FILE *f = fopen(path, "rb");
+    int rc = f ? open_table(t, done, err) : create_table(t, err);
+    if (f) fclose(f);
+    if (rc) { rd_sweep_table_close(t); return NULL; }
+    return t;
+}
+
+/* Bytes of one row of column c from result r. */
+static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result *r, char *buf)
+{
+    memset(buf, 0, c->size * (size_t)c->width);
+    if (c->axis >= 0) {
+        const rd_sweep_axis *a = &t->plan->axis[c->axis];
+        int v = rd_sweep_value_index(t->plan, r->index, c->axis);
+        if (a->number) memcpy(buf, &a->number[v], sizeof(double));
+        else snprintf(buf, RD_SWEEP_TEXT, "%s", a->value[v]);
+    } else if (c->spec->type == C_STATUS) {
+        snprintf(buf, RD_SWEEP_TEXT, "%s", r->status >= 0 && r->status <= 5 ? status_names[r->status] : "error");
+    } else {
+        size_t n = c->spec->per_body ? (size_t)t->plan->nbodies : 1;
+        memcpy(buf, (const char *)r + c->spec->off, n * c->size);
+    }
+}
+
+int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err)
+{
+    char buf[RD_MAX_BODIES * sizeof(double) + RD_SWEEP_TEXT];
+    for (int i = 0; i < t->ncols; i++) {
+        column *c = &t->col[i];
+        hsize_t d[2] = {(hsize_t)t->rows + 1, (hsize_t)c->width}, start[2] = {(hsize_t)t->rows, 0};
+        hsize_t count[2] = {1, (hsize_t)c->width};
+        int rank = c->spec && c->spec->per_body ? 2 : 1;
+        cell(t, c, r, buf);
+        if (H5Dset_extent(c->dset, d) < 0) return h5fail(t, err, "cannot extend a column");
+        hid_t fs = H5Dget_space(c->dset), ms = H5Screate_simple(rank, count, NULL);
+        H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+        herr_t w = H5Dwrite(c->dset, c->mtype, ms, fs, H5P_DEFAULT, buf);
+        H5Sclose(ms);
+        H5Sclose(fs);
+        if (w < 0) return h5fail(t, err, "cannot write a row");
+    }
+    t->rows++;
+    return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
+}
+
+long rd_sweep_table_rows(const rd_sweep_table *t) { return t->rows; }
+
+static int cmp_key(const void *a, const void *b)
+{
+    const long *x = a, *y = b;
+    return (x[0] > y[0]) - (x[0] < y[0]);
+}
+
+/* Permute every column by perm (new row i = old row perm[i]). */
+static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
+{
+    for (int i = 0; i < t->ncols; i++) {
+        column *c = &t->col[i];
+        size_t row = c->size * (size_t)c->width;
+        char *a = malloc(row * (size_t)t->rows), *b = malloc(row * (size_t)t->rows);
+        int rc = a && b && H5Dread(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 ? 0 : -1;
+        for (long r = 0; !rc && r < t->rows; r++) memcpy(b + (size_t)r * row, a + (size_t)perm[r] * row, row);
+        if (!rc && H5Dwrite(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0) rc = -1;
+        free(a);
+        free(b);
+        if (rc) return h5fail(t, err, "cannot reorder the rows");
+    }
+    return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
+}
+
+int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err)
+{
+    const column *ck = &t->col[t->ncols - 1];
+    long n = t->rows, *k = malloc((size_t)(n > 0 ? n : 1) * sizeof *k), *kv = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *kv);
+    int rc = k && kv && (n == 0 || H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) >= 0) ? 0 : -1;
+    int sorted = 1;
+    for (long i = 0; !rc && i < n; i++) {
+        kv[2 * i] = k[i];
+        kv[2 * i + 1] = i;
+        if (i && k[i] < k[i - 1]) sorted = 0;
+    }
+    if (!rc && !sorted) {
+        qsort(kv, (size_t)n, 2 * sizeof *kv, cmp_key);
+        for (long i = 0; i < n; i++) k[i] = kv[2 * i + 1];
+        rc = permute(t, k, err);
+    } else if (rc) {
+        h5fail(t, err, "cannot read the case column");
+    }
+    free(k);
+    free(kv);
+    return rc;
+}
+
+void rd_sweep_table_close(rd_sweep_table *t)
+{
+    if (!t) return;
+    for (int i = 0; i < t->ncols; i++)
+        if (t->col[i].dset >= 0) H5Dclose(t->col[i].dset);
+    if (t->group >= 0) H5Gclose(t->group);
+    if (t->file >= 0) H5Fclose(t->file);
+    H5Tclose(t->str);
+    free(t);
+}
