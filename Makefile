@@ -35,9 +35,15 @@ $(BUILD)/obj/%.o: src/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
-$(BUILD)/librockdem.a: $(LIBOBJ)
+# one relocatable object whose only global symbols are rd_*: the folders' shared helpers
+# (scenario/parse.h's readers, ...) stay private to the library and cannot clash with a user's
+$(BUILD)/rockdem.o: $(LIBOBJ)
+	ld -r -o $@ $^
+	objcopy --wildcard --keep-global-symbol='rd_*' $@
+
+$(BUILD)/librockdem.a: $(BUILD)/rockdem.o
 	@mkdir -p $(dir $@)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BIN)/rockdem: src/cli/main.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEADERS)
 	@mkdir -p $(dir $@)

@@ -1,4 +1,6 @@
-/* rockdem — rd_error: one line of text describing the last failure. */
+/* rockdem — rd_error: one line of text describing the last failure.
+ * Folder base/ owns errors, vectors and named constants; it calls nothing else in rockdem.
+ */
 #include "rockdem/error.h"
 
 #include <stdarg.h>

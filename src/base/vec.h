@@ -1,5 +1,7 @@
 /* rockdem (private) — 3-vectors and unit quaternions as plain double arrays.
- * Quaternions are (w, x, y, z) and rotate body-frame vectors into the ground frame. */
+ * Quaternions are (w, x, y, z) and rotate body-frame vectors into the ground frame.
+ * Folder base/ owns errors, vectors and named constants; it calls nothing else in rockdem.
+ */
 #ifndef RD_VEC_H
 #define RD_VEC_H
 

@@ -1,5 +1,8 @@
 /* rockdem (private) — subcommands of the command-line program beyond run/check (src/main.c
- * dispatches to these). Each returns the process exit status: 0 ok, 2 bad input, 3 failure. */
+ * dispatches to these). Each returns the process exit status: 0 ok, 2 bad input, 3 failure.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #ifndef RD_CLI_H
 #define RD_CLI_H
 
@@ -15,7 +18,7 @@ typedef int (*rd_cli_option_fn)(void *ctx, int argc, char **argv, int *i);
 int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt, void *ctx,
                     const char **out);
 
-/* Parse a number (optionally with a 'g' suffix: times 9.80665 m/s^2) for option `name`. */
+/* Parse a number (optionally with a 'g' suffix: times RD_G_STANDARD = 9.80665 m/s^2) for option `name`. */
 int rd_cli_number(const char *name, const char *text, int accel, double *v);
 
 int rd_cli_reference(int argc, char **argv);   /* rockdem reference SCENARIO ... */

@@ -1,4 +1,7 @@
-/* rockdem — shared argument handling of the validation subcommands (src/cli.h). */
+/* rockdem — shared argument handling of the validation subcommands (src/cli.h).
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 
 #include <math.h>
@@ -10,7 +13,7 @@ int rd_cli_number(const char *name, const char *text, int accel, double *v)
 {
     char *end;
     double x = strtod(text, &end);
-    if (accel && *end == 'g') { x *= 9.80665; end++; }
+    if (accel && *end == 'g') { x *= RD_G_STANDARD; end++; }
     if (end == text || *end || !isfinite(x)) {
         fprintf(stderr, "rockdem: %s expects a number%s, got '%s'\n", name,
                 accel ? " (m/s^2, or with a g suffix)" : "", text);

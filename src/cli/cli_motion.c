@@ -1,5 +1,8 @@
 /* rockdem — `rockdem run` prints one line of intensity measures per applied record component
- * (the same values rd_h5_ground_im writes as attributes of /ground). */
+ * (the same values rd_h5_ground_im writes as attributes of /ground).
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 
 #include <stdio.h>

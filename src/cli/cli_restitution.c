@@ -1,7 +1,10 @@
 /* rockdem — `rockdem restitution SCENARIO [--target r] [--theta0 rad] [--set k=v]...`:
  * the DEM's effective restitution in free rocking (src/restitution.c) for KN from 1e8 to
  * 1e11 Pa/m and damping ratios 0 .. 1, then the damping ratio that reaches the target
- * (default Housner's r = 1 - 1.5 sin^2 alpha) at the scenario's own KN. */
+ * (default Housner's r = 1 - 1.5 sin^2 alpha) at the scenario's own KN.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 #include "rockdem/validate.h"
 

@@ -3,7 +3,10 @@
  * finest of them (KN x 10, safety x 0.5) is the yardstick. For each run the table gives the wall
  * time and the differences from the yardstick: max tilt (relative), first impact time (s),
  * overturning (same or not). A user reads off which settings reach a given accuracy and what
- * they cost; the rigid-block references (rockdem reference, make study) check the yardstick. */
+ * they cost; the rigid-block references (rockdem reference, make study) check the yardstick.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 
 #include <math.h>

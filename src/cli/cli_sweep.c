@@ -2,7 +2,10 @@
  *     [--scales S1,S2] [--directions D1,D2] [-j N] [--keep-runs DIR] [-q] -o TABLE.h5
  * The coordinator: builds the plan, starts the workers (fork pool, or MPI ranks through a
  * backend), skips the cases already in the table, hands out the rest one at a time, appends
- * each result as it arrives and shows progress on stderr (docs/FRAGILITY.md). */
+ * each result as it arrives and shows progress on stderr (docs/FRAGILITY.md).
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 #include "ensembles/sweep.h"
 

@@ -2,7 +2,10 @@
  * [--steps n] [--frequencies f1,f2,...] [--set k=v]...`: minimum overturning amplitude of the
  * scenario's horizontal pulse (src/threshold.c), printed in m/s^2, g and a / (g tan alpha),
  * with w / p; with --frequencies, one row per pulse frequency: the minimum-overturning curve
- * a / (g tan alpha) against w / p. */
+ * a / (g tan alpha) against w / p.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 #include "rockdem/validate.h"
 
@@ -77,7 +80,7 @@ static int curve_row(rd_scenario *sc, const threshold_args *a, double f)
     }
     if (r.found)
         printf("%10.4g %10.4f %14.4f %12.4f %6d\n", f, r.w_over_p, r.amplitude / r.static_amp,
-               r.amplitude / 9.80665, r.runs);
+               r.amplitude / RD_G_STANDARD, r.runs);
     else
         printf("%10.4g %10.4f %14s %12s %6d\n", f, r.w_over_p, "none", "-", r.runs);
     return 0;
@@ -91,7 +94,7 @@ static void print_single(const rd_scenario *sc, const threshold_args *a, const r
     }
     printf("engine %s: minimum overturning amplitude %.5g m/s^2 = %.4f g "
            "(bracket %.5g .. %.5g m/s^2, %d runs)\n", a->engine == RD_ENGINE_DEM ? "dem" : "reference",
-           r->amplitude, r->amplitude / 9.80665, r->below, r->amplitude, r->runs);
+           r->amplitude, r->amplitude / RD_G_STANDARD, r->below, r->amplitude, r->runs);
     printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2; g tan alpha for one "
            "block)   w / p = %.4f\n", r->amplitude / r->static_amp, r->static_amp, r->w_over_p);
     if (r->amplitude == r->below)

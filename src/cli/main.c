@@ -1,7 +1,10 @@
 /* rockdem — command-line program.
  *   rockdem run FILE [--set key=value]... [-o OUT.h5] [-q]   settle, shake, write HDF5, summarise
  *   rockdem check FILE [--set key=value]...                  parse and validate only
- *   rockdem --version | --help */
+ *   rockdem --version | --help
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "rockdem/rockdem.h"
 #include "cli/cli.h"
 
@@ -47,7 +50,7 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
             printf("%s: precariousness: least tipping angle %.4g deg leaning towards %.0f deg "
                    "(quasi-static tipping acceleration %.3g g); twist at end %.3g deg\n", b->name,
                    b->alpha_min * 180 / M_PI, b->alpha_min_direction * 180 / M_PI,
-                   b->tip_accel_min / 9.80665, b->final_twist * 180 / M_PI);
+                   b->tip_accel_min / RD_G_STANDARD, b->final_twist * 180 / M_PI);
     }
     if (quiet) return;
     double sim_s = s->steps * s->dt;
@@ -63,26 +66,12 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
 }
 
-static int load(rd_scenario *sc, int argc, char **argv, const char **out, int *quiet)
+/* `run`'s own option: -q (quiet). Returns 0 when taken, 1 when unknown. */
+static int run_option(void *ctx, int argc, char **argv, int *i)
 {
-    rd_error err;
-    if (rd_scenario_load(sc, argv[2], &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
-    for (int i = 3; i < argc; i++) {
-        if (!strcmp(argv[i], "--set") && i + 1 < argc) {
-            if (rd_scenario_set(sc, argv[++i], &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
-        } else if (!strncmp(argv[i], "--set=", 6)) {
-            if (rd_scenario_set(sc, argv[i] + 6, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
-        } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
-            *out = argv[++i];
-        } else if (!strcmp(argv[i], "-q")) {
-            *quiet = 1;
-        } else {
-            fprintf(stderr, "rockdem: unknown option '%s' (see rockdem --help)\n", argv[i]);
-            return -1;
-        }
-    }
-    if (*out) snprintf(sc->output.path, sizeof sc->output.path, "%s", *out);
-    if (rd_scenario_validate(sc, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+    (void)argc;
+    if (strcmp(argv[*i], "-q") != 0) return 1;
+    *(int *)ctx = 1;
     return 0;
 }
 
@@ -91,7 +80,7 @@ static int cmd_run(int argc, char **argv, int check_only)
     rd_scenario sc;
     const char *out = NULL;
     int quiet = 0;
-    if (load(&sc, argc, argv, &out, &quiet)) { rd_scenario_free(&sc); return 2; }
+    if (rd_cli_scenario(&sc, argc, argv, run_option, &quiet, &out)) { rd_scenario_free(&sc); return 2; }
     if (check_only) {
         printf("%s: ok (%d bodies, %.4g s)\n", sc.file, sc.nbodies, sc.duration);
         rd_scenario_free(&sc);

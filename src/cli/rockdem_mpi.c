@@ -3,7 +3,10 @@
  * rank 0 is the coordinator (it alone opens and writes the table, resumes, shows progress) and
  * ranks 1..N-1 are workers that receive case indices (-1 = stop) and send back one
  * rd_sweep_result each, as raw bytes (all ranks run the same binary on the same kind of
- * machine). With one rank it falls back to the fork pool (-j). */
+ * machine). With one rank it falls back to the fork pool (-j).
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "ensembles/sweep.h"
 
 #include <mpi.h>

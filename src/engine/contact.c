@@ -14,7 +14,10 @@
  *     |Fs| <= Fn tan(phi) + c A'   scaled back along its direction when exceeded
  * An opening subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn, so the active contact
- * of a pair is damped at the ratio zeta of its critical value. */
+ * of a pair is damped at the ratio zeta of its critical value.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
 #include "base/vec.h"
 

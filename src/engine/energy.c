@@ -10,7 +10,10 @@
  *                 ground puts in
  *   residual      kinetic + gravitational + elastic + friction + damping - ground_work - E(0)
  * The residual is the balance error of the scheme; |residual| / (largest term seen), taken at
- * every output sample, is the health figure reported in the summary. */
+ * every output sample, is the health figure reported in the summary.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
 #include "base/vec.h"
 

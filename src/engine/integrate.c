@@ -5,7 +5,10 @@
  * torque, L(n+1/2) = L(n-1/2) + T(n) dt, which is exact for torque-free motion; the orientation
  * follows dq/dt = 1/2 w q with w = R I^-1 R^T L evaluated at the mid-step orientation (one
  * fixed-point iteration of the implicit midpoint rule, second order, as Omelyan's leapfrog).
- * This solves Euler's equations with the full inertia tensor, gyroscopic terms included. */
+ * This solves Euler's equations with the full inertia tensor, gyroscopic terms included.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
 #include "base/vec.h"
 

@@ -13,8 +13,12 @@
  * The rotation from rest is split (swing-twist) into a twist about the vertical and a swing
  * about a horizontal axis; the swing's rotation vector gives in-plane rocking (about z x d,
  * d = the motion's horizontal direction) and out-of-plane rocking (about -d), as in seed 002
- * Figs. 9-10. Twist is unwrapped sample to sample, so accumulated spins exceed pi. */
+ * Figs. 9-10. Twist is unwrapped sample to sample, so accumulated spins exceed pi.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
+#include "base/constants.h"
 #include "base/vec.h"
 
 #include <math.h>
@@ -317,7 +321,7 @@ static void watch_step(rd_sim *s, int k)
     track_extremes(s, k, z);
     w->down = z[2] < cos(RD_FALLEN_TILT);
 
-    if (w->rest_area > 0 && !w->uplifted && w->area < 0.6 * w->rest_area) {
+    if (w->rest_area > 0 && !w->uplifted && w->area < RD_UPLIFT_AREA_ON * w->rest_area) {
         w->uplifted = 1; sum->uplifted = 1;
         double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
         rd_event_add(s, s->t, k, "uplift", tilt);
@@ -325,7 +329,7 @@ static void watch_step(rd_sim *s, int k)
             double n = rd_norm(tv);
             w->rock_axis[0] = tv[0] / n; w->rock_axis[1] = tv[1] / n;
         }
-    } else if (w->uplifted && w->area >= 0.9 * w->rest_area && 1 - z[2] < 5e-7 * w->alpha_min * w->alpha_min) {
+    } else if (w->uplifted && w->area >= RD_UPLIFT_AREA_OFF * w->rest_area && 1 - z[2] < 5e-7 * w->alpha_min * w->alpha_min) {
         w->uplifted = 0;
     }
     /* signed rocking about the first rocking axis, sine-scaled: (z x e_z) . axis */

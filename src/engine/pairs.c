@@ -6,8 +6,12 @@
  * pairs directly. A pair that overlaps for the first time gets a slot found again through a
  * hash map keyed by (a, b); its per-point history is appended to growable arrays, so memory
  * is allocated only when two bodies meet for the first time, never in a steady step. A pair
- * whose boxes separate forgets its history (3DEC: a re-created contact starts from zero). */
+ * whose boxes separate forgets its history (3DEC: a re-created contact starts from zero).
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
+#include "base/constants.h"
 #include "base/vec.h"
 
 #include <math.h>
@@ -178,6 +182,6 @@ int rd_pairs_init(rd_sim *s, rd_error *err)
     s->sweep_axis = 0; /* sweep along the axis the bodies spread most (a column: z) */
     for (int k = 1; k < 3; k++)
         if (hi[k] - lo[k] > hi[s->sweep_axis] - lo[s->sweep_axis]) s->sweep_axis = k;
-    s->margin = 0.05 * rmin; /* boxes meet a little before the bodies do */
+    s->margin = RD_BROAD_MARGIN * rmin; /* boxes meet a little before the bodies do */
     return 0;
 }

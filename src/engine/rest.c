@@ -4,7 +4,10 @@
  * test) and kinetic energy below RD_REST_KE times m g r (r: its bounding radius), held for
  * RD_REST_HOLD s so that one quiet instant of a rocking or ringing body does not count.
  * In the ground frame after the motion ends the ground velocity is constant (zero after
- * baseline correction), so this frame is inertial and the kinetic energy is the physical one. */
+ * baseline correction), so this frame is inertial and the kinetic energy is the physical one.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
 #include "base/vec.h"
 

@@ -6,9 +6,12 @@
  * joint). Fixed pedestals carry no points: a free body's own points already integrate the
  * joint over its footprint (weight 1); where two free bodies meet, both point sets carry half
  * the stiffness (3DEC's averaging of the two faces' subcontacts). Pairs are made by the broad
- * phase (pairs.c) when two bodies first come near each other. */
+ * phase (pairs.c) when two bodies first come near each other.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
-#include "geometry/perturb.h"
+#include "engine/perturb.h"
 #include "base/vec.h"
 
 #include <math.h>

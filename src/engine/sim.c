@@ -5,8 +5,12 @@
  *   ->  contacts (common plane, subcontact law)  ->  damping  ->  kick velocities
  *   ->  energies, monitoring, output at t  ->  drift positions  ->  health check
  * The frame of reference moves with the ground, so pedestals are at rest and every free body
- * feels the pseudo-force -m a_g(t) (exact for a translating frame). */
+ * feels the pseudo-force -m a_g(t) (exact for a translating frame).
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
+#include "base/constants.h"
 #include "base/vec.h"
 
 #include <math.h>
@@ -80,7 +84,7 @@ static int healthy(rd_sim *s)
         double v2 = rd_dot(s->v[i], s->v[i]) + rd_dot(s->w[i], s->w[i]) * r * r;
         double sum = s->x[i][0] + s->x[i][1] + s->x[i][2] + s->q[i][0] + s->q[i][1] + s->q[i][2] +
                      s->q[i][3] + v2; /* NaN or Inf anywhere makes the sum non-finite */
-        if (isfinite(sum) && v2 <= 1e6) continue;
+        if (isfinite(sum) && v2 <= RD_RUNAWAY_V2) continue;
         const char *cause = NULL;
         double speed = sqrt(v2);
         if (!isfinite(sum)) cause = "has a non-finite state (NaN/Inf)";
@@ -157,7 +161,7 @@ static void step_once(rd_sim *s)
     }
     if (s->settling) {
         s->settle_ratio = unbalance(s);
-        damping_local(s, 0.8, 0);
+        damping_local(s, RD_SETTLE_DAMPING, 0);
     } else if (s->sc.damping.kind == RD_DAMPING_LOCAL) {
         damping_local(s, s->sc.damping.value, 1);
     }
@@ -176,8 +180,8 @@ static void step_once(rd_sim *s)
     s->t += s->dt;
 }
 
-/* Bring the scene to rest under gravity (local damping 0.8, no shaking), like 3DEC's solve to
- * a force ratio; then clear velocities. Contacts keep their history. */
+/* Bring the scene to rest under gravity (local damping RD_SETTLE_DAMPING, no shaking), like
+ * 3DEC's solve to a force ratio; then clear velocities. Contacts keep their history. */
 static void settle(rd_sim *s)
 {
     s->settling = 1;

@@ -1,6 +1,9 @@
 /* rockdem (private) — the simulation object. One struct, every field commented (REBOUND
  * style); per-body and per-point data are flat arrays (structs of arrays) indexed by body or
- * point, so the contact loop streams through memory and never allocates. */
+ * point, so the contact loop streams through memory and never allocates.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #ifndef RD_SIM_H
 #define RD_SIM_H
 

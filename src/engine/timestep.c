@@ -7,7 +7,10 @@
  * each acting between it and the most mobile other body, bound w_max^2; dt_crit = 2 / w_max,
  * reduced by sqrt(1 + l^2) - l for a normal dashpot of damping ratio l. A body's own points
  * cover its joints (weight 1 on pedestals; two half-weight sets on a shared face), so the
- * bound holds as contacts come and go. */
+ * bound holds as contacts come and go.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
 #include "engine/sim.h"
 
 #include <math.h>

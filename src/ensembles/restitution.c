@@ -2,7 +2,10 @@
  * damping ratio that reaches a target value (include/rockdem/validate.h). Restitution is a
  * property of the discretised contact (DESIGN.md section 2): corner subcontacts with a normal
  * dashpot reach Housner's r; a bed of many points rolls the pivot across the base and saturates
- * near 0.82-0.85 however strong the damping, which the calibration reports as unreachable. */
+ * near 0.82-0.85 however strong the damping, which the calibration reports as unreachable.
+ * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
+ * public API (engine, scenario, reference) and io/.
+ */
 #include "rockdem/validate.h"
 
 #include <math.h>

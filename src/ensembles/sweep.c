@@ -1,4 +1,7 @@
-/* rockdem — sweep plans and single cases (src/sweep.h). */
+/* rockdem — sweep plans and single cases (src/sweep.h).
+ * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
+ * public API (engine, scenario, reference) and io/.
+ */
 #include "ensembles/sweep.h"
 
 #include <math.h>
@@ -10,7 +13,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#define G0 9.80665 /* standard gravity, m/s^2 ('g' suffix of --scales) */
 #define RD_PULSE_SAMPLES 4000 /* samples of a pulse for its intensity measures */
 
 static volatile sig_atomic_t stop_flag;
@@ -74,7 +76,7 @@ static int scale_numbers(rd_sweep_axis *a, rd_error *err)
         if (!(g || (end != a->value[i] && *end == '\0')) || !(x > 0) || !isfinite(x))
             return fail(err, "--scales: expected a positive factor or a PGA with a g suffix, got '%s'",
                         a->value[i]);
-        a->number[i] = g ? x * G0 : x;
+        a->number[i] = g ? x * RD_G_STANDARD : x;
         ng += g;
     }
     if (ng && ng != a->n)

@@ -4,7 +4,10 @@
  * the last axis varying fastest); case k is one DEM run of the scenario with the base --set
  * overrides and then one value of every axis applied by rd_scenario_set on a fresh parse.
  * Workers (forked processes, or MPI ranks in bin/rockdem-mpi) run cases and send back one
- * fixed-size rd_sweep_result each; the coordinator appends it to the HDF5 table (/sweep). */
+ * fixed-size rd_sweep_result each; the coordinator appends it to the HDF5 table (/sweep).
+ * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
+ * public API (engine, scenario, reference) and io/.
+ */
 #ifndef RD_SWEEP_H
 #define RD_SWEEP_H
 

@@ -2,7 +2,10 @@
  * equal-length 1-D datasets, one row per finished case (the form tools/rdtools/fraginput.py
  * reads), plus 2-D per-body datasets body_* [rows][free bodies]. A row is appended column by
  * column and committed by the `case` column, written last, then the file is flushed: a file
- * left by a killed sweep is trimmed back to its committed rows when it is opened again. */
+ * left by a killed sweep is trimmed back to its committed rows when it is opened again.
+ * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
+ * public API (engine, scenario, reference) and io/.
+ */
 #include "ensembles/sweep.h"
 
 #include <hdf5.h>

@@ -1,5 +1,8 @@
 /* rockdem — minimum overturning amplitude of a scenario's horizontal pulse, with the DEM or the
- * rigid reference (include/rockdem/validate.h explains what the search finds). */
+ * rigid reference (include/rockdem/validate.h explains what the search finds).
+ * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
+ * public API (engine, scenario, reference) and io/.
+ */
 #include "rockdem/validate.h"
 
 #include <math.h>

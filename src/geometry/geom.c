@@ -1,4 +1,7 @@
-/* rockdem — convex polyhedra, their mass properties and subcontact points. */
+/* rockdem — convex polyhedra, their mass properties and subcontact points.
+ * Folder geometry/ owns solids, their mass properties, subcontact points and assembly builders;
+ * it may call base/ only.
+ */
 #include "geometry/geom.h"
 #include "base/vec.h"
 

@@ -1,7 +1,10 @@
 /* rockdem (private) — convex polyhedra: vertices, polygonal faces with outward planes, a
  * triangulation, mass properties from the closed surface, and subcontact points (points on
  * faces with tributary areas). Coordinates are in the body frame: origin at the centre of
- * mass, axes along the principal axes of inertia. */
+ * mass, axes along the principal axes of inertia.
+ * Folder geometry/ owns solids, their mass properties, subcontact points and assembly builders;
+ * it may call base/ only.
+ */
 #ifndef RD_GEOM_H
 #define RD_GEOM_H
 

@@ -1,6 +1,9 @@
 /* rockdem — closed surface meshes from OBJ, PLY (ASCII, binary little/big endian) and STL
  * (ASCII, binary), read in double precision, recentred on the bounding-box centre and checked
- * (closed, manifold, consistently oriented, outward) by rd_poly_check. */
+ * (closed, manifold, consistently oriented, outward) by rd_poly_check.
+ * Folder geometry/ owns solids, their mass properties, subcontact points and assembly builders;
+ * it may call base/ only.
+ */
 #include "geometry/geom.h"
 
 #include <ctype.h>

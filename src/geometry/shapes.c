@@ -1,5 +1,8 @@
 /* rockdem — more solids: prisms and frustums (drums), convex hulls (qhull), polyhedra from
- * explicit faces, and the check that a polyhedron is closed, manifold and outward. */
+ * explicit faces, and the check that a polyhedron is closed, manifold and outward.
+ * Folder geometry/ owns solids, their mass properties, subcontact points and assembly builders;
+ * it may call base/ only.
+ */
 #include "geometry/geom.h"
 #include "base/vec.h"
 

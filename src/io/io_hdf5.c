@@ -5,6 +5,9 @@
  * fills or on rd_h5_flush, appended with H5Dset_extent + H5Dwrite and followed by H5Fflush, so
  * the file on disk is valid and holds every flushed sample even if the process dies. The file
  * uses the default (earliest) format, which has no "open for writing" flag to clear afterwards.
+ *
+ * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
+ * internals or cli/.
  */
 #include "io/io_hdf5.h"
 

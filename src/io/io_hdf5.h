@@ -29,6 +29,9 @@
  *                          type (string: uplift, impact, slip, overturn, unstable, ...), value
  *   /summary               group, attributes from rd_summary (overturned, overturn_time,
  *                          max_tilt, max_tilt_ratio, max_slide, ... per body as arrays)
+ *
+ * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
+ * internals or cli/.
  */
 #ifndef RD_IO_HDF5_H
 #define RD_IO_HDF5_H

@@ -1,5 +1,8 @@
 /* rockdem — intensity measures of an acceleration record: peaks, Arias intensity,
- * significant duration and the pseudo-spectral acceleration. */
+ * significant duration and the pseudo-spectral acceleration.
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
+ */
 #include "rockdem/record.h"
 
 #include <math.h>

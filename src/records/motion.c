@@ -5,6 +5,9 @@
  * integrals of a from rest; after the end a = 0, v keeps its end value and d grows linearly
  * with it (a pulse that leaves a net velocity, such as the rectangular one, keeps the ground
  * moving: the engine runs in the ground frame, so only a matters for the bodies).
+ *
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
  */
 #include "rockdem/motion.h"
 #include "rockdem/record.h"

@@ -5,6 +5,9 @@
  * (polynomial of degree m->baseline, so the ground velocity ends at zero), times one scale
  * factor shared by all components (a pair keeps its ratio). Both are owned by the definition
  * and freed by rd_motion_release (called from rd_scenario_free).
+ *
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
  */
 #include "rockdem/motion.h"
 #include "rockdem/record.h"

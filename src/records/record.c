@@ -1,7 +1,11 @@
-/* rockdem — acceleration records: creation and the PEER .AT2 and text/CSV readers.
+/* rockdem — acceleration records: the PEER .AT2 and text/CSV readers (the record itself is
+ * allocated and processed by record_process.c, which calls nothing here).
  *
  * Readers report malformed input as "file:line: message" and leave the record zeroed on
  * failure. Values are converted to m/s^2 and integrated (rd_record_integrate) on success.
+ *
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
  */
 #include "rockdem/record.h"
 
@@ -18,33 +22,6 @@
 /* Two-column files: each time step may differ from the first by this fraction (times are
  * printed with a few digits; a real change of step is far larger). */
 #define STEP_TOL 1e-3
-
-int rd_record_alloc(rd_record *r, size_t npts, double dt, rd_error *err)
-{
-    memset(r, 0, sizeof *r);
-    if (npts == 0)
-        return rd_error_set(err, "record: no samples");
-    if (!(dt > 0.0) || !isfinite(dt))
-        return rd_error_set(err, "record: time step %g s must be positive", dt);
-    r->acc = calloc(npts, sizeof *r->acc);
-    r->vel = calloc(npts, sizeof *r->vel);
-    r->disp = calloc(npts, sizeof *r->disp);
-    if (!r->acc || !r->vel || !r->disp) {
-        rd_record_free(r);
-        return rd_error_set(err, "record: out of memory for %zu samples", npts);
-    }
-    r->npts = npts;
-    r->dt = dt;
-    return 0;
-}
-
-void rd_record_free(rd_record *r)
-{
-    free(r->acc);
-    free(r->vel);
-    free(r->disp);
-    memset(r, 0, sizeof *r);
-}
 
 /* --- helpers shared by both readers ------------------------------------------------------ */
 

@@ -4,6 +4,9 @@
  *   /_timeseries/<id>/<a|b>/RecordedAcceleration  [n] g
  * Reading BLOSC datasets needs the HDF5 filter plugin (hdf5-filter-plugin-blosc-serial; HDF5
  * finds it in its default plugin folder or in HDF5_PLUGIN_PATH).
+ *
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
  */
 #include "rockdem/record.h"
 

@@ -1,5 +1,7 @@
-/* rockdem — processing of acceleration records: integration, units, scaling, resampling,
- * padding, baseline correction and evaluation at any time.
+/* rockdem — the acceleration record: allocation, integration, units, scaling, resampling,
+ * padding, baseline correction and evaluation at any time. Folder records/: ground motions
+ * (records, their readers, stochastic generation, intensity measures, the SDOF oscillator);
+ * it may call base/ only. The readers (record.c, record_fema.c) call this file, never back.
  *
  * The acceleration is piecewise linear between samples. On a step h from sample i to i+1
  * the exact integrals from rest are
@@ -14,6 +16,33 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+int rd_record_alloc(rd_record *r, size_t npts, double dt, rd_error *err)
+{
+    memset(r, 0, sizeof *r);
+    if (npts == 0)
+        return rd_error_set(err, "record: no samples");
+    if (!(dt > 0.0) || !isfinite(dt))
+        return rd_error_set(err, "record: time step %g s must be positive", dt);
+    r->acc = calloc(npts, sizeof *r->acc);
+    r->vel = calloc(npts, sizeof *r->vel);
+    r->disp = calloc(npts, sizeof *r->disp);
+    if (!r->acc || !r->vel || !r->disp) {
+        rd_record_free(r);
+        return rd_error_set(err, "record: out of memory for %zu samples", npts);
+    }
+    r->npts = npts;
+    r->dt = dt;
+    return 0;
+}
+
+void rd_record_free(rd_record *r)
+{
+    free(r->acc);
+    free(r->vel);
+    free(r->disp);
+    memset(r, 0, sizeof *r);
+}
 
 double rd_accel_unit_factor(rd_accel_unit unit)
 {

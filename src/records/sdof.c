@@ -4,6 +4,9 @@
  * solution over each step; Nigam & Jennings (1969, BSSA 59(2)) write it as the recurrence
  *   [u; u']_{i+1} = A [u; u']_i + B [a_i; a_{i+1}],
  * exact for any step (no stability or accuracy limit on dt/period).
+ *
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
  */
 #include "rockdem/record.h"
 

@@ -12,6 +12,9 @@
  * that removes that long-period content. Saragoni-Hart envelope in tau = t/T (Boore 2003 form):
  * e = (e_/eps)^b tau^b exp(-b tau/eps), peak 1 at tau = eps, value eta at tau = 1 when
  * b = -eps ln(eta) / (1 + eps (ln eps - 1)).
+ *
+ * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
+ * measures, SDOF); it may call base/ only.
  */
 #include "rockdem/record.h"
 

@@ -1,6 +1,9 @@
 /* rockdem — hybrid ODE driver on SUNDIALS CVODE (Adams–Moulton, Newton with a dense linear
  * solver) for the reference solvers, plus the result bookkeeping they share.
- * Every SUNDIALS 6.x / 7.x difference is kept in this file. */
+ * Every SUNDIALS 6.x / 7.x difference is kept in this file.
+ * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
+ * base/, records/, io/ and the public API.
+ */
 #include "reference/ref_cvode.h"
 
 #include <math.h>

@@ -4,6 +4,9 @@
  * The driver integrates y' = f(t, y) of the current mode, restarts CVODE at every break of the
  * ground input, watches the mode's root functions and hands each root to the model, which may
  * change the mode and jump the state (impacts), continue, or stop.
+ *
+ * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
+ * base/, records/, io/ and the public API.
  */
 #ifndef ROCKDEM_REF_CVODE_H
 #define ROCKDEM_REF_CVODE_H

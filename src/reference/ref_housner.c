@@ -3,7 +3,10 @@
  * State y = (theta, theta'); pivot side s = sgn(theta) (0: resting flat). In rocking,
  *   theta'' = -p^2 [ (1 + vg''/g) sin(s alpha - theta) + (ug''/g) cos(s alpha - theta) ],
  * impacts at theta = 0 give theta'+ = e theta'-, uplift from rest when
- * |ug''| > (g + vg'') tan(alpha) on the side s = -sgn(ug''). */
+ * |ug''| > (g + vg'') tan(alpha) on the side s = -sgn(ug'').
+ * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
+ * base/, records/, io/ and the public API.
+ */
 #include "rockdem/reference.h"
 
 #include <math.h>

@@ -5,7 +5,10 @@
  * block flat on the lower one). Both open: M theta'' + rest = 0 as written in the doc; locked
  * (s1, 0): the composite block about O; lower at rest (0, s2): the upper block about P; (0, 0)
  * rest. Contact forces come from Newton–Euler of each body with the mode's accelerations.
- * Impacts are perfectly plastic with angular momentum conserved about the post-impact pivots. */
+ * Impacts are perfectly plastic with angular momentum conserved about the post-impact pivots.
+ * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
+ * base/, records/, io/ and the public API.
+ */
 #include "rockdem/reference.h"
 
 #include <math.h>

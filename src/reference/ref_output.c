@@ -3,7 +3,10 @@
  * d about its active pivot: the ground pivot O = (s1 b1 d, base) for block 1, the corner
  * P = (s2 b2 d, top of block 1) of block 1 for block 2. The rotation axis is a = (-d_y, d_x, 0)
  * (a positive angle tips the top toward +d). Energies: kinetic and gravitational (from rest);
- * the rigid model has no springs, friction or dashpots, so the others are written as zero. */
+ * the rigid model has no springs, friction or dashpots, so the others are written as zero.
+ * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
+ * base/, records/, io/ and the public API.
+ */
 #include "rockdem/validate.h"
 #include "io/io_hdf5.h"
 

@@ -8,8 +8,11 @@
  *             inward normal by U(0, H) m, so it touches only after that much closure;
  *   scatter C each kept point's area (so its KN A and KS A) is multiplied by a lognormal factor
  *             of mean 1 and coefficient of variation C: exp(sigma z - sigma^2/2),
- *             sigma^2 = ln(1 + C^2); C = 0 gives exactly 1. */
-#include "geometry/perturb.h"
+ *             sigma^2 = ln(1 + C^2); C = 0 gives exactly 1.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ */
+#include "engine/perturb.h"
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>

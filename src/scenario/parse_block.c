@@ -1,0 +1,370 @@
+/* rockdem — scenario commands `block create|import|initial`: bodies into rd_scenario; the
+ * column and stack assemblies come from geometry/builders.c.
+ * Folder scenario/ owns the scenario language (parse, --set overrides, validation); it may call
+ * base/, records/ and geometry/, never engine/, io/ or cli/.
+ */
+#include "scenario/parse.h"
+#include "geometry/builders.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RD_COLUMN_MAX_DRUMS 100 /* drums of one `block create column` */
+
+/* ---- block ---- */
+
+/* Keywords every single-body command accepts, after its shape's own. */
+static const char *const body_common[] = {"position", "seat-on", "at",   "rotation",
+                                          "density",  "mass",    "name", "fixed"};
+#define NCOMMON 8
+
+typedef struct body_cmd {
+    rd_body_def b;
+    const token *name, *dm, *place; /* name token; density/mass and position/seat-on given */
+    unsigned seen;                  /* keywords seen, bit k for names[k] */
+} body_cmd;
+
+/* Reads "seat-on NAME": the body must exist (seated bodies stack in definition order). */
+static int read_seat(parser *P, const token *kw, rd_body_def *b)
+{
+    const token *t;
+    if (read_name(P, kw, &t, b->seat_on))
+        return -1;
+    int j = find_body(P->sc, b->seat_on, strlen(b->seat_on));
+    if (j < 0)
+        return perr(P, t, "unknown block '%s' (seat-on needs a block created before this line)",
+                    b->seat_on);
+    b->position[0] = P->sc->bodies[j].position[0]; /* default: above the seat's centre */
+    b->position[1] = P->sc->bodies[j].position[1];
+    return 0;
+}
+
+static int common_body_keyword(parser *P, int k, const token *kw, body_cmd *c)
+{
+    rd_body_def *b = &c->b;
+    switch (k) {
+    case 0: return exclusive(P, &c->place, kw) || read_values(P, kw, 3, R_ANY, U_PLAIN, b->position);
+    case 1: return exclusive(P, &c->place, kw) || read_seat(P, kw, b);
+    case 2: return read_values(P, kw, 2, R_ANY, U_PLAIN, b->position);
+    case 3: return read_values(P, kw, 3, R_ANY, U_DEG, b->rotation);
+    case 4: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->density);
+    case 5: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->mass);
+    case 6: return read_name(P, kw, &c->name, b->name);
+    default: b->fixed = 1; return 0;
+    }
+}
+
+/* Reads "vertices x y z x y z ...": every number up to the next keyword (at least 4 points). */
+static int read_vertices(parser *P, const token *kw, rd_body_def *b)
+{
+    int n = 0;
+    while (P->cur + n < P->n && parse_number(P->tok[P->cur + n].s, (size_t)P->tok[P->cur + n].len, 0,
+                                             &(double){0}) == 0)
+        n++;
+    if (n < 12 || n % 3)
+        return perr(P, kw, "'vertices' needs x y z triples of at least 4 points, got %d numbers", n);
+    double *v = malloc((size_t)n * sizeof *v);
+    if (!v)
+        return perr(P, kw, "out of memory");
+    if (read_values(P, kw, n, R_ANY, U_PLAIN, v)) {
+        free(v);
+        return -1;
+    }
+    free(b->verts);
+    b->verts = v;
+    b->nverts = n / 3;
+    return 0;
+}
+
+/* Shape keywords: brick {size}, prism {sides, radius, radius-top, height}, polyhedron
+ * {vertices}, mesh {} (the file is read before the keywords). */
+static int shape_keyword(parser *P, int k, const token *kw, rd_body_def *b)
+{
+    double sides;
+    switch (b->shape) {
+    case RD_SHAPE_BRICK: return read_values(P, kw, 3, R_POS, U_PLAIN, b->size);
+    case RD_SHAPE_PRISM:
+        if (k == 0) {
+            if (read_value(P, kw, R_POS, U_PLAIN, &sides))
+                return -1;
+            if (sides < 3 || sides > 128 || sides != (int)sides)
+                return perr(P, kw, "'sides' must be a whole number from 3 to 128");
+            b->sides = (int)sides;
+            return 0;
+        }
+        return read_value(P, kw, R_POS, U_PLAIN, k == 1 ? &b->radius : k == 2 ? &b->radius_top : &b->size[2]);
+    case RD_SHAPE_HULL: return read_vertices(P, kw, b);
+    case RD_SHAPE_MESH: break;
+    }
+    return 0;
+}
+
+/* The shape's own keywords (required ones flagged by bits in need) + body_common. */
+typedef struct shape_syntax {
+    const char *word;
+    rd_shape_kind kind;
+    const char *names[NCOMMON + 5];
+    int nown;
+    unsigned need;
+} shape_syntax;
+
+static const shape_syntax shapes[] = {
+    {"brick", RD_SHAPE_BRICK, {"size"}, 1, 1u},
+    {"prism", RD_SHAPE_PRISM, {"sides", "radius", "radius-top", "height"}, 4, 1u | 2u | 8u},
+    {"polyhedron", RD_SHAPE_HULL, {"vertices"}, 1, 1u},
+    {"mesh", RD_SHAPE_MESH, {NULL}, 0, 0u},
+};
+
+static int body_command(parser *P, const shape_syntax *sh, body_cmd *c)
+{
+    const char *names[NCOMMON + 6];
+    int n = 0;
+    for (; n < sh->nown; n++) names[n] = sh->names[n];
+    for (int i = 0; i < NCOMMON; i++) names[n + i] = body_common[i];
+    names[n + NCOMMON] = NULL;
+    const token *kw;
+    int k;
+    while ((k = next_keyword(P, names, &c->seen, &kw)) >= 0)
+        if (k < n ? shape_keyword(P, k, kw, &c->b) : common_body_keyword(P, k - n, kw, c))
+            return -1;
+    if (k == KW_ERR)
+        return -1;
+    for (int i = 0; i < sh->nown; i++)
+        if ((sh->need >> i & 1u) && !(c->seen >> i & 1u))
+            return perr(P, &P->tok[2], "missing '%s' for '%s %s'", names[i], P->ctx, sh->word);
+    if (!c->place)
+        return perr(P, &P->tok[2], "missing 'position' or 'seat-on' for '%s %s'", P->ctx, sh->word);
+    if ((c->seen >> (n + 2) & 1u) && !c->b.seat_on[0])
+        return perr(P, &P->tok[2], "'at' applies only with 'seat-on'");
+    if (c->b.shape == RD_SHAPE_PRISM && !(c->seen & 4u))
+        c->b.radius_top = c->b.radius;
+    return 0;
+}
+
+/* Appends b, naming it "block<k>" when unnamed; refuses duplicates and overflow. */
+static int add_body(parser *P, const rd_body_def *b, const token *name, const token *at)
+{
+    rd_scenario *sc = P->sc;
+    if (sc->nbodies == RD_MAX_BODIES)
+        return perr(P, verb_token(P), "too many blocks (at most %d)", RD_MAX_BODIES);
+    rd_body_def d = *b;
+    d.line = P->tok[0].line;
+    if (!d.name[0])
+        snprintf(d.name, sizeof d.name, "block%d", sc->nbodies + 1);
+    int dup = find_body(sc, d.name, strlen(d.name));
+    if (dup >= 0 && name)
+        return perr(P, name, "duplicate block name '%s' (first created on line %d)", d.name,
+                    sc->bodies[dup].line);
+    if (dup >= 0)
+        return perr(P, at, "default name '%s' is already taken (line %d); give this block a name",
+                    d.name, sc->bodies[dup].line);
+    sc->bodies[sc->nbodies++] = d;
+    return 0;
+}
+
+static int single_body(parser *P, const shape_syntax *sh, const token *at)
+{
+    body_cmd c = {.b = {.shape = sh->kind}};
+    if (sh->kind == RD_SHAPE_MESH) {
+        char file[RD_PATH_MAX];
+        if (read_text(P, "a mesh file", file, sizeof file))
+            return -1;
+        if (resolve_path(P->name, file, c.b.mesh, sizeof c.b.mesh))
+            return perr(P, at, "mesh path too long");
+    }
+    if (body_command(P, sh, &c) == 0 && add_body(P, &c.b, c.name, at) == 0)
+        return 0;
+    free(c.b.verts);
+    return -1;
+}
+
+/* Builder helpers: a named member of an assembly seated on `seat`. */
+static int add_member(parser *P, const body_cmd *c, const char *prefix, const char *suffix,
+                      const char *seat, rd_body_def *b, const token *at)
+{
+    b->density = c->b.density;
+    b->mass = 0;
+    b->position[0] = c->b.position[0];
+    b->position[1] = c->b.position[1];
+    if ((size_t)snprintf(b->name, sizeof b->name, "%s-%s", prefix, suffix) >= sizeof b->name)
+        return perr(P, at, "block name '%s-%s' is too long", prefix, suffix);
+    snprintf(b->seat_on, sizeof b->seat_on, "%s", seat);
+    return add_body(P, b, NULL, at);
+}
+
+static int read_count(parser *P, const token *kw, int lo, int hi, int *n)
+{
+    double v;
+    if (read_value(P, kw, R_POS, U_PLAIN, &v))
+        return -1;
+    if (v < lo || v > hi || v != (int)v)
+        return perr(P, kw, "'%.*s' must be a whole number from %d to %d", kw->len, kw->s, lo, hi);
+    *n = (int)v;
+    return 0;
+}
+
+/* Adds the n members of an assembly bottom to top, named "<prefix>-<suffix>", the first
+ * seated on the command's seat-on block and each next one on the one before. */
+static int add_chain(parser *P, const body_cmd *c, const char *prefix, rd_body_def *members,
+                     char (*suffix)[16], int n, const token *at)
+{
+    char below[RD_NAME_MAX];
+    snprintf(below, sizeof below, "%s", c->b.seat_on);
+    for (int k = 0; k < n; k++) {
+        if (add_member(P, c, prefix, suffix[k], below, &members[k], at))
+            return -1;
+        memcpy(below, P->sc->bodies[P->sc->nbodies - 1].name, sizeof below);
+    }
+    return 0;
+}
+
+/* block create column drums N diameter D height H [sides S] [taper T] [plinth W H]
+ *                     [capital H] [abacus W H] seat-on NAME [at X Y] [name P] [density RHO]
+ * A classical column: plinth (brick), N drums (prisms whose radius shrinks linearly from D/2
+ * to T D/2 up the shaft), an echinus capital (frustum widening by 30 %), an abacus (brick). */
+static int block_column(parser *P, const token *at)
+{
+    static const char *const names[] = {"drums", "diameter", "height", "sides", "taper", "plinth",
+                                        "capital", "abacus", "seat-on", "at", "name", "density", NULL};
+    body_cmd c = {.b = {.shape = RD_SHAPE_PRISM}};
+    int ndrums = 0, sides = 20;
+    double d = 0, h = 0, taper = 1, plinth[2] = {0}, cap = 0, abacus[2] = {0};
+    const token *kw;
+    int k;
+    while ((k = next_keyword(P, names, &c.seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_count(P, kw, 1, RD_COLUMN_MAX_DRUMS, &ndrums); break;
+        case 1: rc = read_value(P, kw, R_POS, U_PLAIN, &d); break;
+        case 2: rc = read_value(P, kw, R_POS, U_PLAIN, &h); break;
+        case 3: rc = read_count(P, kw, 3, 128, &sides); break;
+        case 4: rc = read_value(P, kw, R_FRAC, U_PLAIN, &taper); break;
+        case 5: rc = read_values(P, kw, 2, R_POS, U_PLAIN, plinth); break;
+        case 6: rc = read_value(P, kw, R_POS, U_PLAIN, &cap); break;
+        case 7: rc = read_values(P, kw, 2, R_POS, U_PLAIN, abacus); break;
+        case 8: rc = read_seat(P, kw, &c.b); c.place = kw; break;
+        case 9: rc = read_values(P, kw, 2, R_ANY, U_PLAIN, c.b.position); break;
+        case 10: rc = read_name(P, kw, &c.name, c.b.name); break;
+        default: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    for (int i = 0; i < 3; i++)
+        if (!(c.seen >> i & 1u))
+            return perr(P, &P->tok[2], "missing '%s' for 'block create column'", names[i]);
+    if (!c.place)
+        return perr(P, &P->tok[2], "missing 'seat-on' for 'block create column'");
+    rd_column_spec spec = {ndrums, sides, d, h, taper, {plinth[0], plinth[1]}, cap, {abacus[0], abacus[1]}};
+    rd_body_def members[RD_COLUMN_MAX_DRUMS + 3];
+    char suffix[RD_COLUMN_MAX_DRUMS + 3][16];
+    int n = rd_build_column(&spec, members, suffix);
+    return add_chain(P, &c, c.b.name[0] ? c.b.name : "column", members, suffix, n, at);
+}
+
+/* block create stack lower LX LY LZ upper UX UY UZ seat-on NAME [at X Y] [name P] [density RHO]
+ * A two-block assembly (a statue on its pedestal): P-lower on NAME, P-upper on P-lower. */
+static int block_stack(parser *P, const token *at)
+{
+    static const char *const names[] = {"lower", "upper", "seat-on", "at", "name", "density", NULL};
+    body_cmd c = {.b = {.shape = RD_SHAPE_BRICK}};
+    double lo[3], up[3];
+    const token *kw;
+    int k;
+    while ((k = next_keyword(P, names, &c.seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_values(P, kw, 3, R_POS, U_PLAIN, lo); break;
+        case 1: rc = read_values(P, kw, 3, R_POS, U_PLAIN, up); break;
+        case 2: rc = read_seat(P, kw, &c.b); c.place = kw; break;
+        case 3: rc = read_values(P, kw, 2, R_ANY, U_PLAIN, c.b.position); break;
+        case 4: rc = read_name(P, kw, &c.name, c.b.name); break;
+        default: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    if ((c.seen & 3u) != 3u)
+        return perr(P, &P->tok[2], "missing '%s' for 'block create stack'", c.seen & 1u ? "upper" : "lower");
+    if (!c.place)
+        return perr(P, &P->tok[2], "missing 'seat-on' for 'block create stack'");
+    rd_body_def members[2];
+    char suffix[2][16];
+    rd_build_stack(lo, up, members, suffix);
+    return add_chain(P, &c, c.b.name[0] ? c.b.name : "stack", members, suffix, 2, at);
+}
+
+int block_create(parser *P)
+{
+    const token *shape = take(P);
+    static const char *expected = "brick, prism, polyhedron, column or stack";
+    if (!shape)
+        return perr(P, verb_token(P), "expected a shape after 'block create' (expected %s)", expected);
+    if (tok_is(shape, "column"))
+        return block_column(P, shape);
+    if (tok_is(shape, "stack"))
+        return block_stack(P, shape);
+    for (size_t i = 0; i + 1 < sizeof shapes / sizeof shapes[0]; i++)
+        if (tok_is(shape, shapes[i].word))
+            return single_body(P, &shapes[i], shape);
+    return perr(P, shape, "unknown shape '%.*s' for 'block create' (expected %s)", shape->len,
+                shape->s, expected);
+}
+
+/* block import mesh 'rock.obj' (position X Y Z | seat-on NAME [at X Y]) [rotation ...] ... */
+int block_import(parser *P)
+{
+    const token *what = take(P);
+    if (!what || !tok_is(what, "mesh"))
+        return perr(P, what ? what : verb_token(P), "expected 'mesh' after 'block import'");
+    return single_body(P, &shapes[3], what);
+}
+
+int block_initial(parser *P)
+{
+    static const char *const names[] = {"name", "tilt", "direction", "velocity",
+                                        "angular-velocity", NULL};
+    const token *kw, *name = NULL;
+    char id[RD_NAME_MAX];
+    double tilt = 0, dir = 0, v[3] = {0}, w[3] = {0};
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_name(P, kw, &name, id); break;
+        case 1: rc = read_value(P, kw, R_ANGLE, U_DEG, &tilt); break;
+        case 2: rc = read_value(P, kw, R_ANY, U_DEG, &dir); break;
+        case 3: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, v); break;
+        default: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, w); break;
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    if (!name)
+        return perr(P, verb_token(P), "missing 'name' for 'block initial'");
+    int i = find_body(P->sc, id, strlen(id));
+    if (i < 0)
+        return perr(P, name, "unknown block '%s' (no 'block create ... name %s' before this line)",
+                    id, id);
+    rd_body_def *b = &P->sc->bodies[i];
+    if (b->fixed)
+        return perr(P, name, "block '%s' is fixed; 'block initial' applies only to free blocks",
+                    id);
+    if (seen & 2u)
+        b->tilt = tilt;
+    if (seen & 4u)
+        b->tilt_direction = dir;
+    if (seen & 8u)
+        memcpy(b->velocity, v, sizeof v);
+    if (seen & 16u)
+        memcpy(b->angular_velocity, w, sizeof w);
+    return 0;
+}

@@ -1,0 +1,239 @@
+/* rockdem — scenario commands `model ...`, `contact ...` and `output hdf5`: scene-wide
+ * settings into rd_scenario.
+ * Folder scenario/ owns the scenario language (parse, --set overrides, validation); it may call
+ * base/, records/ and geometry/, never engine/, io/ or cli/.
+ */
+#include "scenario/parse.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* ---- model ---- */
+
+int model_title(parser *P)
+{
+    if (read_text(P, "a title", P->sc->title, sizeof P->sc->title))
+        return -1;
+    return expect_end(P);
+}
+
+int model_gravity(parser *P)
+{
+    if (read_value(P, verb_token(P), R_NONNEG, U_ACCEL, &P->sc->gravity))
+        return -1;
+    return expect_end(P);
+}
+
+int model_density(parser *P)
+{
+    if (read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->density))
+        return -1;
+    return expect_end(P);
+}
+
+int model_damping(parser *P)
+{
+    static const char *const names[] = {"none", "viscous", "local", NULL};
+    static const range ranges[] = {R_ANY, R_DAMP, R_OPEN01};
+    rd_damping_def *d = &P->sc->damping;
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (exclusive(P, &prev, kw))
+            return -1;
+        d->kind = (rd_damping_kind)k;
+        d->value = 0;
+        if (k > 0 && read_value(P, kw, ranges[k], U_PLAIN, &d->value))
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    return prev ? 0 : missing_keyword(P, names);
+}
+
+int model_timestep(parser *P)
+{
+    static const char *const names[] = {"auto", "fixed", "safety", NULL};
+    rd_timestep_def *ts = &P->sc->timestep;
+    const token *kw, *prev = NULL, *safety = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (k == 2) {
+            safety = kw;
+            if (read_value(P, kw, R_FRAC, U_PLAIN, &ts->safety))
+                return -1;
+            continue;
+        }
+        if (exclusive(P, &prev, kw))
+            return -1;
+        ts->kind = k == 0 ? RD_TIMESTEP_AUTO : RD_TIMESTEP_FIXED;
+        if (k == 1 && read_value(P, kw, R_POS, U_PLAIN, &ts->dt))
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    if (!prev)
+        return perr(P, verb_token(P), "expected auto or fixed after 'model timestep'");
+    if (safety && ts->kind == RD_TIMESTEP_FIXED)
+        return perr(P, safety, "'safety' applies only to 'model timestep auto'");
+    return 0;
+}
+
+int model_settle(parser *P)
+{
+    static const char *const names[] = {"on", "off", "ratio", "time-limit", NULL};
+    rd_settle_def *st = &P->sc->settle;
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        if (k < 2) {
+            rc = exclusive(P, &prev, kw);
+            st->enabled = k == 0;
+        } else {
+            rc = read_value(P, kw, R_POS, U_PLAIN, k == 2 ? &st->ratio : &st->max_time);
+        }
+        if (rc)
+            return -1;
+    }
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+int model_solve(parser *P)
+{
+    static const char *const names[] = {"time", "tail", NULL};
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail))
+            return -1;
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+int model_overturn(parser *P)
+{
+    static const char *const names[] = {"tilt-ratio", "angle", "height", "off-pedestal", "stop", NULL};
+    static const range ranges[] = {R_POS, R_TURN, R_OPEN01, R_NONNEG};
+    static const unit units[] = {U_PLAIN, U_DEG, U_PLAIN, U_PLAIN};
+    rd_overturn_def *ov = &P->sc->overturn;
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (k == 4) {
+            if (read_switch(P, kw, &ov->stop))
+                return -1;
+            continue;
+        }
+        if (exclusive(P, &prev, kw) || read_value(P, kw, ranges[k], units[k], &ov->value))
+            return -1;
+        ov->kind = (rd_overturn_kind)k;
+    }
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+/* `model reference restitution e`: the rigid reference solvers' impact restitution. */
+int model_reference(parser *P)
+{
+    static const char *const names[] = {"restitution", NULL};
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
+            return -1;
+    if (k == KW_ERR)
+        return -1;
+    return seen ? 0 : missing_keyword(P, names);
+}
+
+/* ---- contact ---- */
+
+static int read_spacing(parser *P, const token *kw, double *v)
+{
+    const token *t = take(P);
+    if (!t)
+        return perr(P, kw, "expected a number, auto or vertices after 'spacing'");
+    if (tok_is(t, "auto") || tok_is(t, "vertices")) {
+        *v = tok_is(t, "auto") ? -1.0 : 0.0;
+        return 0;
+    }
+    if (parse_number(t->s, (size_t)t->len, 0, v))
+        return perr(P, t, "expected a number, auto or vertices after 'spacing', got '%.*s'",
+                    t->len, t->s);
+    if (*v < 0)
+        return perr(P, t, "'spacing' must be >= 0, got %.*s", t->len, t->s);
+    return 0;
+}
+
+int contact_property(parser *P)
+{
+    static const char *const names[] = {"stiffness-normal", "stiffness-shear", "friction",
+                                        "cohesion",         "tension",         "spacing", NULL};
+    rd_contact_def *c = &P->sc->contact;
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = 0;
+        switch (k) {
+        case 0: rc = read_value(P, kw, R_POS, U_PLAIN, &c->kn); break;
+        case 1: rc = read_value(P, kw, R_POS, U_PLAIN, &c->ks); break;
+        case 2: rc = read_value(P, kw, R_ANGLE, U_DEG, &c->friction); break;
+        case 3: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->cohesion); break;
+        case 4: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->tension); break;
+        default: rc = read_spacing(P, kw, &c->spacing); break;
+        }
+        if (rc)
+            return -1;
+    }
+    return k == KW_ERR ? -1 : 0;
+}
+
+/* contact interface-perturbation seed S remove F raise H raise-fraction P scatter C
+ * keep-corners on|off (src/perturb.c) */
+int contact_perturbation(parser *P)
+{
+    static const char *const names[] = {"seed", "remove", "raise", "raise-fraction", "scatter",
+                                        "keep-corners", NULL};
+    rd_perturb_def *d = &P->sc->contact.perturb;
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        double *v[] = {&d->seed, &d->remove, &d->raise, &d->raise_fraction, &d->scatter};
+        if (k == 5 ? read_switch(P, kw, &d->keep_corners) : read_value(P, kw, R_NONNEG, U_PLAIN, v[k]))
+            return -1;
+        if ((k == 0 && d->seed != floor(d->seed)) || (k == 1 && d->remove >= 1) || (k == 3 && d->raise_fraction > 1))
+            return perr(P, kw, "'%s' must be %s", names[k], k == 0 ? "a whole number" : k == 1 ? "below 1" : "at most 1");
+    }
+    return k == KW_ERR ? -1 : 0;
+}
+
+/* ---- output ---- */
+
+int output_hdf5(parser *P)
+{
+    static const char *const names[] = {"interval", NULL};
+    rd_output_def *o = &P->sc->output;
+    const token *kw;
+    unsigned seen = 0;
+    int k;
+    if (read_text(P, "a file name", o->path, sizeof o->path))
+        return -1;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
+        if (read_value(P, kw, R_POS, U_PLAIN, &o->interval))
+            return -1;
+    return k == KW_ERR ? -1 : 0;
+}

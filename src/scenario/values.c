@@ -1,0 +1,114 @@
+/* rockdem — scenario values: numbers with units and ranges, names, paths, pulse durations;
+ * shared by the parser, the `--set` overrides and the validation.
+ * Folder scenario/ owns the scenario language (parse, --set overrides, validation); it may call
+ * base/, records/ and geometry/, never engine/, io/ or cli/.
+ */
+#include "scenario/parse.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+int parse_number(const char *s, size_t len, int accel, double *v)
+{
+    char buf[64], *end;
+    if (len == 0 || len >= sizeof buf || isspace((unsigned char)s[0]))
+        return -1;
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    double x = strtod(buf, &end);
+    if (end == buf)
+        return -1;
+    if (accel && end[0] == 'g' && end[1] == '\0') {
+        x *= RD_G_STANDARD;
+        end++;
+    }
+    if (*end != '\0' || !isfinite(x))
+        return -1;
+    *v = x;
+    return 0;
+}
+
+/* NULL when v (as written: degrees for angles) lies in r, else what it must be. */
+const char *range_error(double v, range r)
+{
+    switch (r) {
+    case R_ANY: return NULL;
+    case R_POS: return v > 0 ? NULL : "must be > 0";
+    case R_NONNEG: return v >= 0 ? NULL : "must be >= 0";
+    case R_FRAC: return v > 0 && v <= 1 ? NULL : "must be in (0, 1]";
+    case R_DAMP: return v > 0 && v <= 10 ? NULL : "must be in (0, 10]";
+    case R_OPEN01: return v > 0 && v < 1 ? NULL : "must be in (0, 1)";
+    case R_ANGLE: return v >= 0 && v < 90 ? NULL : "must be in [0, 90) degrees";
+    case R_TURN: return v > 0 && v <= 180 ? NULL : "must be in (0, 180] degrees";
+    }
+    return NULL;
+}
+
+double unit_scale(unit u) { return u == U_DEG ? RD_DEG : 1.0; }
+
+int is_periodic(rd_pulse_kind k)
+{
+    return k == RD_PULSE_ONE_SINE || k == RD_PULSE_ONE_COSINE || k == RD_PULSE_HARMONIC;
+}
+
+/* Duration of a pulse, s: one period (cycles periods for harmonic) for the periodic shapes;
+ * 1/frequency or the given duration for rectangular and triangle. */
+double pulse_duration(const rd_pulse_def *p)
+{
+    if (p->kind == RD_PULSE_HARMONIC)
+        return p->cycles / p->frequency;
+    if (is_periodic(p->kind) || p->frequency > 0)
+        return 1.0 / p->frequency;
+    return p->duration;
+}
+
+/* Block names double as override keys (block.<name>.density): letters, digits, '_' and '-'. */
+int valid_name(const char *s, size_t len)
+{
+    if (len == 0 || len >= RD_NAME_MAX)
+        return 0;
+    for (size_t i = 0; i < len; i++)
+        if (!isalnum((unsigned char)s[i]) && s[i] != '_' && s[i] != '-')
+            return 0;
+    return 1;
+}
+
+int find_body(const rd_scenario *sc, const char *name, size_t len)
+{
+    for (int i = 0; i < sc->nbodies; i++)
+        if (strlen(sc->bodies[i].name) == len && memcmp(sc->bodies[i].name, name, len) == 0)
+            return i;
+    return -1;
+}
+
+/* Appends ", word" (or "word" to an empty buf), truncating quietly. */
+void append(char *buf, size_t size, const char *word)
+{
+    size_t n = strlen(buf);
+    if (n + 1 < size)
+        snprintf(buf + n, size - n, "%s%s", n ? ", " : "", word);
+}
+
+/* Resolves a file name relative to the directory of the scenario file `base` into dst. */
+int resolve_path(const char *base, const char *file, char *dst, size_t size)
+{
+    const char *slash = strrchr(base, '/');
+    int dir = file[0] != '/' && slash ? (int)(slash - base) + 1 : 0;
+    int n = snprintf(dst, size, "%.*s%s", dir, base, file);
+    return n >= 0 && (size_t)n < size ? 0 : -1;
+}
+
+/* Format from the file's extension: .at2, .h5/.hdf5 (FEMA P695 set), else text. */
+rd_record_source source_of(const char *file)
+{
+    const char *dot = strrchr(file, '.');
+    if (dot && strcasecmp(dot, ".at2") == 0)
+        return RD_SOURCE_AT2;
+    if (dot && (strcasecmp(dot, ".h5") == 0 || strcasecmp(dot, ".hdf5") == 0))
+        return RD_SOURCE_FEMA;
+    return RD_SOURCE_TEXT;
+}
