@@ -7,7 +7,10 @@ WFLAGS  := -std=c11 -Wall -Wextra -Werror -D_DEFAULT_SOURCE
 PKGCFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lhdf5_hl
 SUNLIBS := -lsundials_cvode -lsundials_nvecserial -lsundials_sunmatrixdense -lsundials_sunlinsoldense
-ALL_CFLAGS = $(WFLAGS) $(CFLAGS) $(SAN) -Iinclude -Isrc $(PKGCFLAGS)
+# position-independent (one set of objects makes both libraries); only RD_API functions
+# (include/rockdem/api.h) are visible outside the library
+LIBFLAGS := -fPIC -fvisibility=hidden
+ALL_CFLAGS = $(WFLAGS) $(CFLAGS) $(SAN) $(LIBFLAGS) -Iinclude -Isrc $(PKGCFLAGS)
 LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lqhull_r -lm
 
 BUILD   ?= build
@@ -22,9 +25,12 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all run test asan bench study deps clean check-yade mpi
+.PHONY: all lib run test asan bench study deps clean check-yade mpi
 
-all: $(BIN)/rockdem
+all: $(BIN)/rockdem $(BUILD)/librockdem.so
+
+# the engine library alone, static and shared (an embedding program or Python's ctypes)
+lib: $(BUILD)/librockdem.a $(BUILD)/librockdem.so
 
 deps: $(DEPS_STAMP)
 $(DEPS_STAMP): tools/install-deps.sh
@@ -35,23 +41,31 @@ $(BUILD)/obj/%.o: src/%.c $(HEADERS) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
-# one relocatable object whose only global symbols are rd_*: the folders' shared helpers
-# (scenario/parse.h's readers, ...) stay private to the library and cannot clash with a user's
+# librockdem.a: one relocatable object in which the hidden symbols (everything but RD_API) are
+# made local, so the static library exports what the shared one does and a helper of one folder
+# cannot clash with a user's symbol
 $(BUILD)/rockdem.o: $(LIBOBJ)
 	ld -r -o $@ $^
-	objcopy --wildcard --keep-global-symbol='rd_*' $@
+	objcopy --localize-hidden $@
 
 $(BUILD)/librockdem.a: $(BUILD)/rockdem.o
 	@mkdir -p $(dir $@)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/librockdem.so: $(LIBOBJ)
+	$(CC) -shared -Wl,-soname,librockdem.so $(CFLAGS) $(SAN) $^ $(LDLIBS) -o $@
+
+# the unit tests reach private headers (geometry/geom.h, engine/sim.h): they link every object
+$(BUILD)/librockdem-internal.a: $(LIBOBJ)
 	rm -f $@ && ar rcs $@ $^
 
 $(BIN)/rockdem: src/cli/main.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) src/cli/main.c $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
-$(BUILD)/tests/%: tests/%.c $(BUILD)/librockdem.a $(HEADERS)
+$(BUILD)/tests/%: tests/%.c $(BUILD)/librockdem-internal.a $(HEADERS)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALL_CFLAGS) $< $(BUILD)/librockdem.a $(LDLIBS) -lcmocka -o $@
+	$(CC) $(ALL_CFLAGS) $< $(BUILD)/librockdem-internal.a $(LDLIBS) -lcmocka -o $@
 
 run: $(BIN)/rockdem
 	$(BIN)/rockdem run scenarios/default.dat
@@ -60,7 +74,7 @@ run: $(BIN)/rockdem
 scenarios/pbr.obj: tools/make_pbr.py
 	/usr/bin/python3 tools/make_pbr.py --seed 1 -o $@
 
-test: $(BIN)/rockdem $(TESTBIN)
+test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(TESTBIN)
 	@bash tests/run.sh $(BUILD) $(BIN)
 
 asan:

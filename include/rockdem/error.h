@@ -7,6 +7,8 @@
 #ifndef ROCKDEM_ERROR_H
 #define ROCKDEM_ERROR_H
 
+#include "rockdem/api.h"
+
 #include <stddef.h>
 
 #define RD_ERROR_MAX 512
@@ -16,7 +18,7 @@ typedef struct rd_error {
 } rd_error;
 
 /* printf-style setter; always returns -1 so callers can write `return rd_error_set(...)`. */
-int rd_error_set(rd_error *err, const char *fmt, ...)
+RD_API int rd_error_set(rd_error *err, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif

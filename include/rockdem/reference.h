@@ -11,6 +11,7 @@
 #ifndef ROCKDEM_REFERENCE_H
 #define ROCKDEM_REFERENCE_H
 
+#include "rockdem/api.h"
 #include <stddef.h>
 
 #include "rockdem/error.h"
@@ -38,7 +39,7 @@ typedef struct rd_ref_opts {
     double omega0[2];   /* initial rates, rad/s; default 0 */
 } rd_ref_opts;
 
-rd_ref_opts rd_ref_opts_default(void);
+RD_API rd_ref_opts rd_ref_opts_default(void);
 
 typedef enum rd_ref_event_kind {
     RD_REF_UPLIFT,   /* a closed joint opens (rocking starts) */
@@ -87,7 +88,7 @@ typedef struct rd_ref_result {
 } rd_ref_result;
 
 /* Release the arrays of a result filled by a solver (the struct itself is the caller's). */
-void rd_ref_result_free(rd_ref_result *res);
+RD_API void rd_ref_result_free(rd_ref_result *res);
 
 /* ---- Housner: one block ---------------------------------------------------------------- */
 
@@ -98,30 +99,30 @@ typedef struct rd_housner_def {
     double e; /* angular-velocity restitution at impact, 0..1; < 0 means Housner's r; default -1 */
 } rd_housner_def;
 
-rd_housner_def rd_housner_def_default(void);
+RD_API rd_housner_def rd_housner_def_default(void);
 
 /* Slenderness alpha = atan(b/h), rad. */
-double rd_housner_alpha(double b, double h);
+RD_API double rd_housner_alpha(double b, double h);
 
 /* Frequency parameter p = sqrt(3 g / (4 R)), R = sqrt(b^2 + h^2), 1/s. */
-double rd_housner_p(double b, double h, double g);
+RD_API double rd_housner_p(double b, double h, double g);
 
 /* Housner's restitution from angular momentum: r = 1 - 1.5 sin^2(alpha). */
-double rd_housner_r(double alpha);
+RD_API double rd_housner_r(double alpha);
 
 /* Free-motion overturning test for a block rocking about a corner with slenderness alpha and
  * frequency p (works for any rigid body about a fixed pivot with saddle angle alpha): 1 when the
  * fall is certain — beyond alpha moving outward, energy 0.5 omega^2 + p^2 cos(alpha - |theta|)
  * >= p^2 while moving outward, or beyond alpha moving inward without the energy to return. */
-int rd_housner_falls(double theta, double omega, double alpha, double p);
+RD_API int rd_housner_falls(double theta, double omega, double alpha, double p);
 
 /* Exact time (s) of free rocking from rest at theta0 (0 < theta0 < alpha) to theta = 0:
  * t = integral_0^theta0 dtheta / sqrt(2 p^2 (cos(alpha - theta0) - cos(alpha - theta))),
  * evaluated with GSL after theta = theta0 - u^2 removes the endpoint singularity. */
-int rd_housner_free_time(double alpha, double p, double theta0, double *t, rd_error *err);
+RD_API int rd_housner_free_time(double alpha, double p, double theta0, double *t, rd_error *err);
 
 /* Integrate one block from opts->theta0[0], omega0[0] (rest when both are 0). */
-int rd_housner_solve(const rd_housner_def *def, const rd_ground *gm, const rd_ref_opts *opts,
+RD_API int rd_housner_solve(const rd_housner_def *def, const rd_ground *gm, const rd_ref_opts *opts,
                      rd_ref_result *res, rd_error *err);
 
 /* ---- Kounadis: two stacked blocks ------------------------------------------------------- */
@@ -132,11 +133,11 @@ typedef struct rd_kounadis_def {
     double g;          /* gravity, m/s^2; default 9.81 */
 } rd_kounadis_def;
 
-rd_kounadis_def rd_kounadis_def_default(void);
+RD_API rd_kounadis_def rd_kounadis_def_default(void);
 
 /* M(theta) and rest(theta, theta', ug'', vg'') of the 2-DOF pattern (s1, s2), s1, s2 = +-1,
  * exactly as in ROCKING-EQUATIONS.md section 2: M theta'' + rest = 0. */
-void rd_kounadis_matrix(const rd_kounadis_def *d, int s1, int s2, const double th[2],
+RD_API void rd_kounadis_matrix(const rd_kounadis_def *d, int s1, int s2, const double th[2],
                         const double om[2], double ug, double vg, double m[2][2], double rest[2]);
 
 /* Accelerations and contact forces of pattern (s1, s2), s in {-1, 0, 1}; (0, 0) is rest. */
@@ -147,16 +148,16 @@ typedef struct rd_kounadis_eval {
     double iface[2];  /* the same for the interface (normal = top face of the lower block) */
 } rd_kounadis_eval;
 
-int rd_kounadis_eval_mode(const rd_kounadis_def *d, int s1, int s2, const double th[2],
+RD_API int rd_kounadis_eval_mode(const rd_kounadis_def *d, int s1, int s2, const double th[2],
                           const double om[2], double ug, double vg, rd_kounadis_eval *out,
                           rd_error *err);
 
 /* Static uplift thresholds |ug''|/g from rest: whole stack and upper block alone. */
-void rd_kounadis_uplift_thresholds(const rd_kounadis_def *d, double *stack, double *upper);
+RD_API void rd_kounadis_uplift_thresholds(const rd_kounadis_def *d, double *stack, double *upper);
 
 /* Integrate the stack from opts->theta0, omega0 (pattern inferred from signs; rest when all 0).
  * A lift-off is reported (event, summary) and ends the run with status 0. */
-int rd_kounadis_solve(const rd_kounadis_def *def, const rd_ground *gm, const rd_ref_opts *opts,
+RD_API int rd_kounadis_solve(const rd_kounadis_def *def, const rd_ground *gm, const rd_ref_opts *opts,
                       rd_ref_result *res, rd_error *err);
 
 #endif

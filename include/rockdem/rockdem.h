@@ -11,6 +11,7 @@
 #ifndef ROCKDEM_H
 #define ROCKDEM_H
 
+#include "rockdem/api.h"
 #include "rockdem/error.h"
 #include "rockdem/scenario.h"
 #include "rockdem/motion.h"
@@ -73,38 +74,44 @@ typedef struct rd_event {
 typedef struct rd_sim rd_sim;
 
 /* Build the simulation (geometry, subcontact points, time step, output file). NULL on error. */
-rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
+RD_API rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
 
 /* Settle (if asked), then shake for the scenario's duration. Writes the HDF5 file as it goes. */
-rd_status rd_sim_run(rd_sim *sim);
+RD_API rd_status rd_sim_run(rd_sim *sim);
 
 /* Fill the summary (valid after rd_sim_run, also after an early stop). */
-void rd_sim_summary(const rd_sim *sim, rd_summary *out);
+RD_API void rd_sim_summary(const rd_sim *sim, rd_summary *out);
 
 /* The message for an UNSTABLE or IO_ERROR status ("" otherwise). */
-const char *rd_sim_error(const rd_sim *sim);
+RD_API const char *rd_sim_error(const rd_sim *sim);
 
-/* Ask a running simulation to stop at the next step (async-signal-safe). */
-void rd_sim_request_stop(void);
+/* Ask every running simulation of the process to stop at its next step (async-signal-safe: the
+ * one call a signal handler may make). rd_sim_run clears it when it starts. */
+RD_API void rd_sim_request_stop(void);
+
+/* Ask this simulation to stop at its next step; rd_sim_run then returns RD_STATUS_INTERRUPTED
+ * (RD_STATUS_INTERRUPTED at once if called before rd_sim_run). Safe from another thread and
+ * from an observer's callback; other simulations run on. */
+RD_API void rd_sim_stop(rd_sim *sim);
 
 /* Events so far (n receives the count); valid until the next run call or rd_sim_free. */
-const rd_event *rd_sim_events(const rd_sim *sim, int *n);
+RD_API const rd_event *rd_sim_events(const rd_sim *sim, int *n);
 
 /* State of free body k (output order): centre of mass x (m), orientation q (w,x,y,z),
  * velocity v (m/s) and angular velocity w (rad/s), ground frame. Any pointer may be NULL. */
-void rd_sim_body_state(const rd_sim *sim, int k, double x[3], double q[4], double v[3], double w[3]);
+RD_API void rd_sim_body_state(const rd_sim *sim, int k, double x[3], double q[4], double v[3], double w[3]);
 
 /* Energies of the last step, J, in the order kinetic, gravitational, elastic, friction,
  * damping, ground_work, residual. */
-void rd_sim_energy(const rd_sim *sim, double e[7]);
+RD_API void rd_sim_energy(const rd_sim *sim, double e[7]);
 
 /* Number of subcontact points (all bodies) and the time step in use (s). */
-int rd_sim_point_count(const rd_sim *sim);
-double rd_sim_dt(const rd_sim *sim);
+RD_API int rd_sim_point_count(const rd_sim *sim);
+RD_API double rd_sim_dt(const rd_sim *sim);
 
 /* Sum over the shaking steps of the active subcontacts (for ns per subcontact-step). */
-long rd_sim_active_point_steps(const rd_sim *sim);
+RD_API long rd_sim_active_point_steps(const rd_sim *sim);
 
-void rd_sim_free(rd_sim *sim);
+RD_API void rd_sim_free(rd_sim *sim);
 
 #endif

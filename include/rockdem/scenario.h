@@ -5,6 +5,7 @@
 #ifndef ROCKDEM_SCENARIO_H
 #define ROCKDEM_SCENARIO_H
 
+#include "rockdem/api.h"
 #include "rockdem/error.h"
 
 #define RD_NAME_MAX 64
@@ -219,22 +220,22 @@ typedef struct rd_scenario {
 } rd_scenario;
 
 /* Fill every field with its default (no bodies, no motion). */
-void rd_scenario_defaults(rd_scenario *sc);
+RD_API void rd_scenario_defaults(rd_scenario *sc);
 
 /* Parse a scenario file into sc (defaults first). Returns 0, or -1 with err = "file:line:col: ...". */
-int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err);
+RD_API int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err);
 
 /* Parse scenario text held in memory; `name` is used as the file name in messages. */
-int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_error *err);
+RD_API int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_error *err);
 
 /* Apply a command-line override "section.key=value", e.g. "contact.stiffness-normal=1e10",
  * "motion.amplitude=0.4g", "output.file=x.h5", "body.cask.density=2500". Returns 0 or -1. */
-int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err);
+RD_API int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err);
 
 /* Cross-field checks after all overrides (at least one free body, positive sizes, ...). */
-int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
+RD_API int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
 
 /* Free what rd_scenario_load/parse allocated (the text and the motion records). */
-void rd_scenario_free(rd_scenario *sc);
+RD_API void rd_scenario_free(rd_scenario *sc);
 
 #endif

@@ -12,6 +12,7 @@
 #ifndef ROCKDEM_VALIDATE_H
 #define ROCKDEM_VALIDATE_H
 
+#include "rockdem/api.h"
 #include "rockdem/reference.h"
 #include "rockdem/rockdem.h"
 
@@ -39,16 +40,16 @@ typedef struct rd_refscene {
 
 /* Map the scenario to a reference model, or -1 with a one-line reason. The rd_refscene must
  * not be moved after this call (its ground callback points at it). */
-int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err);
+RD_API int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err);
 
 /* Solve the mapped model over [0, sc->duration] with samples every output interval. */
-int rd_refscene_solve(const rd_scenario *sc, const rd_refscene *rs, rd_ref_result *res,
+RD_API int rd_refscene_solve(const rd_scenario *sc, const rd_refscene *rs, rd_ref_result *res,
                       rd_error *err);
 
 /* Write a solution in the DEM's HDF5 layout (src/io_hdf5.h) to path: poses from the rigid
  * rotation about the active pivot, tilt, ground, events, summary; energies kinetic and
  * gravitational (the others zero). Fills sum when not NULL. */
-int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
+RD_API int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
                       const char *path, rd_summary *sum, rd_error *err);
 
 /* ---- overturning thresholds ------------------------------------------------------------- */
@@ -62,7 +63,7 @@ typedef struct rd_threshold_opts {
     double rtol;   /* bisection stops when (hi - lo) / hi < rtol (default 0.005) */
 } rd_threshold_opts;
 
-rd_threshold_opts rd_threshold_opts_default(void);
+RD_API rd_threshold_opts rd_threshold_opts_default(void);
 
 typedef struct rd_threshold_result {
     int found;          /* 0: nothing in [lo, hi] overturned */
@@ -75,7 +76,7 @@ typedef struct rd_threshold_result {
 
 /* Does the scene overturn at this horizontal pulse amplitude (m/s^2)? DEM: the scenario's
  * criterion; reference: certain overturning of either block. The DEM writes no file. */
-int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int *over,
+RD_API int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int *over,
                  rd_error *err);
 
 /* Minimum overturning amplitude of the scenario's horizontal pulse. Overturning is not
@@ -84,7 +85,7 @@ int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int 
  * from lo in nscan coarse steps to the first amplitude that overturns, then bisects inside
  * that first bracket. It finds the lowest overturning amplitude of that bracket, not a global
  * minimum below an island narrower than one coarse step. */
-int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opts *opts,
+RD_API int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opts *opts,
                  rd_threshold_result *out, rd_error *err);
 
 /* ---- restitution of the discretised contact --------------------------------------------- */
@@ -103,13 +104,13 @@ typedef struct rd_restitution {
     double t_impact[4]; /* s, first impact times */
 } rd_restitution;
 
-int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
+RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
                            rd_error *err);
 
 /* Viscous damping ratio (normal dashpot, contact.c) that gives restitution `target` in free
  * rocking, by bisection on zeta in [0, 1] (r falls as zeta grows). Returns 0 with *zeta set
  * when reachable; 1 when not: *zeta is then the nearest end (0 or 1) and *reached its r. */
-int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *zeta,
+RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *zeta,
                              double *reached, rd_error *err);
 
 #endif

@@ -7,6 +7,7 @@
 #define RD_CLI_H
 
 #include "rockdem/rockdem.h"
+#include "rockdem/sweep.h"
 
 /* Option handler of one subcommand: consume argv[*i] (and its value, advancing *i) and return
  * 0; return 1 when the option is not its own, -1 when its value is bad (after printing why). */
@@ -29,5 +30,18 @@ int rd_cli_sweep(int argc, char **argv);       /* rockdem sweep SCENARIO ... (cl
 
 /* One line of intensity measures per applied record component (cli_motion.c). 0 or -1. */
 int rd_cli_print_motion(const rd_motion_def *m);
+
+/* --- cli_sweep.c ----------------------------------------------------------------------------- */
+
+/* A distributed backend (bin/rockdem-mpi): rank > 0 serves cases; rank 0 opens a pool. */
+typedef struct rd_sweep_backend {
+    int rank;
+    int size;
+    int (*serve)(const rd_sweep_plan *p);                       /* worker ranks: exit status */
+    int (*open)(const rd_sweep_plan *p, rd_sweep_pool *pool);   /* coordinator: 0 or -1 */
+} rd_sweep_backend;
+
+/* rockdem sweep with the given backend (NULL: the fork pool). Returns the exit status. */
+int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b);
 
 #endif

@@ -7,7 +7,6 @@
  * ensembles/.
  */
 #include "cli/cli.h"
-#include "ensembles/sweep.h"
 
 #include <errno.h>
 #include <signal.h>

@@ -7,7 +7,7 @@
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
-#include "ensembles/sweep.h"
+#include "cli/cli.h"
 
 #include <mpi.h>
 #include <stdio.h>

@@ -19,9 +19,15 @@
 #include <string.h>
 #include <time.h>
 
+/* rd_sim_request_stop: every running simulation stops (async-signal-safe, for handlers). */
 static volatile sig_atomic_t stop_requested;
 
 void rd_sim_request_stop(void) { stop_requested = 1; }
+
+void rd_sim_stop(rd_sim *s) { atomic_store(&s->stop, 1); }
+
+/* This simulation was asked to stop, by rd_sim_stop or by rd_sim_request_stop. */
+static int stopping(rd_sim *s) { return stop_requested || atomic_load(&s->stop); }
 
 static double wall_now(void)
 {
@@ -188,7 +194,7 @@ static void settle(rd_sim *s)
     s->t = 0;
     memset(s->ag, 0, sizeof s->ag);
     s->settle_ratio = INFINITY;
-    while (s->t < s->sc.settle.max_time && !stop_requested && s->status == RD_STATUS_DONE) {
+    while (s->t < s->sc.settle.max_time && !stopping(s) && s->status == RD_STATUS_DONE) {
         step_once(s);
         if (s->settle_ratio < s->sc.settle.ratio) break;
     }
@@ -358,7 +364,7 @@ rd_status rd_sim_run(rd_sim *s)
     s->e_fric = s->e_damp = s->e_work = 0;
     double t0 = wall_now(), end = rd_rest_end(s);
     while (s->status == RD_STATUS_DONE && s->t < end - 0.5 * s->dt) {
-        if (stop_requested) { s->status = RD_STATUS_INTERRUPTED; break; }
+        if (stopping(s)) { s->status = RD_STATUS_INTERRUPTED; break; }
         step_once(s);
         s->step++;
         if (s->status != RD_STATUS_DONE || !healthy(s)) break;

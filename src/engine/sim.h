@@ -12,6 +12,7 @@
 #include "io/io_hdf5.h"
 
 #include <signal.h>
+#include <stdatomic.h>
 
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
@@ -177,6 +178,7 @@ struct rd_sim {
     double rest_since;     /* tail: time since which every free body has been at rest, s
                               (-1 while something moves) */
     rd_status status;
+    atomic_int stop;       /* rd_sim_stop: 1 = stop at the next step */
     char errmsg[RD_ERROR_MAX];
 };
 

@@ -2,7 +2,7 @@
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */
-#include "ensembles/sweep.h"
+#include "rockdem/sweep.h"
 
 #include <math.h>
 #include <signal.h>

@@ -7,7 +7,7 @@
  * public API (engine, scenario, reference) and io/.
  */
 #define _GNU_SOURCE
-#include "ensembles/sweep.h"
+#include "rockdem/sweep.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -6,7 +6,8 @@
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */
-#include "ensembles/sweep.h"
+#include "rockdem/sweep.h"
+#include "io/h5_quiet.h"
 
 #include <hdf5.h>
 #include <stddef.h>
@@ -251,7 +252,7 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     return trim(t, err) || read_done(t, done, err) ? -1 : 0;
 }
 
-rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
 {
     rd_sweep_table *t = calloc(1, sizeof *t);
     if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
@@ -261,7 +262,6 @@ rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, ch
     t->str = H5Tcopy(H5T_C_S1);
     H5Tset_size(t->str, RD_SWEEP_TEXT);
     layout(t);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported by us, in one line */
     FILE *f = fopen(path, "rb");
     int rc = f ? open_table(t, done, err) : create_table(t, err);
     if (f) fclose(f);
@@ -286,7 +286,7 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
     }
 }
 
-int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err)
+static int sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err)
 {
     char buf[RD_MAX_BODIES * sizeof(double) + RD_SWEEP_TEXT];
     for (int i = 0; i < t->ncols; i++) {
@@ -332,7 +332,7 @@ static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
     return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
 }
 
-int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err)
+static int sweep_table_sort(rd_sweep_table *t, rd_error *err)
 {
     const column *ck = &t->col[t->ncols - 1];
     long n = t->rows, *k = malloc((size_t)(n > 0 ? n : 1) * sizeof *k), *kv = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *kv);
@@ -355,7 +355,7 @@ int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err)
     return rc;
 }
 
-void rd_sweep_table_close(rd_sweep_table *t)
+static void sweep_table_close(rd_sweep_table *t)
 {
     if (!t) return;
     for (int i = 0; i < t->ncols; i++)
@@ -364,4 +364,37 @@ void rd_sweep_table_close(rd_sweep_table *t)
     if (t->file >= 0) H5Fclose(t->file);
     H5Tclose(t->str);
     free(t);
+}
+
+/* ---- the entry points: HDF5 error printing off around each (io/h5_quiet.h) ---- */
+
+rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    rd_sweep_table *r = sweep_table_open(path, p, done, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int rc = sweep_table_append(t, r, err);
+    rd_h5_quiet_end(q);
+    return rc;
+}
+
+int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = sweep_table_sort(t, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+void rd_sweep_table_close(rd_sweep_table *t)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    sweep_table_close(t);
+    rd_h5_quiet_end(q);
 }

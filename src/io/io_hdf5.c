@@ -10,6 +10,7 @@
  * internals or cli/.
  */
 #include "io/io_hdf5.h"
+#include "io/h5_quiet.h"
 
 #include <hdf5.h>
 #include <math.h>
@@ -324,9 +325,8 @@ static rd_h5 *alloc_handle(const char *path, int nb)
     return NULL;
 }
 
-rd_h5 *rd_h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
+static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
 {
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     if (check_names(path, meta, err)) return NULL;
     rd_h5 *h = alloc_handle(path, meta->nbodies);
     if (!h) {
@@ -367,7 +367,7 @@ static void put(rd_h5_series *s, int row, const double *src)
     for (size_t k = 0; k < s->width; k++) dst[k] = NAN;
 }
 
-int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
+static int h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
 {
     int r = h->nbuf;
     put(&h->ser[SER_TIME], r, &s->time);
@@ -385,7 +385,7 @@ int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
     return h->nbuf == RD_H5_BUF ? rd_h5_flush(h, err) : 0;
 }
 
-int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err)
+static int h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err)
 {
     if (body < -1 || body >= h->nb)
         return rd_error_set(err, "%s: event body index %d out of range", h->path, body);
@@ -416,7 +416,7 @@ static int extend_write(hid_t d, hid_t mtype, int rank, hsize_t *dims, hsize_t n
     return ok ? 0 : -1;
 }
 
-int rd_h5_flush(rd_h5 *h, rd_error *err)
+static int h5_flush(rd_h5 *h, rd_error *err)
 {
     int n = h->nbuf, nev = h->nev;
     h->nbuf = h->nev = 0; /* a failed write is not retried: it would duplicate rows */
@@ -460,7 +460,7 @@ static const rd_h5_body_field body_fields[] = {
     {"tip_accel_min", offsetof(rd_body_summary, tip_accel_min), 0},
 };
 
-int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
+static int h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
 {
     char path[RD_NAME_MAX + 16];
     snprintf(path, sizeof path, "/bodies/%s", body);
@@ -526,7 +526,7 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
            attr_double(h, g, "wall_seconds", s->wall_seconds, err) ? -1 : 0;
 }
 
-int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
+static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 {
     int order[RD_MAX_BODIES];
     if (summary_order(h, s, order, err)) return -1;
@@ -541,7 +541,7 @@ int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
     return rc;
 }
 
-void rd_h5_close(rd_h5 *h)
+static void h5_close(rd_h5 *h)
 {
     if (!h) return;
     rd_error ignored;
@@ -574,7 +574,7 @@ static int write_component_im(const rd_h5 *h, hid_t g, const rd_motion_def *m, i
     return attr_str(h, g, name, r->source, err);
 }
 
-int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
+static int h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
 {
     if (!rd_motion_has_records(m)) return 0;
     hid_t g = H5Gopen2(h->file, "/ground", H5P_DEFAULT);
@@ -586,4 +586,69 @@ int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
         if (m->record[c].applied) rc = write_component_im(h, g, m, c, err);
     H5Gclose(g);
     return rc;
+}
+
+/* ---- the entry points: HDF5 error printing off around each (io/h5_quiet.h) ---- */
+
+rd_h5 *rd_h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    rd_h5 *r = h5_open(path, meta, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_append(h, s, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_event(h, time, body, type, value, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_h5_flush(rd_h5 *h, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_flush(h, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_precariousness(h, body, table, n, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_summary(h, s, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+void rd_h5_close(rd_h5 *h)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    h5_close(h);
+    rd_h5_quiet_end(q);
+}
+
+int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_ground_im(h, m, err);
+    rd_h5_quiet_end(q);
+    return r;
 }

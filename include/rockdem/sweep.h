@@ -1,16 +1,17 @@
-/* rockdem (private) — parameter sweeps for fragility (`rockdem sweep`, docs/FRAGILITY.md).
+/* rockdem — parameter sweeps for fragility (`rockdem sweep`, docs/FRAGILITY.md).
  *
  * A plan is the cartesian product of its axes (records x scales x directions x --axis lists,
  * the last axis varying fastest); case k is one DEM run of the scenario with the base --set
  * overrides and then one value of every axis applied by rd_scenario_set on a fresh parse.
  * Workers (forked processes, or MPI ranks in bin/rockdem-mpi) run cases and send back one
  * fixed-size rd_sweep_result each; the coordinator appends it to the HDF5 table (/sweep).
- * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
- * public API (engine, scenario, reference) and io/.
+ * The implementation is src/ensembles/sweep*.c; `rockdem sweep` (src/cli/cli_sweep.c) and
+ * bin/rockdem-mpi drive it.
  */
-#ifndef RD_SWEEP_H
-#define RD_SWEEP_H
+#ifndef ROCKDEM_SWEEP_H
+#define ROCKDEM_SWEEP_H
 
+#include "rockdem/api.h"
 #include "rockdem/rockdem.h"
 
 #define RD_SWEEP_MAX_AXES 16
@@ -79,26 +80,26 @@ typedef struct rd_sweep_result {
 
 /* Add an axis from "KEY=V1,V2,..." (--axis) or a list (kind RECORD, SCALE, DIRECTION). Prints
  * nothing; -1 with err = "rockdem sweep: ...". */
-int rd_sweep_add_axis(rd_sweep_plan *p, rd_axis_kind kind, const char *spec, rd_error *err);
+RD_API int rd_sweep_add_axis(rd_sweep_plan *p, rd_axis_kind kind, const char *spec, rd_error *err);
 
 /* Read the scenario, check every axis value once on a fresh parse, count the cases, and make
  * axes_text. -1 with err. */
-int rd_sweep_plan_finish(rd_sweep_plan *p, rd_error *err);
+RD_API int rd_sweep_plan_finish(rd_sweep_plan *p, rd_error *err);
 
-void rd_sweep_plan_free(rd_sweep_plan *p);
+RD_API void rd_sweep_plan_free(rd_sweep_plan *p);
 
 /* Value index of axis a in case k. */
-int rd_sweep_value_index(const rd_sweep_plan *p, long k, int a);
+RD_API int rd_sweep_value_index(const rd_sweep_plan *p, long k, int a);
 
 /* FNV-1a 64 of the case's overrides as written (base --set, then "key=value" per axis). */
-unsigned long long rd_sweep_hash(const rd_sweep_plan *p, long k);
+RD_API unsigned long long rd_sweep_hash(const rd_sweep_plan *p, long k);
 
 /* Run case k (fresh scenario, overrides, DEM run; the run file goes to tmpdir or keep_dir and
  * is deleted from tmpdir). Always fills r (status -1 and message on a setup error). */
-void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sweep_result *r);
+RD_API void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sweep_result *r);
 
 /* Ask the case running in this process to stop (async-signal-safe); later cases are skipped. */
-void rd_sweep_request_stop(void);
+RD_API void rd_sweep_request_stop(void);
 
 /* --- sweep_pool.c: fork + pipes ------------------------------------------------------------ */
 
@@ -115,10 +116,10 @@ typedef struct rd_sweep_pool {
 } rd_sweep_pool;
 
 /* Fork n workers. -1 with err. */
-int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_error *err);
+RD_API int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_error *err);
 
 /* A private temporary folder for run files ($TMPDIR or /tmp); "" on failure. */
-void rd_sweep_tmpdir(char *dir, size_t size);
+RD_API void rd_sweep_tmpdir(char *dir, size_t size);
 
 /* --- sweep_table.c: the HDF5 table --------------------------------------------------------- */
 
@@ -126,30 +127,17 @@ typedef struct rd_sweep_table rd_sweep_table;
 
 /* Create the table, or open an existing one for the same scenario and axes (done[k] = 1 for
  * cases already in it; done has ncases entries). NULL with err. */
-rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err);
+RD_API rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err);
 
 /* Append one result row and flush the file. -1 with err. */
-int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err);
+RD_API int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err);
 
 /* Rows on disk. */
-long rd_sweep_table_rows(const rd_sweep_table *t);
+RD_API long rd_sweep_table_rows(const rd_sweep_table *t);
 
 /* Reorder the rows by case index (a complete sweep reads the same whatever -j). -1 with err. */
-int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err);
+RD_API int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err);
 
-void rd_sweep_table_close(rd_sweep_table *t);
-
-/* --- cli_sweep.c ----------------------------------------------------------------------------- */
-
-/* A distributed backend (bin/rockdem-mpi): rank > 0 serves cases; rank 0 opens a pool. */
-typedef struct rd_sweep_backend {
-    int rank;
-    int size;
-    int (*serve)(const rd_sweep_plan *p);                       /* worker ranks: exit status */
-    int (*open)(const rd_sweep_plan *p, rd_sweep_pool *pool);   /* coordinator: 0 or -1 */
-} rd_sweep_backend;
-
-/* rockdem sweep with the given backend (NULL: the fork pool). Returns the exit status. */
-int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b);
+RD_API void rd_sweep_table_close(rd_sweep_table *t);
 
 #endif

@@ -1,0 +1,100 @@
+/* The library as an embedding program sees it (issue 14): a per-simulation stop beside the
+ * process-wide one, and HDF5's error printing left as the program set it. Only the public
+ * headers are used. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "rockdem/rockdem.h"
+
+#include <hdf5.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "tmpdir.h"
+
+/* A 0.4 x 0.4 x 1.6 m block on a base, shaken by a sine pulse for 0.5 s. */
+static const char *scene =
+    "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+    "block create brick size 0.4 0.4 1.6 position 0 0 0.8 name b\n"
+    "contact property stiffness-normal 1e9 stiffness-shear 1e8 friction 40 spacing vertices\n"
+    "ground-motion pulse one-sine amplitude 1 frequency 2\n"
+    "model solve time 0.5\n"
+    "output hdf5 'x.h5' interval 0.01\n";
+
+static rd_sim *create(rd_scenario *sc, const char *file)
+{
+    rd_error err;
+    char set[160];
+    assert_int_equal(rd_scenario_parse(sc, "lib.dat", scene, &err), 0);
+    snprintf(set, sizeof set, "output.file=%s/%s", tmpdir, file);
+    assert_int_equal(rd_scenario_set(sc, set, &err), 0);
+    rd_sim *sim = rd_sim_create(sc, &err);
+    if (!sim) fail_msg("%s", err.msg);
+    return sim;
+}
+
+/* rd_sim_stop stops its own simulation at once (no step taken) and no other. */
+static void test_stop_one_simulation(void **state)
+{
+    (void)state;
+    rd_scenario sa, sb;
+    rd_sim *a = create(&sa, "a.h5"), *b = create(&sb, "b.h5");
+    rd_sim_stop(a);
+    assert_int_equal(rd_sim_run(a), RD_STATUS_INTERRUPTED);
+    assert_int_equal(rd_sim_run(b), RD_STATUS_DONE);
+    rd_summary ra, rb;
+    rd_sim_summary(a, &ra);
+    rd_sim_summary(b, &rb);
+    assert_int_equal(ra.steps, 0);
+    assert_true(rb.end_time >= 0.5 - rd_sim_dt(b)); /* ran its whole 0.5 s */
+    rd_sim_free(a);
+    rd_sim_free(b);
+    rd_scenario_free(&sa);
+    rd_scenario_free(&sb);
+}
+
+static int printed;
+static herr_t count_errors(hid_t stack, void *data)
+{
+    (void)stack;
+    (void)data;
+    printed++;
+    return 0;
+}
+
+/* An embedding program's HDF5 error handler is neither replaced nor called by rockdem's own
+ * failing HDF5 calls (an output file in a folder that does not exist), and still works after. */
+static void test_hdf5_error_handler_kept(void **state)
+{
+    (void)state;
+    H5Eset_auto2(H5E_DEFAULT, count_errors, NULL);
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "lib.dat", scene, &err), 0);
+    char set[160];
+    snprintf(set, sizeof set, "output.file=%s/no/such/dir/x.h5", tmpdir);
+    assert_int_equal(rd_scenario_set(&sc, set, &err), 0);
+    assert_null(rd_sim_create(&sc, &err));
+    assert_non_null(strstr(err.msg, "cannot create file"));
+    assert_int_equal(printed, 0);
+    H5E_auto2_t fn = NULL;
+    void *data = NULL;
+    H5Eget_auto2(H5E_DEFAULT, &fn, &data);
+    assert_ptr_equal(fn, count_errors);
+    H5Fopen("/nonexistent/rockdem.h5", H5F_ACC_RDONLY, H5P_DEFAULT); /* the program's own call */
+    assert_true(printed > 0);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    rd_scenario_free(&sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_stop_one_simulation),
+        cmocka_unit_test(test_hdf5_error_handler_kept),
+    };
+    return cmocka_run_group_tests(tests, setup_dir, remove_dir);
+}
