@@ -44,11 +44,11 @@ static rd_h5_meta make_meta(rd_h5_body *bodies)
     static const char *names[NB] = {"left", "right"};
     for (int i = 0; i < NB; i++) {
         bodies[i] = (rd_h5_body){names[i], 2000.0 + i, {1, 2, 3}, {1, 1, 2}, 0.4636 + i,
-                                 8, &cube_vertices[0][0], 12, &cube_faces[0][0]};
+                                 8, &cube_vertices[0][0], 12, &cube_faces[0][0], 0, {0}, {0}};
     }
     return (rd_h5_meta){SCENARIO, "test.dat", "writer test", 1e-5, 4e-5, "viscous 0.05",
                         "tilt-ratio 1.5", 1e10, 1e9, 0.6981317007977318, 0, 0, 0.1,
-                        NB, bodies};
+                        NB, bodies, 0, NULL};
 }
 
 static void append_range(rd_h5 *h, int from, int to)
@@ -208,37 +208,79 @@ static void check_series(hid_t f, hsize_t n)
 typedef struct event_row {
     double time;
     int body;
+    char name[RD_NAME_MAX]; /* body name, "" for the whole scene */
     char type[16];
     double value;
 } event_row;
 
+/* Column col of /events as doubles (n rows). */
+static void read_event_column(hid_t f, const char *col, hid_t mtype, void *out)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/events/%s", col);
+    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+    assert_true(d >= 0);
+    assert_true(H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) >= 0);
+    H5Dclose(d);
+}
+
+/* The /events group's columns as rows; type read through the file's enum (names). */
 static hsize_t read_events(hid_t f, event_row *rows, hsize_t max)
 {
-    hid_t d = H5Dopen2(f, "/events", H5P_DEFAULT);
-    assert_true(d >= 0);
-    hid_t sp = H5Dget_space(d);
     hsize_t n = 0;
-    H5Sget_simple_extent_dims(sp, &n, NULL);
+    assert_true(H5LTget_dataset_info(f, "/events/time", &n, NULL, NULL) >= 0);
     assert_true(n <= max);
-    hid_t str = H5Tcopy(H5T_C_S1);
-    H5Tset_size(str, 16);
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(event_row));
-    H5Tinsert(t, "time", offsetof(event_row, time), H5T_NATIVE_DOUBLE);
-    H5Tinsert(t, "body", offsetof(event_row, body), H5T_NATIVE_INT);
-    H5Tinsert(t, "type", offsetof(event_row, type), str);
-    H5Tinsert(t, "value", offsetof(event_row, value), H5T_NATIVE_DOUBLE);
-    if (n) assert_true(H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0);
-    H5Tclose(t);
-    H5Tclose(str);
-    H5Sclose(sp);
+    if (!n) return 0;
+    double t[16], v[16];
+    int b[16];
+    char *names[16];
+    unsigned char ty[16];
+    assert_true(n <= 16);
+    read_event_column(f, "time", H5T_NATIVE_DOUBLE, t);
+    read_event_column(f, "value", H5T_NATIVE_DOUBLE, v);
+    read_event_column(f, "body_index", H5T_NATIVE_INT, b);
+    hid_t st = H5Tcopy(H5T_C_S1);
+    H5Tset_size(st, H5T_VARIABLE);
+    read_event_column(f, "body", st, names);
+    hid_t d = H5Dopen2(f, "/events/type", H5P_DEFAULT);
+    hid_t et = H5Dget_type(d);
+    assert_int_equal(H5Tget_class(et), H5T_ENUM);
+    assert_true(H5Dread(d, H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, ty) >= 0);
+    for (hsize_t k = 0; k < n; k++) {
+        rows[k].time = t[k];
+        rows[k].value = v[k];
+        rows[k].body = b[k];
+        snprintf(rows[k].name, sizeof rows[k].name, "%s", names[k]);
+        assert_true(H5Tenum_nameof(et, &ty[k], rows[k].type, sizeof rows[k].type) >= 0);
+        H5free_memory(names[k]);
+    }
+    H5Tclose(et);
     H5Dclose(d);
+    H5Tclose(st);
     return n;
+}
+
+/* The name of the enum attribute obj@name. */
+static void check_enum_attr(hid_t f, const char *obj, const char *name, const char *want)
+{
+    hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    assert_true(a >= 0);
+    hid_t t = H5Aget_type(a);
+    assert_int_equal(H5Tget_class(t), H5T_ENUM);
+    unsigned char v = 0;
+    char buf[32];
+    assert_true(H5Aread(a, H5T_NATIVE_UCHAR, &v) >= 0);
+    assert_true(H5Tenum_nameof(t, &v, buf, sizeof buf) >= 0);
+    assert_string_equal(buf, want);
+    H5Tclose(t);
+    H5Aclose(a);
 }
 
 static void check_summary(hid_t f, double scale)
 {
     rd_summary want = make_summary(scale);
-    check_str_attr(f, "/summary", "status", scale > 1 ? "interrupted" : "overturned");
+    check_enum_attr(f, "/summary", "status", scale > 1 ? "interrupted" : "overturned");
+    check_str_attr(f, "/summary", "max_slide_units", "m");
     int i = 0;
     long steps = 0;
     assert_true(H5LTget_attribute_int(f, "/summary", "any_overturned", &i) >= 0);
@@ -290,23 +332,39 @@ static void check_root(hid_t f)
     assert_true(attr_d(f, "/", "cohesion") == 0);
     assert_true(attr_d(f, "/", "tension") == 0);
     assert_true(attr_d(f, "/", "spacing") == 0.1);
+    check_enum_attr(f, "/", "spacing_rule", "fixed");
+    check_str_attr(f, "/", "spacing_units", "m");
+    check_str_attr(f, "/", "kn_units", "Pa/m");
+    check_str_attr(f, "/", "Conventions", "rockdem-2");
+    int layout = 0;
+    assert_true(H5LTget_attribute_int(f, "/", "layout_version", &layout) >= 0);
+    assert_int_equal(layout, 2);
     check_str_attr(f, "/time", "units", "s");
+    check_str_attr(f, "/energy/kinetic", "units", "J");
+    check_str_attr(f, "/position", "long_name", "centre of mass, ground frame");
 }
 
 static void check_bodies(hid_t f)
 {
-    char names[NB][RD_NAME_MAX];
+    char *names[NB];
     hid_t d = H5Dopen2(f, "/bodies/names", H5P_DEFAULT);
+    hid_t ft = H5Dget_type(d);
+    assert_true(H5Tis_variable_str(ft) > 0);
+    assert_int_equal(H5Tget_cset(ft), H5T_CSET_UTF8);
     hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, RD_NAME_MAX);
+    H5Tset_size(t, H5T_VARIABLE);
     assert_true(H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, names) >= 0);
     H5Tclose(t);
+    H5Tclose(ft);
     H5Dclose(d);
     assert_string_equal(names[0], "left");
     assert_string_equal(names[1], "right");
+    H5free_memory(names[0]);
+    H5free_memory(names[1]);
     double v[3];
     assert_true(attr_d(f, "/bodies/right", "mass") == 2001.0);
-    assert_true(attr_d(f, "/bodies/right", "alpha") == 1.4636);
+    /* the summary's alpha (support polygon at rest) replaces the brick estimate 1.4636 */
+    assert_true(attr_d(f, "/bodies/right", "alpha") == 1.5);
     assert_true(H5LTget_attribute_double(f, "/bodies/left", "inertia_principal", v) >= 0);
     assert_true(v[0] == 1 && v[1] == 2 && v[2] == 3);
     assert_true(H5LTget_attribute_double(f, "/bodies/left", "size", v) >= 0);
@@ -344,6 +402,14 @@ static void check_layout(hid_t f)
     H5Sget_simple_extent_dims(sp, dims, maxd);
     assert_true(maxd[0] == H5S_UNLIMITED);
     H5Sclose(sp);
+    /* axes: /time, /body, /xyz dimension scales */
+    const char *axis[3] = {"/time", "/body", "/xyz"};
+    for (unsigned k = 0; k < 3; k++) {
+        hid_t sc = H5Dopen2(f, axis[k], H5P_DEFAULT);
+        assert_true(H5DSis_scale(sc) > 0);
+        assert_true(H5DSis_attached(d, sc, k) > 0);
+        H5Dclose(sc);
+    }
     H5Pclose(p);
     H5Dclose(d);
 }
@@ -399,7 +465,9 @@ static void test_roundtrip(void **state)
     assert_int_equal(rd_h5_event(h, 1.25, 0, "uplift", 0.001, &err), 0);
     assert_int_equal(rd_h5_event(h, 2.5, 1, "overturn", 1.6, &err), 0);
     append_range(h, 400, NSAMPLES);
-    assert_int_equal(rd_h5_event(h, 3.0, -1, "a-very-long-event-type", -2.0, &err), 0);
+    assert_int_equal(rd_h5_event(h, 3.0, -1, "unsettled", -2.0, &err), 0);
+    assert_int_equal(rd_h5_event(h, 3.0, -1, "no-such-event", -2.0, &err), -1);
+    assert_non_null(strstr(err.msg, "unknown event type 'no-such-event'"));
     rd_summary s = make_summary(1);
     assert_int_equal(rd_h5_summary(h, &s, &err), 0);
     rd_h5_close(h);
@@ -414,10 +482,13 @@ static void test_roundtrip(void **state)
     assert_int_equal(read_events(f, ev, 8), 3);
     assert_true(ev[0].time == 1.25 && ev[0].body == 0 && ev[0].value == 0.001);
     assert_string_equal(ev[0].type, "uplift");
+    assert_string_equal(ev[0].name, "left");
     assert_true(ev[1].time == 2.5 && ev[1].body == 1 && ev[1].value == 1.6);
     assert_string_equal(ev[1].type, "overturn");
+    assert_string_equal(ev[1].name, "right");
     assert_true(ev[2].body == -1 && ev[2].value == -2.0);
-    assert_string_equal(ev[2].type, "a-very-long-eve"); /* truncated to 15 characters */
+    assert_string_equal(ev[2].name, "");
+    assert_string_equal(ev[2].type, "unsettled");
     H5Fclose(f);
 }
 

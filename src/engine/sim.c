@@ -265,19 +265,30 @@ static const char *overturn_text(const rd_overturn_def *o, char *buf, size_t n)
     return buf;
 }
 
+/* Body i as the writer describes it; free bodies' alpha from the brick size (the rest
+ * support polygon replaces it in the summary), fixed ones with their pose. */
+static rd_h5_body h5_body(const rd_sim *s, int i)
+{
+    const rd_poly *p = &s->poly[i];
+    rd_h5_body b = {.name = s->sc.bodies[i].name, .mass = s->mass[i], .nvert = p->nv,
+                    .vertices = &p->v[0][0], .ntri = p->ntri, .triangles = &p->tri[0][0],
+                    .fixed = s->fixed[i]};
+    memcpy(b.inertia, s->inertia[i], sizeof b.inertia);
+    memcpy(b.size, s->sc.bodies[i].size, sizeof b.size);
+    b.alpha = atan2(0.5 * fmin(b.size[0], b.size[1]), 0.5 * b.size[2]);
+    memcpy(b.position, s->x[i], sizeof b.position);
+    memcpy(b.quaternion, s->q[i], sizeof b.quaternion);
+    return b;
+}
+
 static int open_output(rd_sim *s, rd_error *err)
 {
-    rd_h5_body *hb = calloc((size_t)s->nfree, sizeof *hb);
+    int nfixed = s->nb - s->nfree;
+    rd_h5_body *hb = calloc((size_t)s->nb, sizeof *hb);
     if (!hb) return rd_error_set(err, "out of memory");
-    for (int k = 0; k < s->nfree; k++) {
-        int i = s->free_body[k];
-        const rd_poly *p = &s->poly[i];
-        hb[k] = (rd_h5_body){.name = s->sc.bodies[i].name, .mass = s->mass[i], .nvert = p->nv,
-                             .vertices = &p->v[0][0], .ntri = p->ntri, .triangles = &p->tri[0][0]};
-        memcpy(hb[k].inertia, s->inertia[i], sizeof hb[k].inertia);
-        memcpy(hb[k].size, s->sc.bodies[i].size, sizeof hb[k].size);
-        hb[k].alpha = atan2(0.5 * fmin(hb[k].size[0], hb[k].size[1]), 0.5 * hb[k].size[2]);
-    }
+    for (int k = 0; k < s->nfree; k++) hb[k] = h5_body(s, s->free_body[k]);
+    for (int i = 0, k = s->nfree; i < s->nb; i++)
+        if (s->fixed[i]) hb[k++] = h5_body(s, i);
     char dbuf[64], obuf[64];
     const rd_contact_def *c = &s->sc.contact;
     rd_h5_meta meta = {.scenario_text = s->sc.text ? s->sc.text : "", .scenario_file = s->sc.file,
@@ -285,7 +296,8 @@ static int open_output(rd_sim *s, rd_error *err)
                        .damping = damping_text(&s->sc.damping, dbuf, sizeof dbuf),
                        .overturn_criterion = overturn_text(&s->sc.overturn, obuf, sizeof obuf),
                        .kn = c->kn, .ks = c->ks, .friction = c->friction, .cohesion = c->cohesion,
-                       .tension = c->tension, .spacing = c->spacing, .nbodies = s->nfree, .bodies = hb};
+                       .tension = c->tension, .spacing = c->spacing, .nbodies = s->nfree, .bodies = hb,
+                       .nfixed = nfixed, .fixed_bodies = hb + s->nfree};
     s->h5 = rd_h5_open(s->sc.output.path, &meta, err);
     free(hb);
     return s->h5 ? 0 : -1;

@@ -3,6 +3,9 @@
  * reads), plus 2-D per-body datasets body_* [rows][free bodies]. A row is appended column by
  * column and committed by the `case` column, written last, then the file is flushed: a file
  * left by a killed sweep is trimmed back to its committed rows when it is opened again.
+ * Self-describing like a run file (docs/HDF5-LAYOUT.md): `case` is the dimension scale of the
+ * rows and `body` of the per-body axis, every column has units and long_name, status is an
+ * HDF5 enum, strings are UTF-8 and the case count is a number.
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */
@@ -10,12 +13,14 @@
 #include "io/h5_quiet.h"
 
 #include <hdf5.h>
+#include <hdf5_hl.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
+#define RD_SWEEP_LAYOUT 2 /* /sweep layout_version: 2 = scales, status enum, numeric ncases */
 
 typedef enum col_type { C_I32, C_I64, C_U64, C_F64, C_STR, C_STATUS } col_type;
 
@@ -25,32 +30,33 @@ typedef struct col_spec {
     size_t off;       /* in rd_sweep_result */
     int per_body;     /* 1: [rows][nbodies] */
     const char *units;
+    const char *long_name;
 } col_spec;
 
 #define R(f) offsetof(rd_sweep_result, f)
 static const col_spec outcome_cols[] = {
-    {"pga", C_F64, R(im[RD_IM_PGA]), 0, "m/s^2"},
-    {"pgv", C_F64, R(im[RD_IM_PGV]), 0, "m/s"},
-    {"pgd", C_F64, R(im[RD_IM_PGD]), 0, "m"},
-    {"pgv_pga", C_F64, R(im[RD_IM_PGV_PGA]), 0, "s"},
-    {"arias", C_F64, R(im[RD_IM_ARIAS]), 0, "m/s"},
-    {"d5_95", C_F64, R(im[RD_IM_D5_95]), 0, "s"},
-    {"overturned", C_I32, R(overturned), 0, "1"},
-    {"overturn_time", C_F64, R(overturn_time), 0, "s"},
-    {"max_tilt_ratio", C_F64, R(max_tilt_ratio), 0, "1"},
-    {"max_slide", C_F64, R(max_slide), 0, "m"},
-    {"final_twist", C_F64, R(final_twist), 0, "rad"},
-    {"status", C_STATUS, R(status), 0, ""},
-    {"energy_residual", C_F64, R(energy_residual), 0, "1"},
-    {"end_time", C_F64, R(end_time), 0, "s"},
-    {"wall_seconds", C_F64, R(wall_seconds), 0, "s"},
-    {"hash", C_U64, R(hash), 0, ""},
-    {"body_overturned", C_I32, R(b_overturned), 1, "1"},
-    {"body_overturn_time", C_F64, R(b_overturn_time), 1, "s"},
-    {"body_max_tilt_ratio", C_F64, R(b_max_tilt_ratio), 1, "1"},
-    {"body_max_slide", C_F64, R(b_max_slide), 1, "m"},
-    {"body_final_twist", C_F64, R(b_final_twist), 1, "rad"},
-    {"case", C_I64, R(index), 0, ""}, /* last: writing it commits the row */
+    {"pga", C_F64, R(im[RD_IM_PGA]), 0, "m/s^2", "peak ground acceleration"},
+    {"pgv", C_F64, R(im[RD_IM_PGV]), 0, "m/s", "peak ground velocity"},
+    {"pgd", C_F64, R(im[RD_IM_PGD]), 0, "m", "peak ground displacement"},
+    {"pgv_pga", C_F64, R(im[RD_IM_PGV_PGA]), 0, "s", "PGV / PGA"},
+    {"arias", C_F64, R(im[RD_IM_ARIAS]), 0, "m/s", "Arias intensity"},
+    {"d5_95", C_F64, R(im[RD_IM_D5_95]), 0, "s", "significant duration D5-95"},
+    {"overturned", C_I32, R(overturned), 0, "1", "1 if any free body overturned"},
+    {"overturn_time", C_F64, R(overturn_time), 0, "s", "time of the first overturn (-1: none)"},
+    {"max_tilt_ratio", C_F64, R(max_tilt_ratio), 0, "1", "largest max tilt / alpha over the free bodies"},
+    {"max_slide", C_F64, R(max_slide), 0, "m", "largest max slide over the free bodies"},
+    {"final_twist", C_F64, R(final_twist), 0, "rad", "largest |twist at the end| over the free bodies (signed)"},
+    {"status", C_STATUS, R(status), 0, "", "how the run ended"},
+    {"energy_residual", C_F64, R(energy_residual), 0, "1", "max |energy balance residual| / energy scale"},
+    {"end_time", C_F64, R(end_time), 0, "s", "simulated time reached"},
+    {"wall_seconds", C_F64, R(wall_seconds), 0, "s", "wall time of the case (setup and run)"},
+    {"hash", C_U64, R(hash), 0, "", "FNV-1a 64 hash of the case overrides"},
+    {"body_overturned", C_I32, R(b_overturned), 1, "1", "1 if the body overturned"},
+    {"body_overturn_time", C_F64, R(b_overturn_time), 1, "s", "time the body overturned (-1: never)"},
+    {"body_max_tilt_ratio", C_F64, R(b_max_tilt_ratio), 1, "1", "max tilt / alpha of the body"},
+    {"body_max_slide", C_F64, R(b_max_slide), 1, "m", "max slide of the body"},
+    {"body_final_twist", C_F64, R(b_final_twist), 1, "rad", "twist of the body at the end"},
+    {"case", C_I64, R(index), 0, "", "case index in the sweep plan"}, /* last: writing it commits the row */
 };
 #define NOUT (int)(sizeof outcome_cols / sizeof outcome_cols[0])
 
@@ -66,7 +72,9 @@ typedef struct column {
 
 struct rd_sweep_table {
     char path[RD_PATH_MAX];
-    hid_t file, group, str;
+    hid_t file, group, str; /* str: fixed-length UTF-8 text cells */
+    hid_t vstr;             /* variable-length UTF-8 string (attributes, the body scale) */
+    hid_t status_t;         /* enum of status_names */
     const rd_sweep_plan *plan;
     int ncols;
     column col[RD_SWEEP_MAX_AXES + NOUT];
@@ -82,7 +90,7 @@ static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty
     c->axis = -1;
     c->dset = -1;
     c->mtype = ty == C_I32 ? H5T_NATIVE_INT : ty == C_I64 ? H5T_NATIVE_LONG : ty == C_U64 ? H5T_NATIVE_ULLONG
-             : ty == C_F64 ? H5T_NATIVE_DOUBLE : t->str;
+             : ty == C_F64 ? H5T_NATIVE_DOUBLE : ty == C_STATUS ? t->status_t : t->str;
     c->size = H5Tget_size(c->mtype);
 }
 
@@ -108,25 +116,38 @@ static int h5fail(rd_sweep_table *t, rd_error *err, const char *what)
     return rd_error_set(err, "rockdem sweep: %s: %s", t->path, what);
 }
 
-static int attr_text(hid_t obj, const char *name, const char *text)
+/* A variable-length UTF-8 string attribute. */
+static int attr_text(const rd_sweep_table *t, hid_t obj, const char *name, const char *text)
 {
-    hid_t ty = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
-    H5Tset_size(ty, strlen(text) + 1);
-    hid_t a = H5Acreate2(obj, name, ty, sp, H5P_DEFAULT, H5P_DEFAULT);
-    int rc = a >= 0 && H5Awrite(a, ty, text) >= 0 ? 0 : -1;
+    hid_t sp = H5Screate(H5S_SCALAR);
+    hid_t a = H5Acreate2(obj, name, t->vstr, sp, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = a >= 0 && H5Awrite(a, t->vstr, &text) >= 0 ? 0 : -1;
     if (a >= 0) H5Aclose(a);
     H5Sclose(sp);
-    H5Tclose(ty);
     return rc;
 }
 
-/* A string attribute (fixed-length) as a malloc'd text, or NULL. */
+static int attr_number(hid_t obj, const char *name, hid_t type, const void *v)
+{
+    hid_t sp = H5Screate(H5S_SCALAR);
+    hid_t a = H5Acreate2(obj, name, type, sp, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = a >= 0 && H5Awrite(a, type, v) >= 0 ? 0 : -1;
+    if (a >= 0) H5Aclose(a);
+    H5Sclose(sp);
+    return rc;
+}
+
+/* A string attribute (variable or fixed length) as a malloc'd text, or NULL. */
 static char *attr_read(hid_t obj, const char *name)
 {
     if (H5Aexists(obj, name) <= 0) return NULL;
     hid_t a = H5Aopen(obj, name, H5P_DEFAULT), ty = H5Aget_type(a);
     char *s = NULL;
-    if (H5Tget_class(ty) == H5T_STRING && !H5Tis_variable_str(ty)) {
+    if (H5Tget_class(ty) == H5T_STRING && H5Tis_variable_str(ty) > 0) {
+        char *v = NULL;
+        if (H5Aread(a, ty, &v) >= 0 && v) s = strdup(v);
+        H5free_memory(v);
+    } else if (H5Tget_class(ty) == H5T_STRING) {
         size_t n = H5Tget_size(ty);
         if ((s = calloc(n + 1, 1)) && H5Aread(a, ty, s) < 0) { free(s); s = NULL; }
     }
@@ -147,24 +168,55 @@ static int create_column(rd_sweep_table *t, column *c)
     H5Sclose(sp);
     if (c->dset < 0) return -1;
     const char *units = c->axis >= 0 ? t->plan->axis[c->axis].units : c->spec->units;
-    return units[0] ? attr_text(c->dset, "units", units) : 0;
+    const char *lname = c->axis >= 0 ? "swept value" : c->spec->long_name;
+    return (units[0] && attr_text(t, c->dset, "units", units)) ||
+           attr_text(t, c->dset, "long_name", lname) ? -1 : 0;
+}
+
+/* `case` becomes the scale of every column's rows, /sweep/body that of the per-body axis. */
+static int attach_scales(rd_sweep_table *t)
+{
+    const rd_sweep_plan *p = t->plan;
+    const char *names[RD_MAX_BODIES];
+    hsize_t nb = (hsize_t)(p->nbodies > 0 ? p->nbodies : 1);
+    for (int k = 0; k < (int)nb; k++) names[k] = k < p->nbodies ? p->body[k] : "";
+    hid_t sp = H5Screate_simple(1, &nb, NULL);
+    hid_t b = H5Dcreate2(t->group, "body", t->vstr, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(sp);
+    hid_t ck = t->col[t->ncols - 1].dset;
+    int rc = b >= 0 && H5Dwrite(b, t->vstr, H5S_ALL, H5S_ALL, H5P_DEFAULT, names) >= 0 &&
+             H5DSset_scale(b, "body") >= 0 && !attr_text(t, b, "long_name", "free body") &&
+             H5DSset_scale(ck, "case") >= 0 ? 0 : -1;
+    for (int i = 0; !rc && i < t->ncols - 1; i++) {
+        const column *c = &t->col[i];
+        if (H5DSattach_scale(c->dset, ck, 0) < 0 ||
+            (c->spec && c->spec->per_body && H5DSattach_scale(c->dset, b, 1) < 0))
+            rc = -1;
+    }
+    if (b >= 0) H5Dclose(b);
+    return rc;
 }
 
 static int write_meta(rd_sweep_table *t)
 {
     const rd_sweep_plan *p = t->plan;
-    char bodies[RD_MAX_BODIES * RD_NAME_MAX] = "", num[32];
-    for (int k = 0; k < p->nbodies; k++) {
-        strcat(bodies, p->body[k]);
-        if (k + 1 < p->nbodies) strcat(bodies, ",");
-    }
-    snprintf(num, sizeof num, "%ld", p->ncases);
-    return attr_text(t->file, "scenario", p->text) || attr_text(t->file, "scenario_file", p->path) ||
-           attr_text(t->file, "axes", p->axes_text) || attr_text(t->file, "program", "rockdem " RD_VERSION) ||
-           attr_text(t->group, "bodies", bodies) || attr_text(t->group, "ncases", num) ||
-           attr_text(t->group, "status_values", "done,overturned,unstable,io_error,error") ||
-           attr_text(t->group, "im_source", p->pulse ? "pulse: sampled along its direction"
-                                                     : "records: max over horizontal components") ? -1 : 0;
+    const char *bodies[RD_MAX_BODIES];
+    for (int k = 0; k < p->nbodies; k++) bodies[k] = p->body[k];
+    hsize_t nb = (hsize_t)p->nbodies;
+    hid_t sp = H5Screate_simple(1, &nb, NULL);
+    hid_t a = nb ? H5Acreate2(t->group, "bodies", t->vstr, sp, H5P_DEFAULT, H5P_DEFAULT) : 0;
+    int bad = a < 0 || (nb && H5Awrite(a, t->vstr, bodies) < 0);
+    if (a > 0) H5Aclose(a);
+    H5Sclose(sp);
+    long ncases = p->ncases;
+    int layout = RD_SWEEP_LAYOUT;
+    return bad || attr_text(t, t->file, "Conventions", "rockdem-2") ||
+           attr_text(t, t->file, "scenario", p->text) || attr_text(t, t->file, "scenario_file", p->path) ||
+           attr_text(t, t->file, "axes", p->axes_text) || attr_text(t, t->file, "program", "rockdem " RD_VERSION) ||
+           attr_number(t->group, "layout_version", H5T_NATIVE_INT, &layout) ||
+           attr_number(t->group, "ncases", H5T_NATIVE_LONG, &ncases) ||
+           attr_text(t, t->group, "im_source", p->pulse ? "pulse: sampled along its direction"
+                                                        : "records: max over horizontal components") ? -1 : 0;
 }
 
 static int create_table(rd_sweep_table *t, rd_error *err)
@@ -175,6 +227,7 @@ static int create_table(rd_sweep_table *t, rd_error *err)
     if (t->group < 0 || write_meta(t)) return h5fail(t, err, "cannot write the table header");
     for (int i = 0; i < t->ncols; i++)
         if (create_column(t, &t->col[i])) return h5fail(t, err, "cannot create a column");
+    if (attach_scales(t)) return h5fail(t, err, "cannot write the dimension scales");
     return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
 }
 
@@ -246,6 +299,10 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
         check_same(t, "scenario", t->plan->text, "scenario text", err))
         return -1;
     if ((t->group = H5Gopen2(t->file, "sweep", H5P_DEFAULT)) < 0) return h5fail(t, err, "no /sweep group");
+    int layout = 0;
+    if (H5Aexists(t->group, "layout_version") <= 0 ||
+        H5LTget_attribute_int(t->group, ".", "layout_version", &layout) < 0 || layout != RD_SWEEP_LAYOUT)
+        return h5fail(t, err, "was written by an older rockdem (layout 1); choose another -o");
     for (int i = 0; i < t->ncols; i++)
         if ((t->col[i].dset = H5Dopen2(t->group, t->col[i].name, H5P_DEFAULT)) < 0)
             return h5fail(t, err, "a column of /sweep is missing");
@@ -261,6 +318,13 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
     t->file = t->group = -1;
     t->str = H5Tcopy(H5T_C_S1);
     H5Tset_size(t->str, RD_SWEEP_TEXT);
+    H5Tset_cset(t->str, H5T_CSET_UTF8);
+    t->vstr = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t->vstr, H5T_VARIABLE);
+    H5Tset_cset(t->vstr, H5T_CSET_UTF8);
+    t->status_t = H5Tenum_create(H5T_NATIVE_UCHAR);
+    for (unsigned char v = 0; v < sizeof status_names / sizeof status_names[0]; v++)
+        H5Tenum_insert(t->status_t, status_names[v], &v);
     layout(t);
     FILE *f = fopen(path, "rb");
     int rc = f ? open_table(t, done, err) : create_table(t, err);
@@ -279,7 +343,7 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
         if (a->number) memcpy(buf, &a->number[v], sizeof(double));
         else snprintf(buf, RD_SWEEP_TEXT, "%s", a->value[v]);
     } else if (c->spec->type == C_STATUS) {
-        snprintf(buf, RD_SWEEP_TEXT, "%s", r->status >= 0 && r->status <= 5 ? status_names[r->status] : "error");
+        buf[0] = (char)(r->status >= 0 && r->status <= 5 ? r->status : RD_STATUS_ERROR);
     } else {
         size_t n = c->spec->per_body ? (size_t)t->plan->nbodies : 1;
         memcpy(buf, (const char *)r + c->spec->off, n * c->size);
@@ -363,6 +427,8 @@ static void sweep_table_close(rd_sweep_table *t)
     if (t->group >= 0) H5Gclose(t->group);
     if (t->file >= 0) H5Fclose(t->file);
     H5Tclose(t->str);
+    H5Tclose(t->vstr);
+    H5Tclose(t->status_t);
     free(t);
 }
 

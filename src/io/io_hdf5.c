@@ -1,4 +1,4 @@
-/* rockdem — HDF5 writer (layout in io_hdf5.h).
+/* rockdem — HDF5 writer (layout in io_hdf5.h and docs/HDF5-LAYOUT.md).
  *
  * Every per-sample series is a chunked, shuffle + deflate compressed dataset whose first
  * dimension is unlimited. Samples and events are buffered (RD_H5_BUF rows) and, when a buffer
@@ -8,11 +8,18 @@
  *
  * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
  * internals or cli/.
+ *
+ * The file describes itself the netCDF-4 way (so xarray and h5netcdf read it with named
+ * dimensions): every axis of a dataset has an HDF5 dimension scale (H5DS, hdf5_hl) — /time,
+ * /body, /xyz, ... —, every dataset carries `units` (where it has any) and `long_name`, every
+ * attribute with units has a companion `<name>_units` attribute, strings are variable-length
+ * UTF-8 and enumerations (run status, event type, spacing rule) are HDF5 enums.
  */
 #include "io/io_hdf5.h"
 #include "io/h5_quiet.h"
 
 #include <hdf5.h>
+#include <hdf5_hl.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -21,11 +28,47 @@
 
 #define RD_H5_BUF 256     /* rows buffered between writes; also the chunk length in time */
 #define RD_H5_DEFLATE 4   /* deflate level */
-#define RD_H5_EVTYPE 16   /* bytes of an event type word, NUL included */
 #define RD_H5_SERNAME 48  /* bytes of a series path */
+#define RD_H5_LAYOUT 2    /* layout_version: 2 = dimension scales, enums, /events group */
 
 const char *const rd_energy_names[RD_NENERGY] = {
     "kinetic", "gravitational", "elastic", "friction", "damping", "ground_work", "residual"};
+
+static const char *const energy_long_names[RD_NENERGY] = {
+    "kinetic energy (ground frame)", "gravitational potential energy",
+    "elastic energy stored in the contact springs", "energy dissipated by friction (cumulative)",
+    "energy dissipated by damping (cumulative)", "work done by the ground motion (cumulative)",
+    "energy balance residual"};
+
+/* Event types, in the order of the HDF5 enum /events/type (value = index). */
+static const char *const event_types[] = {"uplift", "impact", "slip", "overturn", "recover",
+                                          "unstable", "unsettled", "rest", "lock", "liftoff"};
+#define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
+
+static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
+                                           "io_error", "error"};
+#define RD_H5_NSTATUS ((int)(sizeof status_names / sizeof status_names[0]))
+
+/* How subcontact points were spaced (root attribute spacing_rule). */
+static const char *const spacing_rules[] = {"auto", "vertices", "fixed"};
+
+/* Dimension scales at the root: name, labels, long name. /time and /body are made elsewhere. */
+typedef enum { DIM_NONE = -1, DIM_XYZ, DIM_WXYZ, DIM_ROTATION, DIM_CORNER, DIM_COUNT } rd_h5_dim;
+
+typedef struct rd_h5_dim_spec {
+    const char *name;
+    int n;
+    const char *labels[4];
+    const char *long_name;
+} rd_h5_dim_spec;
+
+static const rd_h5_dim_spec dim_spec[DIM_COUNT] = {
+    {"xyz", 3, {"x", "y", "z"}, "Cartesian component, ground frame (z up)"},
+    {"wxyz", 4, {"w", "x", "y", "z"}, "quaternion component (scalar first)"},
+    {"rotation_part", 3, {"in_plane", "out_of_plane", "twist"},
+     "part of the rotation from rest: in-plane rocking, out-of-plane rocking, twist"},
+    {"corner", 3, {"0", "1", "2"}, "corner of a triangle"},
+};
 
 /* Per-sample series, in rd_h5_sample order; energies follow. */
 enum {
@@ -37,21 +80,23 @@ enum {
 typedef struct rd_h5_series_spec {
     const char *name;
     int per_body;  /* 1: one row per free body */
-    hsize_t inner; /* components per body or sample, 0 for a scalar */
+    rd_h5_dim inner; /* dimension of the components per body or sample, DIM_NONE for a scalar */
     const char *units;
+    const char *long_name;
 } rd_h5_series_spec;
 
 static const rd_h5_series_spec series_spec[SER_ENERGY] = {
-    {"time", 0, 0, "s"},
-    {"position", 1, 3, "m"},
-    {"quaternion", 1, 4, "1"},
-    {"velocity", 1, 3, "m/s"},
-    {"angular_velocity", 1, 3, "rad/s"},
-    {"tilt", 1, 0, "rad"},
-    {"rotation", 1, 3, "rad"}, /* in-plane rocking, out-of-plane rocking, twist */
-    {"ground/acceleration", 0, 3, "m/s^2"},
-    {"ground/velocity", 0, 3, "m/s"},
-    {"ground/displacement", 0, 3, "m"},
+    {"time", 0, DIM_NONE, "s", "time since the shaking started"},
+    {"position", 1, DIM_XYZ, "m", "centre of mass, ground frame"},
+    {"quaternion", 1, DIM_WXYZ, "1", "orientation, body to ground frame"},
+    {"velocity", 1, DIM_XYZ, "m/s", "velocity of the centre of mass relative to the ground"},
+    {"angular_velocity", 1, DIM_XYZ, "rad/s", "angular velocity, ground frame"},
+    {"tilt", 1, DIM_NONE, "rad", "angle of the body's rest vertical axis from the vertical"},
+    {"rotation", 1, DIM_ROTATION, "rad", "rotation from rest: in-plane rocking, out-of-plane "
+                                         "rocking, twist about the vertical (unwrapped)"},
+    {"ground/acceleration", 0, DIM_XYZ, "m/s^2", "ground acceleration as applied"},
+    {"ground/velocity", 0, DIM_XYZ, "m/s", "ground velocity"},
+    {"ground/displacement", 0, DIM_XYZ, "m", "ground displacement"},
 };
 
 typedef struct rd_h5_series {
@@ -63,29 +108,51 @@ typedef struct rd_h5_series {
     double *buf;     /* [RD_H5_BUF][width] */
 } rd_h5_series;
 
-typedef struct rd_h5_event_row {
-    double time; /* s */
-    int body;    /* index into /bodies/names, -1 = none */
-    char type[RD_H5_EVTYPE];
-    double value;
-} rd_h5_event_row;
+/* /events columns, in the order of the datasets of the group. */
+enum { EV_INDEX, EV_TIME, EV_BODY, EV_BODY_INDEX, EV_TYPE, EV_VALUE, EV_COUNT };
+
+typedef struct rd_h5_event_buf {
+    int index[RD_H5_BUF];
+    double time[RD_H5_BUF];  /* s */
+    const char *body[RD_H5_BUF]; /* body name ("" for the whole scene) */
+    int body_index[RD_H5_BUF];   /* index into /body, -1 = the whole scene */
+    unsigned char type[RD_H5_BUF]; /* index into event_types */
+    double value[RD_H5_BUF];
+} rd_h5_event_buf;
 
 struct rd_h5 {
     char *path;
     hid_t file;
-    hid_t str_type; /* variable-length UTF-8 string, for attributes */
+    hid_t str_type;    /* variable-length UTF-8 string */
+    hid_t status_type; /* enum of status_names */
+    hid_t event_type;  /* enum of event_types */
     int nb;
     char (*names)[RD_NAME_MAX]; /* [nb] free bodies in output order */
     rd_h5_series ser[SER_COUNT];
+    hid_t dims[DIM_COUNT]; /* root dimension scales */
+    hid_t body_dim;        /* /body */
     int nbuf; /* samples buffered */
-    hid_t ev_dset, ev_mem_type;
+    hid_t ev[EV_COUNT];
     hsize_t ev_written;
     int nev; /* events buffered */
-    rd_h5_event_row ev[RD_H5_BUF];
+    rd_h5_event_buf evb;
 };
 
-static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
-                                           "io_error", "error"};
+/* ---- types ---- */
+
+/* An 8-bit HDF5 enum with members names[0..n-1] = 0..n-1. */
+static hid_t enum_type(const char *const *names, int n)
+{
+    hid_t t = H5Tenum_create(H5T_NATIVE_UCHAR);
+    for (int i = 0; t >= 0 && i < n; i++) {
+        unsigned char v = (unsigned char)i;
+        if (H5Tenum_insert(t, names[i], &v) < 0) {
+            H5Tclose(t);
+            return H5I_INVALID_HID;
+        }
+    }
+    return t;
+}
 
 /* ---- attributes ---- */
 
@@ -111,9 +178,22 @@ static int attr_str(const rd_h5 *h, hid_t loc, const char *name, const char *val
     return attr_write(h, loc, name, h->str_type, 0, &v, err);
 }
 
-static int attr_double(const rd_h5 *h, hid_t loc, const char *name, double value, rd_error *err)
+/* The companion attribute "<name>_units" (none when units is NULL). */
+static int attr_units(const rd_h5 *h, hid_t loc, const char *name, const char *units,
+                      rd_error *err)
 {
-    return attr_write(h, loc, name, H5T_NATIVE_DOUBLE, 0, &value, err);
+    if (!units) return 0;
+    char un[96];
+    snprintf(un, sizeof un, "%s_units", name);
+    return attr_str(h, loc, un, units, err);
+}
+
+/* A double attribute and its units ("1" for a ratio, NULL for none). */
+static int attr_double(const rd_h5 *h, hid_t loc, const char *name, double value,
+                       const char *units, rd_error *err)
+{
+    return attr_write(h, loc, name, H5T_NATIVE_DOUBLE, 0, &value, err) ||
+           attr_units(h, loc, name, units, err) ? -1 : 0;
 }
 
 static int attr_int(const rd_h5 *h, hid_t loc, const char *name, int value, rd_error *err)
@@ -121,40 +201,130 @@ static int attr_int(const rd_h5 *h, hid_t loc, const char *name, int value, rd_e
     return attr_write(h, loc, name, H5T_NATIVE_INT, 0, &value, err);
 }
 
+static int attr_enum(const rd_h5 *h, hid_t loc, const char *name, hid_t type, int value,
+                     rd_error *err)
+{
+    unsigned char v = (unsigned char)value;
+    return attr_write(h, loc, name, type, 0, &v, err);
+}
+
+/* units (may be NULL) and long_name of a dataset. */
+static int describe(const rd_h5 *h, hid_t d, const char *units, const char *long_name,
+                    rd_error *err)
+{
+    return (units && attr_str(h, d, "units", units, err)) ||
+           attr_str(h, d, "long_name", long_name, err) ? -1 : 0;
+}
+
+/* ---- dimension scales ---- */
+
+/* A 1-D contiguous dataset of n values of type (strings: const char *[n]) made a dimension
+ * scale named as the dataset. Returns the open dataset or H5I_INVALID_HID. */
+static hid_t scale_create(const rd_h5 *h, hid_t loc, const char *name, hid_t type, hsize_t n,
+                          const void *data, const char *long_name, rd_error *err)
+{
+    hid_t space = H5Screate_simple(1, &n, NULL);
+    hid_t d = space >= 0 ? H5Dcreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT,
+                                      H5P_DEFAULT) : H5I_INVALID_HID;
+    int ok = d >= 0 && (n == 0 || H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0) &&
+             H5DSset_scale(d, name) >= 0;
+    if (space >= 0) H5Sclose(space);
+    if (ok && !describe(h, d, NULL, long_name, err)) return d;
+    if (d >= 0) H5Dclose(d);
+    rd_error_set(err, "%s: cannot write dimension scale '%s'", h->path, name);
+    return H5I_INVALID_HID;
+}
+
+/* A scale of the indices 0..n-1 (an axis with no better labels). */
+static hid_t index_scale(const rd_h5 *h, hid_t loc, const char *name, int n,
+                         const char *long_name, rd_error *err)
+{
+    int *ix = malloc((size_t)(n > 0 ? n : 1) * sizeof *ix);
+    if (!ix) {
+        rd_error_set(err, "%s: out of memory", h->path);
+        return H5I_INVALID_HID;
+    }
+    for (int i = 0; i < n; i++) ix[i] = i;
+    hid_t d = scale_create(h, loc, name, H5T_NATIVE_INT, (hsize_t)n, ix, long_name, err);
+    free(ix);
+    return d;
+}
+
+/* Attach scales[k] to axis k of d (rank axes). */
+static int attach(const rd_h5 *h, hid_t d, const hid_t *scales, int rank, const char *what,
+                  rd_error *err)
+{
+    for (int k = 0; k < rank; k++)
+        if (H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
+            return rd_error_set(err, "%s: cannot attach dimension %d of '%s'", h->path, k, what);
+    return 0;
+}
+
+static int create_dims(rd_h5 *h, rd_error *err)
+{
+    for (int i = 0; i < DIM_COUNT; i++) {
+        const rd_h5_dim_spec *ds = &dim_spec[i];
+        h->dims[i] = scale_create(h, h->file, ds->name, h->str_type, (hsize_t)ds->n,
+                                  ds->labels, ds->long_name, err);
+        if (h->dims[i] < 0) return -1;
+    }
+    const char *names[RD_MAX_BODIES];
+    for (int i = 0; i < h->nb; i++) names[i] = h->names[i];
+    h->body_dim = scale_create(h, h->file, "body", h->str_type, (hsize_t)h->nb, names,
+                               "free body, in output order", err);
+    return h->body_dim < 0 ? -1 : 0;
+}
+
 /* ---- file creation ---- */
 
-static int make_group(const rd_h5 *h, const char *name, rd_error *err)
+static int make_group(const rd_h5 *h, const char *name, const char *long_name, rd_error *err)
 {
     hid_t g = H5Gcreate2(h->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '%s'", h->path, name);
+    int rc = attr_str(h, g, "long_name", long_name, err);
     H5Gclose(g);
-    return 0;
+    return rc;
+}
+
+/* spacing < 0: automatic; 0: face vertices only; > 0: a fixed spacing, m. */
+static int write_spacing(const rd_h5 *h, double spacing, rd_error *err)
+{
+    int rule = spacing < 0 ? 0 : spacing == 0 ? 1 : 2;
+    hid_t t = enum_type(spacing_rules, 3);
+    if (t < 0) return rd_error_set(err, "%s: cannot create enum type", h->path);
+    int rc = attr_enum(h, h->file, "spacing_rule", t, rule, err);
+    H5Tclose(t);
+    if (rc || rule != 2) return rc;
+    return attr_double(h, h->file, "spacing", spacing, "m", err);
 }
 
 static int write_root_attrs(const rd_h5 *h, const rd_h5_meta *m, rd_error *err)
 {
     hid_t r = h->file;
     const double deg = 180.0 / 3.14159265358979323846; /* degrees per radian */
-    return attr_str(h, r, "program", "rockdem", err) ||
+    return attr_str(h, r, "Conventions", "rockdem-2", err) ||
+           attr_int(h, r, "layout_version", RD_H5_LAYOUT, err) ||
+           attr_str(h, r, "program", "rockdem", err) ||
            attr_str(h, r, "version", RD_VERSION, err) ||
            attr_str(h, r, "scenario", m->scenario_text, err) ||
            attr_str(h, r, "scenario_file", m->scenario_file, err) ||
            attr_str(h, r, "title", m->title, err) ||
-           attr_double(h, r, "dt", m->dt, err) ||
-           attr_double(h, r, "dt_critical", m->dt_critical, err) ||
+           attr_double(h, r, "dt", m->dt, "s", err) ||
+           attr_double(h, r, "dt_critical", m->dt_critical, "s", err) ||
            attr_str(h, r, "damping", m->damping, err) ||
            attr_str(h, r, "overturn_criterion", m->overturn_criterion, err) ||
-           attr_double(h, r, "kn", m->kn, err) ||
-           attr_double(h, r, "ks", m->ks, err) ||
-           attr_double(h, r, "friction_deg", m->friction * deg, err) ||
-           attr_double(h, r, "cohesion", m->cohesion, err) ||
-           attr_double(h, r, "tension", m->tension, err) ||
-           attr_double(h, r, "spacing", m->spacing, err) ? -1 : 0;
+           attr_double(h, r, "kn", m->kn, "Pa/m", err) ||
+           attr_double(h, r, "ks", m->ks, "Pa/m", err) ||
+           attr_double(h, r, "friction_deg", m->friction * deg, "degree", err) ||
+           attr_double(h, r, "cohesion", m->cohesion, "Pa", err) ||
+           attr_double(h, r, "tension", m->tension, "Pa", err) ||
+           write_spacing(h, m->spacing, err) ? -1 : 0;
 }
 
-/* Small contiguous [n][3] dataset under loc (n may be 0). */
+/* Small contiguous [n][3] dataset under loc (n may be 0), axes (row scale, columns scale). */
 static int write_table3(const rd_h5 *h, hid_t loc, const char *name, hid_t ftype, hid_t mtype,
-                        int n, const void *data, const char *units, rd_error *err)
+                        int n, const void *data, const hid_t scales[2], const char *units,
+                        const char *long_name, rd_error *err)
 {
     hsize_t dims[2] = {(hsize_t)n, 3};
     hid_t space = H5Screate_simple(2, dims, NULL);
@@ -167,8 +337,27 @@ static int write_table3(const rd_h5 *h, hid_t loc, const char *name, hid_t ftype
         if (d >= 0) H5Dclose(d);
         return rd_error_set(err, "%s: cannot write dataset '%s'", h->path, name);
     }
-    int rc = units ? attr_str(h, d, "units", units, err) : 0;
+    int rc = describe(h, d, units, long_name, err) || attach(h, d, scales, 2, name, err);
     H5Dclose(d);
+    return rc ? -1 : 0;
+}
+
+/* vertices [vertex][xyz] and faces [face][corner] of a body group, with their index scales. */
+static int write_geometry(const rd_h5 *h, hid_t g, const rd_h5_body *b, rd_error *err)
+{
+    hid_t vs = index_scale(h, g, "vertex", b->nvert, "vertex of the body", err);
+    hid_t fs = vs >= 0 ? index_scale(h, g, "face", b->ntri, "triangle of the surface", err)
+                       : H5I_INVALID_HID;
+    hid_t vdims[2] = {vs, h->dims[DIM_XYZ]}, fdims[2] = {fs, h->dims[DIM_CORNER]};
+    int rc = vs < 0 || fs < 0 ||
+             write_table3(h, g, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, b->nvert,
+                          b->vertices, vdims, "m", "vertex, body frame, about the centre of mass",
+                          err) ||
+             write_table3(h, g, "faces", H5T_STD_I32LE, H5T_NATIVE_INT, b->ntri, b->triangles,
+                          fdims, NULL, "triangle, indices into vertices (outward normal by the "
+                          "right-hand rule)", err) ? -1 : 0;
+    if (fs >= 0) H5Dclose(fs);
+    if (vs >= 0) H5Dclose(vs);
     return rc;
 }
 
@@ -178,15 +367,18 @@ static int write_body(const rd_h5 *h, const rd_h5_body *b, rd_error *err)
     snprintf(path, sizeof path, "/bodies/%s", b->name);
     hid_t g = H5Gcreate2(h->file, path, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '%s'", h->path, path);
-    int rc = attr_double(h, g, "mass", b->mass, err) ||
+    int rc = attr_double(h, g, "mass", b->mass, "kg", err) ||
              attr_write(h, g, "inertia_principal", H5T_NATIVE_DOUBLE, 3, b->inertia, err) ||
+             attr_units(h, g, "inertia_principal", "kg m^2", err) ||
              attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, b->size, err) ||
-             attr_double(h, g, "alpha", b->alpha, err) ||
-             attr_int(h, g, "fixed", 0, err) ||
-             write_table3(h, g, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, b->nvert,
-                          b->vertices, "m", err) ||
-             write_table3(h, g, "faces", H5T_STD_I32LE, H5T_NATIVE_INT, b->ntri, b->triangles,
-                          NULL, err) ? -1 : 0;
+             attr_units(h, g, "size", "m", err) ||
+             attr_double(h, g, "alpha", b->alpha, "rad", err) ||
+             attr_int(h, g, "fixed", b->fixed, err) ||
+             (b->fixed && (attr_write(h, g, "position", H5T_NATIVE_DOUBLE, 3, b->position, err) ||
+                           attr_units(h, g, "position", "m", err) ||
+                           attr_write(h, g, "quaternion", H5T_NATIVE_DOUBLE, 4, b->quaternion,
+                                      err))) ||
+             write_geometry(h, g, b, err) ? -1 : 0;
     H5Gclose(g);
     return rc;
 }
@@ -197,10 +389,13 @@ static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
     if (m->nbodies < 1 || m->nbodies > RD_MAX_BODIES)
         return rd_error_set(err, "%s: %d free bodies (1 to %d can be written)", path,
                             m->nbodies, RD_MAX_BODIES);
-    for (int i = 0; i < m->nbodies; i++) {
-        const char *n = m->bodies[i].name;
+    if (m->nfixed < 0 || m->nfixed > RD_MAX_BODIES)
+        return rd_error_set(err, "%s: %d fixed bodies (at most %d)", path, m->nfixed,
+                            RD_MAX_BODIES);
+    for (int i = 0; i < m->nbodies + m->nfixed; i++) {
+        const char *n = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
         if (!n || !n[0] || strlen(n) >= RD_NAME_MAX || strchr(n, '/') || !strcmp(n, ".") ||
-            !strcmp(n, ".."))
+            !strcmp(n, "..") || !strcmp(n, "names"))
             return rd_error_set(err, "%s: invalid body name '%s'", path, n ? n : "");
     }
     return 0;
@@ -208,22 +403,22 @@ static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
 
 static int write_bodies(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
 {
-    if (make_group(h, "/bodies", err)) return -1;
-    for (int i = 0; i < h->nb; i++) {
-        strncpy(h->names[i], m->bodies[i].name, RD_NAME_MAX);
+    for (int i = 0; i < h->nb; i++)
         if (write_body(h, &m->bodies[i], err)) return -1;
-    }
+    for (int i = 0; i < m->nfixed; i++)
+        if (write_body(h, &m->fixed_bodies[i], err)) return -1;
+    const char *names[RD_MAX_BODIES];
+    for (int i = 0; i < h->nb; i++) names[i] = h->names[i];
     hsize_t n = (hsize_t)h->nb;
-    hid_t t = H5Tcopy(H5T_C_S1);
     hid_t space = H5Screate_simple(1, &n, NULL);
-    hid_t d = H5I_INVALID_HID;
-    int ok = t >= 0 && space >= 0 && H5Tset_size(t, RD_NAME_MAX) >= 0;
-    if (ok) d = H5Dcreate2(h->file, "/bodies/names", t, space, H5P_DEFAULT, H5P_DEFAULT,
-                           H5P_DEFAULT);
-    ok = ok && d >= 0 && H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, h->names) >= 0;
+    hid_t d = space >= 0 ? H5Dcreate2(h->file, "/bodies/names", h->str_type, space, H5P_DEFAULT,
+                                      H5P_DEFAULT, H5P_DEFAULT) : H5I_INVALID_HID;
+    int ok = d >= 0 && H5Dwrite(d, h->str_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, names) >= 0 &&
+             !describe(h, d, NULL, "free bodies, in output order (fixed bodies: groups with "
+                                   "fixed = 1)", err) &&
+             !attach(h, d, &h->body_dim, 1, "/bodies/names", err);
     if (d >= 0) H5Dclose(d);
     if (space >= 0) H5Sclose(space);
-    if (t >= 0) H5Tclose(t);
     return ok ? 0 : rd_error_set(err, "%s: cannot write /bodies/names", h->path);
 }
 
@@ -231,9 +426,17 @@ static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp,
                          rd_error *err)
 {
     hsize_t maxd[3] = {H5S_UNLIMITED, 0, 0}, chunk[3] = {RD_H5_BUF, 0, 0};
+    hid_t scales[3] = {h->ser[SER_TIME].dset, 0, 0};
     int r = 1;
-    if (sp->per_body) s->dims[r++] = (hsize_t)h->nb;
-    if (sp->inner) s->dims[r++] = sp->inner;
+    s->dims[0] = 0;
+    if (sp->per_body) {
+        scales[r] = h->body_dim;
+        s->dims[r++] = (hsize_t)h->nb;
+    }
+    if (sp->inner != DIM_NONE) {
+        scales[r] = h->dims[sp->inner];
+        s->dims[r++] = (hsize_t)dim_spec[sp->inner].n;
+    }
     s->rank = r;
     s->width = 1;
     for (int k = 1; k < r; k++) {
@@ -252,47 +455,76 @@ static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp,
     if (dcpl >= 0) H5Pclose(dcpl);
     if (!ok || s->dset < 0)
         return rd_error_set(err, "%s: cannot create dataset '%s'", h->path, s->name);
-    return attr_str(h, s->dset, "units", sp->units, err);
+    if (describe(h, s->dset, sp->units, sp->long_name, err)) return -1;
+    if (s == &h->ser[SER_TIME]) /* /time is the time axis of every series */
+        return H5DSset_scale(s->dset, "time") < 0
+                   ? rd_error_set(err, "%s: cannot make /time a dimension scale", h->path) : 0;
+    return attach(h, s->dset, scales, r, s->name, err);
 }
 
 static int create_series(rd_h5 *h, rd_error *err)
 {
-    if (make_group(h, "/ground", err) || make_group(h, "/energy", err)) return -1;
+    if (make_group(h, "/ground", "motion of the ground (the shaking table)", err) ||
+        make_group(h, "/energy", "energy balance of the free bodies", err))
+        return -1;
     for (int i = 0; i < SER_COUNT; i++) {
         char name[RD_H5_SERNAME];
-        rd_h5_series_spec sp = {name, 0, 0, "J"};
-        if (i < SER_ENERGY) sp = series_spec[i];
-        else snprintf(name, sizeof name, "energy/%s", rd_energy_names[i - SER_ENERGY]);
+        rd_h5_series_spec sp = {name, 0, DIM_NONE, "J", NULL};
+        if (i < SER_ENERGY) {
+            sp = series_spec[i];
+        } else {
+            snprintf(name, sizeof name, "energy/%s", rd_energy_names[i - SER_ENERGY]);
+            sp.long_name = energy_long_names[i - SER_ENERGY];
+        }
         if (series_create(h, &h->ser[i], &sp, err)) return -1;
     }
     return 0;
 }
 
-static int create_events(rd_h5 *h, rd_error *err)
+/* One extendible, chunked 1-D column of /events. */
+static hid_t event_column(const rd_h5 *h, hid_t g, const char *name, hid_t type,
+                          const char *units, const char *long_name, rd_error *err)
 {
     hsize_t dims = 0, maxd = H5S_UNLIMITED, chunk = RD_H5_BUF;
-    hid_t str = H5Tcopy(H5T_C_S1);
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(rd_h5_event_row));
-    int ok = str >= 0 && t >= 0 && H5Tset_size(str, RD_H5_EVTYPE) >= 0 &&
-             H5Tinsert(t, "time", offsetof(rd_h5_event_row, time), H5T_NATIVE_DOUBLE) >= 0 &&
-             H5Tinsert(t, "body", offsetof(rd_h5_event_row, body), H5T_NATIVE_INT) >= 0 &&
-             H5Tinsert(t, "type", offsetof(rd_h5_event_row, type), str) >= 0 &&
-             H5Tinsert(t, "value", offsetof(rd_h5_event_row, value), H5T_NATIVE_DOUBLE) >= 0;
-    h->ev_mem_type = t;
-    hid_t ft = ok ? H5Tcopy(t) : H5I_INVALID_HID; /* on disk: same fields, no padding */
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     hid_t space = H5Screate_simple(1, &dims, &maxd);
-    ok = ok && ft >= 0 && H5Tpack(ft) >= 0 && dcpl >= 0 && space >= 0 &&
-         H5Pset_chunk(dcpl, 1, &chunk) >= 0 && H5Pset_shuffle(dcpl) >= 0 &&
-         H5Pset_deflate(dcpl, RD_H5_DEFLATE) >= 0;
-    if (ok) h->ev_dset = H5Dcreate2(h->file, "/events", ft, space, H5P_DEFAULT, dcpl,
-                                    H5P_DEFAULT);
+    hid_t d = H5I_INVALID_HID;
+    if (dcpl >= 0 && space >= 0 && H5Pset_chunk(dcpl, 1, &chunk) >= 0)
+        d = H5Dcreate2(g, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (space >= 0) H5Sclose(space);
     if (dcpl >= 0) H5Pclose(dcpl);
-    if (ft >= 0) H5Tclose(ft);
-    if (str >= 0) H5Tclose(str);
-    if (!ok || h->ev_dset < 0) return rd_error_set(err, "%s: cannot create /events", h->path);
-    return attr_str(h, h->ev_dset, "units", "time: s; value: depends on type", err);
+    if (d >= 0 && !describe(h, d, units, long_name, err)) return d;
+    if (d >= 0) H5Dclose(d);
+    rd_error_set(err, "%s: cannot create /events/%s", h->path, name);
+    return H5I_INVALID_HID;
+}
+
+static int create_events(rd_h5 *h, rd_error *err)
+{
+    if (make_group(h, "/events", "what happened during the run, in time order", err)) return -1;
+    hid_t g = H5Gopen2(h->file, "/events", H5P_DEFAULT);
+    if (g < 0) return rd_error_set(err, "%s: cannot open /events", h->path);
+    static const struct { const char *name, *units, *long_name; } col[EV_COUNT] = {
+        {"event", NULL, "event number"},
+        {"time", "s", "time of the event"},
+        {"body", NULL, "free body concerned (empty: the whole scene)"},
+        {"body_index", NULL, "index of the body in /body (-1: the whole scene)"},
+        {"type", NULL, "kind of event"},
+        {"value", NULL, "uplift, overturn, recover: tilt (rad); impact: angular speed before "
+                        "(rad/s); slip: slide so far (m); unstable: speed (m/s); unsettled: "
+                        "force ratio reached (1)"}};
+    const hid_t type[EV_COUNT] = {H5T_NATIVE_INT, H5T_IEEE_F64LE, h->str_type, H5T_NATIVE_INT,
+                                  h->event_type, H5T_IEEE_F64LE};
+    int rc = 0;
+    for (int c = 0; c < EV_COUNT && !rc; c++) {
+        h->ev[c] = event_column(h, g, col[c].name, type[c], col[c].units, col[c].long_name, err);
+        rc = h->ev[c] < 0 ? -1 : 0;
+    }
+    if (!rc && H5DSset_scale(h->ev[EV_INDEX], "event") < 0)
+        rc = rd_error_set(err, "%s: cannot make /events/event a dimension scale", h->path);
+    for (int c = 1; c < EV_COUNT && !rc; c++) rc = attach(h, h->ev[c], &h->ev[EV_INDEX], 1, "/events", err);
+    H5Gclose(g);
+    return rc;
 }
 
 /* Release everything without writing. */
@@ -302,8 +534,13 @@ static void destroy(rd_h5 *h)
         if (h->ser[i].dset >= 0) H5Dclose(h->ser[i].dset);
         free(h->ser[i].buf);
     }
-    if (h->ev_dset >= 0) H5Dclose(h->ev_dset);
-    if (h->ev_mem_type >= 0) H5Tclose(h->ev_mem_type);
+    for (int i = 0; i < EV_COUNT; i++)
+        if (h->ev[i] >= 0) H5Dclose(h->ev[i]);
+    for (int i = 0; i < DIM_COUNT; i++)
+        if (h->dims[i] >= 0) H5Dclose(h->dims[i]);
+    if (h->body_dim >= 0) H5Dclose(h->body_dim);
+    if (h->event_type >= 0) H5Tclose(h->event_type);
+    if (h->status_type >= 0) H5Tclose(h->status_type);
     if (h->str_type >= 0) H5Tclose(h->str_type);
     if (h->file >= 0) H5Fclose(h->file);
     free(h->names);
@@ -311,24 +548,40 @@ static void destroy(rd_h5 *h)
     free(h);
 }
 
-static rd_h5 *alloc_handle(const char *path, int nb)
+static rd_h5 *alloc_handle(const char *path, const rd_h5_meta *m)
 {
     rd_h5 *h = calloc(1, sizeof *h);
     if (!h) return NULL;
-    h->file = h->str_type = h->ev_dset = h->ev_mem_type = H5I_INVALID_HID;
+    h->file = h->str_type = h->status_type = h->event_type = h->body_dim = H5I_INVALID_HID;
     for (int i = 0; i < SER_COUNT; i++) h->ser[i].dset = H5I_INVALID_HID;
-    h->nb = nb;
+    for (int i = 0; i < EV_COUNT; i++) h->ev[i] = H5I_INVALID_HID;
+    for (int i = 0; i < DIM_COUNT; i++) h->dims[i] = H5I_INVALID_HID;
+    h->nb = m->nbodies;
     h->path = strdup(path);
-    h->names = calloc((size_t)nb, sizeof *h->names);
-    if (h->path && h->names) return h;
-    destroy(h);
-    return NULL;
+    h->names = calloc((size_t)h->nb, sizeof *h->names);
+    if (!h->path || !h->names) {
+        destroy(h);
+        return NULL;
+    }
+    for (int i = 0; i < h->nb; i++) snprintf(h->names[i], RD_NAME_MAX, "%s", m->bodies[i].name);
+    return h;
+}
+
+/* The string and enum types every writer uses. 0 or -1. */
+static int make_types(rd_h5 *h)
+{
+    h->str_type = H5Tcopy(H5T_C_S1);
+    h->status_type = enum_type(status_names, RD_H5_NSTATUS);
+    h->event_type = enum_type(event_types, RD_H5_NEVTYPES);
+    return h->str_type >= 0 && H5Tset_size(h->str_type, H5T_VARIABLE) >= 0 &&
+           H5Tset_cset(h->str_type, H5T_CSET_UTF8) >= 0 && h->status_type >= 0 &&
+           h->event_type >= 0 ? 0 : -1;
 }
 
 static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
 {
     if (check_names(path, meta, err)) return NULL;
-    rd_h5 *h = alloc_handle(path, meta->nbodies);
+    rd_h5 *h = alloc_handle(path, meta);
     if (!h) {
         rd_error_set(err, "%s: out of memory", path);
         return NULL;
@@ -339,15 +592,15 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
         destroy(h);
         return NULL;
     }
-    h->str_type = H5Tcopy(H5T_C_S1);
-    if (h->str_type < 0 || H5Tset_size(h->str_type, H5T_VARIABLE) < 0 ||
-        H5Tset_cset(h->str_type, H5T_CSET_UTF8) < 0) {
-        rd_error_set(err, "%s: cannot create string type", path);
+    if (make_types(h)) {
+        rd_error_set(err, "%s: cannot create the string and enum types", path);
         destroy(h);
         return NULL;
     }
-    if (write_root_attrs(h, meta, err) || write_bodies(h, meta, err) || create_series(h, err) ||
-        create_events(h, err) || rd_h5_flush(h, err)) {
+    if (write_root_attrs(h, meta, err) || create_dims(h, err) ||
+        make_group(h, "/bodies", "geometry and mass of every body", err) ||
+        write_bodies(h, meta, err) || create_series(h, err) || create_events(h, err) ||
+        rd_h5_flush(h, err)) {
         destroy(h);
         return NULL;
     }
@@ -385,16 +638,27 @@ static int h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
     return h->nbuf == RD_H5_BUF ? rd_h5_flush(h, err) : 0;
 }
 
+static int event_type_index(const char *type)
+{
+    for (int i = 0; type && i < RD_H5_NEVTYPES; i++)
+        if (!strcmp(type, event_types[i])) return i;
+    return -1;
+}
+
 static int h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err)
 {
     if (body < -1 || body >= h->nb)
         return rd_error_set(err, "%s: event body index %d out of range", h->path, body);
-    rd_h5_event_row *e = &h->ev[h->nev++];
-    memset(e, 0, sizeof *e);
-    e->time = time;
-    e->body = body;
-    snprintf(e->type, sizeof e->type, "%s", type ? type : "");
-    e->value = value;
+    int ty = event_type_index(type);
+    if (ty < 0) return rd_error_set(err, "%s: unknown event type '%s'", h->path, type ? type : "");
+    rd_h5_event_buf *b = &h->evb;
+    int r = h->nev++;
+    b->index[r] = (int)h->ev_written + r;
+    b->time[r] = time;
+    b->body[r] = body >= 0 ? h->names[body] : "";
+    b->body_index[r] = body;
+    b->type[r] = (unsigned char)ty;
+    b->value[r] = value;
     return h->nev == RD_H5_BUF ? rd_h5_flush(h, err) : 0;
 }
 
@@ -416,6 +680,21 @@ static int extend_write(hid_t d, hid_t mtype, int rank, hsize_t *dims, hsize_t n
     return ok ? 0 : -1;
 }
 
+/* Append the buffered events (n rows) to every /events column. 0 or -1. */
+static int write_events(rd_h5 *h, int n)
+{
+    const rd_h5_event_buf *b = &h->evb;
+    const void *src[EV_COUNT] = {b->index, b->time, b->body, b->body_index, b->type, b->value};
+    const hid_t mt[EV_COUNT] = {H5T_NATIVE_INT, H5T_NATIVE_DOUBLE, h->str_type, H5T_NATIVE_INT,
+                                h->event_type, H5T_NATIVE_DOUBLE};
+    for (int c = 0; c < EV_COUNT; c++) {
+        hsize_t written = h->ev_written;
+        if (extend_write(h->ev[c], mt[c], 1, &written, (hsize_t)n, src[c])) return -1;
+    }
+    h->ev_written += (hsize_t)n;
+    return 0;
+}
+
 static int h5_flush(rd_h5 *h, rd_error *err)
 {
     int n = h->nbuf, nev = h->nev;
@@ -425,8 +704,7 @@ static int h5_flush(rd_h5 *h, rd_error *err)
         if (extend_write(s->dset, H5T_NATIVE_DOUBLE, s->rank, s->dims, (hsize_t)n, s->buf))
             return rd_error_set(err, "%s: cannot write '%s'", h->path, s->name);
     }
-    if (nev > 0 && extend_write(h->ev_dset, h->ev_mem_type, 1, &h->ev_written, (hsize_t)nev,
-                                h->ev))
+    if (nev > 0 && write_events(h, nev))
         return rd_error_set(err, "%s: cannot write /events", h->path);
     if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         return rd_error_set(err, "%s: cannot flush file", h->path);
@@ -439,25 +717,26 @@ typedef struct rd_h5_body_field {
     const char *name;
     size_t offset; /* in rd_body_summary */
     int is_int;
+    const char *units; /* NULL for a flag */
 } rd_h5_body_field;
 
 static const rd_h5_body_field body_fields[] = {
-    {"overturned", offsetof(rd_body_summary, overturned), 1},
-    {"overturn_time", offsetof(rd_body_summary, overturn_time), 0},
-    {"max_tilt", offsetof(rd_body_summary, max_tilt), 0},
-    {"alpha", offsetof(rd_body_summary, alpha), 0},
-    {"max_tilt_ratio", offsetof(rd_body_summary, max_tilt_ratio), 0},
-    {"max_slide", offsetof(rd_body_summary, max_slide), 0},
-    {"final_slide", offsetof(rd_body_summary, final_slide), 0},
-    {"uplifted", offsetof(rd_body_summary, uplifted), 1},
-    {"slid", offsetof(rd_body_summary, slid), 1},
-    {"max_rocking_in_plane", offsetof(rd_body_summary, max_rocking_in), 0},
-    {"max_rocking_out_of_plane", offsetof(rd_body_summary, max_rocking_out), 0},
-    {"max_twist", offsetof(rd_body_summary, max_twist), 0},
-    {"final_twist", offsetof(rd_body_summary, final_twist), 0},
-    {"alpha_min", offsetof(rd_body_summary, alpha_min), 0},
-    {"alpha_min_direction", offsetof(rd_body_summary, alpha_min_direction), 0},
-    {"tip_accel_min", offsetof(rd_body_summary, tip_accel_min), 0},
+    {"overturned", offsetof(rd_body_summary, overturned), 1, NULL},
+    {"overturn_time", offsetof(rd_body_summary, overturn_time), 0, "s"},
+    {"max_tilt", offsetof(rd_body_summary, max_tilt), 0, "rad"},
+    {"alpha", offsetof(rd_body_summary, alpha), 0, "rad"},
+    {"max_tilt_ratio", offsetof(rd_body_summary, max_tilt_ratio), 0, "1"},
+    {"max_slide", offsetof(rd_body_summary, max_slide), 0, "m"},
+    {"final_slide", offsetof(rd_body_summary, final_slide), 0, "m"},
+    {"uplifted", offsetof(rd_body_summary, uplifted), 1, NULL},
+    {"slid", offsetof(rd_body_summary, slid), 1, NULL},
+    {"max_rocking_in_plane", offsetof(rd_body_summary, max_rocking_in), 0, "rad"},
+    {"max_rocking_out_of_plane", offsetof(rd_body_summary, max_rocking_out), 0, "rad"},
+    {"max_twist", offsetof(rd_body_summary, max_twist), 0, "rad"},
+    {"final_twist", offsetof(rd_body_summary, final_twist), 0, "rad"},
+    {"alpha_min", offsetof(rd_body_summary, alpha_min), 0, "rad"},
+    {"alpha_min_direction", offsetof(rd_body_summary, alpha_min_direction), 0, "rad"},
+    {"tip_accel_min", offsetof(rd_body_summary, tip_accel_min), 0, "m/s^2"},
 };
 
 static int h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
@@ -466,9 +745,25 @@ static int h5_precariousness(rd_h5 *h, const char *body, const double *table, in
     snprintf(path, sizeof path, "/bodies/%s", body);
     hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
-    if (H5Lexists(g, "precariousness", H5P_DEFAULT) > 0) H5Ldelete(g, "precariousness", H5P_DEFAULT);
-    int rc = write_table3(h, g, "precariousness", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, table,
-                          "rad, rad, m/s^2", err);
+    static const char *const cols[3] = {"lean_direction", "alpha", "tip_acceleration"};
+    static const char *const units[3] = {"rad", "rad", "m/s^2"};
+    if (H5Lexists(g, "precariousness", H5P_DEFAULT) > 0) { /* replaced: no dangling scales */
+        H5Ldelete(g, "precariousness", H5P_DEFAULT);
+        H5Ldelete(g, "lean", H5P_DEFAULT);
+        H5Ldelete(g, "quantity", H5P_DEFAULT);
+    }
+    hid_t ls = index_scale(h, g, "lean", n, "lean direction sampled", err);
+    hid_t qs = ls >= 0 ? scale_create(h, g, "quantity", h->str_type, 3, cols,
+                                      "column of the precariousness table", err)
+                       : H5I_INVALID_HID;
+    hid_t scales[2] = {ls, qs};
+    int rc = ls < 0 || qs < 0 || attr_write(h, qs, "units", h->str_type, 3, units, err) ||
+             write_table3(h, g, "precariousness", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, table,
+                          scales, NULL, "lean direction the body tips towards (rad from +x), "
+                          "static tipping angle alpha (rad), quasi-static tipping acceleration "
+                          "g tan(alpha) (m/s^2); units per column in quantity.units", err) ? -1 : 0;
+    if (qs >= 0) H5Dclose(qs);
+    if (ls >= 0) H5Dclose(ls);
     H5Gclose(g);
     return rc;
 }
@@ -503,27 +798,45 @@ static int write_body_fields(const rd_h5 *h, hid_t g, const rd_summary *s, const
             else memcpy(&d[i], p, sizeof d[i]);
         }
         if (attr_write(h, g, bf->name, bf->is_int ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
-                       (hsize_t)h->nb, bf->is_int ? (const void *)n : (const void *)d, err))
+                       (hsize_t)h->nb, bf->is_int ? (const void *)n : (const void *)d, err) ||
+            attr_units(h, g, bf->name, bf->units, err))
             return -1;
+    }
+    return 0;
+}
+
+/* The support-polygon alpha found at rest replaces the brick estimate of /bodies/<b>/alpha. */
+static int update_body_alpha(const rd_h5 *h, const rd_summary *s, const int *order, rd_error *err)
+{
+    for (int i = 0; i < h->nb; i++) {
+        double a = s->body[order[i]].alpha;
+        if (!(a > 0)) continue;
+        char path[RD_NAME_MAX + 16];
+        snprintf(path, sizeof path, "/bodies/%s", h->names[i]);
+        hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
+        if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
+        int rc = attr_double(h, g, "alpha", a, "rad", err);
+        H5Gclose(g);
+        if (rc) return -1;
     }
     return 0;
 }
 
 static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_error *err)
 {
-    unsigned st = (unsigned)s->status;
-    const char *status = st < sizeof status_names / sizeof status_names[0] ? status_names[st]
-                                                                            : "unknown";
+    int st = (int)s->status;
+    if (st < 0 || st >= RD_H5_NSTATUS)
+        return rd_error_set(err, "%s: unknown run status %d", h->path, st);
     long steps = s->steps;
-    return attr_str(h, g, "status", status, err) ||
+    return attr_enum(h, g, "status", h->status_type, st, err) ||
            attr_int(h, g, "any_overturned", s->any_overturned, err) ||
-           attr_double(h, g, "end_time", s->end_time, err) ||
-           attr_double(h, g, "dt", s->dt, err) ||
-           attr_double(h, g, "dt_critical", s->dt_critical, err) ||
+           attr_double(h, g, "end_time", s->end_time, "s", err) ||
+           attr_double(h, g, "dt", s->dt, "s", err) ||
+           attr_double(h, g, "dt_critical", s->dt_critical, "s", err) ||
            attr_write(h, g, "steps", H5T_NATIVE_LONG, 0, &steps, err) ||
-           attr_double(h, g, "settle_time", s->settle_time, err) ||
-           attr_double(h, g, "energy_residual_max", s->energy_residual_max, err) ||
-           attr_double(h, g, "wall_seconds", s->wall_seconds, err) ? -1 : 0;
+           attr_double(h, g, "settle_time", s->settle_time, "s", err) ||
+           attr_double(h, g, "energy_residual_max", s->energy_residual_max, "1", err) ||
+           attr_double(h, g, "wall_seconds", s->wall_seconds, "s", err) ? -1 : 0;
 }
 
 static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
@@ -531,10 +844,13 @@ static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
     int order[RD_MAX_BODIES];
     if (summary_order(h, s, order, err)) return -1;
     htri_t exists = H5Lexists(h->file, "/summary", H5P_DEFAULT);
-    hid_t g = exists > 0 ? H5Gopen2(h->file, "/summary", H5P_DEFAULT)
-                         : H5Gcreate2(h->file, "/summary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (exists <= 0 && make_group(h, "/summary", "what the run found (per-body attributes in "
+                                                 "/body order)", err))
+        return -1;
+    hid_t g = H5Gopen2(h->file, "/summary", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '/summary'", h->path);
-    int rc = write_summary_attrs(h, g, s, err) || write_body_fields(h, g, s, order, err) ? -1 : 0;
+    int rc = write_summary_attrs(h, g, s, err) || write_body_fields(h, g, s, order, err) ||
+             update_body_alpha(h, s, order, err) ? -1 : 0;
     H5Gclose(g);
     if (!rc && H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         rc = rd_error_set(err, "%s: cannot flush file", h->path);
@@ -559,14 +875,15 @@ static int write_component_im(const rd_h5 *h, hid_t g, const rd_motion_def *m, i
     rd_im im;
     double sa[2];
     if (rd_motion_im(m, c, &im, sa, err)) return -1;
-    const struct { const char *key; double v; } f[] = {
-        {"pga", im.pga}, {"pgv", im.pgv}, {"pgd", im.pgd}, {"pgv_pga", im.pgv_pga},
-        {"arias", im.arias}, {"d5_95", im.d5_95}, {"sa_0.2s", sa[0]}, {"sa_1s", sa[1]},
-        {"dt", r->dt}, {"duration", rd_record_duration(r)}};
+    const struct { const char *key; double v; const char *units; } f[] = {
+        {"pga", im.pga, "m/s^2"}, {"pgv", im.pgv, "m/s"}, {"pgd", im.pgd, "m"},
+        {"pgv_pga", im.pgv_pga, "s"}, {"arias", im.arias, "m/s"}, {"d5_95", im.d5_95, "s"},
+        {"sa_0.2s", sa[0], "m/s^2"}, {"sa_1s", sa[1], "m/s^2"}, {"dt", r->dt, "s"},
+        {"duration", rd_record_duration(r), "s"}};
     char name[64];
     for (size_t i = 0; i < sizeof f / sizeof f[0]; i++) {
         snprintf(name, sizeof name, "%s_%s", cn, f[i].key);
-        if (attr_double(h, g, name, f[i].v, err)) return -1;
+        if (attr_double(h, g, name, f[i].v, f[i].units, err)) return -1;
     }
     snprintf(name, sizeof name, "%s_record", cn);
     if (attr_str(h, g, name, r->name, err)) return -1;
@@ -579,8 +896,8 @@ static int h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
     if (!rd_motion_has_records(m)) return 0;
     hid_t g = H5Gopen2(h->file, "/ground", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot open group '/ground'", h->path);
-    int rc = attr_double(h, g, "direction", m->direction, err) ||
-             attr_double(h, g, "scale_factor", m->factor, err) ||
+    int rc = attr_double(h, g, "direction", m->direction, "rad", err) ||
+             attr_double(h, g, "scale_factor", m->factor, "1", err) ||
              attr_int(h, g, "baseline_degree", m->baseline, err) ? -1 : 0;
     for (int c = 0; c < RD_NCOMPONENTS && !rc; c++)
         if (m->record[c].applied) rc = write_component_im(h, g, m, c, err);

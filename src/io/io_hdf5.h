@@ -2,33 +2,37 @@
  * appended to chunked, deflate-compressed, extendible datasets, then H5Fflush'ed, so a run that
  * stops early (Ctrl-C, NaN, error) leaves a valid file with everything written so far.
  *
- * Layout (all SI):
- *   /                      attributes: program, version, scenario (full text), scenario_file,
- *                          title, dt, dt_critical, damping, overturn_criterion, contact law params
- *   /bodies/names          [nb] fixed strings, free bodies in output order
- *   /bodies/<name>/        attributes: mass, inertia_principal[3], size[3], alpha, fixed;
- *                          datasets: vertices [nv][3] (body frame, about the centre of mass),
- *                          faces [nf][3] (triangles, vertex indices)
- *   /time                  [N]         s
- *   /position              [N][nb][3]  centre of mass, ground frame, m
- *   /quaternion            [N][nb][4]  w, x, y, z (body -> ground frame)
- *   /velocity              [N][nb][3]  m/s, relative to the ground
- *   /angular_velocity      [N][nb][3]  rad/s, ground frame
- *   /tilt                  [N][nb]     angle of the body's initial vertical axis from vertical, rad
- *   /rotation              [N][nb][3]  rotation from rest split into in-plane rocking (about the
- *                                      horizontal axis normal to the motion direction d, + tips
- *                                      towards d), out-of-plane rocking (about d, + tips towards
- *                                      z x d) and twist about the vertical (unwrapped), rad
- *   /ground/acceleration   [N][3]      m/s^2 as applied
- *   /ground/velocity       [N][3]      m/s
- *   /ground/displacement   [N][3]      m
+ * Layout (all SI; docs/HDF5-LAYOUT.md is the full description, layout_version 2). Every
+ * dataset has `units` (where it has any) and `long_name`; every attribute with units has a
+ * companion `<name>_units`; every axis has an HDF5 dimension scale (netCDF-4 style); strings are
+ * variable-length UTF-8; status, event type and spacing rule are HDF5 enums.
+ *   /                      attributes: Conventions, layout_version, program, version, scenario
+ *                          (full text), scenario_file, title, dt, dt_critical, damping,
+ *                          overturn_criterion, kn, ks, friction_deg, cohesion, tension,
+ *                          spacing_rule (enum auto|vertices|fixed), spacing (fixed only)
+ *   /time /body /xyz /wxyz /rotation_part /corner     dimension scales (body: free body names)
+ *   /bodies/names          [body] free bodies in output order
+ *   /bodies/<name>/        every body, fixed ones too: attributes mass, inertia_principal[3],
+ *                          size[3], alpha, fixed (fixed bodies: position[3], quaternion[4]);
+ *                          datasets vertices [vertex][xyz] (body frame, about the centre of
+ *                          mass), faces [face][corner], precariousness [lean][quantity]
+ *   /position              [time][body][xyz]   centre of mass, ground frame, m
+ *   /quaternion            [time][body][wxyz]  body -> ground frame
+ *   /velocity              [time][body][xyz]   m/s, relative to the ground
+ *   /angular_velocity      [time][body][xyz]   rad/s, ground frame
+ *   /tilt                  [time][body]        angle of the rest vertical axis from vertical, rad
+ *   /rotation              [time][body][rotation_part]  rotation from rest split into in-plane
+ *                          rocking (about the horizontal axis normal to the motion direction d,
+ *                          + tips towards d), out-of-plane rocking (about d, + tips towards
+ *                          z x d) and twist about the vertical (unwrapped), rad
+ *   /ground/acceleration, velocity, displacement  [time][xyz]  m/s^2, m/s, m
  *   /ground                attributes (records only): intensity measures, see rd_h5_ground_im
- *   /energy/<name>         [N]         J: kinetic, gravitational, elastic, friction, damping,
- *                                      ground_work, residual (balance residual, J)
- *   /events                compound [M]: time (s), body (index into names, -1 = none),
- *                          type (string: uplift, impact, slip, overturn, unstable, ...), value
- *   /summary               group, attributes from rd_summary (overturned, overturn_time,
- *                          max_tilt, max_tilt_ratio, max_slide, ... per body as arrays)
+ *   /energy/<name>         [time] J: kinetic, gravitational, elastic, friction, damping,
+ *                          ground_work, residual (balance residual, J)
+ *   /events/               columns [event]: time (s), body (name, "" = the whole scene),
+ *                          body_index (-1 = none), type (enum: uplift, impact, ...), value
+ *   /summary               group, attributes from rd_summary (status enum, overturned,
+ *                          overturn_time, max_tilt, max_tilt_ratio, ... per body as arrays)
  *
  * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
  * internals or cli/.
@@ -51,6 +55,9 @@ typedef struct rd_h5_body {
     const double *vertices; /* [nvert][3], body frame, m */
     int ntri;
     const int *triangles;   /* [ntri][3] */
+    int fixed;              /* 1: a fixed body (pedestal), drawn but not in the time series */
+    double position[3];     /* fixed bodies: centre of mass, ground frame, m */
+    double quaternion[4];   /* fixed bodies: orientation (w, x, y, z), body -> ground frame */
 } rd_h5_body;
 
 typedef struct rd_h5_meta {
@@ -63,6 +70,8 @@ typedef struct rd_h5_meta {
     double kn, ks, friction, cohesion, tension, spacing; /* contact law, SI (friction in rad) */
     int nbodies;                    /* free bodies written per sample */
     const rd_h5_body *bodies;
+    int nfixed;                     /* fixed bodies (geometry only; may be 0) */
+    const rd_h5_body *fixed_bodies;
 } rd_h5_meta;
 
 typedef struct rd_h5_sample {
@@ -83,7 +92,8 @@ typedef struct rd_h5 rd_h5;
 rd_h5 *rd_h5_open(const char *path, const rd_h5_meta *meta, rd_error *err);
 /* Append one sample (buffered; written and flushed every few hundred samples). 0 or -1. */
 int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err);
-/* Append one event row (written at the next flush). type is a short word. 0 or -1. */
+/* Append one event row (written at the next flush). type is one of uplift, impact, slip,
+ * overturn, recover, unstable, unsettled, rest, lock, liftoff (-1 otherwise). 0 or -1. */
 int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err);
 /* Attributes of /ground describing the applied records (none for pulses): direction (rad),
  * scale_factor, baseline_degree, and per component c in h1, h2, vertical: c_pga (m/s^2), c_pgv

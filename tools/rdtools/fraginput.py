@@ -13,7 +13,7 @@ column, from any mix of:
 import numpy as np
 
 from . import RDError
-from .runfile import open_h5, is_rockdem, as_str, h5py
+from .runfile import open_h5, is_rockdem, as_str, enum_names, h5py
 from .table import read_csv, run_rows
 
 G = 9.80665
@@ -74,8 +74,15 @@ def _rows_from_sweep(path, f, observed, outcome="overturned"):
     else:
         fields = {}
         for k in s:
-            if isinstance(s[k], h5py.Dataset) and s[k].ndim == 1:
-                fields[k] = s[k][()]
+            d = s[k]
+            if not isinstance(d, h5py.Dataset) or d.ndim != 1:
+                continue
+            if k == "body" and as_str(d.attrs.get("CLASS", b"")) == "DIMENSION_SCALE":
+                continue  # the per-body axis of the body_* columns (layout 2), not a row column
+            fields[k] = d[()]
+            names = enum_names(d.dtype)
+            if names:  # status (layout 2): an HDF5 enum, compared by name (--where status=done)
+                fields[k] = np.array([names.get(int(v), str(v)) for v in fields[k]], dtype=object)
                 if k == "pga" and as_str(s[k].attrs.get("units", "")).strip().lower() == "g":
                     scale = G
     need = [c for c in ("pga", "pgv", outcome) if c not in fields]

@@ -26,6 +26,35 @@ def as_str(v):
     return str(v)
 
 
+def enum_names(dtype):
+    """{value: name} of an HDF5 enum dtype (h5py), {} for any other dtype."""
+    m = h5py.check_enum_dtype(dtype)
+    return {int(v): k for k, v in m.items()} if m else {}
+
+
+def decoded_attrs(obj):
+    """Attributes of an h5py object as a dict: strings as str, enum values by their names;
+    the '<name>_units' companions of layout 2 are left out (see attr_units)."""
+    out = {}
+    for k in obj.attrs:
+        if k.endswith("_units") and k[:-6] in obj.attrs:
+            continue
+        v = obj.attrs[k]
+        names = enum_names(obj.attrs.get_id(k).dtype)
+        if names:
+            v = names.get(int(np.asarray(v).reshape(())), str(v))
+        elif isinstance(v, (bytes, np.bytes_, str)):
+            v = as_str(v)
+        out[k] = v
+    return out
+
+
+def attr_units(obj, name, default=""):
+    """Units of attribute name on obj: its '<name>_units' companion (layout 2)."""
+    u = obj.attrs.get(name + "_units")
+    return as_str(u) if u is not None else default
+
+
 def open_h5(path, what="file"):
     """h5py.File(path, 'r') with one-line errors for a missing or non-HDF5 file."""
     if not os.path.exists(path):
@@ -141,10 +170,20 @@ class Run:
         return out
 
     def events(self):
-        """list of (time, body index, type str, value); [] if the run has no /events."""
+        """list of (time, body index, type str, value); [] if the run has no /events. Reads the
+        /events group of layout 2 (columns, type an HDF5 enum) and the compound table of
+        layout 1."""
         if "events" not in self.f:
             return []
-        ev = self.f["events"][()]
+        g = self.f["events"]
+        if isinstance(g, h5py.Group):
+            if not {"time", "body_index", "type", "value"} <= set(g):
+                raise RDError("%s: /events lacks its columns (time, body_index, type, value)" % self.path)
+            names = enum_names(g["type"].dtype)
+            return [(float(t), int(b), names.get(int(ty), str(ty)), float(v))
+                    for t, b, ty, v in zip(g["time"][()], g["body_index"][()], g["type"][()],
+                                           g["value"][()])]
+        ev = g[()]
         if ev.dtype.names is None or not {"time", "body", "type"} <= set(ev.dtype.names):
             raise RDError("%s: /events is not the compound table (time, body, type, value)" % self.path)
         val = ev["value"] if "value" in ev.dtype.names else np.zeros(len(ev))
@@ -152,15 +191,11 @@ class Run:
                 for t, b, ty, v in zip(ev["time"], ev["body"], ev["type"], val)]
 
     def summary(self):
-        """dict of /summary attributes (strings decoded); {} if the run wrote no summary."""
+        """dict of /summary attributes (strings and enums decoded to str, '<name>_units'
+        companions left out); {} if the run wrote no summary."""
         if "summary" not in self.f:
             return {}
-        out = {}
-        for k, v in self.f["summary"].attrs.items():
-            if isinstance(v, (bytes, np.bytes_, str)):
-                v = as_str(v)
-            out[k] = v
-        return out
+        return decoded_attrs(self.f["summary"])
 
     def ground_attrs(self):
         """Intensity-measure attributes on /ground (pga, pgv, ...), numeric scalars only."""
