@@ -22,7 +22,7 @@ def num(v):
 
 
 def main():
-    p = cli.Parser(prog="rdfragility", description=__doc__.split("\n", 1)[1].strip().replace("\n", " "))
+    p = cli.Parser(prog="rdfragility", description=cli.describe(__doc__))
     p.add_argument("inputs", nargs="+", metavar="TABLE.csv|SWEEP.h5|RUN.h5")
     p.add_argument("-o", "--output", metavar="OUT.png", help="figure: surface with contours, "
                    "binned fits, lognormal fit (default: none)")
@@ -104,9 +104,13 @@ def main():
                       for k, v in d.items()} for d in bins]
 
     # (2) surface
-    surf = None
+    surf, why = None, "all runs have the same outcome"
     if 0 < y.sum() < len(y):
-        surf = F.surface_fit(pga, pgv / scale, y, a.method)
+        try:
+            surf = F.surface_fit(pga, pgv / scale, y, a.method)
+        except F.DegenerateInput as e:
+            why = str(e)
+    if surf is not None:
         c, se = surf["beta"], surf["se"]
         o.write("\n(2) surface: logit P = c0 + c1 ln PGA[%s] + c2 ln(PGV/PGA[s])  (%s%s)\n"
                 % (ustr, surf["method"], ", data separated" if surf["separated"] else ""))
@@ -123,12 +127,19 @@ def main():
                 % (m["accuracy"], m["F1"]))
         res["surface"]["in_sample"] = {k: num(v) for k, v in m.items()}
     else:
-        o.write("\n(2) surface: not fitted (all runs have the same outcome)\n")
+        o.write("\n(2) surface: not fitted: %s\n" % why)
+        res["surface"] = dict(fitted=False, reason=why)
 
     # (3) lognormal
-    ln = F.lognormal_fit(pga, y, bootstrap=a.bootstrap)
-    o.write("\n(3) lognormal fragility in PGA, P = Phi(ln(PGA/theta)/beta), maximum likelihood:\n")
-    if ln["separated"]:
+    try:
+        ln = F.lognormal_fit(pga, y, bootstrap=a.bootstrap)
+    except F.DegenerateInput as e:
+        ln = dict(separated=None, note=str(e))
+    o.write("\n(3) lognormal fragility in PGA, P = Phi(ln(PGA/theta)/beta), probit GLM (statsmodels):\n")
+    if ln["separated"] is None:
+        o.write("  not fitted: %s\n" % ln["note"])
+        res["lognormal"] = dict(fitted=False, reason=ln["note"])
+    elif ln["separated"]:
         o.write("  %s: theta in [%.4g, %.4g] %s\n" % (ln["note"], *ln["theta_range"], ustr))
         res["lognormal"] = dict(separated=True, theta_range=list(ln["theta_range"]), note=ln["note"])
     else:
@@ -138,7 +149,7 @@ def main():
                 % (ln["beta"], *ln["beta_ci"], ln["se_beta"]))
         o.write("  bands: %s\n" % ("Fisher information (expected), delta method, pointwise 95 %"
                                    if ln["band_method"] == "fisher" else
-                                   "nonparametric bootstrap, percentiles (%s)" % ln["band_method"]))
+                                   "scipy.stats.bootstrap, paired rows, percentiles (%s)" % ln["band_method"]))
         res["lognormal"] = dict(separated=False, theta=ln["theta"], beta=ln["beta"],
                                 se_ln_theta=ln["se_ln_theta"], se_beta=ln["se_beta"],
                                 theta_ci=list(ln["theta_ci"]), beta_ci=list(ln["beta_ci"]),

@@ -10,7 +10,7 @@ from rdtools import cli  # noqa: E402
 
 
 def main():
-    p = cli.Parser(prog="rdplot", description=__doc__.split("\n", 1)[1].strip().replace("\n", " "))
+    p = cli.Parser(prog="rdplot", description=cli.describe(__doc__))
     p.add_argument("run", metavar="RUN.h5", help="HDF5 file written by 'rockdem run'")
     p.add_argument("-o", "--output", metavar="OUT.png",
                    help="PNG to write (default: RUN.png next to the run file)")

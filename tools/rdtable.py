@@ -11,7 +11,7 @@ from rdtools import cli, RDError  # noqa: E402
 
 
 def main():
-    p = cli.Parser(prog="rdtable", description=__doc__.split("\n", 1)[1].strip().replace("\n", " "))
+    p = cli.Parser(prog="rdtable", description=cli.describe(__doc__))
     p.add_argument("runs", nargs="+", metavar="RUN.h5", help="HDF5 files written by 'rockdem run'")
     p.add_argument("--csv", metavar="OUT.csv", help="write all columns to this CSV file")
     p.add_argument("-q", "--quiet", action="store_true", help="do not print the table")

@@ -11,7 +11,7 @@ from rdtools import cli  # noqa: E402
 
 
 def main():
-    p = cli.Parser(prog="rdxdmf", description=__doc__.split("\n", 1)[1].strip().replace("\n", " "))
+    p = cli.Parser(prog="rdxdmf", description=cli.describe(__doc__))
     p.add_argument("run", metavar="RUN.h5", help="HDF5 file written by 'rockdem run'")
     p.add_argument("-o", "--output", metavar="OUT.xmf",
                    help="XDMF file to write (default RUN.xmf); the companion is OUT.vis.h5 beside it")

@@ -15,6 +15,15 @@ class Parser(argparse.ArgumentParser):
         sys.exit(2)
 
 
+def describe(doc):
+    """A tool's module docstring as its --help description: the whole text on one paragraph,
+    the leading 'name — ' dropped and the first letter capitalised."""
+    text = " ".join(doc.split())
+    head, sep, rest = text.partition(" — ")
+    text = rest if sep and " " not in head else text
+    return text[:1].upper() + text[1:]
+
+
 def run(main, prog):
     """Call main(); turn RDError / OSError into a one-line message and exit code 2."""
     try:

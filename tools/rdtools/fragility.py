@@ -1,5 +1,7 @@
 """Fragility of overturning from binary outcomes (overturned or not) against ground-motion
-intensity measures. Pure numpy/scipy.
+intensity measures. Fits: statsmodels GLMs (binomial family, logit and probit links, with their
+standard errors); bootstrap: scipy.stats.bootstrap; Firth's correction (hand-written: statsmodels
+has none) only where the outcomes are separated.
 
 1. Binned logistic regression, seed 002 eq. (3):
        P(overturning | x1 = PGA, x2 = PGV/PGA) = 1 / (1 + exp(-(b0 + b1 x1)))
@@ -9,24 +11,71 @@ intensity measures. Pure numpy/scipy.
 2. A 2-D logistic surface over (PGA, PGV/PGA):
        logit P = c0 + c1 ln PGA + c2 ln(PGV/PGA)
    with its 10/50/95 % contours PGA_p(T) = exp((logit p - c0 - c2 ln T) / c1).
-3. A lognormal fragility in PGA, P = Phi(ln(PGA/theta) / beta), fitted by maximum likelihood on
-   the individual binary outcomes (a probit GLM on ln PGA). Confidence: from the expected Fisher
-   information (inverse = asymptotic covariance), the delta method for theta and beta, and a
-   pointwise 95 % band Phi(z +- 1.96 sd(z)) with z = (ln x - ln theta)/beta; optionally a
-   nonparametric bootstrap (resampling rows) gives percentile bands instead.
+3. A lognormal fragility in PGA, P = Phi(ln(PGA/theta) / beta): a probit GLM on ln PGA fitted to
+   the individual binary outcomes. Confidence: the GLM's covariance (inverse Fisher information),
+   the delta method for theta and beta, and a pointwise 95 % band Phi(z +- 1.96 sd(z)) with
+   z = (ln x - ln theta)/beta; optionally scipy.stats.bootstrap (paired resampling of the rows,
+   percentile intervals) gives bands instead.
 4. Classification metrics, seed 002 Table 4: accuracy, precision, recall, F1.
 
-Logistic fits are Newton/IRLS maximum likelihood. When the outcomes are (quasi-)completely
-separated — common for deterministic pulse sweeps, where a bin flips from 0 to 1 at one PGA — the
-ML estimate does not exist (coefficients run to infinity). Separation is detected exactly with the
-linear program of Konis (2007); method='auto' then uses Firth's bias-reduced penalised likelihood
-(Firth 1993), which always has a finite estimate, and says so in the result ('firth')."""
+When the outcomes are (quasi-)completely separated — common for deterministic pulse sweeps,
+where a bin flips from 0 to 1 at one PGA — the ML estimate does not exist (coefficients run to
+infinity). Separation is detected exactly with the linear program of Konis (2007); method='auto'
+then uses Firth's bias-reduced penalised likelihood (Firth 1993), which always has a finite
+estimate, and says so in the result ('firth').
+
+Degenerate input (a constant PGA or PGV/PGA, fewer than two runs) raises DegenerateInput with a
+sentence saying what cannot be fitted and why, instead of returning nan standard errors."""
 import math
+
+import warnings
 
 import numpy as np
 from scipy import optimize, special, stats
 
+try:
+    import statsmodels.api as sm
+    from statsmodels.tools.sm_exceptions import PerfectSeparationError
+except ImportError:  # Debian python3-statsmodels (tools/install-deps.sh)
+    raise SystemExit("rdtools: needs statsmodels: run with /usr/bin/python3 (Debian python3-statsmodels)")
+
 LEVELS = (0.10, 0.50, 0.95)
+
+
+class DegenerateInput(ValueError):
+    """The data cannot support the requested fit (the message says why)."""
+
+
+def check_varies(name, values, what):
+    """DegenerateInput unless `values` take at least two distinct finite values."""
+    v = np.asarray(values, float)
+    v = v[np.isfinite(v)]
+    if len(v) < 2:
+        raise DegenerateInput("%s: fewer than two runs with a finite %s" % (what, name))
+    if np.ptp(v) <= 1e-12 * max(np.abs(v).max(), 1e-300):
+        raise DegenerateInput("%s: %s is the same (%.4g) in every run, so its effect cannot be "
+                              "estimated; vary it (other records, scales or directions) or fit "
+                              "without it" % (what, name, v[0]))
+
+
+def _link(name):
+    """statsmodels link instance: Logit()/Probit() (>= 0.14) or logit()/probit() (0.13)."""
+    L = sm.families.links
+    return (getattr(L, name.capitalize(), None) or getattr(L, name))()
+
+
+def _glm(X, y, link):
+    """statsmodels binomial GLM; (params, cov) or None when it does not converge."""
+    fam = sm.families.Binomial(link=link)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            r = sm.GLM(y, X, family=fam).fit()
+        except (PerfectSeparationError, np.linalg.LinAlgError, ValueError):
+            return None
+    if not getattr(r, "converged", True):
+        return None
+    return np.asarray(r.params), np.asarray(r.cov_params()), float(r.llf)
 
 
 # ---------------------------------------------------------------- logistic regression
@@ -106,15 +155,22 @@ def _irls(X, y, firth, maxit=200, tol=1e-10):
 
 def logistic_fit(X, y, method="auto"):
     """Logistic regression of binary y on design X (include a column of ones for the intercept).
-    method: 'ml' (Newton/IRLS maximum likelihood), 'firth', or 'auto' (ML unless the data are
-    separated, then Firth). Returns dict: beta, se, cov (inverse Fisher information at the
-    estimate), method, separated, converged, loglik, n, iterations."""
+    method: 'ml' (statsmodels GLM, binomial family, logit link), 'firth', or 'auto' (ML unless
+    the data are separated, then Firth). Returns dict: beta, se, cov (inverse Fisher information
+    at the estimate), method, separated, converged, loglik, n, iterations."""
     X = np.asarray(X, float)
     y = np.asarray(y, float)
     if X.ndim != 2 or len(X) != len(y):
         raise ValueError("X must be [n, k] and y [n]")
     sep = is_separated(X, y)
     use_firth = method == "firth" or (method == "auto" and sep)
+    if not use_firth:
+        g = _glm(X, y, _link("logit"))
+        if g is not None:
+            b, cov, ll = g
+            return dict(beta=b, cov=cov, se=np.sqrt(np.abs(np.diag(cov))), method="ml",
+                        separated=bool(sep), converged=True, loglik=ll, n=int(len(y)),
+                        iterations=0)
     b, cov, conv, ll, it = _irls(X, y, use_firth)
     return dict(beta=b, cov=cov, se=np.sqrt(np.abs(np.diag(cov))),
                 method="firth" if use_firth else "ml", separated=bool(sep), converged=bool(conv),
@@ -190,6 +246,8 @@ def binned_prob(d, pga):
 def surface_fit(pga, pgv, y, method="auto"):
     """logit P = c0 + c1 ln PGA + c2 ln(PGV/PGA)."""
     pga, pgv, y = (np.asarray(a, float) for a in (pga, pgv, y))
+    check_varies("PGA", pga, "2-D surface")
+    check_varies("PGV/PGA", pgv / pga, "2-D surface")
     X = np.column_stack([np.ones(len(y)), np.log(pga), np.log(pgv / pga)])
     return logistic_fit(X, y, method)
 
@@ -208,43 +266,11 @@ def surface_contour(fit, p, T):
 
 
 # ---------------------------------------------------------------- lognormal fragility
-def _probit_ml(lx, y, b_init=None, maxit=200):
-    """ML of P = Phi(a + b lx) by Fisher scoring; returns a, b, expected information."""
+def _probit_ml(lx, y):
+    """P = Phi(a + b lx): statsmodels binomial GLM with the probit link. Returns (a, b), the
+    covariance of (a, b) and the log-likelihood, or None when the fit does not converge."""
     X = np.column_stack([np.ones(len(lx)), lx])
-    if b_init is None:
-        b_init = np.array([-np.median(lx) / max(np.std(lx), 1e-12), 1.0 / max(np.std(lx), 1e-12)])
-    b = np.array(b_init, float)
-
-    def nll(b):
-        z = X @ b
-        return -float(np.sum(y * special.log_ndtr(z) + (1 - y) * special.log_ndtr(-z)))
-
-    f = nll(b)
-    for _ in range(maxit):
-        z = X @ b
-        P = np.clip(special.ndtr(z), 1e-300, 1 - 1e-16)
-        phi = stats.norm.pdf(z)
-        w = phi * phi / (P * (1 - P))
-        info = X.T @ (w[:, None] * X)
-        score = X.T @ (phi * (y - P) / (P * (1 - P)))
-        try:
-            step = np.linalg.solve(info, score)
-        except np.linalg.LinAlgError:
-            break
-        t = 1.0
-        while nll(b + t * step) > f + 1e-12 * abs(f) and t > 1e-8:
-            t *= 0.5
-        b = b + t * step
-        fn = nll(b)
-        if abs(f - fn) < 1e-13 * (1 + abs(f)) and np.max(np.abs(t * step)) < 1e-10 * (1 + np.max(np.abs(b))):
-            f = fn
-            break
-        f = fn
-    z = X @ b
-    P = np.clip(special.ndtr(z), 1e-300, 1 - 1e-16)
-    phi = stats.norm.pdf(z)
-    info = X.T @ ((phi * phi / (P * (1 - P)))[:, None] * X)
-    return b, info, -f
+    return _glm(X, y, _link("probit"))
 
 
 def lognormal_fit(x, y, bootstrap=0, seed=1):
@@ -254,6 +280,7 @@ def lognormal_fit(x, y, bootstrap=0, seed=1):
     (lo, hi) pointwise 95 %, band_method ('fisher' or 'bootstrap N')."""
     x = np.asarray(x, float)
     y = np.asarray(y, float)
+    check_varies("PGA", x, "lognormal fit")
     lx = np.log(x)
     X = np.column_stack([np.ones(len(lx)), lx])
     res = dict(n=int(len(y)), n_over=int(y.sum()))
@@ -267,8 +294,10 @@ def lognormal_fit(x, y, bootstrap=0, seed=1):
                         "median lies between the largest PGA without and the smallest with "
                         "overturning")
         return res
-    b, info, ll = _probit_ml(lx, y)
-    cov = np.linalg.inv(info)
+    g = _probit_ml(lx, y)
+    if g is None:
+        raise DegenerateInput("lognormal fit: the probit GLM did not converge on %d runs" % len(y))
+    b, cov, ll = g
     a_, b_ = b
     theta, beta = math.exp(-a_ / b_), 1.0 / b_
     # delta method: ln theta = -a/b, beta = 1/b
@@ -288,30 +317,49 @@ def lognormal_fit(x, y, bootstrap=0, seed=1):
 
     res["band"] = band_fisher
     if bootstrap and bootstrap > 0:
-        rng = np.random.default_rng(seed)
-        ab = []
-        for _ in range(int(bootstrap)):
-            i = rng.integers(0, len(y), len(y))
-            if y[i].sum() in (0, len(i)) or is_separated(X[i], y[i]):
-                continue  # a resample without a finite MLE is skipped (counted below)
-            bb, _, _ = _probit_ml(lx[i], y[i], b_init=b)
-            ab.append(bb)
-        ab = np.array(ab)
-        res["bootstrap_used"] = int(len(ab))
-        res["bootstrap_requested"] = int(bootstrap)
-        if len(ab) >= 20:
-            th_b, be_b = np.exp(-ab[:, 0] / ab[:, 1]), 1.0 / ab[:, 1]
-            res["theta_ci"] = tuple(float(v) for v in np.percentile(th_b, [2.5, 97.5]))
-            res["beta_ci"] = tuple(float(v) for v in np.percentile(be_b, [2.5, 97.5]))
-            res["band_method"] = "bootstrap %d" % len(ab)
-
-            def band_boot(xs):
-                L = np.log(np.asarray(xs, float))
-                P = special.ndtr(ab[:, :1] + ab[:, 1:2] * L[None, :])
-                return np.percentile(P, 2.5, axis=0), np.percentile(P, 97.5, axis=0)
-
-            res["band"] = band_boot
+        _bootstrap_band(res, x, y, int(bootstrap), seed)
     return res
+
+
+BAND_GRID = 60  # points of the bootstrap band in PGA (log-spaced over the data)
+
+
+def _bootstrap_band(res, x, y, n, seed):
+    """scipy.stats.bootstrap over paired (x, y) rows: percentile intervals of theta, beta and of
+    P on a grid of x; a resample without a finite MLE (separated) gives nan and is left out."""
+    grid = np.geomspace(x.min(), x.max(), BAND_GRID)
+    Lg = np.log(grid)
+
+    def stat(xs, ys):
+        lx = np.log(xs)
+        if ys.sum() in (0, len(ys)) or is_separated(np.column_stack([np.ones(len(lx)), lx]), ys):
+            return np.full(2 + BAND_GRID, np.nan)
+        g = _probit_ml(lx, ys)
+        if g is None:
+            return np.full(2 + BAND_GRID, np.nan)
+        a_, b_ = g[0]
+        return np.concatenate([[math.exp(-a_ / b_), 1.0 / b_], special.ndtr(a_ + b_ * Lg)])
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        bs = stats.bootstrap((x, y), stat, paired=True, vectorized=False, n_resamples=n,
+                             method="percentile", random_state=np.random.default_rng(seed))
+    dist = bs.bootstrap_distribution  # [2 + BAND_GRID, n]
+    ok = np.all(np.isfinite(dist), axis=0)
+    res["bootstrap_used"], res["bootstrap_requested"] = int(ok.sum()), n
+    if ok.sum() < 20:
+        return
+    d = dist[:, ok]
+    res["theta_ci"] = tuple(float(v) for v in np.percentile(d[0], [2.5, 97.5]))
+    res["beta_ci"] = tuple(float(v) for v in np.percentile(d[1], [2.5, 97.5]))
+    res["band_method"] = "bootstrap %d" % ok.sum()
+    lo, hi = np.percentile(d[2:], 2.5, axis=1), np.percentile(d[2:], 97.5, axis=1)
+
+    def band_boot(xs):
+        L = np.log(np.asarray(xs, float))
+        return np.interp(L, Lg, lo), np.interp(L, Lg, hi)
+
+    res["band"] = band_boot
 
 
 def lognormal_prob(theta, beta, x):

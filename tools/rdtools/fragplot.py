@@ -82,7 +82,9 @@ def plot_fragility(out, pga, T, y, bins, surf, ln, ustr, form, dpi=110):
         if m.any():
             c.plot(np.exp(np.log(pga[m]).mean()), y[m].mean(), "ks", ms=5,
                    label="fraction overturned (PGA bins)" if i == 0 else None)
-    if not ln["separated"]:
+    if ln["separated"] is None:
+        pass  # not fitted (degenerate input): the data points only
+    elif not ln["separated"]:
         lo, hi = ln["band"](xs)
         c.fill_between(xs, lo, hi, color="tab:blue", alpha=0.25,
                        label="95 %% band (%s)" % ("Fisher information" if ln["band_method"] == "fisher"
