@@ -25,7 +25,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all lib run test asan bench study deps clean check-yade mpi
+.PHONY: python all lib run test asan bench study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -104,3 +104,10 @@ $(BIN)/rockdem-mpi: src/cli/rockdem_mpi.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEAD
 
 clean:
 	rm -rf build build-asan bin
+
+# the Python module (tools/rockdem, docs/examples/pbr_study.py): its library and the rockdem
+# program beside it, so `pip install ./tools` packs them (tools/pyproject.toml)
+python: $(BUILD)/librockdem.so $(BIN)/rockdem
+	@mkdir -p tools/rockdem/bin
+	cp $(BUILD)/librockdem.so tools/rockdem/librockdem.so
+	cp $(BIN)/rockdem tools/rockdem/bin/rockdem

@@ -94,6 +94,14 @@ RD_API void rd_sim_request_stop(void);
  * from an observer's callback; other simulations run on. */
 RD_API void rd_sim_stop(rd_sim *sim);
 
+/* Progress of running simulations, for a progress bar: fn(ctx, t, t_end) is called by
+ * rd_sim_run every RD_PROGRESS_STEPS steps of the shaking stage and once when it ends, with the
+ * simulated time reached and the time the run ends at (s). One callback for the process, so the
+ * ensembles (threshold, restitution, study) report every run they make; NULL turns it off. */
+#define RD_PROGRESS_STEPS 2048
+typedef void (*rd_progress_fn)(void *ctx, double t, double t_end);
+RD_API void rd_set_progress(rd_progress_fn fn, void *ctx);
+
 /* Events so far (n receives the count); valid until the next run call or rd_sim_free. */
 RD_API const rd_event *rd_sim_events(const rd_sim *sim, int *n);
 

@@ -238,4 +238,11 @@ RD_API int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
 /* Free what rd_scenario_load/parse allocated (the text and the motion records). */
 RD_API void rd_scenario_free(rd_scenario *sc);
 
+/* A scenario on the heap with its defaults, for bindings that cannot size rd_scenario (the
+ * Python module tools/rockdem); NULL when out of memory. */
+RD_API rd_scenario *rd_scenario_new(void);
+
+/* rd_scenario_free, then free the struct itself; safe on NULL. */
+RD_API void rd_scenario_delete(rd_scenario *sc);
+
 #endif

@@ -9,6 +9,8 @@
 #include "rockdem/rockdem.h"
 #include "rockdem/sweep.h"
 
+#include <stdio.h>
+
 /* Option handler of one subcommand: consume argv[*i] (and its value, advancing *i) and return
  * 0; return 1 when the option is not its own, -1 when its value is bad (after printing why). */
 typedef int (*rd_cli_option_fn)(void *ctx, int argc, char **argv, int *i);
@@ -27,6 +29,23 @@ int rd_cli_threshold(int argc, char **argv);   /* rockdem threshold SCENARIO ...
 int rd_cli_restitution(int argc, char **argv); /* rockdem restitution SCENARIO ... */
 int rd_cli_study(int argc, char **argv);       /* rockdem study SCENARIO ... */
 int rd_cli_sweep(int argc, char **argv);       /* rockdem sweep SCENARIO ... (cli_sweep.c) */
+
+/* -q given (rd_cli_scenario takes it for every subcommand): no progress line, shorter output. */
+extern int rd_cli_quiet;
+
+/* cli_progress.c: a progress line on stderr (simulated time, runs, elapsed, ETA) while the
+ * library runs simulations; only when stderr is a terminal and not -q. runs_expected: 1 for one
+ * run, an estimate for an ensemble. Stop erases the line. */
+void rd_cli_progress_start(const char *what, int runs_expected);
+void rd_cli_progress_stop(void);
+void rd_cli_progress_clear(void); /* erase the line (before printing a result); keeps counting */
+
+/* cli_help.c: the page of subcommand `sub` (NULL or unknown: the global usage) on out; 0, or
+ * -1 for an unknown subcommand. */
+int rd_cli_help(const char *sub, FILE *out);
+
+/* cli_keys.c: every --set key with units, default and meaning (tsv: tab-separated). */
+void rd_cli_keys(int tsv);
 
 /* One line of intensity measures per applied record component (cli_motion.c). 0 or -1. */
 int rd_cli_print_motion(const rd_motion_def *m);

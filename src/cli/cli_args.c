@@ -31,15 +31,20 @@ int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt
     for (int i = 3; i < argc; i++) {
         const char *set = !strcmp(argv[i], "--set") && i + 1 < argc ? argv[++i]
                         : !strncmp(argv[i], "--set=", 6) ? argv[i] + 6 : NULL;
-        if (set) {
+        if (set && !strcmp(set, "help")) { /* --set help: the keys, then stop */
+            rd_cli_keys(0);
+            exit(0);
+        } else if (set) {
             if (rd_scenario_set(sc, set, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+        } else if (!strcmp(argv[i], "-q")) {
+            rd_cli_quiet = 1;
         } else if (out && !strcmp(argv[i], "-o") && i + 1 < argc) {
             *out = argv[++i];
         } else {
             int rc = opt ? opt(ctx, argc, argv, &i) : 1;
             if (rc > 0)
-                fprintf(stderr, "rockdem: unknown option '%s' for '%s' (see rockdem --help)\n",
-                        argv[i], argv[1]);
+                fprintf(stderr, "rockdem: unknown option '%s' for '%s' (see rockdem %s --help)\n",
+                        argv[i], argv[1], argv[1]);
             if (rc) return -1;
         }
     }

@@ -47,6 +47,7 @@ static void print_table(rd_scenario *sc, double theta0)
             if (rd_restitution_measure(&copy, theta0, &m, &err) || m.r < 0) printf(" %7s", "-");
             else printf(" %7.3f", m.r);
         }
+        rd_cli_progress_clear(); /* the row replaces the progress line */
         printf("\n");
     }
 }
@@ -66,9 +67,12 @@ int rd_cli_restitution(int argc, char **argv)
     }
     double theta0 = a.theta0 > 0 ? a.theta0 : 0.5 * rs.alpha;
     double target = a.target > 0 ? a.target : rd_housner_r(rs.alpha);
+    /* 4 x 5 table runs, then up to RD_CAL_ITER + 2 calibration runs (restitution.c) */
+    rd_cli_progress_start("restitution", 36);
     print_table(&sc, theta0);
     double zeta, reached;
     int rc = rd_restitution_calibrate(&sc, theta0, target, &zeta, &reached, &err);
+    rd_cli_progress_stop();
     if (rc < 0) {
         fprintf(stderr, "%s\n", err.msg);
     } else if (rc == 0) {

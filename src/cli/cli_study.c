@@ -80,10 +80,12 @@ int rd_cli_study(int argc, char **argv)
     double kn = sc.contact.kn, safety = sc.timestep.safety;
     study_run ref, runs[9];
     rd_error err;
+    rd_cli_progress_start("study", 10); /* the yardstick and 3 x 3 settings */
     int rc = run_one(&sc, 10 * kn, 0.5 * safety, &ref, &err);
     for (int i = 0; rc == 0 && i < 3; i++)
         for (int j = 0; rc == 0 && j < 3; j++)
             rc = run_one(&sc, kf[i] * kn, fmin(1.0, sf[j] * safety), &runs[3 * i + j], &err);
+    rd_cli_progress_stop();
     if (rc) {
         fprintf(stderr, "%s\n", err.msg);
         rd_scenario_free(&sc);

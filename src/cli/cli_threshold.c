@@ -78,6 +78,7 @@ static int curve_row(rd_scenario *sc, const threshold_args *a, double f)
         fprintf(stderr, "%s\n", err.msg);
         return -1;
     }
+    rd_cli_progress_clear(); /* the row on a clean line; the bar comes back with the next run */
     if (r.found)
         printf("%10.4g %10.4f %14.4f %12.4f %6d\n", f, r.w_over_p, r.amplitude / r.static_amp,
                r.amplitude / RD_G_STANDARD, r.runs);
@@ -108,6 +109,9 @@ int rd_cli_threshold(int argc, char **argv)
     threshold_args a = {RD_ENGINE_DEM, rd_threshold_opts_default(), 0, {0}};
     if (rd_cli_scenario(&sc, argc, argv, threshold_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
     int rc = 0;
+    /* runs: about half the coarse scan, then bisection from its step down to rtol */
+    int per = a.opts.nscan / 2 + 2 + (int)ceil(log2(1.0 / fmax(a.opts.rtol * a.opts.nscan, 1e-6)));
+    rd_cli_progress_start("threshold", (a.nfreq > 0 ? a.nfreq : 1) * (per > 1 ? per : 2));
     if (a.nfreq > 0) {
         printf("engine %s: minimum-overturning curve\n%10s %10s %14s %12s %6s\n",
                a.engine == RD_ENGINE_DEM ? "dem" : "reference", "f (Hz)", "w/p", "a/a_uplift", "a (g)", "runs");
@@ -116,9 +120,11 @@ int rd_cli_threshold(int argc, char **argv)
         rd_error err;
         rd_threshold_result r;
         rc = rd_threshold(&sc, a.engine, &a.opts, &r, &err);
+        rd_cli_progress_stop();
         if (rc) fprintf(stderr, "%s\n", err.msg);
         else print_single(&sc, &a, &r);
     }
+    rd_cli_progress_stop();
     rd_scenario_free(&sc);
     return rc ? 3 : 0;
 }

@@ -1,7 +1,8 @@
 /* rockdem — command-line program.
  *   rockdem run FILE [--set key=value]... [-o OUT.h5] [-q]   settle, shake, write HDF5, summarise
  *   rockdem check FILE [--set key=value]...                  parse and validate only
- *   rockdem --version | --help
+ *   rockdem keys [--tsv]                                     every --set key, units, default
+ *   rockdem --version | --help | SUB --help | help SUB       (cli_help.c)
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
@@ -12,18 +13,6 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
-
-static const char *usage =
-    "usage: rockdem run FILE [--set key=value]... [-o OUT.h5] [-q]\n"
-    "       rockdem check FILE [--set key=value]...\n"
-    "       rockdem reference FILE [--set key=value]... [-o OUT.h5]   rigid Housner/Kounadis run\n"
-    "       rockdem threshold FILE --engine dem|reference [--lo A] [--hi A] [--rtol 0.005] [--steps 24]\n"
-    "             [--frequencies F1,F2,...]   minimum overturning amplitude (a curve against w/p)\n"
-    "       rockdem restitution FILE [--target r] [--theta0 rad]   measure and calibrate restitution\n"
-    "       rockdem study FILE [--set key=value]...   error against run time of your settings\n"
-    "       rockdem sweep FILE [--set k=v]... --axis KEY=V1,V2 [--records F1,F2] [--scales S1,S2]\n"
-    "             [--directions D1,D2] [-j N] [--keep-runs DIR] [-q] -o TABLE.h5   fragility sweep\n"
-    "       rockdem --version\n";
 
 static void on_signal(int sig)
 {
@@ -66,21 +55,12 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
 }
 
-/* `run`'s own option: -q (quiet). Returns 0 when taken, 1 when unknown. */
-static int run_option(void *ctx, int argc, char **argv, int *i)
-{
-    (void)argc;
-    if (strcmp(argv[*i], "-q") != 0) return 1;
-    *(int *)ctx = 1;
-    return 0;
-}
-
 static int cmd_run(int argc, char **argv, int check_only)
 {
     rd_scenario sc;
     const char *out = NULL;
-    int quiet = 0;
-    if (rd_cli_scenario(&sc, argc, argv, run_option, &quiet, &out)) { rd_scenario_free(&sc); return 2; }
+    if (rd_cli_scenario(&sc, argc, argv, NULL, NULL, &out)) { rd_scenario_free(&sc); return 2; }
+    int quiet = rd_cli_quiet;
     if (check_only) {
         printf("%s: ok (%d bodies, %.4g s)\n", sc.file, sc.nbodies, sc.duration);
         rd_scenario_free(&sc);
@@ -92,7 +72,9 @@ static int cmd_run(int argc, char **argv, int check_only)
     if (!sim) { fprintf(stderr, "%s\n", err.msg); rd_scenario_free(&sc); return 2; }
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
+    rd_cli_progress_start("run", 1);
     rd_status st = rd_sim_run(sim);
+    rd_cli_progress_stop();
     rd_summary s;
     rd_sim_summary(sim, &s);
     print_summary(sim, &s, quiet);
@@ -122,11 +104,20 @@ int main(int argc, char **argv)
         printf("rockdem %s\n", RD_VERSION);
         return 0;
     }
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h") || (i == 1 && !strcmp(argv[i], "help"))) {
-            fputs(usage, stdout);
+    if (argc >= 2 && !strcmp(argv[1], "help")) return rd_cli_help(argc >= 3 ? argv[2] : NULL, stdout) ? 2 : 0;
+    for (int i = 1; i < argc; i++) /* rockdem --help, rockdem SUB [...] --help */
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            rd_cli_help(i >= 2 ? argv[1] : NULL, stdout);
             return 0;
         }
+    if (argc >= 2 && !strcmp(argv[1], "keys")) {
+        if (argc > 3 || (argc == 3 && strcmp(argv[2], "--tsv"))) {
+            fprintf(stderr, "rockdem: keys takes only --tsv (see rockdem keys --help)\n");
+            return 2;
+        }
+        rd_cli_keys(argc == 3);
+        return 0;
+    }
     if (argc >= 3 && !strcmp(argv[1], "run")) return cmd_run(argc, argv, 0);
     if (argc >= 3 && !strcmp(argv[1], "check")) return cmd_run(argc, argv, 1);
     if (argc >= 3 && !strcmp(argv[1], "reference")) return rd_cli_reference(argc, argv);
@@ -134,6 +125,9 @@ int main(int argc, char **argv)
     if (argc >= 3 && !strcmp(argv[1], "restitution")) return rd_cli_restitution(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "study")) return rd_cli_study(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "sweep")) return rd_cli_sweep(argc, argv);
-    fputs(usage, stderr);
+    if (argc == 2 && rd_cli_help(argv[1], stderr) == 0) /* a subcommand without its FILE */
+        fprintf(stderr, "rockdem %s: missing FILE\n", argv[1]);
+    else
+        rd_cli_help(NULL, stderr);
     return 2;
 }

@@ -379,11 +379,13 @@ rd_status rd_sim_run(rd_sim *s)
         if (stopping(s)) { s->status = RD_STATUS_INTERRUPTED; break; }
         step_once(s);
         s->step++;
+        if (s->step % RD_PROGRESS_STEPS == 0) rd_progress_report(s->t, end);
         if (s->status != RD_STATUS_DONE || !healthy(s)) break;
         if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) { s->status = RD_STATUS_OVERTURNED; break; }
         if (rd_rest_reached(s)) break; /* free-vibration tail: everything at rest */
     }
     s->wall = wall_now() - t0;
+    rd_progress_report(s->t, end);
     rd_monitor_finish(s);
     write_summary(s);
     return s->status;

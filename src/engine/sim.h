@@ -218,6 +218,9 @@ void rd_monitor_finish(rd_sim *s);
 void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
 
+/* progress.c: the process's progress callback (rd_set_progress) */
+void rd_progress_report(double t, double t_end);
+
 /* setup.c */
 int rd_setup_bodies(rd_sim *s, rd_error *err);
 int rd_setup_contacts(rd_sim *s, rd_error *err);

@@ -38,7 +38,7 @@ PY
 # cannot be fitted and it says so (no coefficients with nan standard errors)
 /usr/bin/python3 tools/rdfragility.py "$T/sw2.h5" --json "$T/frag.json" -o "$T/frag.png" > "$T/frag.txt"
 grep -q "surface: not fitted: 2-D surface: PGV/PGA is the same (.*) in every run" "$T/frag.txt"
-! grep -q "nan" "$T/frag.txt"
+if grep -q "nan" "$T/frag.txt"; then echo "unexpected: nan $T/frag.txt"; exit 1; fi
 # a finished table: re-running runs nothing
 "$BIN" sweep "$S" --scales 1.0g,2.0g,3.0g --directions 0,45 -j 2 -o "$T/sw2.h5" 2>/dev/null | grep -q "0 run now, 6 already"
 # changed axes: refused

@@ -1,0 +1,105 @@
+/* rockdem — `rockdem --help`, `rockdem help SUB` and `rockdem SUB --help`: the global usage and
+ * one page per subcommand listing every option it takes, with units and defaults. */
+#include "cli/cli.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const char *const global_usage =
+    "usage: rockdem SUBCOMMAND FILE [options]      (rockdem SUBCOMMAND --help for its options)\n"
+    "  run FILE          settle, shake, write the HDF5 run file, print a summary\n"
+    "  check FILE        parse and validate only\n"
+    "  reference FILE    the rigid Housner (1 block) / Kounadis (2 blocks) solution, same output\n"
+    "  threshold FILE    minimum overturning amplitude of the pulse (a curve with --frequencies)\n"
+    "  restitution FILE  measure the DEM's restitution in free rocking and calibrate damping\n"
+    "  study FILE        error against run time of your KN and time-step settings\n"
+    "  sweep FILE        parallel, resumable fragility sweep into an HDF5 table\n"
+    "  keys              every --set key with its units and default\n"
+    "  --version         print the version\n"
+    "Options common to the subcommands that read FILE:\n"
+    "  --set KEY=VALUE   override one setting (repeatable; `rockdem keys` lists them;\n"
+    "                    --set help prints the list)\n"
+    "  -q                quiet: no progress line, shorter output (progress shows only on a\n"
+    "                    terminal)\n";
+
+typedef struct sub_help {
+    const char *name;
+    const char *text;
+} sub_help;
+
+static const sub_help pages[] = {
+    {"run", "usage: rockdem run FILE [--set KEY=VALUE]... [-o OUT.h5] [-q]\n"
+            "Settle the scene under gravity, shake it for the scenario's duration and write the\n"
+            "HDF5 run file (docs/HDF5-LAYOUT.md); print one verdict line per free body.\n"
+            "  -o OUT.h5         output file (default: the scenario's `output hdf5`, else rockdem.h5)\n"
+            "  --set KEY=VALUE   override a setting, e.g. --set motion.amplitude=0.4g (rockdem keys)\n"
+            "  -q                no progress line, no intensity-measure or performance lines\n"
+            "Exit status: 0 done or overturned, 2 bad input, 3 unstable or I/O error, 130 Ctrl-C\n"
+            "(the file then holds everything so far).\n"},
+    {"check", "usage: rockdem check FILE [--set KEY=VALUE]...\n"
+              "Parse and validate the scenario and the overrides; print the body count and the\n"
+              "duration. Exit status 0 when valid, 2 with one line naming file, line and problem.\n"},
+    {"reference", "usage: rockdem reference FILE [--set KEY=VALUE]... [-o OUT.h5]\n"
+                  "Solve the scene as rigid blocks with CVODE: Housner's equation for one free brick\n"
+                  "on a fixed base, Kounadis' two-block equations for a stack of two. Same HDF5\n"
+                  "layout as run. Restitution: `model reference restitution e` (default Housner's r).\n"
+                  "  -o OUT.h5         output file\n"
+                  "  --set KEY=VALUE   override a setting (rockdem keys)\n"},
+    {"threshold", "usage: rockdem threshold FILE [--engine dem|reference] [--lo A] [--hi A] [--rtol R]\n"
+                  "                 [--steps N] [--frequencies F1,F2,...] [--set KEY=VALUE]... [-q]\n"
+                  "Minimum amplitude of the scenario's horizontal pulse that overturns the scene:\n"
+                  "a coarse scan from --lo to --hi, then bisection. Prints it in m/s^2, in g and as\n"
+                  "a / (g tan alpha), with w / p.\n"
+                  "  --engine dem|reference  the DEM (default) or the rigid reference solver\n"
+                  "  --lo A, --hi A    amplitude range, m/s^2 or with a g suffix (default 0.9 and 10\n"
+                  "                    times the static uplift threshold g tan alpha)\n"
+                  "  --rtol R          bisection stops when (hi - lo) / hi < R (default 0.005)\n"
+                  "  --steps N         coarse scan steps from lo to hi (default 24)\n"
+                  "  --frequencies F1,F2,...  one threshold per pulse frequency (Hz): the\n"
+                  "                    minimum-overturning curve a / (g tan alpha) against w / p\n"
+                  "  --set KEY=VALUE   override a setting (rockdem keys)\n"
+                  "  -q                no progress line\n"},
+    {"restitution", "usage: rockdem restitution FILE [--target R] [--theta0 RAD] [--set KEY=VALUE]... [-q]\n"
+                    "Free rocking of the scene's single block: the DEM's effective restitution\n"
+                    "r = w_after / w_before for KN 1e8..1e11 Pa/m and damping ratios 0..1, then the\n"
+                    "viscous damping ratio that reaches the target at the scenario's KN.\n"
+                    "  --target R        restitution to reach (default Housner's r = 1 - 1.5 sin^2 alpha)\n"
+                    "  --theta0 RAD      initial tilt, rad (default alpha / 2)\n"
+                    "  --set KEY=VALUE   override a setting (rockdem keys)\n"
+                    "  -q                no progress line\n"
+                    "Exit status 4 when the target cannot be reached (the closest r is printed).\n"},
+    {"study", "usage: rockdem study FILE [--set KEY=VALUE]... [-q]\n"
+              "Runs the scene at KN x {0.1, 1, 10} and time-step safety x {2, 1, 0.5}; the finest\n"
+              "is the yardstick. For each run: wall time and the differences from the yardstick in\n"
+              "max tilt (relative), first impact time (s) and overturning.\n"
+              "  --set KEY=VALUE   override a setting (rockdem keys)\n"
+              "  -q                no progress line\n"},
+    {"sweep", "usage: rockdem sweep FILE [--set KEY=VALUE]... [--axis KEY=V1,V2,...]... [--records F1,F2,...]\n"
+              "             [--scales S1,S2,...] [--directions D1,D2,...] [-j N] [--keep-runs DIR] [-q]\n"
+              "             -o TABLE.h5\n"
+              "Every combination of the axes (the last varies fastest) is one DEM run; results go\n"
+              "to the HDF5 table /sweep as they finish. Running the same command again resumes it.\n"
+              "  --axis KEY=V1,V2  a --set key and its values (repeatable); interface=K sweeps K\n"
+              "                    seeded interface perturbations\n"
+              "  --records F1,F2   record files (h1) to apply in turn\n"
+              "  --scales S1,S2    0.3g = scale each record to that PGA (m/s^2 or g); 2 = a factor\n"
+              "  --directions D1,D2  motion direction, degrees from +x\n"
+              "  -j N              worker processes (default: the number of cores)\n"
+              "  --keep-runs DIR   keep every case's run file in DIR (default: deleted)\n"
+              "  -o TABLE.h5       the table (required); docs/FRAGILITY.md, docs/HDF5-LAYOUT.md\n"
+              "  -q                no progress line\n"},
+    {"keys", "usage: rockdem keys [--tsv]\n"
+             "Every key --set accepts, with its units, default and meaning (--tsv: tab-separated,\n"
+             "one header line). block.<name>.<field> keys apply to the named block.\n"},
+};
+
+int rd_cli_help(const char *sub, FILE *out)
+{
+    for (size_t i = 0; sub && i < sizeof pages / sizeof pages[0]; i++)
+        if (!strcmp(sub, pages[i].name)) {
+            fputs(pages[i].text, out);
+            return 0;
+        }
+    fputs(global_usage, out);
+    return sub ? -1 : 0;
+}

@@ -1,0 +1,119 @@
+#!/usr/bin/env pvpython
+"""rdparaview — open a rockdem run in ParaView ready to play: the free bodies coloured by tilt
+ratio (tilt / alpha; 1 = the static tipping angle), the fixed bodies (pedestals) in grey, a
+ground plane, the camera on the scene and the animation snapped to the written steps.
+
+    pvpython tools/rdparaview.py RUN.h5 --state RUN.pvsm   then   paraview --state=RUN.pvsm
+    paraview --script=tools/rdparaview.py                  (RDPARAVIEW_RUN=RUN.h5 in the env)
+    pvpython tools/rdparaview.py RUN.h5 --screenshot last.png --time end
+
+Given RUN.h5 it writes the XDMF sidecar first (tools/rdxdmf.py: RUN.xmf + RUN.vis.h5, every
+k-th step with --every k) unless an up-to-date RUN.xmf is there; given RUN.xmf it opens that.
+The .xmf is opened by its absolute path: ParaView 5.11's Xdmf3 readers join a bare file name
+("run.xmf") and the HDF5 path inside it wrongly."""
+import argparse
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+
+def sidecar(path, every, frame):
+    """The .xmf to open for path (a run file or an .xmf), made or refreshed when needed."""
+    if path.endswith(".xmf"):
+        return os.path.abspath(path)
+    from rdtools.xdmf import write_sidecar
+    xmf = os.path.splitext(path)[0] + ".xmf"
+    vis = os.path.splitext(path)[0] + ".vis.h5"
+    fresh = all(os.path.exists(p) and os.path.getmtime(p) >= os.path.getmtime(path) for p in (xmf, vis))
+    if not fresh or every != 1:
+        write_sidecar(path, xmf, every, frame)
+    return os.path.abspath(xmf)
+
+
+def scene(xmf, ratio_max=1.5):
+    """Build the pipeline and view; returns (view, reader)."""
+    from paraview import simple as pv
+    reader = pv.XDMFReader(registrationName=os.path.basename(xmf), FileNames=[xmf])
+    reader.UpdatePipeline(reader.TimestepValues[0] if reader.TimestepValues else 0.0)
+    view = pv.GetActiveViewOrCreate("RenderView")
+    view.OrientationAxesVisibility = 1
+    bodies = pv.ExtractBlock(registrationName="bodies", Input=reader)
+    fixed = pv.ExtractBlock(registrationName="fixed", Input=reader)
+    for blk, sel in ((bodies, "bodies"), (fixed, "fixed")):
+        try:  # 5.11: Selectors; older: BlockIndices (1 = bodies, 2 = fixed)
+            blk.Selectors = ["/Root/%s" % sel]
+        except AttributeError:
+            blk.BlockIndices = [1 if sel == "bodies" else 2]
+    d = pv.Show(bodies, view)
+    pv.ColorBy(d, ("CELLS", "tilt_ratio"))
+    lut = pv.GetColorTransferFunction("tilt_ratio")
+    lut.ApplyPreset("Cool to Warm", True)
+    lut.RescaleTransferFunction(0.0, ratio_max)
+    lut.AutomaticRescaleRangeMode = "Never"
+    bar = pv.GetScalarBar(lut, view)
+    bar.Title = "tilt / alpha"
+    bar.ComponentTitle = ""
+    d.SetScalarBarVisibility(view, True)
+    f = pv.Show(fixed, view)
+    f.ColorArrayName = ["POINTS", ""]  # solid colour
+    f.DiffuseColor = [0.62, 0.6, 0.57]
+    # the ground: a plane under everything, three times the scene's horizontal extent
+    b = reader.GetDataInformation().GetBounds()
+    cx, cy, w = 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 1.5 * max(b[1] - b[0], b[3] - b[2], 1e-3)
+    plane = pv.Plane(registrationName="ground", Origin=[cx - w, cy - w, b[4]],
+                     Point1=[cx + w, cy - w, b[4]], Point2=[cx - w, cy + w, b[4]])
+    g = pv.Show(plane, view)
+    g.DiffuseColor = [0.78, 0.74, 0.66]
+    scene_ = pv.GetAnimationScene()
+    scene_.UpdateAnimationUsingDataTimeSteps()
+    scene_.PlayMode = "Snap To TimeSteps"
+    view.CameraPosition = [cx + 2.2 * w, cy - 2.8 * w, b[5] + 1.6 * w]
+    view.CameraFocalPoint = [cx, cy, 0.5 * (b[4] + b[5])]
+    view.CameraViewUp = [0, 0, 1]
+    pv.SetActiveSource(bodies)
+    return view, reader
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="rdparaview", description=__doc__.split("\n\n")[0]
+                                 .split(" — ", 1)[1].replace("\n", " "))
+    ap.add_argument("run", nargs="?", default=os.environ.get("RDPARAVIEW_RUN"),
+                    metavar="RUN.h5|RUN.xmf", help="run file (or its .xmf); default $RDPARAVIEW_RUN")
+    ap.add_argument("--every", type=int, default=1, metavar="K",
+                    help="write every K-th output step to the sidecar (default 1; the last is kept)")
+    ap.add_argument("--frame", choices=("ground", "absolute"), default="ground",
+                    help="ground: the pedestal frame (default); absolute: moving with the table")
+    ap.add_argument("--ratio-max", type=float, default=1.5, metavar="R",
+                    help="top of the tilt/alpha colour scale (default 1.5)")
+    ap.add_argument("--state", metavar="OUT.pvsm", help="save a ParaView state file")
+    ap.add_argument("--screenshot", metavar="OUT.png", help="save a picture (1200 x 800)")
+    ap.add_argument("--time", default="start", metavar="start|end|T",
+                    help="time shown in the screenshot (default start)")
+    a = ap.parse_args(argv)
+    if not a.run:
+        ap.error("give RUN.h5 (or set RDPARAVIEW_RUN)")
+    if not os.path.exists(a.run):
+        sys.stderr.write("rdparaview: error: %s: no such file\n" % a.run)
+        return 2
+    xmf = sidecar(a.run, a.every, a.frame)
+    from paraview import simple as pv
+    view, reader = scene(xmf, a.ratio_max)
+    ts = list(reader.TimestepValues) or [0.0]
+    t = ts[0] if a.time == "start" else ts[-1] if a.time == "end" else float(a.time)
+    pv.GetAnimationScene().AnimationTime = t
+    if a.screenshot:
+        pv.SaveScreenshot(a.screenshot, view, ImageResolution=[1200, 800])
+    if a.state:
+        pv.SaveState(a.state)
+    print("rdparaview: %s: %d steps from %g to %g s%s%s" % (
+        xmf, len(ts), ts[0], ts[-1], "; state " + a.state if a.state else "",
+        "; picture " + a.screenshot if a.screenshot else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
+elif os.environ.get("RDPARAVIEW_RUN"):  # paraview --script=tools/rdparaview.py
+    scene(sidecar(os.environ["RDPARAVIEW_RUN"], 1, "ground"))
