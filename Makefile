@@ -25,7 +25,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test asan bench study deps clean check-yade mpi
+.PHONY: python all lib run test asan fuzz fuzz-bins bench study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -81,6 +81,19 @@ asan:
 	$(MAKE) test BUILD=build-asan BIN=build-asan/bin OPT=-O1 \
 	    SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
 
+# libFuzzer (clang) under ASan/UBSan on the readers of untrusted input: tests/fuzz/README.md.
+# FUZZ_TIME seconds per target (scenario obj ply stl at2 csv); crashes land in tests/fuzz/found/
+FUZZ_TIME    ?= 60
+FUZZ_TARGETS := scenario obj ply stl at2 csv
+FUZZ_SAN     := -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+fuzz:
+	$(MAKE) fuzz-bins BUILD=build-fuzz CC=clang OPT=-O1 SAN="$(FUZZ_SAN)"
+	@bash tests/fuzz/run.sh build-fuzz/fuzz $(FUZZ_TIME) $(FUZZ_TARGETS)
+fuzz-bins: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_target.c $(BUILD)/librockdem-internal.a $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -fsanitize=fuzzer -DRD_FUZZ_TARGET='"$*"' $< $(BUILD)/librockdem-internal.a $(LDLIBS) -o $@
+
 bench: $(BIN)/rockdem
 	@bash bench/run.sh $(BIN)
 	@bash bench/columns.sh $(BIN)
@@ -103,7 +116,7 @@ $(BIN)/rockdem-mpi: src/cli/rockdem_mpi.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEAD
 	$(MPICC) $(ALL_CFLAGS) $< $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 clean:
-	rm -rf build build-asan bin
+	rm -rf build build-asan build-fuzz bin
 
 # the Python module (tools/rockdem, docs/examples/pbr_study.py): its library and the rockdem
 # program beside it, so `pip install ./tools` packs them (tools/pyproject.toml)

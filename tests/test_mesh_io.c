@@ -383,7 +383,16 @@ static void test_ply_stl_errors(void **state)
     expect_text_error("noz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
                       "element face 0\nproperty list uchar int vertex_indices\nend_header\n0 0\n", "noz.ply: PLY vertex element lacks x, y or z");
     expect_text_error("short.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                      "property float z\nend_header\n0 0 0\n1 0 0\n", "short.ply:10: expected a number (vertex 2 of 3)");
+                      "property float z\nend_header\n0 0 0\n1 0 0\n", "short.ply:10: vertex 2 of 3 has fewer values than the header's properties (file ends)");
+    /* issue 17: one vertex line missing used to read the face line as a vertex and then
+       report "face 0 has 1 vertices" */
+    expect_text_error("few.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                      "few.ply:13: vertex 3 of 4 has more values than the header's 3 properties (do the element counts match the data?)");
+    /* fuzzing found: a list count of 1e300 was converted to long (undefined behaviour) */
+    expect_text_error("list.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                      "property float z\nproperty list uchar int extra\nend_header\n0 0 0 1e300\n",
+                      "list.ply: vertex 0: list 'extra' has 1e+300 entries (0 to 1000000 allowed)");
     expect_text_error("idx.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
                       "idx.ply: face 0 uses vertex 3 but the file has 3 vertices");

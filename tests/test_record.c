@@ -116,10 +116,13 @@ static void test_at2_errors(void **state)
     expect_at2_error("e3.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 0.2\n0.3\n0.4 0.5\n", 7,
                      "expected 3 values (NPTS), found 5");
     expect_at2_error("e4.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1\n0.2 0.3x 0.4\n", 6, "non-numeric value '0.3x'");
-    expect_at2_error("e5.AT2", AT2_HEAD "NPTS= 3, DT= 0.0 SEC\n0.1 0.2 0.3\n", 4, "DT must be positive, found 0");
-    expect_at2_error("e6.AT2", AT2_HEAD "3  -0.01  NPTS, DT\n0.1 0.2 0.3\n", 4, "DT must be positive, found -0.01");
+    expect_at2_error("e5.AT2", AT2_HEAD "NPTS= 3, DT= 0.0 SEC\n0.1 0.2 0.3\n", 4, "DT must be in [1e-06, 1] s, found 0 s");
+    expect_at2_error("e6.AT2", AT2_HEAD "3  -0.01  NPTS, DT\n0.1 0.2 0.3\n", 4, "DT must be in [1e-06, 1] s, found -0.01 s");
+    /* issue 17: a step of 1e300 s was accepted and failed later as "a record is zero" */
+    expect_at2_error("e10.AT2", AT2_HEAD "NPTS= 3, DT= 1e300 SEC\n0.1 0.2 0.3\n", 4, "DT must be in [1e-06, 1] s, found 1e+300 s");
+    expect_at2_error("e11.AT2", AT2_HEAD "NPTS= 1e300, DT= .01 SEC\n0.1\n", 4, "NPTS must be a whole number in [1, 1e+09], found 1e+300");
     expect_at2_error("e7.AT2", "PEER\nevent\n", 2, "expected 4 header lines, found 2");
-    expect_at2_error("e8.AT2", AT2_HEAD "NPTS= 2.5, DT= .01 SEC\n0.1 0.2\n", 4, "NPTS must be a positive whole");
+    expect_at2_error("e8.AT2", AT2_HEAD "NPTS= 2.5, DT= .01 SEC\n0.1 0.2\n", 4, "NPTS must be a whole number in [1, 1e+09]");
     expect_at2_error("e9.AT2", AT2_HEAD "NPTS= 2, DT= .01 SEC\n0.1 nan\n", 5, "non-numeric value 'nan'");
 
     rd_record r;
@@ -188,7 +191,18 @@ static void test_text_errors(void **state)
     expect_text_error("t6.txt", "1\n2\n", -0.01, 1, "needs a time step dt > 0, got -0.01");
     expect_text_error("t7.csv", "0,1\n0.01\n", 0.0, 2, "expected 2 columns as on line 1, found 1");
     expect_text_error("t8.csv", "0,1,2\n", 0.0, 1, "expected 1 or 2 columns");
-    expect_text_error("t9.csv", "# only a comment\n", 0.0, 1, "no data");
+    /* an empty file (or one without numbers) has no line to point at: the message says so */
+    rd_record r;
+    rd_error err;
+    const char *path = write_file("t9.csv", "# only a comment\n");
+    assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_G, 0.0, &err), -1);
+    assert_true(strstr(err.msg, "t9.csv: no data (1 line, none with numbers)") != NULL);
+    path = write_file("t9.AT2", "");
+    assert_int_equal(rd_record_read_at2(&r, path, &err), -1);
+    assert_true(strstr(err.msg, "t9.AT2: empty file: expected 4 header lines") != NULL);
+    path = write_file("t11.csv", "0,1\n1e300,2\n");
+    assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_G, 0.0, &err), -1);
+    assert_true(strstr(err.msg, "t11.csv:1: time step 1e+300 s is outside [1e-06, 1] s") != NULL);
     expect_text_error("t10.csv", "0,1\n", 0.0, 1, "one sample cannot define a time step");
 }
 

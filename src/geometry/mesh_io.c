@@ -136,7 +136,8 @@ static int obj_read(mesh *m, const char *buf, rd_error *err)
 
 /* ---- PLY ---- */
 
-enum { PLY_MAXEL = 16, PLY_MAXPROP = 32 };
+/* Header limits, and the longest list (a face's vertex count) an element may hold. */
+enum { PLY_MAXEL = 16, PLY_MAXPROP = 32, PLY_MAXLIST = 1000000 };
 typedef enum { T_BAD, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 } ply_type;
 typedef struct ply_prop { char name[32]; ply_type type, count_type; int is_list; } ply_prop;
 typedef struct ply_elem { char name[32]; long count; int np; ply_prop p[PLY_MAXPROP]; } ply_elem;
@@ -220,6 +221,7 @@ static int ply_header(ply *h, const char *path, const char *buf, size_t len, rd_
     }
     if (h->format < 0) return rd_error_set(err, "%s: PLY header has no format line", path);
     h->s = s; h->end = end;
+    while (h->format == 0 && h->s < h->end && isspace((unsigned char)*h->s)) h->line += *h->s++ == '\n';
     return 0;
 }
 
@@ -232,8 +234,9 @@ static int type_size(ply_type t)
 /* One value of type t at the cursor. 0, or -1 at the end of the data. */
 static int ply_value(ply *h, ply_type t, double *out)
 {
-    if (h->format == 0) {
-        while (h->s < h->end && isspace((unsigned char)*h->s)) h->line += *h->s++ == '\n';
+    if (h->format == 0) { /* one element instance per line: stop at its end */
+        while (h->s < h->end && (*h->s == ' ' || *h->s == '\t' || *h->s == '\r')) h->s++;
+        if (h->s >= h->end || *h->s == '\n') return -1;
         char *e;
         *out = strtod(h->s, &e);
         if (e == h->s) return -1;
@@ -264,8 +267,11 @@ static int ply_value(ply *h, ply_type t, double *out)
 
 static int ply_short(const ply *h, const char *path, const ply_elem *e, long i, rd_error *err)
 {
+    if (h->format == 0 && h->s < h->end && *h->s != '\n' && !isspace((unsigned char)*h->s))
+        return rd_error_set(err, "%s:%d: not a number in %s %ld of %ld", path, h->line, e->name, i, e->count);
     if (h->format == 0)
-        return rd_error_set(err, "%s:%d: expected a number (%s %ld of %ld)", path, h->line, e->name, i, e->count);
+        return rd_error_set(err, "%s:%d: %s %ld of %ld has fewer values than the header's properties%s", path,
+                            h->line, e->name, i, e->count, h->s >= h->end ? " (file ends)" : "");
     return rd_error_set(err, "%s: truncated binary file (%s %ld of %ld)", path, e->name, i, e->count);
 }
 
@@ -274,8 +280,8 @@ static int ply_face(ply *h, mesh *m, const ply_elem *e, const ply_prop *p, long 
 {
     double c;
     if (ply_value(h, p->count_type, &c)) return ply_short(h, m->path, e, i, err);
-    if (c < 3 || c != floor(c) || c > 1e6)
-        return rd_error_set(err, "%s: face %ld has %g vertices (at least 3 needed)", m->path, i, c);
+    if (!(c >= 3 && c <= PLY_MAXLIST) || c != floor(c))
+        return rd_error_set(err, "%s: face %ld has %g vertices (3 to %d allowed)", m->path, i, c, PLY_MAXLIST);
     for (int k = 0; k < (int)c; k++) {
         double x;
         if (ply_value(h, p->type, &x)) return ply_short(h, m->path, e, i, err);
@@ -299,12 +305,29 @@ static int ply_instance(ply *h, mesh *m, const ply_elem *e, long i, rd_error *er
         }
         double val, cnt = 1;
         if (p->is_list && ply_value(h, p->count_type, &cnt)) return ply_short(h, m->path, e, i, err);
+        if (!(cnt >= 0 && cnt <= PLY_MAXLIST) || cnt != floor(cnt))
+            return rd_error_set(err, "%s: %s %ld: list '%s' has %g entries (0 to %d allowed)", m->path, e->name, i,
+                                p->name, cnt, PLY_MAXLIST);
         for (long k = 0; k < (long)cnt; k++)
             if (ply_value(h, p->type, &val)) return ply_short(h, m->path, e, i, err);
         if (is_vertex && !p->is_list && p->name[0] >= 'x' && p->name[0] <= 'z' && !p->name[1])
             x[p->name[0] - 'x'] = val;
     }
     return is_vertex ? add_vertex(m, x, err) : 0;
+}
+
+/* ASCII: element instance i must end its line (a longer line means the header's counts or
+ * properties do not match the data, e.g. fewer vertex lines than "element vertex N"); then
+ * move to the next line. */
+static int ply_end_line(ply *h, const char *path, const ply_elem *e, long i, rd_error *err)
+{
+    if (h->format != 0) return 0;
+    while (h->s < h->end && (*h->s == ' ' || *h->s == '\t' || *h->s == '\r')) h->s++;
+    if (h->s < h->end && *h->s != '\n')
+        return rd_error_set(err, "%s:%d: %s %ld of %ld has more values than the header's %d properties "
+                            "(do the element counts match the data?)", path, h->line, e->name, i, e->count, e->np);
+    while (h->s < h->end && isspace((unsigned char)*h->s)) h->line += *h->s++ == '\n';
+    return 0;
 }
 
 static int ply_read(mesh *m, const char *buf, size_t len, rd_error *err)
@@ -327,7 +350,7 @@ static int ply_read(mesh *m, const char *buf, size_t len, rd_error *err)
             seen_f = 1;
         }
         for (long i = 0; i < e->count; i++)
-            if (ply_instance(&h, m, e, i, err)) return -1;
+            if (ply_instance(&h, m, e, i, err) || ply_end_line(&h, m->path, e, i, err)) return -1;
     }
     if (!seen_v || !seen_f) return rd_error_set(err, "%s: PLY file has no %s element", m->path, seen_v ? "face" : "vertex");
     return 0;

@@ -22,6 +22,12 @@
 /* Two-column files: each time step may differ from the first by this fraction (times are
  * printed with a few digits; a real change of step is far larger). */
 #define STEP_TOL 1e-3
+/* Valid sample steps, s: strong-motion records are sampled at 1 Hz to 1 MHz; a step outside
+ * this range is a misread header (or a unit error), not a record. */
+#define RECORD_DT_MIN 1e-6
+#define RECORD_DT_MAX 1.0
+/* Most samples a record may declare: 1e9 (8 GB of doubles), far beyond any real record. */
+#define RECORD_NPTS_MAX 1e9
 
 /* --- helpers shared by both readers ------------------------------------------------------ */
 
@@ -180,6 +186,8 @@ static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, r
     char *line = NULL;
     for (int k = 1; k <= 4; k++) {
         line = reader_next(rd);
+        if (!line && k == 1)
+            return rd_error_set(err, "%s: empty file: expected 4 header lines and the values", rd->path);
         if (!line)
             return reader_fail(rd, err, "file ends in the header: expected 4 header lines, found %d", k - 1);
         if (k == 2)
@@ -191,10 +199,10 @@ static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, r
                            "missing NPTS and DT: expected \"NPTS= <n>, DT= <s> SEC\" or \"<n> <s> NPTS, DT\", "
                            "found \"%s\"",
                            line);
-    if (!(n >= 1.0) || n != floor(n))
-        return reader_fail(rd, err, "NPTS must be a positive whole number, found %g", n);
-    if (!(*dt > 0.0) || !isfinite(*dt))
-        return reader_fail(rd, err, "DT must be positive, found %g s", *dt);
+    if (!(n >= 1.0) || n != floor(n) || n > RECORD_NPTS_MAX)
+        return reader_fail(rd, err, "NPTS must be a whole number in [1, %g], found %g", RECORD_NPTS_MAX, n);
+    if (!(*dt >= RECORD_DT_MIN && *dt <= RECORD_DT_MAX))
+        return reader_fail(rd, err, "DT must be in [%g, %g] s, found %g s", RECORD_DT_MIN, RECORD_DT_MAX, *dt);
     *npts = (size_t)n;
     return 0;
 }
@@ -322,13 +330,13 @@ static int is_content(const char *line)
 static int text_step(const reader *rd, const text_state *st, double dt, double *step, rd_error *err)
 {
     if (st->acc.n == 0)
-        return reader_fail(rd, err, "no data");
+        return rd_error_set(err, "%s: no data (%ld line%s, none with numbers)", rd->path, rd->lineno,
+                            rd->lineno == 1 ? "" : "s");
     if (st->ncol == 1) {
         if (!(dt > 0.0) || !isfinite(dt))
             return rd_error_set(err, "%s:%ld: one column of accelerations needs a time step dt > 0, got %g s",
                                 rd->path, st->first_line, dt);
         *step = dt;
-        return 0;
     }
     if (st->t.n < 2 && !(dt > 0.0))
         return rd_error_set(err, "%s:%ld: one sample cannot define a time step", rd->path, st->first_line);
@@ -336,6 +344,9 @@ static int text_step(const reader *rd, const text_state *st, double dt, double *
     if (dt > 0.0 && fabs(*step - dt) > STEP_TOL * dt)
         return rd_error_set(err, "%s:%ld: time step %g s in the file, %g s given", rd->path, st->first_line, *step,
                             dt);
+    if (!(*step >= RECORD_DT_MIN && *step <= RECORD_DT_MAX))
+        return rd_error_set(err, "%s:%ld: time step %g s is outside [%g, %g] s", rd->path, st->first_line, *step,
+                            RECORD_DT_MIN, RECORD_DT_MAX);
     return 0;
 }
 
