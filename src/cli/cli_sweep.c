@@ -234,6 +234,7 @@ int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
     } else {
         signal(SIGINT, on_signal);
         signal(SIGTERM, on_signal);
+        signal(SIGHUP, on_signal);
         signal(SIGPIPE, SIG_IGN);
         int n = a.njobs < p.ncases ? a.njobs : (int)p.ncases;
         if (b && b->size > 1 ? b->open(&p, &pool) : rd_sweep_pool_fork(&p, n < 1 ? 1 : n, &pool, &err)) {

@@ -70,8 +70,11 @@ static int cmd_run(int argc, char **argv, int check_only)
     if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) { fprintf(stderr, "%s\n", err.msg); rd_scenario_free(&sc); return 2; }
+    /* Ctrl-C, kill (SIGTERM) and a closed terminal or session (SIGHUP) all stop the run at the
+       next step; the file is closed with status interrupted */
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
+    signal(SIGHUP, on_signal);
     rd_cli_progress_start("run", 1);
     rd_status st = rd_sim_run(sim);
     rd_cli_progress_stop();
@@ -100,6 +103,9 @@ static int cmd_run(int argc, char **argv, int check_only)
 
 int main(int argc, char **argv)
 {
+    /* past a file-size limit (ulimit -f) write() then fails with EFBIG and the writer reports
+       it, instead of the process dying of SIGXFSZ with nothing said */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc >= 2 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version"))) {
         printf("rockdem %s\n", RD_VERSION);
         return 0;

@@ -6,6 +6,15 @@
  * the file on disk is valid and holds every flushed sample even if the process dies. The file
  * uses the default (earliest) format, which has no "open for writing" flag to clear afterwards.
  *
+ * Faults (disk full, a file-size limit, the file or its directory removed): before each batch
+ * of writes the file is extended by posix_fallocate by more than the batch can need (reserve),
+ * so running out of space fails there, before HDF5 has written anything; HDF5's own flush then
+ * truncates the file back to what it uses. On such a failure the writer stops writing: the
+ * root attributes `status` and `status_message`, created at open with fixed sizes, are
+ * overwritten in place ("io_error" and the reason with the system's errno text), which needs
+ * no new space, and the file keeps every sample flushed before the fault. Until a run ends the
+ * root `status` reads "running" (a file left by a killed process says so).
+ *
  * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
  * internals or cli/.
  *
@@ -18,6 +27,8 @@
 #include "io/io_hdf5.h"
 #include "io/h5_quiet.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <hdf5_hl.h>
 #include <math.h>
@@ -25,11 +36,22 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define RD_H5_BUF 256     /* rows buffered between writes; also the chunk length in time */
 #define RD_H5_DEFLATE 4   /* deflate level */
 #define RD_H5_SERNAME 48  /* bytes of a series path */
 #define RD_H5_LAYOUT 2    /* layout_version: 2 = dimension scales, enums, /events group */
+#define RD_H5_STATUS 16   /* bytes of the root `status` attribute, NUL included */
+#define RD_H5_STATUS_MSG 512 /* bytes of the root `status_message` attribute */
+/* Space reserved before each batch of writes: twice the batch's raw size (deflate can expand
+ * incompressible data by a few bytes per block; chunk-index and object-header updates are
+ * far smaller than the data) plus 64 KiB for metadata (attributes, B-tree nodes, heaps). */
+#define RD_H5_RESERVE_FIXED (64 << 10)
+/* Bytes one event can take on disk (its columns, 25 bytes, and its body name in the global
+ * heap of variable-length strings, with the heap's per-object overhead), generously. */
+#define RD_H5_EVENT_BYTES 128
 
 const char *const rd_energy_names[RD_NENERGY] = {
     "kinetic", "gravitational", "elastic", "friction", "damping", "ground_work", "residual"};
@@ -136,6 +158,10 @@ struct rd_h5 {
     hsize_t ev_written;
     int nev; /* events buffered */
     rd_h5_event_buf evb;
+    int fd;           /* the file's descriptor (sec2 driver), for reserve() */
+    struct stat id;   /* device and inode of the file at open: is it still at path? */
+    int broken;       /* a write failed: nothing more is written; fault holds why */
+    char fault[RD_ERROR_MAX];
 };
 
 /* ---- types ---- */
@@ -152,6 +178,91 @@ static hid_t enum_type(const char *const *names, int n)
         }
     }
     return t;
+}
+
+/* ---- faults ---- */
+
+/* Fixed-length string type of n bytes (NUL-terminated), or a negative id. */
+static hid_t fixed_string(size_t n)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    if (t >= 0 && H5Tset_size(t, n) < 0) { H5Tclose(t); t = H5I_INVALID_HID; }
+    return t;
+}
+
+/* Overwrite the fixed-size root attribute `name` in place (no new space is needed). */
+static int overwrite_fixed(const rd_h5 *h, const char *name, size_t n, const char *value)
+{
+    char buf[RD_H5_STATUS_MSG] = {0};
+    snprintf(buf, n < sizeof buf ? n : sizeof buf, "%s", value);
+    hid_t t = fixed_string(n);
+    hid_t a = t >= 0 ? H5Aopen(h->file, name, H5P_DEFAULT) : H5I_INVALID_HID;
+    int ok = a >= 0 && H5Awrite(a, t, buf) >= 0;
+    if (a >= 0) H5Aclose(a);
+    if (t >= 0) H5Tclose(t);
+    return ok ? 0 : -1;
+}
+
+/* Flush, then give the unused reserve back (the file ends where HDF5's allocation ends). */
+static int flush_file(const rd_h5 *h)
+{
+    hsize_t used = 0;
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0 || H5Fget_filesize(h->file, &used) < 0) return -1;
+    return ftruncate(h->fd, (off_t)used) ? -1 : 0;
+}
+
+/* Root `status` and `status_message`, written in place and flushed. 0 or -1. */
+static int write_status(const rd_h5 *h, const char *status, const char *message)
+{
+    if (overwrite_fixed(h, "status", RD_H5_STATUS, status) ||
+        overwrite_fixed(h, "status_message", RD_H5_STATUS_MSG, message))
+        return -1;
+    return flush_file(h);
+}
+
+/* A write failed: "path: what: reason" into err and h->fault; stop writing; record the fault
+ * in the file's status. `reason` is the system's text (strerror). Returns -1. */
+static int fault(rd_h5 *h, rd_error *err, const char *what, const char *reason)
+{
+    if (!h->broken) {
+        snprintf(h->fault, sizeof h->fault, "%s: %s: %s", h->path, what, reason);
+        h->broken = 1;
+        write_status(h, "io_error", h->fault);
+    }
+    return rd_error_set(err, "%s", h->fault);
+}
+
+/* An HDF5 write failed: its reason is the errno left by the failed system call (HDF5's sec2
+ * driver does not change it afterwards); the caller cleared errno before the writes. */
+static int fault_h5(rd_h5 *h, rd_error *err, const char *what)
+{
+    int e = errno;
+    return fault(h, err, what, e ? strerror(e) : "HDF5 library error (no system error)");
+}
+
+/* Before a batch of writes of up to `bytes` bytes: the file must still be at its path, and the
+ * space must exist (posix_fallocate past the current end). 0, or -1 after fault(). */
+static int reserve(rd_h5 *h, size_t bytes, rd_error *err)
+{
+    if (h->broken) return rd_error_set(err, "%s", h->fault);
+    struct stat now;
+    if (stat(h->path, &now))
+        return fault(h, err, "the file was removed during the run", strerror(errno));
+    if (now.st_dev != h->id.st_dev || now.st_ino != h->id.st_ino)
+        return fault(h, err, "the file was replaced during the run", "another file is at its path");
+    hsize_t used = 0; /* HDF5's end of allocated space: the file beyond it is our reserve */
+    if (H5Fget_filesize(h->file, &used) < 0) return fault_h5(h, err, "cannot get the file size");
+    int e;
+    do e = posix_fallocate(h->fd, (off_t)used, (off_t)(bytes + RD_H5_RESERVE_FIXED));
+    while (e == EINTR);
+    if (e) {
+        char what[96];
+        snprintf(what, sizeof what, "cannot extend the file by %zu bytes at %llu bytes",
+                 bytes + RD_H5_RESERVE_FIXED, (unsigned long long)used);
+        return fault(h, err, what, strerror(e));
+    }
+    errno = 0;
+    return 0;
 }
 
 /* ---- attributes ---- */
@@ -578,27 +689,55 @@ static int make_types(rd_h5 *h)
            h->event_type >= 0 ? 0 : -1;
 }
 
+/* Root `status` ("running" until the run ends) and `status_message`, fixed-size strings so
+ * that a fault can overwrite them in place. */
+static int write_status_attrs(const rd_h5 *h, rd_error *err)
+{
+    char st[RD_H5_STATUS] = "running", msg[RD_H5_STATUS_MSG] = "";
+    hid_t t1 = fixed_string(sizeof st), t2 = fixed_string(sizeof msg);
+    int rc = t1 < 0 || t2 < 0 || attr_write(h, h->file, "status", t1, 0, st, err) ||
+             attr_write(h, h->file, "status_message", t2, 0, msg, err) ? -1 : 0;
+    if (t1 >= 0) H5Tclose(t1);
+    if (t2 >= 0) H5Tclose(t2);
+    return rc;
+}
+
 static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
 {
+    H5dont_atexit(); /* files are closed by rd_h5_close; HDF5's exit hook crashed on a failed one */
     if (check_names(path, meta, err)) return NULL;
     rd_h5 *h = alloc_handle(path, meta);
     if (!h) {
         rd_error_set(err, "%s: out of memory", path);
         return NULL;
     }
-    h->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (h->file < 0) {
-        rd_error_set(err, "%s: cannot create file", path);
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666); /* the system's reason, if any */
+    if (fd < 0 || close(fd)) {
+        rd_error_set(err, "%s: cannot create file: %s", path, strerror(errno));
         destroy(h);
         return NULL;
     }
+    errno = 0;
+    h->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int *fdp = NULL;
+    if (h->file < 0 || H5Fget_vfd_handle(h->file, H5P_DEFAULT, (void **)&fdp) < 0 || !fdp ||
+        fstat(*fdp, &h->id)) {
+        rd_error_set(err, "%s: cannot create file: %s", path,
+                     errno ? strerror(errno) : "HDF5 library error");
+        destroy(h);
+        return NULL;
+    }
+    h->fd = *fdp;
+    size_t tables = 0; /* bytes of the bodies' vertex and triangle tables */
+    for (int i = 0; i < meta->nbodies; i++)
+        tables += 3 * (sizeof(double) * (size_t)meta->bodies[i].nvert + sizeof(int) * (size_t)meta->bodies[i].ntri);
     if (make_types(h)) {
         rd_error_set(err, "%s: cannot create the string and enum types", path);
         destroy(h);
         return NULL;
     }
-    if (write_root_attrs(h, meta, err) || create_dims(h, err) ||
-        make_group(h, "/bodies", "geometry and mass of every body", err) ||
+    if (reserve(h, tables, err) || write_root_attrs(h, meta, err) || write_status_attrs(h, err) ||
+        create_dims(h, err) || make_group(h, "/bodies", "geometry and mass of every body", err) ||
         write_bodies(h, meta, err) || create_series(h, err) || create_events(h, err) ||
         rd_h5_flush(h, err)) {
         destroy(h);
@@ -699,15 +838,19 @@ static int h5_flush(rd_h5 *h, rd_error *err)
 {
     int n = h->nbuf, nev = h->nev;
     h->nbuf = h->nev = 0; /* a failed write is not retried: it would duplicate rows */
+    size_t width = 0; /* doubles per sample, all series */
+    for (int i = 0; i < SER_COUNT; i++) width += h->ser[i].width;
+    if (reserve(h, 2 * (sizeof(double) * width * (size_t)n + RD_H5_EVENT_BYTES * (size_t)nev), err))
+        return -1;
+    char what[RD_H5_SERNAME + 32];
     for (int i = 0; n > 0 && i < SER_COUNT; i++) {
         rd_h5_series *s = &h->ser[i];
+        snprintf(what, sizeof what, "cannot write '%s'", s->name);
         if (extend_write(s->dset, H5T_NATIVE_DOUBLE, s->rank, s->dims, (hsize_t)n, s->buf))
-            return rd_error_set(err, "%s: cannot write '%s'", h->path, s->name);
+            return fault_h5(h, err, what);
     }
-    if (nev > 0 && write_events(h, nev))
-        return rd_error_set(err, "%s: cannot write /events", h->path);
-    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
-        return rd_error_set(err, "%s: cannot flush file", h->path);
+    if (nev > 0 && write_events(h, nev)) return fault_h5(h, err, "cannot write /events");
+    if (flush_file(h)) return fault_h5(h, err, "cannot flush file");
     return 0;
 }
 
@@ -741,6 +884,7 @@ static const rd_h5_body_field body_fields[] = {
 
 static int h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
 {
+    if (reserve(h, sizeof(double) * 3 * (size_t)n, err)) return -1;
     char path[RD_NAME_MAX + 16];
     snprintf(path, sizeof path, "/bodies/%s", body);
     hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
@@ -841,6 +985,7 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
 
 static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 {
+    if (reserve(h, 0, err)) return -1;
     int order[RD_MAX_BODIES];
     if (summary_order(h, s, order, err)) return -1;
     htri_t exists = H5Lexists(h->file, "/summary", H5P_DEFAULT);
@@ -852,16 +997,18 @@ static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
     int rc = write_summary_attrs(h, g, s, err) || write_body_fields(h, g, s, order, err) ||
              update_body_alpha(h, s, order, err) ? -1 : 0;
     H5Gclose(g);
-    if (!rc && H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
-        rc = rd_error_set(err, "%s: cannot flush file", h->path);
-    return rc;
+    if (rc) return fault_h5(h, err, "cannot write /summary");
+    unsigned st = (unsigned)s->status;
+    if (write_status(h, st < sizeof status_names / sizeof status_names[0] ? status_names[st] : "unknown", ""))
+        return fault_h5(h, err, "cannot write the status");
+    return 0;
 }
 
 static void h5_close(rd_h5 *h)
 {
     if (!h) return;
     rd_error ignored;
-    rd_h5_flush(h, &ignored);
+    if (!h->broken) rd_h5_flush(h, &ignored);
     destroy(h);
 }
 
@@ -894,6 +1041,7 @@ static int write_component_im(const rd_h5 *h, hid_t g, const rd_motion_def *m, i
 static int h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
 {
     if (!rd_motion_has_records(m)) return 0;
+    if (reserve(h, 0, err)) return -1;
     hid_t g = H5Gopen2(h->file, "/ground", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot open group '/ground'", h->path);
     int rc = attr_double(h, g, "direction", m->direction, "rad", err) ||
