@@ -24,6 +24,14 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Valid generator settings: a step between 1 us and 1 s (as for read records, record.c), at
+ * most one hour of shaking (the longest recorded strong motion lasts a few minutes) and at most
+ * 1e7 samples (240 MB of acceleration, velocity and displacement; 20 s at 0.005 s is 4001). */
+#define STOCH_DT_MIN 1e-6
+#define STOCH_DT_MAX 1.0
+#define STOCH_DURATION_MAX 3600.0
+#define STOCH_NPTS_MAX 1e7
+
 void rd_stochastic_defaults(rd_stochastic_def *def)
 {
     def->duration = 20.0;
@@ -42,6 +50,11 @@ static int check_def(const rd_stochastic_def *d, rd_error *err)
 {
     if (!(d->dt > 0.0) || !(d->duration > d->dt) || !isfinite(d->duration))
         return rd_error_set(err, "stochastic record: need 0 < dt (%g s) < duration (%g s)", d->dt, d->duration);
+    if (!(d->dt >= STOCH_DT_MIN && d->dt <= STOCH_DT_MAX) || d->duration > STOCH_DURATION_MAX ||
+        d->duration / d->dt > STOCH_NPTS_MAX)
+        return rd_error_set(err, "stochastic record: dt %g s must be in [%g, %g] s, the duration %g s at most %g s "
+                            "and at most %g samples", d->dt, STOCH_DT_MIN, STOCH_DT_MAX, d->duration,
+                            STOCH_DURATION_MAX, STOCH_NPTS_MAX);
     if (!(d->frequency > 0.0) || !(d->damping > 0.0 && d->damping < 1.0))
         return rd_error_set(err, "stochastic record: ground frequency %g Hz must be > 0 and damping %g in (0, 1)",
                             d->frequency, d->damping);

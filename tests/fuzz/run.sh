@@ -13,7 +13,7 @@ work=${RD_FUZZ_WORK:-build-fuzz/work}
 status=0
 for t in "$@"; do
     mkdir -p "$work/$t" "$here/found/$t" "$here/regress/$t"
-    log="$work/$t.log"
+    log="$work/$t.log"; t0=$SECONDS
     # -timeout: one input may take at most 10 s; -rss_limit_mb: 2 GiB; -max_len: 64 KiB inputs
     "$dir/fuzz_$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
         -dict="$here/scenario.dict" -artifact_prefix="$here/found/$t/" -print_final_stats=1 \
@@ -21,8 +21,8 @@ for t in "$@"; do
     rc=$?
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n1)
     found=$(find "$here/found/$t" -type f | wc -l)
-    printf 'fuzz %-9s %4ss %10s executions  exit %d  %d input(s) in tests/fuzz/found/%s/\n' \
-        "$t" "$secs" "${execs:-?}" "$rc" "$found" "$t"
+    printf 'fuzz %-9s %5ss of %5ss %10s executions  exit %d  %d input(s) in tests/fuzz/found/%s/\n' \
+        "$t" "$((SECONDS - t0))" "$secs" "${execs:-?}" "$rc" "$found" "$t"
     [ "$rc" -ne 0 ] && { status=1; grep -m3 -E 'ERROR|SUMMARY|runtime error' "$log"; }
 done
 exit $status
