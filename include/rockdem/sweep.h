@@ -118,8 +118,9 @@ typedef struct rd_sweep_pool {
 /* Fork n workers. -1 with err. */
 RD_API int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_error *err);
 
-/* A private temporary folder for run files ($TMPDIR or /tmp); "" on failure. */
-RD_API void rd_sweep_tmpdir(char *dir, size_t size);
+/* A private temporary folder for run files ($TMPDIR or /tmp). 0, or -1 with err naming the
+ * folder and the system's reason (dir is then ""). */
+RD_API int rd_sweep_tmpdir(char *dir, size_t size, rd_error *err);
 
 /* --- sweep_table.c: the HDF5 table --------------------------------------------------------- */
 
@@ -129,11 +130,18 @@ typedef struct rd_sweep_table rd_sweep_table;
  * cases already in it; done has ncases entries). NULL with err. */
 RD_API rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err);
 
-/* Append one result row and flush the file. -1 with err. */
+/* Append one result row and flush the file. Atomic: the space is reserved first
+ * (posix_fallocate), so a full disk or a file-size limit fails before anything is written and
+ * the table keeps exactly its earlier rows. -1 with err (the file and the system's reason). */
 RD_API int rd_sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err);
 
 /* Rows on disk. */
 RD_API long rd_sweep_table_rows(const rd_sweep_table *t);
+
+/* Trailing rows found partially written when the table was opened (an append cut short by a
+ * fault, e.g. a full disk, before this version made appends atomic); they were dropped and
+ * their cases are run again. */
+RD_API long rd_sweep_table_dropped(const rd_sweep_table *t);
 
 /* Reorder the rows by case index (a complete sweep reads the same whatever -j). -1 with err. */
 RD_API int rd_sweep_table_sort(rd_sweep_table *t, rd_error *err);

@@ -138,7 +138,7 @@ static void take(driver *d, const rd_sweep_result *r)
 {
     rd_error err;
     if (r->status == RD_STATUS_INTERRUPTED) { d->lost++; return; }
-    if (r->status < 0) {
+    if (r->status < 0 || r->status == RD_STATUS_IO_ERROR) { /* not a result: a resume runs it again */
         fprintf(stderr, "%s%s\n", d->g.tty ? "\n" : "", r->message);
         d->failed++;
         return;
@@ -192,6 +192,9 @@ static int coordinate(const rd_sweep_plan *p, const sweep_args *a, rd_sweep_pool
     }
     for (long k = 0; k < p->ncases; k++)
         if (!done[k]) d.todo[d.ntodo++] = k;
+    if (rd_sweep_table_dropped(d.table))
+        fprintf(stderr, "rockdem sweep: %s: dropped %ld partially written row(s) at its end (a write was cut "
+                        "short); their cases run again\n", a->out, rd_sweep_table_dropped(d.table));
     d.g = (progress){.total = p->ncases, .before = p->ncases - d.ntodo, .t0 = now(),
                      .tty = isatty(2), .quiet = a->quiet};
     drive(&d);
@@ -213,7 +216,10 @@ static int coordinate(const rd_sweep_plan *p, const sweep_args *a, rd_sweep_pool
                         "to resume\n", a->out);
         return 130;
     }
-    return d.write_error || d.failed ? 3 : 0;
+    if (!complete)
+        fprintf(stderr, "rockdem sweep: %s is incomplete: %ld of %ld cases%s; run the same command to resume\n",
+                a->out, d.g.before + d.g.done, p->ncases, d.write_error ? " (a write failed, see above)" : "");
+    return d.write_error || d.failed || !complete ? 3 : 0;
 }
 
 int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
@@ -237,6 +243,14 @@ int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
         signal(SIGHUP, on_signal);
         signal(SIGPIPE, SIG_IGN);
         int n = a.njobs < p.ncases ? a.njobs : (int)p.ncases;
+        char dir[RD_PATH_MAX];
+        if (!(b && b->size > 1) && rd_sweep_tmpdir(dir, sizeof dir, &err)) { /* the workers' run files */
+            fprintf(stderr, "%s\n", err.msg);
+            rd_sweep_plan_free(&p);
+            free(p.sets);
+            return 2;
+        }
+        if (!(b && b->size > 1)) rmdir(dir);
         if (b && b->size > 1 ? b->open(&p, &pool) : rd_sweep_pool_fork(&p, n < 1 ? 1 : n, &pool, &err)) {
             fprintf(stderr, "%s\n", b && b->size > 1 ? "rockdem sweep: cannot start the MPI workers" : err.msg);
             rc = 3;

@@ -73,7 +73,8 @@ static int mpi_serve(const rd_sweep_plan *p)
     char dir[RD_PATH_MAX];
     long k;
     rd_sweep_result *r = malloc(sizeof *r);
-    rd_sweep_tmpdir(dir, sizeof dir);
+    rd_error err;
+    if (rd_sweep_tmpdir(dir, sizeof dir, &err)) fprintf(stderr, "%s (using /tmp)\n", err.msg);
     while (MPI_Recv(&k, 1, MPI_LONG, 0, TAG_CASE, MPI_COMM_WORLD, MPI_STATUS_IGNORE) == MPI_SUCCESS && k >= 0) {
         rd_sweep_run_case(p, k, dir[0] ? dir : "/tmp", r);
         MPI_Send(r, (int)sizeof *r, MPI_BYTE, 0, TAG_RESULT, MPI_COMM_WORLD);

@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,11 +54,16 @@ static int read_all(int fd, void *buf, size_t n)
     return 0;
 }
 
-void rd_sweep_tmpdir(char *dir, size_t size)
+int rd_sweep_tmpdir(char *dir, size_t size, rd_error *err)
 {
     const char *base = getenv("TMPDIR");
-    snprintf(dir, size, "%s/rockdem-sweep-XXXXXX", base && base[0] ? base : "/tmp");
-    if (!mkdtemp(dir)) dir[0] = '\0';
+    int from_env = base && base[0];
+    snprintf(dir, size, "%s/rockdem-sweep-XXXXXX", from_env ? base : "/tmp");
+    if (mkdtemp(dir)) return 0;
+    int e = errno;
+    dir[0] = '\0';
+    return rd_error_set(err, "rockdem sweep: cannot create a folder for run files in %s%s: %s",
+                        from_env ? base : "/tmp", from_env ? " ($TMPDIR)" : "", strerror(e));
 }
 
 static void on_stop(int sig)
@@ -72,9 +78,11 @@ static void worker(const rd_sweep_plan *p, int in, int out)
     char dir[RD_PATH_MAX];
     long k;
     rd_sweep_result *r = malloc(sizeof *r);
+    rd_error err;
     signal(SIGINT, on_stop);
     signal(SIGTERM, on_stop);
-    rd_sweep_tmpdir(dir, sizeof dir);
+    signal(SIGHUP, on_stop);
+    if (rd_sweep_tmpdir(dir, sizeof dir, &err)) fprintf(stderr, "%s\n", err.msg);
     while (r && dir[0] && read_all(in, &k, sizeof k) == 0 && k >= 0) {
         rd_sweep_run_case(p, k, dir, r);
         if (write_all(out, r, sizeof *r)) break;
@@ -140,12 +148,17 @@ int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_er
     *pool = (rd_sweep_pool){.nworkers = n, .ctx = c, .send = pool_send, .recv = pool_recv,
                             .interrupt = pool_interrupt, .finish = pool_finish};
     fflush(NULL);
+    pid_t coordinator = getpid();
     for (int w = 0; w < n; w++) {
         int tp[2], rp[2];
         c->task[w] = c->result[w] = -1;
         if (pipe2(tp, O_CLOEXEC) || pipe2(rp, O_CLOEXEC)) break;
         c->pid[w] = fork();
         if (c->pid[w] == 0) {
+            /* the worker dies with its coordinator (even one killed by SIGKILL): SIGTERM stops
+               its case; then the closed pipe ends it. The check closes the race with a
+               coordinator that died before prctl. */
+            if (prctl(PR_SET_PDEATHSIG, SIGTERM) || getppid() != coordinator) _exit(3);
             for (int v = 0; v < w; v++) { close(c->task[v]); close(c->result[v]); }
             close(tp[1]);
             close(rp[0]);

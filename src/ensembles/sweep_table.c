@@ -6,21 +6,33 @@
  * Self-describing like a run file (docs/HDF5-LAYOUT.md): `case` is the dimension scale of the
  * rows and `body` of the per-body axis, every column has units and long_name, status is an
  * HDF5 enum, strings are UTF-8 and the case count is a number.
+ *
+ * Before a row is written the file is extended (posix_fallocate) by more than the row needs,
+ * so a full disk or a file-size limit fails before HDF5 writes anything; HDF5 never meets a
+ * failed write mid-row. Trailing rows whose case/hash do not match the plan (a partial row
+ * left by older versions, or by an I/O error inside HDF5) are dropped and reported.
+ *
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/sweep.h"
 #include "io/h5_quiet.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <hdf5_hl.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
 #define RD_SWEEP_LAYOUT 2 /* /sweep layout_version: 2 = scales, status enum, numeric ncases */
+/* Space reserved before a row: a new chunk for every column when the row starts one (chunks
+ * are allocated whole), plus 32 KiB for chunk-index (B-tree) nodes and object-header updates. */
+#define RD_SWEEP_RESERVE_FIXED (32 << 10)
 
 typedef enum col_type { C_I32, C_I64, C_U64, C_F64, C_STR, C_STATUS } col_type;
 
@@ -79,6 +91,8 @@ struct rd_sweep_table {
     int ncols;
     column col[RD_SWEEP_MAX_AXES + NOUT];
     long rows;
+    long dropped; /* partial trailing rows dropped at open */
+    int fd;       /* the file's descriptor (sec2 driver), for reserve() */
 };
 
 static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error"};
@@ -219,16 +233,60 @@ static int write_meta(rd_sweep_table *t)
                                                         : "records: max over horizontal components") ? -1 : 0;
 }
 
+/* The descriptor behind t->file. 0 or -1. */
+static int get_fd(rd_sweep_table *t, rd_error *err)
+{
+    int *fdp = NULL;
+    if (H5Fget_vfd_handle(t->file, H5P_DEFAULT, (void **)&fdp) < 0 || !fdp)
+        return h5fail(t, err, "cannot get the file descriptor");
+    t->fd = *fdp;
+    return 0;
+}
+
+/* Make room for `bytes` more past HDF5's allocated end of file. 0, or -1 with the reason. */
+static int reserve(rd_sweep_table *t, size_t bytes, rd_error *err)
+{
+    hsize_t used = 0;
+    if (H5Fget_filesize(t->file, &used) < 0) return h5fail(t, err, "cannot get the file size");
+    int e;
+    do e = posix_fallocate(t->fd, (off_t)used, (off_t)(bytes + RD_SWEEP_RESERVE_FIXED));
+    while (e == EINTR);
+    if (e)
+        return rd_error_set(err, "rockdem sweep: %s: cannot extend the table by %zu bytes for row %ld: %s", t->path,
+                            bytes + RD_SWEEP_RESERVE_FIXED, t->rows, strerror(e));
+    return 0;
+}
+
+/* Flush and give the unused reserve back. 0 or -1 (errno set). */
+static int flush_table(rd_sweep_table *t)
+{
+    hsize_t used = 0;
+    errno = 0;
+    if (H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 || H5Fget_filesize(t->file, &used) < 0) return -1;
+    return ftruncate(t->fd, (off_t)used) ? -1 : 0;
+}
+
+/* "cannot <what>: <errno text>" for an HDF5 failure that follows a failed system call. */
+static int h5fail_errno(rd_sweep_table *t, rd_error *err, const char *what)
+{
+    int e = errno;
+    return rd_error_set(err, "rockdem sweep: %s: %s: %s", t->path, what, e ? strerror(e) : "HDF5 library error");
+}
+
 static int create_table(rd_sweep_table *t, rd_error *err)
 {
-    t->file = H5Fcreate(t->path, H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
-    if (t->file < 0) return h5fail(t, err, "cannot create the table");
+    int fd = open(t->path, O_WRONLY | O_CREAT | O_EXCL, 0666); /* the system's reason, if any */
+    if (fd < 0) return h5fail_errno(t, err, "cannot create the table");
+    close(fd);
+    t->file = H5Fcreate(t->path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot create the table");
+    if (reserve(t, 0, err)) return -1;
     t->group = H5Gcreate2(t->file, "sweep", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (t->group < 0 || write_meta(t)) return h5fail(t, err, "cannot write the table header");
     for (int i = 0; i < t->ncols; i++)
         if (create_column(t, &t->col[i])) return h5fail(t, err, "cannot create a column");
     if (attach_scales(t)) return h5fail(t, err, "cannot write the dimension scales");
-    return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
+    return flush_table(t) ? h5fail_errno(t, err, "cannot flush") : 0;
 }
 
 /* The rows committed (length of `case`); other columns are trimmed to it. */
@@ -267,7 +325,18 @@ static const column *find_col(const rd_sweep_table *t, const char *name)
     return NULL;
 }
 
-/* Mark done[] from the committed rows, checking each case's hash. */
+/* Shorten every column to t->rows. */
+static int set_rows(rd_sweep_table *t, rd_error *err)
+{
+    for (int i = 0; i < t->ncols; i++) {
+        hsize_t d[2] = {(hsize_t)t->rows, (hsize_t)t->col[i].width};
+        if (H5Dset_extent(t->col[i].dset, d) < 0) return h5fail(t, err, "cannot trim a column");
+    }
+    return 0;
+}
+
+/* Mark done[] from the committed rows, checking each case's hash. Trailing rows that do not
+ * match (partially written) are dropped; a mismatch before a good row is another sweep's. */
 static int read_done(rd_sweep_table *t, char *done, rd_error *err)
 {
     const column *ck = find_col(t, "case"), *ch = find_col(t, "hash");
@@ -278,6 +347,12 @@ static int read_done(rd_sweep_table *t, char *done, rd_error *err)
     if (!rc && n > 0 && (H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) < 0 ||
                          H5Dread(ch->dset, ch->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, h) < 0))
         rc = h5fail(t, err, "cannot read the case and hash columns");
+    while (!rc && n > 0 && (k[n - 1] < 0 || k[n - 1] >= t->plan->ncases || h[n - 1] != rd_sweep_hash(t->plan, k[n - 1])))
+        n--, t->dropped++;
+    if (!rc && t->dropped) {
+        t->rows = n;
+        rc = set_rows(t, err) || flush_table(t) ? h5fail_errno(t, err, "cannot drop the partially written rows") : 0;
+    }
     for (long i = 0; !rc && i < n; i++) {
         if (k[i] < 0 || k[i] >= t->plan->ncases || h[i] != rd_sweep_hash(t->plan, k[i]))
             rc = rd_error_set(err, "rockdem sweep: %s: row %ld (case %ld) does not match this sweep's "
@@ -293,8 +368,9 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
 {
     htri_t is = H5Fis_hdf5(t->path);
     if (is <= 0) return h5fail(t, err, "exists and is not an HDF5 file; choose another -o");
+    errno = 0;
     t->file = H5Fopen(t->path, H5F_ACC_RDWR, H5P_DEFAULT);
-    if (t->file < 0) return h5fail(t, err, "cannot open for writing");
+    if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot open for writing");
     if (check_same(t, "axes", t->plan->axes_text, "axes or --set overrides", err) ||
         check_same(t, "scenario", t->plan->text, "scenario text", err))
         return -1;
@@ -315,7 +391,7 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
     if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
     snprintf(t->path, sizeof t->path, "%s", path);
     t->plan = p;
-    t->file = t->group = -1;
+    t->file = t->group = t->fd = -1;
     t->str = H5Tcopy(H5T_C_S1);
     H5Tset_size(t->str, RD_SWEEP_TEXT);
     H5Tset_cset(t->str, H5T_CSET_UTF8);
@@ -326,6 +402,7 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
     for (unsigned char v = 0; v < sizeof status_names / sizeof status_names[0]; v++)
         H5Tenum_insert(t->status_t, status_names[v], &v);
     layout(t);
+    H5dont_atexit(); /* closed by rd_sweep_table_close; HDF5's exit hook crashed on a failed file */
     FILE *f = fopen(path, "rb");
     int rc = f ? open_table(t, done, err) : create_table(t, err);
     if (f) fclose(f);
@@ -350,28 +427,46 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
     }
 }
 
+/* A write failed inside HDF5 (past the reserve): shrink every column back to the committed
+ * rows, so that no partial row stays, and report the system's reason. Returns -1. */
+static int undo_row(rd_sweep_table *t, rd_error *err, const char *what)
+{
+    h5fail_errno(t, err, what);
+    rd_error ignored;
+    if (set_rows(t, &ignored) == 0) flush_table(t);
+    return -1;
+}
+
 static int sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err)
 {
     char buf[RD_MAX_BODIES * sizeof(double) + RD_SWEEP_TEXT];
+    size_t chunks = 0; /* bytes of one new chunk of every column, when this row starts one */
+    for (int i = 0; i < t->ncols && t->rows % RD_SWEEP_CHUNK == 0; i++)
+        chunks += RD_SWEEP_CHUNK * t->col[i].size * (size_t)t->col[i].width;
+    if (reserve(t, chunks, err)) return -1;
+    errno = 0;
     for (int i = 0; i < t->ncols; i++) {
         column *c = &t->col[i];
         hsize_t d[2] = {(hsize_t)t->rows + 1, (hsize_t)c->width}, start[2] = {(hsize_t)t->rows, 0};
         hsize_t count[2] = {1, (hsize_t)c->width};
         int rank = c->spec && c->spec->per_body ? 2 : 1;
         cell(t, c, r, buf);
-        if (H5Dset_extent(c->dset, d) < 0) return h5fail(t, err, "cannot extend a column");
+        if (H5Dset_extent(c->dset, d) < 0) return undo_row(t, err, "cannot extend a column");
         hid_t fs = H5Dget_space(c->dset), ms = H5Screate_simple(rank, count, NULL);
         H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
         herr_t w = H5Dwrite(c->dset, c->mtype, ms, fs, H5P_DEFAULT, buf);
         H5Sclose(ms);
         H5Sclose(fs);
-        if (w < 0) return h5fail(t, err, "cannot write a row");
+        if (w < 0) return undo_row(t, err, "cannot write a row");
     }
+    if (flush_table(t)) return undo_row(t, err, "cannot flush");
     t->rows++;
-    return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
+    return 0;
 }
 
 long rd_sweep_table_rows(const rd_sweep_table *t) { return t->rows; }
+
+long rd_sweep_table_dropped(const rd_sweep_table *t) { return t->dropped; }
 
 static int cmp_key(const void *a, const void *b)
 {
@@ -393,7 +488,7 @@ static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
         free(b);
         if (rc) return h5fail(t, err, "cannot reorder the rows");
     }
-    return H5Fflush(t->file, H5F_SCOPE_GLOBAL) < 0 ? h5fail(t, err, "cannot flush") : 0;
+    return flush_table(t) ? h5fail_errno(t, err, "cannot flush") : 0;
 }
 
 static int sweep_table_sort(rd_sweep_table *t, rd_error *err)
