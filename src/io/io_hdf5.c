@@ -8,8 +8,8 @@
  *
  * Faults (disk full, a file-size limit, the file or its directory removed): before each batch
  * of writes the file is extended by posix_fallocate by more than the batch can need (reserve),
- * so running out of space fails there, before HDF5 has written anything; HDF5's own flush then
- * truncates the file back to what it uses. On such a failure the writer stops writing: the
+ * so running out of space fails there, before HDF5 has written anything; after each flush the
+ * file is truncated back to the end of HDF5's allocation (flush_file). On such a failure the writer stops writing: the
  * root attributes `status` and `status_message`, created at open with fixed sizes, are
  * overwritten in place ("io_error" and the reason with the system's errno text), which needs
  * no new space, and the file keeps every sample flushed before the fault. Until a run ends the
