@@ -14,7 +14,8 @@ The rock has seed 002's size: plan extents about 0.30 x 0.64 m, 0.80 m tall, 354
      comes out about 10 % larger than 0.30 x 0.64 m); the height is 0.80 m and the base sits
      on z = 0, centred on the origin.
 Triangles are counter-clockwise seen from outside. Prints volume and mass.
-Usage: make_pbr.py [--seed N] [-o rock.obj] [--density 2750] [--mass 354]
+Usage: make_pbr.py [--seed N] [-o rock.obj] [--density 2750] [--mass 354] [--nlat 32]
+(--nlat sets the resolution: bench/mesh_setup.sh times 10k, 100k and 1M-triangle rocks.)
 """
 import argparse
 import sys
@@ -52,9 +53,9 @@ def volume(x, tris):
     return float(np.sum(np.einsum("ij,ij->i", a, np.cross(b, c)))) / 6.0
 
 
-def rock(seed, target_volume):
+def rock(seed, target_volume, nlat=32):
     rng = np.random.default_rng(seed)
-    u, tris = directions(32, 64)
+    u, tris = directions(nlat, 2 * nlat)
     semi = np.array([PLAN[0] / 2, PLAN[1] / 2, HEIGHT / 2])
     r = np.sum(np.abs(u / semi) ** EXPONENT, axis=1) ** (-1.0 / EXPONENT)
     noise = np.zeros(len(u))
@@ -84,8 +85,11 @@ def main():
     ap.add_argument("-o", "--output", default="pbr.obj")
     ap.add_argument("--density", type=float, default=2750.0, help="kg/m^3")
     ap.add_argument("--mass", type=float, default=354.0, help="target mass, kg")
+    ap.add_argument("--nlat", type=int, default=32,
+                    help="latitude rings + 1: 4 nlat (nlat - 1) triangles (32: 3968, 50: 9800, "
+                         "158: 99224, 500: 998000)")
     a = ap.parse_args()
-    x, tris = rock(a.seed, a.mass / a.density)
+    x, tris = rock(a.seed, a.mass / a.density, a.nlat)
     lines = [f"# precariously balanced rock, tools/make_pbr.py --seed {a.seed}; metres, base on z = 0"]
     lines += [f"v {p[0]:.6f} {p[1]:.6f} {p[2]:.6f}" for p in x]
     lines += [f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}" for t in tris]

@@ -165,21 +165,29 @@ static int face_touches(const rd_sim *s, int i, int f, double tol)
 }
 
 /* A face carries subcontact points if it lies on another body's face, or if it faces down
- * and lies in the lowest fifth of the body (a rock's base region, not its overhangs). */
-static int is_candidate(const rd_sim *s, int i, int f)
+ * and lies in the lowest fifth of the body (a rock's base region, not its overhangs); zr is
+ * the body's height range (world z, m: lowest, highest vertex). */
+static int is_candidate(const rd_sim *s, int i, int f, const double zr[2])
 {
     if (s->fixed[i]) return 0;
     const rd_poly *p = &s->poly[i];
     const double *n = s->wn[s->face0[i] + f];
     if (face_touches(s, i, f, 1e-6 * (1.0 + p->radius))) return 1;
     if (n[2] >= -0.5) return 0;
-    double zmin = INFINITY, zmax = -INFINITY, fmin_z = INFINITY;
-    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) {
-        zmin = fmin(zmin, s->wv[v][2]);
-        zmax = fmax(zmax, s->wv[v][2]);
-    }
+    double fmin_z = INFINITY;
     for (int k = 0; k < p->flen[f]; k++) fmin_z = fmin(fmin_z, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]][2]);
-    return fmin_z <= zmin + 0.2 * (zmax - zmin);
+    return fmin_z <= zr[0] + 0.2 * (zr[1] - zr[0]);
+}
+
+/* Lowest and highest world z of body i's vertices, m (once per body: a per-face scan made
+ * setup quadratic in the triangles of a scanned mesh, 39 s for 160k triangles). */
+static void body_z_range(const rd_sim *s, int i, double zr[2])
+{
+    zr[0] = INFINITY; zr[1] = -INFINITY;
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) {
+        zr[0] = fmin(zr[0], s->wv[v][2]);
+        zr[1] = fmax(zr[1], s->wv[v][2]);
+    }
 }
 
 /* Width of face f: the smallest, over its edges, of the farthest vertex from that edge's line
@@ -253,8 +261,11 @@ static int build_points(rd_sim *s, rd_error *err)
     if (!cand || !spacing || !ALLOC(s->pt0, s->nb + 1) || !ALLOC(s->cf0, s->nb + 1)) {
         rd_error_set(err, "out of memory");
     } else {
-        for (int i = 0; i < s->nb; i++)
-            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)is_candidate(s, i, f);
+        for (int i = 0; i < s->nb; i++) {
+            double zr[2];
+            body_z_range(s, i, zr);
+            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)is_candidate(s, i, f, zr);
+        }
         for (int i = 0; i < s->nb; i++) spacing[i] = body_spacing(s, i, cand);
         rc = mesh_candidates(s, cand, spacing, err);
     }
