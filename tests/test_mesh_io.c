@@ -314,15 +314,23 @@ static void test_obj_errors(void **state)
     snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 900\n", cube_obj_v);
     expect_text_error("bad.obj", buf, "bad.obj:10: face 2 uses vertex 900 but the file has 8 vertices");
     snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\n", cube_obj_v);
-    expect_text_error("open.obj", buf, "open.obj: open mesh: edge (2, 4) belongs to 1 face (first: face 1)");
+    expect_text_error("open.obj", buf, "open.obj:9: open mesh: edge (2, 4) belongs to 1 face (first: face 1)");
     snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 5\n", cube_obj_v);
-    expect_text_error("twisted.obj", buf, "twisted.obj: face 6 is not planar (vertex ");
+    expect_text_error("twisted.obj", buf, "twisted.obj:14: face 6 is not planar (vertex ");
     snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 6 8 4\n", cube_obj_v);
-    expect_text_error("orient.obj", buf, "orient.obj: inconsistent orientation: faces 1 and 6 both run edge (2, 4)");
+    expect_text_error("orient.obj", buf, "orient.obj:9: inconsistent orientation: faces 1 and 6 both run edge (2, 4)");
     snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\nf 1 1 2\n", cube_obj_v);
-    expect_text_error("degen.obj", buf, "degen.obj: degenerate face 7 (zero area)");
+    expect_text_error("degen.obj", buf, "degen.obj:15: degenerate face 7 (zero area)");
     snprintf(buf, sizeof buf, "%sf 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n", cube_obj_v);
-    expect_text_error("inside.obj", buf, "inside.obj: inside-out mesh (volume -1 m^3); flip the face orientation");
+    expect_text_error("inside.obj", buf, "inside.obj: inside-out mesh (volume -1 m^3); flip the face orientation (its 6 faces are on lines 9-14)");
+    /* issue 17: a NaN or overflowing coordinate was reported as "degenerate face 1 (zero area)" */
+    snprintf(buf, sizeof buf, "v 0 0 0\nv 1 nan 0\n%sf 1 2 3\n", cube_obj_v);
+    expect_text_error("nan.obj", buf, "nan.obj:2: vertex 1: coordinate y = nan is not a finite number");
+    expect_text_error("inf.obj", "v 0 0 1e400\n", "inf.obj:1: vertex 0: coordinate z = inf is not a finite number");
+    expect_text_error("huge.obj", "v 1e300 0 0\n", "huge.obj:1: vertex 0: coordinate x = 1e+300 m is beyond the 1e9 m accepted");
+    /* a flat (zero-volume) closed surface: two triangles back to back */
+    expect_text_error("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 1 3 2\nf 1 2 4\nf 1 4 2\n",
+                      "flat.obj:");
     expect_text_error("short.obj", "v 1 2\n", "short.obj:1: expected 3 coordinates after 'v'");
     expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "two.obj:3: face 1 has 2 vertices (at least 3 needed)");
     expect_text_error("zero.obj", "v 0 0 0\nf 0 1 1\n", "zero.obj:2: face 1 uses vertex 0 but the file has 1 vertices");
@@ -374,7 +382,21 @@ static void test_ply_stl_errors(void **state)
             }
     fprintf(f, "endsolid nm\n");
     fclose(f);
-    expect_error("nm.stl", NULL, 0, "nm.stl: non-manifold mesh: edge (");
+    expect_error("nm.stl", NULL, 0, "nm.stl:57: non-manifold mesh: edge (");
+    /* issue 17: a float32 STL at map coordinates (y = 4.2e6 m: float32 spacing 0.5 m) was
+       refused as "degenerate face 0 (zero area)"; the message now names the precision */
+    octahedron(&s, (double[3]){5e5, 4.2e6, 100}, 0.5);
+    write_stl(tmp_path("utm.stl"), &s, 1);
+    expect_error("utm.stl", NULL, 0, "float32 coordinates up to 4.2e+06 m are resolved to 0.5 m");
+    remove(tmp_path("utm.stl"));
+    /* the same rock at 1 km from its origin: float32 resolves 6e-5 m, 0.006 % of its size */
+    octahedron(&s, (double[3]){1000, 0, 0}, 0.5);
+    write_stl(tmp_path("local.stl"), &s, 1);
+    rd_poly p;
+    rd_error e;
+    assert_int_equal(rd_mesh_read(&p, tmp_path("local.stl"), NULL, &e), 0);
+    rd_poly_free(&p);
+    remove(tmp_path("local.stl"));
     expect_text_error("cut.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n",
                       "cut.stl:6: truncated ASCII STL (facet without endfacet)");
     expect_text_error("quad.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"

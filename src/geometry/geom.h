@@ -91,6 +91,9 @@ int rd_poly_from_faces(rd_poly *p, const double (*v)[3], int nv, const int *face
  * (closed, manifold, consistently oriented); positive volume (outward). Messages start with
  * `what` (a file name) and count faces and vertices from `base` (1 for OBJ, else 0). */
 int rd_poly_check(const rd_poly *p, const char *what, int base, rd_error *err);
+/* The same; *bad is the index (from 0) of the face the error is about, or -1 (a vertex, the
+ * volume): readers turn it into the file's line. */
+int rd_poly_check_at(const rd_poly *p, const char *what, int base, int *bad, rd_error *err);
 
 /* --- mesh_io.c --- */
 

@@ -20,8 +20,18 @@ typedef struct mesh {
     const char *path;
     double (*v)[3]; int nv, vcap;
     int *flen; int nf, fcap;
+    int *fline; int flcap; /* source line of each face (0: a binary file, no lines) */
     int *idx; int ni, icap;
+    int *tline; int nt, tcap; /* ASCII STL: line of each facet's endfacet */
+    double f32_max;           /* largest |coordinate| read as float32 (binary STL, PLY float), m */
 } mesh;
+
+/* Largest |coordinate| accepted, m: map coordinates are ~1e7 m; beyond 1e9 m products of
+ * coordinates (areas, volumes, inertia) lose all precision relative to a rock's size. */
+#define MESH_COORD_MAX 1e9
+/* A float32 mesh is refused when its coordinates' resolution (the float32 spacing at their
+ * magnitude) exceeds this fraction of the mesh size: 0.1 % distorts contacts and inertia. */
+#define MESH_F32_REL_MAX 1e-3
 
 static int grow(void **a, int *cap, int need, size_t size)
 {
@@ -34,8 +44,16 @@ static int grow(void **a, int *cap, int need, size_t size)
     return 0;
 }
 
-static int add_vertex(mesh *m, const double x[3], rd_error *err)
+/* Add vertex x read on `line` (0: a binary file; the message then names the vertex index). */
+static int add_vertex(mesh *m, const double x[3], int line, rd_error *err)
 {
+    for (int k = 0; k < 3; k++)
+        if (!(fabs(x[k]) <= MESH_COORD_MAX)) {
+            char at[32] = "";
+            if (line > 0) snprintf(at, sizeof at, ":%d", line);
+            return rd_error_set(err, "%s%s: vertex %d: coordinate %c = %g %s", m->path, at, m->nv, 'x' + k, x[k],
+                                isfinite(x[k]) ? "m is beyond the 1e9 m accepted" : "is not a finite number");
+        }
     if (grow((void **)&m->v, &m->vcap, m->nv + 1, sizeof *m->v))
         return rd_error_set(err, "%s: out of memory", m->path);
     memcpy(m->v[m->nv++], x, sizeof *m->v);
@@ -50,15 +68,18 @@ static int add_index(mesh *m, int i, rd_error *err)
     return 0;
 }
 
-static int end_face(mesh *m, int len, rd_error *err)
+/* End a face of len vertices read on `line` (0: binary). */
+static int end_face(mesh *m, int len, int line, rd_error *err)
 {
-    if (grow((void **)&m->flen, &m->fcap, m->nf + 1, sizeof *m->flen))
+    if (grow((void **)&m->flen, &m->fcap, m->nf + 1, sizeof *m->flen) ||
+        grow((void **)&m->fline, &m->flcap, m->nf + 1, sizeof *m->fline))
         return rd_error_set(err, "%s: out of memory", m->path);
+    m->fline[m->nf] = line;
     m->flen[m->nf++] = len;
     return 0;
 }
 
-static void mesh_free(mesh *m) { free(m->v); free(m->flen); free(m->idx); }
+static void mesh_free(mesh *m) { free(m->v); free(m->flen); free(m->fline); free(m->idx); free(m->tline); }
 
 /* Whole file, NUL-terminated. */
 static int read_all(const char *path, char **buf, size_t *len, rd_error *err)
@@ -106,7 +127,7 @@ static int obj_face(mesh *m, const char *s, const char *eol, int line, rd_error 
     if (len < 3)
         return rd_error_set(err, "%s:%d: face %d has %d vertices (at least 3 needed)", m->path, line,
                             m->nf + 1, len);
-    return end_face(m, len, err);
+    return end_face(m, len, line, err);
 }
 
 static int obj_read(mesh *m, const char *buf, rd_error *err)
@@ -125,7 +146,7 @@ static int obj_read(mesh *m, const char *buf, rd_error *err)
                 if (end == at || end > eol)
                     return rd_error_set(err, "%s:%d: expected 3 coordinates after 'v'", m->path, line);
             }
-            if (add_vertex(m, x, err)) return -1;
+            if (add_vertex(m, x, line, err)) return -1;
         } else if (s[0] == 'f' && (s[1] == ' ' || s[1] == '\t')) {
             if (obj_face(m, s + 1, eol, line, err)) return -1;
         } /* vt, vn, g, o, s, usemtl, comments ...: not geometry */
@@ -289,7 +310,7 @@ static int ply_face(ply *h, mesh *m, const ply_elem *e, const ply_prop *p, long 
             return rd_error_set(err, "%s: face %ld uses vertex %g but the file has %d vertices", m->path, i, x, m->nv);
         if (add_index(m, (int)x, err)) return -1;
     }
-    return end_face(m, (int)c, err);
+    return end_face(m, (int)c, h->format == 0 ? h->line : 0, err);
 }
 
 /* Read one element instance: vertex x/y/z, face vertex_indices, everything else skipped. */
@@ -310,10 +331,12 @@ static int ply_instance(ply *h, mesh *m, const ply_elem *e, long i, rd_error *er
                                 p->name, cnt, PLY_MAXLIST);
         for (long k = 0; k < (long)cnt; k++)
             if (ply_value(h, p->type, &val)) return ply_short(h, m->path, e, i, err);
-        if (is_vertex && !p->is_list && p->name[0] >= 'x' && p->name[0] <= 'z' && !p->name[1])
+        if (is_vertex && !p->is_list && p->name[0] >= 'x' && p->name[0] <= 'z' && !p->name[1]) {
             x[p->name[0] - 'x'] = val;
+            if (p->type == T_F32) m->f32_max = fmax(m->f32_max, fabs(val));
+        }
     }
-    return is_vertex ? add_vertex(m, x, err) : 0;
+    return is_vertex ? add_vertex(m, x, h->format == 0 ? h->line : 0, err) : 0;
 }
 
 /* ASCII: element instance i must end its line (a longer line means the header's counts or
@@ -385,7 +408,7 @@ static int stl_merge(mesh *m, rd_error *err)
         if (i == 0 || by_xyz(&order[i - 1], &order[i])) memcpy(u[nu++], m->v[order[i]], sizeof *u);
         m->idx[order[i]] = nu - 1;
     }
-    for (int t = 0; t < n / 3 && rc == 0; t++) rc = end_face(m, 3, err);
+    for (int t = 0; t < n / 3 && rc == 0; t++) rc = end_face(m, 3, t < m->nt ? m->tline[t] : 0, err);
     m->ni = n;
     free(m->v);
     m->v = u; m->nv = nu; m->vcap = n;
@@ -411,8 +434,9 @@ static int stl_binary(mesh *m, const char *buf, size_t len, rd_error *err)
                 float f;
                 memcpy(&f, &w, sizeof f);
                 x[k] = f;
+                m->f32_max = fmax(m->f32_max, fabs(x[k]));
             }
-            if (add_vertex(m, x, err)) return -1;
+            if (add_vertex(m, x, 0, err)) return -1;
         }
     return 0;
 }
@@ -435,13 +459,16 @@ static int stl_ascii(mesh *m, const char *buf, rd_error *err)
                 if (end == s) return rd_error_set(err, "%s:%d: expected 3 coordinates after 'vertex'", m->path, line);
                 s = end;
             }
-            if (add_vertex(m, x, err)) return -1;
+            if (add_vertex(m, x, line, err)) return -1;
             corners++;
         } else if (n == 8 && !strncmp(w, "endfacet", 8)) {
             if (corners != 3)
                 return rd_error_set(err, "%s:%d: facet %d has %d vertices (3 expected)", m->path, line, facet, corners);
             corners = 0;
             facet++;
+            if (grow((void **)&m->tline, &m->tcap, m->nt + 1, sizeof *m->tline))
+                return rd_error_set(err, "%s: out of memory", m->path);
+            m->tline[m->nt++] = line;
         }
     }
     if (corners) return rd_error_set(err, "%s:%d: truncated ASCII STL (facet without endfacet)", m->path, line);
@@ -459,6 +486,43 @@ static int stl_read(mesh *m, const char *buf, size_t len, rd_error *err)
 }
 
 /* ---- result ---- */
+
+/* float32 spacing (unit in the last place) at magnitude x, m. */
+static double f32_ulp(double x) { return x > 0 ? ldexp(1.0, ilogb(x) - 23) : 0.0; }
+
+/* Refuse float32 coordinates whose resolution is coarse against the mesh size (a scan at map
+ * coordinates: at y = 4e6 m, float32 resolves 0.5 m). 0 or -1. */
+static int check_f32(const mesh *m, double size, rd_error *err)
+{
+    double ulp = f32_ulp(m->f32_max);
+    if (m->f32_max == 0 || ulp <= MESH_F32_REL_MAX * size) return 0;
+    return rd_error_set(err, "%s: float32 coordinates up to %.3g m are resolved to %.3g m only, %.2g %% of the "
+                        "mesh's size %.3g m (more than %g %% is refused); export the scan in a local frame "
+                        "(subtract an origin) or in double precision (PLY 'property double')", m->path,
+                        m->f32_max, ulp, 100 * ulp / size, size, 100 * MESH_F32_REL_MAX);
+}
+
+/* Turn "path: message" into "path:line: message". */
+static void at_line(const mesh *m, int line, rd_error *err)
+{
+    size_t n = strlen(m->path);
+    if (strncmp(err->msg, m->path, n) || strncmp(err->msg + n, ": ", 2)) return;
+    char head[32];
+    size_t k = (size_t)snprintf(head, sizeof head, ":%d: ", line), len = strlen(err->msg);
+    if (len + k - 2 >= sizeof err->msg) return;
+    memmove(err->msg + n + k, err->msg + n + 2, len - n - 1); /* the rest and its NUL */
+    memcpy(err->msg + n, head, k);
+}
+
+/* A check failed on a float32 mesh: say how coarse its coordinates are (degenerate faces at
+ * map coordinates come from rounding, not from the scan). */
+static void f32_note(const mesh *m, double size, rd_error *err)
+{
+    if (strstr(err->msg, "float32")) return;
+    size_t n = strlen(err->msg);
+    snprintf(err->msg + n, sizeof err->msg - n, " (float32 coordinates up to %.3g m are resolved to %.3g m; "
+             "the mesh is %.3g m across)", m->f32_max, f32_ulp(m->f32_max), size);
+}
 
 /* Drop unused vertices, subtract the bounding-box centre, check, fill p. */
 static int mesh_finish(mesh *m, rd_poly *p, double offset[3], int base, rd_error *err)
@@ -486,7 +550,20 @@ static int mesh_finish(mesh *m, rd_poly *p, double offset[3], int base, rd_error
     memcpy(p->v, m->v, (size_t)nv * sizeof *p->v);
     memcpy(p->fidx, m->idx, (size_t)m->ni * sizeof *p->fidx);
     for (int f = 0, at = 0; f < m->nf; f++) { p->fstart[f] = at; p->flen[f] = m->flen[f]; at += m->flen[f]; }
-    if (rd_poly_check(p, m->path, base, err)) { rd_poly_free(p); return -1; }
+    double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    int bad;
+    if (rd_poly_check_at(p, m->path, base, &bad, err) || check_f32(m, size, err)) {
+        if (bad >= 0 && m->fline[bad] > 0) at_line(m, m->fline[bad], err);
+        else if (strstr(err->msg, "volume") && m->fline[0] > 0) { /* the whole surface is at fault */
+            size_t n = strlen(err->msg);
+            snprintf(err->msg + n, sizeof err->msg - n, " (its %d faces are on lines %d-%d)", m->nf, m->fline[0],
+                     m->fline[m->nf - 1]);
+        }
+        if (m->f32_max > 0) f32_note(m, size, err);
+        rd_poly_free(p);
+        return -1;
+    }
     rd_poly_update(p);
     return 0;
 }

@@ -194,9 +194,10 @@ static int check_used(const rd_poly *p, const char *what, int base, rd_error *er
 
 /* Each face: not degenerate, planar, and its fan triangulation from the first vertex does not
  * fold over (convex faces always pass). L is the bounding-box diagonal, m. */
-static int check_faces(const rd_poly *p, const char *what, int base, double L, rd_error *err)
+static int check_faces(const rd_poly *p, const char *what, int base, double L, int *bad, rd_error *err)
 {
     for (int f = 0; f < p->nf; f++) {
+        *bad = f;
         const int *ix = p->fidx + p->fstart[f];
         double n[3] = {0, 0, 0}, tn[3];
         for (int k = 1; k + 1 < p->flen[f]; k++) {
@@ -227,6 +228,7 @@ static int check_faces(const rd_poly *p, const char *what, int base, double L, r
                                     what, f + base);
         }
     }
+    *bad = -1;
     return 0;
 }
 
@@ -242,7 +244,7 @@ static int by_edge(const void *a, const void *b)
 
 /* Every edge in exactly two faces, traversed in opposite directions. Reports the bad edge
  * whose first face comes first. */
-static int check_edges(const rd_poly *p, const char *what, int base, rd_error *err)
+static int check_edges(const rd_poly *p, const char *what, int base, int *bad_face, rd_error *err)
 {
     int ne = 0;
     for (int f = 0; f < p->nf; f++) ne += p->flen[f];
@@ -263,6 +265,7 @@ static int check_edges(const rd_poly *p, const char *what, int base, rd_error *e
     int rc = 0;
     if (bad >= 0) {
         const edge *x = e + bad;
+        *bad_face = x->face;
         if (badn == 1)
             rc = rd_error_set(err, "%s: open mesh: edge (%d, %d) belongs to 1 face (first: face %d)",
                               what, x->lo + base, x->hi + base, x->face + base);
@@ -299,6 +302,13 @@ static double signed_volume(const rd_poly *p)
 
 int rd_poly_check(const rd_poly *p, const char *what, int base, rd_error *err)
 {
+    int bad;
+    return rd_poly_check_at(p, what, base, &bad, err);
+}
+
+int rd_poly_check_at(const rd_poly *p, const char *what, int base, int *bad, rd_error *err)
+{
+    *bad = -1;
     if (p->nv < 4 || p->nf < 4)
         return rd_error_set(err, "%s: empty or too small mesh (%d vertices, %d faces; a closed "
                             "polyhedron needs at least 4 of each)", what, p->nv, p->nf);
@@ -308,7 +318,7 @@ int rd_poly_check(const rd_poly *p, const char *what, int base, rd_error *err)
     for (int i = 1; i < p->nv; i++)
         for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], p->v[i][k]); hi[k] = fmax(hi[k], p->v[i][k]); }
     for (int k = 0; k < 3; k++) d[k] = hi[k] - lo[k];
-    if (check_faces(p, what, base, rd_norm(d), err) || check_edges(p, what, base, err) ||
+    if (check_faces(p, what, base, rd_norm(d), bad, err) || check_edges(p, what, base, bad, err) ||
         check_used(p, what, base, err))
         return -1;
     double vol = signed_volume(p);
