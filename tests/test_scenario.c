@@ -329,7 +329,7 @@ static void test_load_reports_line_and_col(void **state)
     assert_int_equal(rd_scenario_load(sc, path, &err), -1);
     unlink(path);
     snprintf(want.msg, sizeof want.msg,
-             "%s:2:13: unknown keyword 'tme' for 'model solve' (expected time, tail)", path);
+             "%s:2:13: unknown keyword 'tme' for 'model solve' (expected time, tail, force)", path);
     assert_string_equal(err.msg, want.msg);
 }
 

@@ -73,6 +73,25 @@ typedef struct rd_event {
 
 typedef struct rd_sim rd_sim;
 
+/* Most steps a run may take unless forced (`model solve ... force on`, rockdem run --force):
+ * 1e9 steps is hours to days of wall time even for one block; beyond it a scene is almost
+ * always mis-specified (a stiffness or a time in the wrong unit). */
+#define RD_STEP_BUDGET 1e9
+
+/* What rd_sim_check found. */
+typedef struct rd_check_info {
+    double dt;          /* the time step the run would take, s */
+    double dt_critical; /* its stable limit, s */
+    double steps;       /* estimated steps: (settle max time + duration + tail) / dt */
+    int npoints;        /* subcontact points */
+} rd_check_info;
+
+/* Everything rd_sim_create checks, without writing: meshes read and checked, bodies seated,
+ * subcontact points and their perturbation built, the time step and the step count against
+ * RD_STEP_BUDGET, and that the output file can be created (its folder exists and is
+ * writable). info may be NULL. 0, or -1 with err ("file:line: ..." where a line applies). */
+RD_API int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err);
+
 /* Build the simulation (geometry, subcontact points, time step, output file). NULL on error. */
 RD_API rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
 

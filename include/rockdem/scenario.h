@@ -213,6 +213,9 @@ typedef struct rd_scenario {
     double tail;     /* free-vibration tail, s (`model solve ... tail`; 0 = none): from
                         max(duration, end of the motion) run on until every free body is at
                         rest, for at most this long */
+    int force;       /* `model solve ... force on` (or rockdem run --force): run even when the
+                        estimated step count exceeds RD_STEP_BUDGET (include/rockdem/rockdem.h) */
+    int solve_line;  /* scenario line of `model solve` (0: none), for messages */
     rd_overturn_def overturn;
     rd_output_def output;
     double ref_restitution; /* rigid reference solvers only (`model reference restitution e`):

@@ -8,7 +8,7 @@
 static const char *const global_usage =
     "usage: rockdem SUBCOMMAND FILE [options]      (rockdem SUBCOMMAND --help for its options)\n"
     "  run FILE          settle, shake, write the HDF5 run file, print a summary\n"
-    "  check FILE        parse and validate only\n"
+    "  check FILE        read and build everything run would, write nothing\n"
     "  reference FILE    the rigid Housner (1 block) / Kounadis (2 blocks) solution, same output\n"
     "  threshold FILE    minimum overturning amplitude of the pulse (a curve with --frequencies)\n"
     "  restitution FILE  measure the DEM's restitution in free rocking and calibrate damping\n"
@@ -28,17 +28,24 @@ typedef struct sub_help {
 } sub_help;
 
 static const sub_help pages[] = {
-    {"run", "usage: rockdem run FILE [--set KEY=VALUE]... [-o OUT.h5] [-q]\n"
+    {"run", "usage: rockdem run FILE [--set KEY=VALUE]... [-o OUT.h5] [-q] [--force]\n"
             "Settle the scene under gravity, shake it for the scenario's duration and write the\n"
             "HDF5 run file (docs/HDF5-LAYOUT.md); print one verdict line per free body.\n"
             "  -o OUT.h5         output file (default: the scenario's `output hdf5`, else rockdem.h5)\n"
             "  --set KEY=VALUE   override a setting, e.g. --set motion.amplitude=0.4g (rockdem keys)\n"
             "  -q                no progress line, no intensity-measure or performance lines\n"
-            "Exit status: 0 done or overturned, 2 bad input, 3 unstable or I/O error, 130 Ctrl-C\n"
+            "  --force           run even when the estimated step count exceeds 1e9 (docs/LIMITS.md)\n"
+            "Exit status: 0 done or overturned, 2 bad input, 3 unstable, I/O error (disk full, file\n"
+            "size limit, file removed: one line names the file and the reason), a body passed into\n"
+            "another (penetrated) or fell out of the scene (lost); 130 Ctrl-C, SIGTERM or SIGHUP\n"
             "(the file then holds everything so far).\n"},
-    {"check", "usage: rockdem check FILE [--set KEY=VALUE]...\n"
-              "Parse and validate the scenario and the overrides; print the body count and the\n"
-              "duration. Exit status 0 when valid, 2 with one line naming file, line and problem.\n"},
+    {"check", "usage: rockdem check FILE [--set KEY=VALUE]... [-o OUT.h5] [-q] [--force]\n"
+              "Read and build everything run would, writing nothing: the scenario (every number\n"
+              "within its range, docs/LIMITS.md), meshes (read and checked), records (read; their\n"
+              "intensity measures printed unless -q), the perturbed subcontact points, the time\n"
+              "step and the step budget (1e9 steps; --force lifts it), the output folder. Prints\n"
+              "one summary line. Exit status 0 when valid, 2 with one line naming file, line and\n"
+              "problem.\n"},
     {"reference", "usage: rockdem reference FILE [--set KEY=VALUE]... [-o OUT.h5]\n"
                   "Solve the scene as rigid blocks with CVODE: Housner's equation for one free brick\n"
                   "on a fixed base, Kounadis' two-block equations for a stack of two. Same HDF5\n"

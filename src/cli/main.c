@@ -55,16 +55,40 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
 }
 
+/* --force (run past the step budget) of run and check; -q is common (rd_cli_quiet). */
+static int force_option(void *ctx, int argc, char **argv, int *i)
+{
+    (void)argc;
+    if (strcmp(argv[*i], "--force")) return 1;
+    *(int *)ctx = 1;
+    return 0;
+}
+
+/* rockdem check: everything run would read and build (meshes, records with their IMs,
+ * perturbed subcontact points, time step and step budget, output folder), nothing written. */
+static int cmd_check(rd_scenario *sc, int quiet)
+{
+    rd_error err;
+    rd_check_info info;
+    if (!quiet && rd_cli_print_motion(&sc->motion)) return 2;
+    if (rd_sim_check(sc, &info, &err)) { fprintf(stderr, "%s\n", err.msg); return 2; }
+    printf("%s: ok (%d bodies, %d subcontact points, %.4g s; dt %.3g s, about %.3g steps; output %s)\n", sc->file,
+           sc->nbodies, info.npoints, sc->duration, info.dt, info.steps, sc->output.path);
+    return 0;
+}
+
 static int cmd_run(int argc, char **argv, int check_only)
 {
     rd_scenario sc;
     const char *out = NULL;
-    if (rd_cli_scenario(&sc, argc, argv, NULL, NULL, &out)) { rd_scenario_free(&sc); return 2; }
+    int force = 0;
+    if (rd_cli_scenario(&sc, argc, argv, force_option, &force, &out)) { rd_scenario_free(&sc); return 2; }
     int quiet = rd_cli_quiet;
+    if (force) sc.force = 1;
     if (check_only) {
-        printf("%s: ok (%d bodies, %.4g s)\n", sc.file, sc.nbodies, sc.duration);
+        int rc = cmd_check(&sc, quiet);
         rd_scenario_free(&sc);
-        return 0;
+        return rc;
     }
     rd_error err;
     if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }

@@ -13,11 +13,13 @@
 #include "base/constants.h"
 #include "base/vec.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 /* rd_sim_request_stop: every running simulation stops (async-signal-safe, for handlers). */
 static volatile sig_atomic_t stop_requested;
@@ -319,13 +321,74 @@ static int choose_timestep(rd_sim *s, rd_error *err)
     return 0;
 }
 
-rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
+/* Estimated steps of the whole run: settling (at most its time limit), shaking, tail. */
+static double step_estimate(const rd_sim *s)
+{
+    const rd_scenario *sc = &s->sc;
+    double t = (sc->settle.enabled ? sc->settle.max_time : 0.0) + fmax(sc->duration, rd_motion_end(&sc->motion)) +
+               sc->tail;
+    return t / s->dt;
+}
+
+/* Refuse a run whose step count exceeds RD_STEP_BUDGET unless forced. */
+static int check_budget(const rd_sim *s, rd_error *err)
+{
+    double n = step_estimate(s);
+    if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
+    char at[16] = "";
+    if (s->sc.solve_line > 0) snprintf(at, sizeof at, ":%d", s->sc.solve_line);
+    return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s over %.4g s of settling, "
+                             "shaking and tail), more than the budget of %.0e; check the contact stiffness, "
+                             "masses and times, or force it ('model solve ... force on', or --force)",
+                        s->sc.file, at, n, s->dt, n * s->dt, RD_STEP_BUDGET);
+}
+
+/* The output file can be created: its folder exists and is writable (an existing file must
+ * be writable too). */
+static int check_output(const rd_sim *s, rd_error *err)
+{
+    const char *path = s->sc.output.path;
+    char dir[RD_PATH_MAX];
+    snprintf(dir, sizeof dir, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash == dir) slash[1] = '\0';
+    else if (slash) *slash = '\0';
+    else snprintf(dir, sizeof dir, ".");
+    if (access(dir, W_OK | X_OK))
+        return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
+    if (access(path, F_OK) == 0 && access(path, W_OK))
+        return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
+    return 0;
+}
+
+/* Geometry, subcontact points, time step and budget: everything but the output file. */
+static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
 {
     if (rd_scenario_validate(sc, err)) return NULL;
     rd_sim *s = calloc(1, sizeof *s);
     if (!s) { rd_error_set(err, "out of memory"); return NULL; }
     s->sc = *sc;
-    if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err)) goto fail;
+    if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err) || check_budget(s, err)) {
+        rd_sim_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err)
+{
+    rd_sim *s = sim_build(sc, err);
+    if (!s) return -1;
+    if (info) *info = (rd_check_info){.dt = s->dt, .dt_critical = s->dt_crit, .steps = step_estimate(s), .npoints = s->npts};
+    int rc = check_output(s, err);
+    rd_sim_free(s);
+    return rc;
+}
+
+rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
+{
+    rd_sim *s = sim_build(sc, err);
+    if (!s) return NULL;
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
     s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
     if (!s->watch || !s->obuf) { rd_error_set(err, "out of memory"); goto fail; }

@@ -178,6 +178,9 @@ int read_values(parser *P, const token *kw, int n, range r, unit u, double *v)
         const char *bad = range_error(v[i], r);
         if (bad)
             return perr(P, t, "'%.*s' %s, got %.*s", kw->len, kw->s, bad, t->len, t->s);
+        char why[128];
+        if ((bad = limit_error(kw->s, (size_t)kw->len, v[i], why, sizeof why)))
+            return perr(P, t, "'%.*s' %.*s %s", kw->len, kw->s, t->len, t->s, bad);
         v[i] *= unit_scale(u);
     }
     return 0;

@@ -114,6 +114,13 @@ static int set_parse(const setter *S, const char *text, range r, unit u, double 
     const char *bad = range_error(*v, r);
     if (bad)
         return serr(S, "value %s", bad);
+    size_t n = strcspn(S->a, "="); /* the key's last part names the keyword: contact.stiffness-normal */
+    const char *kw = S->a;
+    for (size_t i = 0; i < n; i++)
+        if (S->a[i] == '.') kw = S->a + i + 1;
+    char why[128];
+    if ((bad = limit_error(kw, (size_t)(S->a + n - kw), *v, why, sizeof why)))
+        return serr(S, "%s %s", text, bad);
     *v *= unit_scale(u);
     return 0;
 }

@@ -47,6 +47,9 @@ typedef enum unit {
 int parse_number(const char *s, size_t len, int accel, double *v);
 /* NULL when v (as written: degrees for angles) lies in r, else what it must be. */
 const char *range_error(double v, range r);
+/* NULL when v (as written) lies in keyword kw[0..len)'s valid range (values.c's table,
+ * docs/LIMITS.md), else the message, written into buf. */
+const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t size);
 double unit_scale(unit u);
 int is_periodic(rd_pulse_kind k);
 /* Duration of a pulse, s (one period, cycles periods, 1/frequency or the given duration). */

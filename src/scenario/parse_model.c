@@ -107,12 +107,14 @@ int model_settle(parser *P)
 
 int model_solve(parser *P)
 {
-    static const char *const names[] = {"time", "tail", NULL};
+    static const char *const names[] = {"time", "tail", "force", NULL};
     const token *kw;
     unsigned seen = 0;
     int k;
+    P->sc->solve_line = verb_token(P)->line;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail))
+        if (k == 2 ? read_switch(P, kw, &P->sc->force)
+                   : read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail))
             return -1;
     if (k == KW_ERR)
         return -1;
@@ -201,6 +203,9 @@ int contact_property(parser *P)
     return k == KW_ERR ? -1 : 0;
 }
 
+/* Largest seed a generator takes (gsl_rng seeds are unsigned long; 32 bits everywhere). */
+#define RD_SEED_MAX 4294967295.0
+
 /* contact interface-perturbation seed S remove F raise H raise-fraction P scatter C
  * keep-corners on|off (src/perturb.c) */
 int contact_perturbation(parser *P)
@@ -215,8 +220,10 @@ int contact_perturbation(parser *P)
         double *v[] = {&d->seed, &d->remove, &d->raise, &d->raise_fraction, &d->scatter};
         if (k == 5 ? read_switch(P, kw, &d->keep_corners) : read_value(P, kw, R_NONNEG, U_PLAIN, v[k]))
             return -1;
-        if ((k == 0 && d->seed != floor(d->seed)) || (k == 1 && d->remove >= 1) || (k == 3 && d->raise_fraction > 1))
-            return perr(P, kw, "'%s' must be %s", names[k], k == 0 ? "a whole number" : k == 1 ? "below 1" : "at most 1");
+        if ((k == 0 && (d->seed != floor(d->seed) || d->seed > RD_SEED_MAX)) || (k == 1 && d->remove >= 1) ||
+            (k == 3 && d->raise_fraction > 1))
+            return perr(P, kw, "'%s' must be %s", names[k],
+                        k == 0 ? "a whole number in [0, 2^32)" : k == 1 ? "below 1" : "at most 1");
     }
     return k == KW_ERR ? -1 : 0;
 }

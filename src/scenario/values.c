@@ -32,6 +32,81 @@ int parse_number(const char *s, size_t len, int accel, double *v)
     return 0;
 }
 
+/* Valid range of every number, by keyword (docs/LIMITS.md lists the same table). Values are as
+ * written: degrees for angles, m/s^2 for accelerations (a `g` suffix already applied). A
+ * keyword's range category (range_error) applies as well; these bounds keep each number within
+ * what the physics and the step budget can use. A keyword not listed takes |v| <= 1e9. */
+typedef struct keyword_limit {
+    const char *name;
+    double lo, hi;
+    const char *unit;
+} keyword_limit;
+
+static const keyword_limit keyword_limits[] = {
+    {"stiffness-normal", 1e4, 1e15, "Pa/m"}, /* below: cm-scale sinking of a 1 m block; above: dt < 1e-9 s */
+    {"stiffness-shear", 1e4, 1e15, "Pa/m"},
+    {"cohesion", 0, 1e10, "Pa"},             /* stronger than any rock (granite: ~1e7 Pa) */
+    {"tension", 0, 1e10, "Pa"},
+    {"density", 1, 1e5, "kg/m^3"},           /* osmium: 22600 */
+    {"mass", 1e-6, 1e12, "kg"},
+    {"gravity", 0, 1e3, "m/s^2"},
+    {"time", 1e-6, 1e5, "s"},                /* model solve: a day of shaking at most */
+    {"tail", 1e-6, 1e5, "s"},
+    {"time-limit", 1e-6, 1e5, "s"},
+    {"duration", 1e-6, 1e5, "s"},
+    {"start", 0, 1e4, "s"},
+    {"interval", 1e-7, 1e3, "s"},
+    {"fixed", 1e-12, 1, "s"},                /* model timestep fixed DT */
+    {"dt", 1e-6, 1, "s"},                    /* record sample steps */
+    {"frequency", 1e-4, 1e3, "Hz"},
+    {"cycles", 1e-3, 1e4, ""},
+    {"amplitude", -1e6, 1e6, "m/s^2"},       /* earthquakes stay below 10 g; shocks (and the health
+                                                check's test, 2e5 m/s^2) need more */
+    {"pga", 0, 1e3, "m/s^2"},
+    {"scale-pga", 0, 1e3, "m/s^2"},
+    {"scale-pgv", 0, 1e2, "m/s"},
+    {"scale", 0, 1e6, ""},
+    {"size", 1e-6, 1e4, "m"},
+    {"diameter", 1e-6, 1e4, "m"},
+    {"radius", 1e-6, 1e4, "m"},
+    {"radius-top", 1e-6, 1e4, "m"},
+    {"height", 0, 1e4, "m"},
+    {"plinth", 1e-6, 1e4, "m"},
+    {"abacus", 1e-6, 1e4, "m"},
+    {"cap", 1e-6, 1e4, "m"},
+    {"lower", 1e-6, 1e4, "m"},
+    {"upper", 1e-6, 1e4, "m"},
+    {"position", -1e7, 1e7, "m"},            /* map coordinates */
+    {"at", -1e7, 1e7, "m"},
+    {"spacing", 0, 1e4, "m"},
+    {"raise", 0, 1e3, "m"},
+    {"scatter", 0, 1e3, "m"},
+    {"velocity", -1e3, 1e3, "m/s"},
+    {"angular-velocity", -1e4, 1e4, "rad/s"},
+    {"direction", -3600, 3600, "deg"},
+    {"rotation", -3600, 3600, "deg"},
+    {"sides", 3, 1e4, ""},
+    {"drums", 1, 1e3, ""},
+    {"seed", 0, 4294967295.0, ""},           /* generators take 32-bit seeds */
+};
+
+#define KEYWORD_DEFAULT_MAX 1e9 /* |v| of a keyword without its own row */
+
+const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t size)
+{
+    for (size_t i = 0; i < sizeof keyword_limits / sizeof keyword_limits[0]; i++) {
+        const keyword_limit *l = &keyword_limits[i];
+        if (strlen(l->name) != len || strncmp(l->name, kw, len)) continue;
+        if (v >= l->lo && v <= l->hi) return NULL;
+        snprintf(buf, size, "is outside its valid range [%g, %g]%s%s (docs/LIMITS.md)", l->lo, l->hi,
+                 l->unit[0] ? " " : "", l->unit);
+        return buf;
+    }
+    if (fabs(v) <= KEYWORD_DEFAULT_MAX) return NULL;
+    snprintf(buf, size, "is outside the range of any scenario number, |v| <= %g (docs/LIMITS.md)", KEYWORD_DEFAULT_MAX);
+    return buf;
+}
+
 /* NULL when v (as written: degrees for angles) lies in r, else what it must be. */
 const char *range_error(double v, range r)
 {
