@@ -14,7 +14,7 @@ The rock has seed 002's size: plan extents about 0.30 x 0.64 m, 0.80 m tall, 354
      comes out about 10 % larger than 0.30 x 0.64 m); the height is 0.80 m and the base sits
      on z = 0, centred on the origin.
 Triangles are counter-clockwise seen from outside. Prints volume and mass.
-Usage: make_pbr.py [--seed N] [-o rock.obj] [--density 2750] [--mass 354] [--nlat 32]
+Usage: make_pbr.py [--seed N] [-o rock.obj] [--density 2750] [--mass 354] [--nlat 32] [--roughness R]
 (--nlat sets the resolution: bench/mesh_setup.sh times 10k, 100k and 1M-triangle rocks.)
 """
 import argparse
@@ -53,7 +53,7 @@ def volume(x, tris):
     return float(np.sum(np.einsum("ij,ij->i", a, np.cross(b, c)))) / 6.0
 
 
-def rock(seed, target_volume, nlat=32):
+def rock(seed, target_volume, nlat=32, roughness=0.0):
     rng = np.random.default_rng(seed)
     u, tris = directions(nlat, 2 * nlat)
     semi = np.array([PLAN[0] / 2, PLAN[1] / 2, HEIGHT / 2])
@@ -76,6 +76,8 @@ def rock(seed, target_volume, nlat=32):
     ext = x[:, :2].max(axis=0) - x[:, :2].min(axis=0)
     x[:, :2] *= np.sqrt(ext[::-1] / ext * np.array(PLAN) / PLAN[::-1])  # plan ratio, same area
     x[:, :2] *= np.sqrt(target_volume / volume(x, tris))
+    if roughness > 0:  # a scanned base: each base vertex raised by up to `roughness` (m), seeded
+        x[base, 2] += np.random.default_rng(seed + 1).uniform(0, roughness, base.sum())
     return x, tris
 
 
@@ -88,8 +90,10 @@ def main():
     ap.add_argument("--nlat", type=int, default=32,
                     help="latitude rings + 1: 4 nlat (nlat - 1) triangles (32: 3968, 50: 9800, "
                          "158: 99224, 500: 998000)")
+    ap.add_argument("--roughness", type=float, default=0.0,
+                    help="raise each base vertex by a seeded uniform 0..R m (an irregular scanned base)")
     a = ap.parse_args()
-    x, tris = rock(a.seed, a.mass / a.density, a.nlat)
+    x, tris = rock(a.seed, a.mass / a.density, a.nlat, a.roughness)
     lines = [f"# precariously balanced rock, tools/make_pbr.py --seed {a.seed}; metres, base on z = 0"]
     lines += [f"v {p[0]:.6f} {p[1]:.6f} {p[2]:.6f}" for p in x]
     lines += [f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}" for t in tris]

@@ -24,7 +24,11 @@ typedef enum rd_status {
     RD_STATUS_INTERRUPTED = 2, /* stopped by a signal (Ctrl-C); output holds everything so far */
     RD_STATUS_UNSTABLE = 3,    /* NaN/Inf or runaway velocity: stopped, cause in rd_sim_error() */
     RD_STATUS_IO_ERROR = 4,    /* the output file could not be written */
-    RD_STATUS_ERROR = 5        /* out of memory during the run: stopped, cause in rd_sim_error() */
+    RD_STATUS_ERROR = 5,       /* out of memory during the run: stopped, cause in rd_sim_error() */
+    RD_STATUS_PENETRATED = 6,  /* a body passed into another (its centre of mass inside it: the
+                                  contact is far too soft for the load); cause in rd_sim_error() */
+    RD_STATUS_LOST = 7         /* a body fell out of the scene (below the lowest fixed body by
+                                  more than its own size); cause in rd_sim_error() */
 } rd_status;
 
 /* What a run found, per free body and overall (written as HDF5 summary attributes). */

@@ -22,14 +22,20 @@ static void on_signal(int sig)
 
 static const char *status_word(rd_status st)
 {
-    static const char *w[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error"};
+    static const char *w[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error", "penetrated", "lost"};
     return w[st];
 }
 
 static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
 {
+    int invalid = s->status == RD_STATUS_PENETRATED || s->status == RD_STATUS_LOST;
     for (int k = 0; k < s->nbodies; k++) {
         const rd_body_summary *b = &s->body[k];
+        if (invalid) { /* the motion is not physical: no verdict (the cause follows on stderr) */
+            printf("%s: no verdict: the run stopped, %s\n", b->name, s->status == RD_STATUS_LOST ?
+                   "a body left the scene" : "a body passed into another");
+            continue;
+        }
         const char *what = b->overturned ? "OVERTURNED" : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
         printf("%s: %s", b->name, what);
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
@@ -112,7 +118,8 @@ static int cmd_run(int argc, char **argv, int check_only)
             fprintf(stderr, "rockdem: warning: settling stopped at force ratio %.3g (asked %.3g)\n",
                     ev[k].value, sc.settle.ratio);
     int rc = 0;
-    if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR) {
+    if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR ||
+        st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST) {
         fprintf(stderr, "%s: %s\n", sc.file, rd_sim_error(sim));
         rc = 3;
     } else if (st == RD_STATUS_INTERRUPTED) {

@@ -142,27 +142,83 @@ static int resting_on(const rd_sim *s, int i)
     return best;
 }
 
-/* Support polygon at rest: after settling, the hull of the points pressed against the body
- * underneath; without settling (bodies as placed, joints at zero gap, where round-off decides
- * which points touch) or with fewer than three such points, the hull of the lowest vertices. */
+/* Support polygon at rest: a property of the body's geometry and pose, not of the contact
+ * stiffness. It is the hull of the body's vertices within RD_SUPPORT_BAND of its lowest point
+ * (its base as it stands, over the body underneath when there is one: vertices beyond that
+ * body's plan are not supported), together with the points pressed against the body
+ * underneath after settling (which carry an inclined seat). The pressed points alone depended
+ * on KN: a stiff contact presses only the few asperity points of a scanned base (a 20 degree
+ * rock read 3 degrees at KN 1e11). */
 static void support_polygon(rd_sim *s, int k, double zmin)
 {
     int i = s->free_body[k];
     rd_watch *w = &s->watch[k];
     double (*pts)[2] = NULL;
     int n = s->sc.settle.enabled && w->rests_on >= 0 ? contact_points(s, i, w->rests_on, &pts) : 0;
-    if (n < 3) {
-        free(pts);
-        n = 0;
-        pts = malloc((size_t)s->poly[i].nv * sizeof *pts);
-        double tol = 1e-4 * s->poly[i].radius;
-        for (int v = s->vert0[i]; pts && v < s->vert0[i + 1]; v++)
-            if (s->wv[v][2] < zmin + tol) { pts[n][0] = s->wv[v][0]; pts[n][1] = s->wv[v][1]; n++; }
+    if (n < 0) n = 0;
+    double (*all)[2] = realloc(pts, (size_t)(n + s->poly[i].nv) * sizeof *pts);
+    if (!all) { free(pts); pts = NULL; n = 0; }
+    else pts = all;
+    const double *box = w->rests_on >= 0 ? s->aabb[w->rests_on] : NULL; /* min xyz, max xyz */
+    for (int v = s->vert0[i]; pts && v < s->vert0[i + 1]; v++) {
+        const double *x = s->wv[v];
+        if (x[2] > zmin + RD_SUPPORT_BAND) continue;
+        if (box && (x[0] < box[0] || x[0] > box[3] || x[1] < box[1] || x[1] > box[4])) continue;
+        pts[n][0] = x[0]; pts[n][1] = x[1]; n++;
     }
     free(w->support);
     w->nsupport = pts ? hull2d(pts, n) : 0;
     if (w->nsupport < 0) w->nsupport = 0;
     w->support = pts;
+}
+
+/* The scene's floor: the lowest vertex of the fixed bodies (after setup). */
+void rd_monitor_scene(rd_sim *s)
+{
+    s->floor_z = -INFINITY;
+    double z = INFINITY;
+    for (int i = 0; i < s->nb; i++)
+        for (int v = s->vert0[i]; s->fixed[i] && v < s->vert0[i + 1]; v++) z = fmin(z, s->wv[v][2]);
+    if (isfinite(z)) s->floor_z = z;
+}
+
+/* Is point c strictly inside convex body j (behind every face plane)? */
+static int inside_convex(const rd_sim *s, int j, const double c[3])
+{
+    for (int f = s->face0[j]; f < s->face0[j + 1]; f++)
+        if (rd_dot(s->wn[f], c) >= s->wd[f]) return 0;
+    return 1;
+}
+
+/* No silent wrong answers: a free body whose centre of mass is inside another (convex) body
+ * has passed through its support, and one whose centre of mass has fallen below the scene's
+ * floor by more than its own size has left the scene; either ends the run (status
+ * RD_STATUS_PENETRATED or RD_STATUS_LOST, the cause in s->errmsg). Called every few steps,
+ * while settling too. Returns 1 when the run must stop. */
+int rd_monitor_escape(rd_sim *s)
+{
+    const char *stage = s->settling ? " while settling" : "";
+    for (int k = 0; k < s->nfree; k++) {
+        int i = s->free_body[k];
+        const double *c = s->x[i];
+        if (c[2] < s->floor_z - s->poly[i].radius) {
+            snprintf(s->errmsg, sizeof s->errmsg, "body '%s' left the scene%s at t = %.6g s (step %ld): its centre of "
+                     "mass is %.3g m below the lowest fixed body (nothing holds it)", s->sc.bodies[i].name, stage,
+                     s->t, s->nsteps_all, s->floor_z - c[2]);
+            s->status = RD_STATUS_LOST;
+            return 1;
+        }
+        for (int j = 0; j < s->nb; j++) {
+            if (j == i || !s->convex[j] || !inside_convex(s, j, c)) continue;
+            snprintf(s->errmsg, sizeof s->errmsg, "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): its "
+                     "centre of mass is inside it; the contact stiffness (stiffness-normal %g Pa/m) is far too "
+                     "soft for the load", s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t,
+                     s->nsteps_all, s->sc.contact.kn);
+            s->status = RD_STATUS_PENETRATED;
+            return 1;
+        }
+    }
+    return 0;
 }
 
 /* Rest state of body k: support polygon, height of the centre of mass, tipping angles. */

@@ -186,6 +186,7 @@ static void step_once(rd_sim *s)
     rd_integrate_drift(s);
     memcpy(s->ag_prev, s->ag, sizeof s->ag);
     s->t += s->dt;
+    if ((++s->nsteps_all & (RD_ESCAPE_EVERY - 1)) == 0) rd_monitor_escape(s);
 }
 
 /* Bring the scene to rest under gravity (local damping RD_SETTLE_DAMPING, no shaking), like
@@ -372,6 +373,7 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
         rd_sim_free(s);
         return NULL;
     }
+    rd_monitor_scene(s);
     return s;
 }
 

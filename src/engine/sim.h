@@ -16,6 +16,8 @@
 
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
+#define RD_SUPPORT_BAND 1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
+#define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left (power of 2) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
 enum { RD_PT_ACTIVE = 1, RD_PT_BONDED = 2, RD_PT_SLIP = 4 };
@@ -180,6 +182,8 @@ struct rd_sim {
     rd_status status;
     atomic_int stop;       /* rd_sim_stop: 1 = stop at the next step */
     char errmsg[RD_ERROR_MAX];
+    double floor_z;        /* lowest point of the fixed bodies, m (-INFINITY without any) */
+    long nsteps_all;       /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
 };
 
 /* pairs.c */
@@ -210,6 +214,8 @@ int rd_rest_reached(rd_sim *s);
 
 /* monitor.c */
 void rd_monitor_rest(rd_sim *s);
+void rd_monitor_scene(rd_sim *s);
+int rd_monitor_escape(rd_sim *s);
 void rd_monitor_start(rd_sim *s);
 void rd_monitor_step(rd_sim *s);
 void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip);

@@ -404,7 +404,8 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sw
         rd_sim_summary(sim, &s);
         copy_summary(&s, r);
         r->status = (int)st;
-        if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR)
+        if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR ||
+            st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST)
             snprintf(r->message, sizeof r->message, "%.199s", rd_sim_error(sim));
     }
     if (sim && !p->keep_dir) unlink(sc.output.path);

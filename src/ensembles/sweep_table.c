@@ -95,7 +95,8 @@ struct rd_sweep_table {
     int fd;       /* the file's descriptor (sec2 driver), for reserve() */
 };
 
-static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error"};
+static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error",
+                                           "penetrated", "lost"};
 
 static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty, int width)
 {
@@ -420,7 +421,7 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
         if (a->number) memcpy(buf, &a->number[v], sizeof(double));
         else snprintf(buf, RD_SWEEP_TEXT, "%s", a->value[v]);
     } else if (c->spec->type == C_STATUS) {
-        buf[0] = (char)(r->status >= 0 && r->status <= 5 ? r->status : RD_STATUS_ERROR);
+        buf[0] = (char)(r->status >= 0 && r->status <= RD_STATUS_LOST ? r->status : RD_STATUS_ERROR);
     } else {
         size_t n = c->spec->per_body ? (size_t)t->plan->nbodies : 1;
         memcpy(buf, (const char *)r + c->spec->off, n * c->size);

@@ -68,7 +68,7 @@ static const char *const event_types[] = {"uplift", "impact", "slip", "overturn"
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
 static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
-                                           "io_error", "error"};
+                                           "io_error", "error", "penetrated", "lost"};
 #define RD_H5_NSTATUS ((int)(sizeof status_names / sizeof status_names[0]))
 
 /* How subcontact points were spaced (root attribute spacing_rule). */
