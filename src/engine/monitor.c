@@ -193,15 +193,20 @@ static int inside_convex(const rd_sim *s, int j, const double c[3])
 /* No silent wrong answers: a free body whose centre of mass is inside another (convex) body
  * has passed through its support, and one whose centre of mass has fallen below the scene's
  * floor by more than its own size has left the scene; either ends the run (status
- * RD_STATUS_PENETRATED or RD_STATUS_LOST, the cause in s->errmsg). Called every few steps,
- * while settling too. Returns 1 when the run must stop. */
+ * RD_STATUS_PENETRATED or RD_STATUS_LOST, the cause in s->errmsg). A body that overturned
+ * (by the scenario's criterion) before it fell off is a result, not an error: it gets a "lost"
+ * event and the run goes on. Called every few steps, while settling too. Returns 1 when the run
+ * must stop. */
 int rd_monitor_escape(rd_sim *s)
 {
     const char *stage = s->settling ? " while settling" : "";
     for (int k = 0; k < s->nfree; k++) {
         int i = s->free_body[k];
         const double *c = s->x[i];
-        if (c[2] < s->floor_z - s->poly[i].radius) {
+        if (c[2] < s->floor_z - s->poly[i].radius && s->watch[k].sum.overturned) {
+            if (!s->watch[k].lost) rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
+            s->watch[k].lost = 1;
+        } else if (c[2] < s->floor_z - s->poly[i].radius) {
             snprintf(s->errmsg, sizeof s->errmsg, "body '%s' left the scene%s at t = %.6g s (step %ld): its centre of "
                      "mass is %.3g m below the lowest fixed body (nothing holds it)", s->sc.bodies[i].name, stage,
                      s->t, s->nsteps_all, s->floor_z - c[2]);

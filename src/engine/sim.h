@@ -79,6 +79,7 @@ typedef struct rd_watch {
     int sliding;         /* currently sliding as a whole (every active point at the Coulomb limit) */
     int over;            /* currently beyond the overturn criterion */
     rd_body_summary sum; /* what the run found */
+    int lost;            /* fell out of the scene after overturning (event "lost" written) */
 } rd_watch;
 
 struct rd_sim {

@@ -64,7 +64,7 @@ static const char *const energy_long_names[RD_NENERGY] = {
 
 /* Event types, in the order of the HDF5 enum /events/type (value = index). */
 static const char *const event_types[] = {"uplift", "impact", "slip", "overturn", "recover",
-                                          "unstable", "unsettled", "rest", "lock", "liftoff"};
+                                          "unstable", "unsettled", "rest", "lock", "liftoff", "lost"};
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
 static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
