@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static char tmpdir[64];
@@ -335,7 +336,14 @@ static void test_obj_errors(void **state)
     expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "two.obj:3: face 1 has 2 vertices (at least 3 needed)");
     expect_text_error("zero.obj", "v 0 0 0\nf 0 1 1\n", "zero.obj:2: face 1 uses vertex 0 but the file has 1 vertices");
     expect_text_error("empty.obj", "# nothing\n", "empty.obj: empty mesh (0 vertices, 0 faces)");
-    expect_error("missing.obj", NULL, 0, "missing.obj: cannot open");
+    expect_error("missing.obj", NULL, 0, "missing.obj: cannot open: No such file or directory");
+    /* a read that fails names the system's reason (a directory opens but does not read) */
+    assert_int_equal(mkdir(tmp_path("dir.obj"), 0700), 0);
+    rd_poly dp;
+    rd_error de;
+    assert_int_equal(rd_mesh_read(&dp, tmp_path("dir.obj"), NULL, &de), -1);
+    if (!strstr(de.msg, "dir.obj: read error: Is a directory")) fail_msg("got '%s'", de.msg);
+    rmdir(tmp_path("dir.obj"));
     expect_text_error("rock.xyz", "", "rock.xyz: unknown mesh format 'xyz' (expected .obj, .ply or .stl)");
 }
 

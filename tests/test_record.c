@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "rockdem/record.h"
@@ -197,6 +198,12 @@ static void test_text_errors(void **state)
     const char *path = write_file("t9.csv", "# only a comment\n");
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_G, 0.0, &err), -1);
     assert_true(strstr(err.msg, "t9.csv: no data (1 line, none with numbers)") != NULL);
+    /* a read that fails names the system's reason (a directory opens but does not read) */
+    snprintf(g_path, sizeof g_path, "%s/dir.AT2", g_dir);
+    assert_int_equal(mkdir(g_path, 0700), 0);
+    assert_int_equal(rd_record_read_at2(&r, g_path, &err), -1);
+    assert_true(strstr(err.msg, "dir.AT2:1: read error: Is a directory") != NULL);
+    rmdir(g_path);
     path = write_file("t9.AT2", "");
     assert_int_equal(rd_record_read_at2(&r, path, &err), -1);
     assert_true(strstr(err.msg, "t9.AT2: empty file: expected 4 header lines") != NULL);

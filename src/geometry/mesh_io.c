@@ -95,10 +95,10 @@ static int read_all(const char *path, char **buf, size_t *len, rd_error *err)
         if (!nb) { free(b); b = NULL; break; }
         b = nb; cap *= 2;
     }
-    int bad = ferror(f);
+    int bad = ferror(f) ? errno : 0;
     fclose(f);
     if (!b) return rd_error_set(err, "%s: out of memory", path);
-    if (bad) { free(b); return rd_error_set(err, "%s: read error", path); }
+    if (bad) { free(b); return rd_error_set(err, "%s: read error: %s", path, strerror(bad)); }
     b[n] = '\0';
     *buf = b; *len = n;
     return 0;

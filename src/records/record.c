@@ -58,6 +58,7 @@ typedef struct reader {
     char *line;
     size_t cap;
     long lineno;
+    int read_errno; /* a read failed (errno), 0 otherwise */
 } reader;
 
 static int reader_open(reader *rd, const char *path, rd_error *err)
@@ -70,16 +71,29 @@ static int reader_open(reader *rd, const char *path, rd_error *err)
     return 0;
 }
 
-/* Next line (without its end-of-line characters), or NULL at the end of the file. */
+/* Next line (without its end-of-line characters), or NULL at the end of the file or on a read
+ * error (rd->read_errno then holds the system's reason). */
 static char *reader_next(reader *rd)
 {
+    errno = 0;
     ssize_t len = getline(&rd->line, &rd->cap, rd->f);
-    if (len < 0)
+    if (len < 0) {
+        if (ferror(rd->f))
+            rd->read_errno = errno ? errno : EIO;
         return NULL;
+    }
     rd->lineno++;
     while (len > 0 && (rd->line[len - 1] == '\n' || rd->line[len - 1] == '\r'))
         rd->line[--len] = '\0';
     return rd->line;
+}
+
+/* A read error ends the file early: report it rather than what the truncated text looks like. */
+static int reader_check(const reader *rd, rd_error *err)
+{
+    if (!rd->read_errno)
+        return 0;
+    return rd_error_set(err, "%s:%ld: read error: %s", rd->path, rd->lineno + 1, strerror(rd->read_errno));
 }
 
 static void reader_close(reader *rd)
@@ -243,6 +257,8 @@ int rd_record_read_at2(rd_record *r, const char *path, rd_error *err)
     int status = read_at2_header(&rd, r, &npts, &dt, err);
     if (status == 0)
         status = read_at2_values(&rd, npts, &acc, err);
+    if (rd.read_errno)
+        status = reader_check(&rd, err);
     if (status == 0)
         status = finish(r, &acc, dt, RD_UNIT_G, path, err);
     reader_close(&rd);
@@ -364,6 +380,8 @@ int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, doub
     while (status == 0 && (line = reader_next(&rd)))
         if (is_content(line))
             status = text_line(&rd, &st, line, err);
+    if (rd.read_errno)
+        status = reader_check(&rd, err);
     double step = 0.0;
     if (status == 0)
         status = text_step(&rd, &st, dt, &step, err);
