@@ -74,7 +74,7 @@ run: $(BIN)/rockdem
 scenarios/pbr.obj: tools/make_pbr.py
 	/usr/bin/python3 tools/make_pbr.py --seed 1 -o $@
 
-test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(TESTBIN)
+test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(TESTBIN) scenarios/pbr.obj
 	@bash tests/run.sh $(BUILD) $(BIN)
 
 asan:

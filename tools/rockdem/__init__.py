@@ -118,7 +118,7 @@ class Scenario:
             message = (lib.rd_sim_error(sim) or b"").decode("utf-8", "replace")
         finally:
             lib.rd_sim_free(sim)
-        if STATUS[status] in ("unstable", "io_error", "error"):
+        if STATUS[status] in ("unstable", "io_error", "error", "penetrated", "lost"):
             raise RockdemError("%s: %s" % (self.source, message))
         return Run(os.fspath(output), _summary_dict(summ), events)
 
