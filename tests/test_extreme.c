@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "rockdem/output.h"
 #include "rockdem/rockdem.h"
 
 #include <hdf5.h>
@@ -38,7 +39,7 @@ static rd_status run(const char *text, const char *const *sets, rd_summary *sum,
     for (int k = 0; sets && sets[k]; k++)
         if (rd_scenario_set(&sc, sets[k], &err)) fail_msg("%s: %s", sets[k], err.msg);
     rd_sim *sim = rd_sim_create(&sc, &err);
-    if (!sim) fail_msg("%s", err.msg);
+    if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) fail_msg("%s", err.msg);
     rd_status st = rd_sim_run(sim);
     rd_sim_summary(sim, sum);
     if (msg) snprintf(msg, nmsg, "%s", rd_sim_error(sim));

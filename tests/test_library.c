@@ -1,4 +1,5 @@
-/* The library as an embedding program sees it (issue 14): a per-simulation stop beside the
+/* The library as an embedding program sees it (issue 14): a run with no file at all, observers
+ * (samples, events, summary), the HDF5 file as one observer, a per-simulation stop beside the
  * process-wide one, and HDF5's error printing left as the program set it. Only the public
  * headers are used. */
 #include <stdarg.h>
@@ -7,11 +8,15 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "rockdem/observer.h"
+#include "rockdem/output.h"
 #include "rockdem/rockdem.h"
 
 #include <hdf5.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "tmpdir.h"
 
@@ -77,7 +82,10 @@ static void test_hdf5_error_handler_kept(void **state)
     char set[160];
     snprintf(set, sizeof set, "output.file=%s/no/such/dir/x.h5", tmpdir);
     assert_int_equal(rd_scenario_set(&sc, set, &err), 0);
-    assert_null(rd_sim_create(&sc, &err));
+    rd_sim *sim = rd_sim_create(&sc, &err);
+    assert_non_null(sim);
+    assert_int_equal(rd_sim_write_hdf5(sim, sc.output.path, &err), -1);
+    rd_sim_free(sim);
     assert_non_null(strstr(err.msg, "cannot create file"));
     assert_int_equal(printed, 0);
     H5E_auto2_t fn = NULL;
@@ -90,11 +98,101 @@ static void test_hdf5_error_handler_kept(void **state)
     rd_scenario_free(&sc);
 }
 
+/* What a counting observer saw. */
+typedef struct seen {
+    int begins, samples, events, ends, released;
+    double last_time, first_alpha;
+    long steps;
+} seen;
+
+static int count_begin(void *u, rd_sim *sim, rd_error *err)
+{
+    (void)err;
+    seen *s = u;
+    rd_body_info b;
+    rd_sim_body_info(sim, 0, &b);
+    s->first_alpha = b.alpha;
+    s->begins++;
+    return 0;
+}
+
+static int count_sample(void *u, rd_sim *sim, const rd_sample *smp, rd_error *err)
+{
+    (void)sim;
+    (void)err;
+    seen *s = u;
+    s->samples++;
+    s->last_time = smp->time;
+    return 0;
+}
+
+static int count_event(void *u, rd_sim *sim, const rd_event *e, rd_error *err)
+{
+    (void)sim;
+    (void)e;
+    (void)err;
+    ((seen *)u)->events++;
+    return 0;
+}
+
+static int count_end(void *u, rd_sim *sim, const rd_summary *sum, rd_error *err)
+{
+    (void)sim;
+    (void)err;
+    seen *s = u;
+    s->ends++;
+    s->steps = sum->steps;
+    return 0;
+}
+
+static void count_release(void *u) { ((seen *)u)->released++; }
+
+/* No observer: the run creates no file (the scenario names one) and summarises as with one.
+ * Observers get begin once (the bodies at rest: alpha of the 0.4 x 1.6 m block is
+ * atan(0.2 / 0.8)), every sample (a second one every 5th: 0.5 s at 0.01 s gives 51 samples
+ * with the final one, so ceil(51 / 5) = 11), every event, end once and release once. */
+static void test_observers_no_file(void **state)
+{
+    (void)state;
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "lib.dat", scene, &err), 0);
+    char path[160];
+    snprintf(path, sizeof path, "%s/none.h5", tmpdir);
+    snprintf(sc.output.path, sizeof sc.output.path, "%s", path);
+    rd_sim *sim = rd_sim_create(&sc, &err);
+    if (!sim) fail_msg("%s", err.msg);
+    seen all = {0}, fifth = {0};
+    rd_observer a = {.user = &all, .begin = count_begin, .sample = count_sample,
+                     .event = count_event, .end = count_end, .release = count_release};
+    rd_observer b = {.user = &fifth, .every = 5, .sample = count_sample};
+    assert_int_equal(rd_sim_add_observer(sim, &a, &err), 0);
+    assert_int_equal(rd_sim_add_observer(sim, &b, &err), 0);
+    assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
+    assert_int_equal(access(path, F_OK), -1);
+    int nev;
+    rd_sim_events(sim, &nev);
+    rd_summary sum;
+    rd_sim_summary(sim, &sum);
+    assert_int_equal(all.begins, 1);
+    assert_int_equal(all.ends, 1);
+    assert_int_equal(all.events, nev);
+    assert_int_equal(all.samples, 51);
+    assert_int_equal(fifth.samples, 11);
+    assert_true(fabs(all.last_time - sum.end_time) < 1e-12);
+    assert_int_equal(all.steps, sum.steps);
+    assert_true(fabs(all.first_alpha - atan(0.25)) < 1e-6); /* rest tilt of a few micro-rad */
+    rd_sim_free(sim);
+    assert_int_equal(all.released, 1);
+    rd_scenario_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_one_simulation),
         cmocka_unit_test(test_hdf5_error_handler_kept),
+        cmocka_unit_test(test_observers_no_file),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "rockdem/output.h"
 #include "rockdem/validate.h"
 
 #include <hdf5.h>
@@ -103,7 +104,7 @@ static void test_free_rocking_impacts(void **state)
     sc.bodies[1].tilt = theta0;
     sc.duration = 1.6;
     rd_sim *sim = rd_sim_create(&sc, &err);
-    if (!sim) fail_msg("%s", err.msg);
+    if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) fail_msg("%s", err.msg);
     assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
     int n;
     const rd_event *ev = rd_sim_events(sim, &n);
@@ -216,7 +217,7 @@ static void test_stack_history(void **state)
         if (r.events[k].kind == RD_REF_IMPACT) t_imp = r.events[k].t;
     assert_true(t_imp > 0);
     rd_sim *sim = rd_sim_create(&sc, &err);
-    if (!sim) fail_msg("%s", err.msg);
+    if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) fail_msg("%s", err.msg);
     assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
     rd_sim_free(sim);
     for (int b = 0; b < 2; b++) {

@@ -50,7 +50,7 @@ typedef struct rd_sweep_plan {
     int pulse;              /* 1: the scenario's horizontal motion is a pulse (no records) */
     double amplitude;       /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
     int perturbed;          /* 1: the scenario's interface perturbation removes, raises or scatters */
-    const char *keep_dir;   /* --keep-runs DIR, or NULL: per-case run files are deleted */
+    const char *keep_dir;   /* --keep-runs DIR: each case's HDF5 file there; NULL: no file */
 } rd_sweep_plan;
 
 enum { RD_IM_PGA, RD_IM_PGV, RD_IM_PGD, RD_IM_PGV_PGA, RD_IM_ARIAS, RD_IM_D5_95, RD_SWEEP_NIM };
@@ -94,9 +94,9 @@ RD_API int rd_sweep_value_index(const rd_sweep_plan *p, long k, int a);
 /* FNV-1a 64 of the case's overrides as written (base --set, then "key=value" per axis). */
 RD_API unsigned long long rd_sweep_hash(const rd_sweep_plan *p, long k);
 
-/* Run case k (fresh scenario, overrides, DEM run; the run file goes to tmpdir or keep_dir and
- * is deleted from tmpdir). Always fills r (status -1 and message on a setup error). */
-RD_API void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sweep_result *r);
+/* Run case k (fresh scenario, overrides, DEM run; with keep_dir its HDF5 file is written there,
+ * else no file at all). Always fills r (status -1 and message on a setup error). */
+RD_API void rd_sweep_run_case(const rd_sweep_plan *p, long k, rd_sweep_result *r);
 
 /* Ask the case running in this process to stop (async-signal-safe); later cases are skipped. */
 RD_API void rd_sweep_request_stop(void);
@@ -117,10 +117,6 @@ typedef struct rd_sweep_pool {
 
 /* Fork n workers. -1 with err. */
 RD_API int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_error *err);
-
-/* A private temporary folder for run files ($TMPDIR or /tmp). 0, or -1 with err naming the
- * folder and the system's reason (dir is then ""). */
-RD_API int rd_sweep_tmpdir(char *dir, size_t size, rd_error *err);
 
 /* --- sweep_table.c: the HDF5 table --------------------------------------------------------- */
 

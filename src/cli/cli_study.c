@@ -13,7 +13,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 typedef struct study_run {
     double kn, safety;  /* Pa/m, fraction of the critical step */
@@ -33,11 +32,6 @@ static int run_one(const rd_scenario *base, double kn, double safety, study_run 
     sc->contact.ks *= kn / sc->contact.kn; /* keep KS / KN */
     sc->contact.kn = kn;
     sc->timestep = (rd_timestep_def){RD_TIMESTEP_AUTO, safety, 0};
-    char path[] = "/tmp/rockdem_study_XXXXXX";
-    int fd = mkstemp(path);
-    if (fd < 0) { free(sc); return rd_error_set(err, "cannot create a file in /tmp"); }
-    close(fd);
-    snprintf(sc->output.path, sizeof sc->output.path, "%s", path);
     *r = (study_run){.kn = kn, .safety = safety, .t_impact = -1};
     rd_sim *sim = rd_sim_create(sc, err);
     int rc = -1;
@@ -56,7 +50,6 @@ static int run_one(const rd_scenario *base, double kn, double safety, study_run 
         rd_sim_free(sim);
         rc = 0;
     }
-    remove(path);
     free(sc);
     return rc;
 }

@@ -243,14 +243,6 @@ int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
         signal(SIGHUP, on_signal);
         signal(SIGPIPE, SIG_IGN);
         int n = a.njobs < p.ncases ? a.njobs : (int)p.ncases;
-        char dir[RD_PATH_MAX];
-        if (!(b && b->size > 1) && rd_sweep_tmpdir(dir, sizeof dir, &err)) { /* the workers' run files */
-            fprintf(stderr, "%s\n", err.msg);
-            rd_sweep_plan_free(&p);
-            free(p.sets);
-            return 2;
-        }
-        if (!(b && b->size > 1)) rmdir(dir);
         if (b && b->size > 1 ? b->open(&p, &pool) : rd_sweep_pool_fork(&p, n < 1 ? 1 : n, &pool, &err)) {
             fprintf(stderr, "%s\n", b && b->size > 1 ? "rockdem sweep: cannot start the MPI workers" : err.msg);
             rc = 3;

@@ -6,6 +6,7 @@
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
+#include "rockdem/output.h"
 #include "rockdem/rockdem.h"
 #include "cli/cli.h"
 
@@ -99,7 +100,12 @@ static int cmd_run(int argc, char **argv, int check_only)
     rd_error err;
     if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }
     rd_sim *sim = rd_sim_create(&sc, &err);
-    if (!sim) { fprintf(stderr, "%s\n", err.msg); rd_scenario_free(&sc); return 2; }
+    if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
+        rd_sim_free(sim);
+        rd_scenario_free(&sc);
+        return 2;
+    }
     /* Ctrl-C, kill (SIGTERM) and a closed terminal or session (SIGHUP) all stop the run at the
        next step; the file is closed with status interrupted */
     signal(SIGINT, on_signal);

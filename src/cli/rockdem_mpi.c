@@ -70,16 +70,13 @@ static int mpi_open(const rd_sweep_plan *p, rd_sweep_pool *pool)
 /* A worker rank: cases until -1. */
 static int mpi_serve(const rd_sweep_plan *p)
 {
-    char dir[RD_PATH_MAX];
     long k;
     rd_sweep_result *r = malloc(sizeof *r);
-    rd_error err;
-    if (rd_sweep_tmpdir(dir, sizeof dir, &err)) fprintf(stderr, "%s (using /tmp)\n", err.msg);
+    if (!r) return 3;
     while (MPI_Recv(&k, 1, MPI_LONG, 0, TAG_CASE, MPI_COMM_WORLD, MPI_STATUS_IGNORE) == MPI_SUCCESS && k >= 0) {
-        rd_sweep_run_case(p, k, dir[0] ? dir : "/tmp", r);
+        rd_sweep_run_case(p, k, r);
         MPI_Send(r, (int)sizeof *r, MPI_BYTE, 0, TAG_RESULT, MPI_COMM_WORLD);
     }
-    if (dir[0]) remove(dir);
     free(r);
     return 0;
 }

@@ -114,48 +114,6 @@ static int healthy(rd_sim *s)
     return 1;
 }
 
-static int write_sample(rd_sim *s)
-{
-    int nf = s->nfree;
-    double *pos = s->obuf, *quat = pos + 3 * nf, *vel = quat + 4 * nf, *ang = vel + 3 * nf,
-           *tilt = ang + 3 * nf, *rot = tilt + nf;
-    for (int k = 0; k < nf; k++) {
-        int i = s->free_body[k];
-        double Lm[3], lb[3];
-        for (int j = 0; j < 3; j++) {
-            pos[3 * k + j] = s->x[i][j];
-            vel[3 * k + j] = 0.5 * (s->v[i][j] + s->v_old[i][j]);
-            Lm[j] = 0.5 * (s->L[i][j] + s->L_old[i][j]);
-        }
-        rd_mat_tvec(s->R[i], Lm, lb);
-        for (int j = 0; j < 3; j++) lb[j] /= s->inertia[i][j];
-        rd_mat_vec(s->R[i], lb, ang + 3 * k);
-        memcpy(quat + 4 * k, s->q[i], 4 * sizeof(double));
-        double qc[4] = {s->watch[k].q_ref[0], -s->watch[k].q_ref[1], -s->watch[k].q_ref[2], -s->watch[k].q_ref[3]}, dq[4], z[3];
-        rd_quat_mul(s->q[i], qc, dq);
-        rd_quat_rotate(dq, (double[3]){0, 0, 1}, z);
-        tilt[k] = atan2(hypot(z[0], z[1]), z[2]);
-        rd_monitor_rotation(s, k, rot + 3 * k);
-    }
-    rd_h5_sample smp = {.time = s->t, .position = pos, .quaternion = quat, .velocity = vel,
-                        .angular_velocity = ang, .tilt = tilt, .rotation = rot};
-    memcpy(smp.ground_acc, s->ag, sizeof s->ag);
-    memcpy(smp.ground_vel, s->vg, sizeof s->vg);
-    memcpy(smp.ground_disp, s->dg, sizeof s->dg);
-    memcpy(smp.energy, s->energy, sizeof s->energy);
-    rd_error err;
-    int rc = rd_h5_append(s->h5, &smp, &err);
-    for (; rc == 0 && s->nevent_written < s->nevent; s->nevent_written++) {
-        const rd_event *e = &s->event[s->nevent_written];
-        rc = rd_h5_event(s->h5, e->time, e->body, e->type, e->value, &err);
-    }
-    if (rc) {
-        snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
-        s->status = RD_STATUS_IO_ERROR;
-    }
-    return rc;
-}
-
 /* One explicit step from t to t + dt. */
 static void step_once(rd_sim *s)
 {
@@ -179,7 +137,7 @@ static void step_once(rd_sim *s)
         rd_monitor_step(s);
         if (s->t >= s->next_out - 1e-9 * s->dt) {
             rd_energy_sample(s);
-            write_sample(s);
+            rd_observe_sample(s);
             s->next_out += s->sc.output.interval;
         }
     }
@@ -250,60 +208,6 @@ static void apply_initial_conditions(rd_sim *s)
         rd_body_set_angular_velocity(s, i, d->angular_velocity);
     }
     rd_bodies_refresh(s);
-}
-
-static const char *damping_text(const rd_damping_def *d, char *buf, size_t n)
-{
-    if (d->kind == RD_DAMPING_VISCOUS) snprintf(buf, n, "viscous %g", d->value);
-    else if (d->kind == RD_DAMPING_LOCAL) snprintf(buf, n, "local %g", d->value);
-    else snprintf(buf, n, "none");
-    return buf;
-}
-
-static const char *overturn_text(const rd_overturn_def *o, char *buf, size_t n)
-{
-    static const char *kind[] = {"tilt-ratio", "angle", "height", "off-pedestal"};
-    double v = o->kind == RD_OVERTURN_ANGLE ? o->value * 180.0 / M_PI : o->value;
-    snprintf(buf, n, "%s %g%s", kind[o->kind], v, o->kind == RD_OVERTURN_ANGLE ? " deg" : "");
-    return buf;
-}
-
-/* Body i as the writer describes it; free bodies' alpha from the brick size (the rest
- * support polygon replaces it in the summary), fixed ones with their pose. */
-static rd_h5_body h5_body(const rd_sim *s, int i)
-{
-    const rd_poly *p = &s->poly[i];
-    rd_h5_body b = {.name = s->sc.bodies[i].name, .mass = s->mass[i], .nvert = p->nv,
-                    .vertices = &p->v[0][0], .ntri = p->ntri, .triangles = &p->tri[0][0],
-                    .fixed = s->fixed[i]};
-    memcpy(b.inertia, s->inertia[i], sizeof b.inertia);
-    memcpy(b.size, s->sc.bodies[i].size, sizeof b.size);
-    b.alpha = atan2(0.5 * fmin(b.size[0], b.size[1]), 0.5 * b.size[2]);
-    memcpy(b.position, s->x[i], sizeof b.position);
-    memcpy(b.quaternion, s->q[i], sizeof b.quaternion);
-    return b;
-}
-
-static int open_output(rd_sim *s, rd_error *err)
-{
-    int nfixed = s->nb - s->nfree;
-    rd_h5_body *hb = calloc((size_t)s->nb, sizeof *hb);
-    if (!hb) return rd_error_set(err, "out of memory");
-    for (int k = 0; k < s->nfree; k++) hb[k] = h5_body(s, s->free_body[k]);
-    for (int i = 0, k = s->nfree; i < s->nb; i++)
-        if (s->fixed[i]) hb[k++] = h5_body(s, i);
-    char dbuf[64], obuf[64];
-    const rd_contact_def *c = &s->sc.contact;
-    rd_h5_meta meta = {.scenario_text = s->sc.text ? s->sc.text : "", .scenario_file = s->sc.file,
-                       .title = s->sc.title, .dt = s->dt, .dt_critical = s->dt_crit,
-                       .damping = damping_text(&s->sc.damping, dbuf, sizeof dbuf),
-                       .overturn_criterion = overturn_text(&s->sc.overturn, obuf, sizeof obuf),
-                       .kn = c->kn, .ks = c->ks, .friction = c->friction, .cohesion = c->cohesion,
-                       .tension = c->tension, .spacing = c->spacing, .nbodies = s->nfree, .bodies = hb,
-                       .nfixed = nfixed, .fixed_bodies = hb + s->nfree};
-    s->h5 = rd_h5_open(s->sc.output.path, &meta, err);
-    free(hb);
-    return s->h5 ? 0 : -1;
 }
 
 static int choose_timestep(rd_sim *s, rd_error *err)
@@ -394,36 +298,10 @@ rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
     s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
     if (!s->watch || !s->obuf) { rd_error_set(err, "out of memory"); goto fail; }
-    if (open_output(s, err) || rd_h5_ground_im(s->h5, &s->sc.motion, err)) goto fail;
     return s;
 fail:
     rd_sim_free(s);
     return NULL;
-}
-
-/* Static tipping angle and acceleration around the vertical, per body, into the output. */
-static void write_precariousness(rd_sim *s)
-{
-    rd_error err;
-    for (int k = 0; k < s->nfree && s->status == RD_STATUS_DONE; k++)
-        if (rd_h5_precariousness(s->h5, s->sc.bodies[s->free_body[k]].name, &s->watch[k].prec[0][0],
-                                 RD_NPREC, &err)) {
-            snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
-            s->status = RD_STATUS_IO_ERROR;
-        }
-}
-
-static void write_summary(rd_sim *s)
-{
-    rd_summary sum;
-    rd_error err;
-    int rc = write_sample(s); /* the final state, which also completes the rotation extremes */
-    rd_sim_summary(s, &sum);
-    if (rc == 0 && rd_h5_summary(s->h5, &sum, &err) == 0 && rd_h5_flush(s->h5, &err) == 0) return;
-    if (s->status != RD_STATUS_IO_ERROR) {
-        snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
-        s->status = RD_STATUS_IO_ERROR;
-    }
 }
 
 rd_status rd_sim_run(rd_sim *s)
@@ -434,7 +312,8 @@ rd_status rd_sim_run(rd_sim *s)
     else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
     rd_bodies_refresh(s);
     rd_monitor_rest(s);
-    write_precariousness(s);
+    s->rested = 1;
+    rd_observe_begin(s);
     apply_initial_conditions(s);
     rd_monitor_start(s);
     s->shaking = 1;
@@ -452,7 +331,7 @@ rd_status rd_sim_run(rd_sim *s)
     s->wall = wall_now() - t0;
     rd_progress_report(s->t, end);
     rd_monitor_finish(s);
-    write_summary(s);
+    rd_observe_end(s);
     return s->status;
 }
 
@@ -502,7 +381,7 @@ long rd_sim_active_point_steps(const rd_sim *s) { return s->active_point_steps; 
 void rd_sim_free(rd_sim *s)
 {
     if (!s) return;
-    rd_h5_close(s->h5);
+    rd_observe_release(s);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,

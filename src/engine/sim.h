@@ -7,9 +7,9 @@
 #ifndef RD_SIM_H
 #define RD_SIM_H
 
+#include "rockdem/observer.h"
 #include "rockdem/rockdem.h"
 #include "geometry/geom.h"
-#include "io/io_hdf5.h"
 
 #include <signal.h>
 #include <stdatomic.h>
@@ -169,11 +169,15 @@ struct rd_sim {
 
     /* monitoring and output */
     rd_watch *watch;       /* [nfree] */
+    int rested;            /* 1 once rd_monitor_rest has run: support polygons, alpha and
+                              precariousness known */
     int nevent, cap_event;
     rd_event *event;
-    int nevent_written;
-    rd_h5 *h5;
-    double next_out;       /* time of the next output sample, s */
+    int nevent_written;    /* events already handed to the observers */
+    rd_observer *obs;      /* [nobs] registered observers (observe.c) */
+    int nobs, cap_obs;
+    long nsample;          /* samples taken so far */
+    double next_out;       /* time of the next sample, s */
     double *obuf;          /* [nfree * 17] staging buffer for one sample */
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
     double wall;           /* wall seconds of the shaking stage */
@@ -227,6 +231,12 @@ void rd_event_add(rd_sim *s, double time, int body, const char *type, double val
 
 /* progress.c: the process's progress callback (rd_set_progress) */
 void rd_progress_report(double t, double t_end);
+
+/* observe.c: samples, events and the summary handed to the observers */
+void rd_observe_begin(rd_sim *s);
+int rd_observe_sample(rd_sim *s);
+void rd_observe_end(rd_sim *s);
+void rd_observe_release(rd_sim *s);
 
 /* setup.c */
 int rd_setup_bodies(rd_sim *s, rd_error *err);

@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #define RD_CAL_RTOL 0.002 /* calibration stops when |r - target| < this (about the scatter of
                              r between impacts at stiff KN) */
@@ -57,14 +56,10 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     rd_scenario *sc = malloc(sizeof *sc);
     if (!sc) return rd_error_set(err, "out of memory");
     double p;
-    char path[] = "/tmp/rockdem_restitution_XXXXXX";
-    int fd = -1, rc = free_rocking_scene(base, theta0, sc, &p, err);
-    if (rc == 0 && (fd = mkstemp(path)) < 0) rc = rd_error_set(err, "cannot create a file in /tmp");
+    int rc = free_rocking_scene(base, theta0, sc, &p, err);
     if (rc) { free(sc); return -1; }
-    close(fd);
-    snprintf(sc->output.path, sizeof sc->output.path, "%s", path);
-    rd_sim *sim = rd_sim_create(sc, err);
-    if (!sim) { remove(path); free(sc); return -1; }
+    rd_sim *sim = rd_sim_create(sc, err); /* no file: the events are all it needs */
+    if (!sim) { free(sc); return -1; }
     rd_status st = rd_sim_run(sim);
     if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR)
         rc = rd_error_set(err, "restitution: %s", rd_sim_error(sim));
@@ -87,7 +82,6 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     }
     if (out->n > 0) out->r = exp(logsum / out->n);
     rd_sim_free(sim);
-    remove(path);
     free(sc);
     return rc;
 }

@@ -3,6 +3,7 @@
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/sweep.h"
+#include "rockdem/output.h"
 
 #include <math.h>
 #include <signal.h>
@@ -204,7 +205,7 @@ static int base_scenario(const rd_sweep_plan *p, rd_scenario *sc, rd_error *err)
     return 0;
 }
 
-/* Case k's scenario (base + every axis value), its run file in dir. */
+/* Case k's scenario (base + every axis value), its run file (if kept) in dir. */
 static int case_scenario(const rd_sweep_plan *p, long k, const char *dir, rd_scenario *sc, rd_error *err)
 {
     char a[4096 + 64];
@@ -215,7 +216,7 @@ static int case_scenario(const rd_sweep_plan *p, long k, const char *dir, rd_sce
             return rd_error_set(err, "rockdem sweep: --records: cannot find '%s'", p->axis[i].value[v]);
         if (rd_scenario_set(sc, a, err)) return -1;
     }
-    snprintf(sc->output.path, sizeof sc->output.path, "%s/case-%06ld.h5", dir, k);
+    if (dir) snprintf(sc->output.path, sizeof sc->output.path, "%s/case-%06ld.h5", dir, k);
     return rd_scenario_validate(sc, err);
 }
 
@@ -382,7 +383,7 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sweep_result *r)
+void rd_sweep_run_case(const rd_sweep_plan *p, long k, rd_sweep_result *r)
 {
     double t0 = now();
     memset(r, 0, sizeof *r);
@@ -393,9 +394,10 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sw
     rd_scenario sc;
     rd_error err;
     rd_sim *sim = NULL;
-    if (case_scenario(p, k, p->keep_dir ? p->keep_dir : tmpdir, &sc, &err) ||
+    if (case_scenario(p, k, p->keep_dir, &sc, &err) ||
         (rd_motion_has_records(&sc.motion) ? record_im(&sc.motion, r->im, &err) : (pulse_im(&sc.motion.horizontal, r->im), 0)) ||
-        !(sim = rd_sim_create(&sc, &err))) {
+        !(sim = rd_sim_create(&sc, &err)) ||
+        (p->keep_dir && rd_sim_write_hdf5(sim, sc.output.path, &err))) {
         r->status = -1;
         snprintf(r->message, sizeof r->message, "%.199s", err.msg);
     } else {
@@ -408,7 +410,6 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, const char *tmpdir, rd_sw
             st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST)
             snprintf(r->message, sizeof r->message, "%.199s", rd_sim_error(sim));
     }
-    if (sim && !p->keep_dir) unlink(sc.output.path);
     rd_sim_free(sim);
     rd_scenario_free(&sc);
     r->wall_seconds = now() - t0;

@@ -54,18 +54,6 @@ static int read_all(int fd, void *buf, size_t n)
     return 0;
 }
 
-int rd_sweep_tmpdir(char *dir, size_t size, rd_error *err)
-{
-    const char *base = getenv("TMPDIR");
-    int from_env = base && base[0];
-    snprintf(dir, size, "%s/rockdem-sweep-XXXXXX", from_env ? base : "/tmp");
-    if (mkdtemp(dir)) return 0;
-    int e = errno;
-    dir[0] = '\0';
-    return rd_error_set(err, "rockdem sweep: cannot create a folder for run files in %s%s: %s",
-                        from_env ? base : "/tmp", from_env ? " ($TMPDIR)" : "", strerror(e));
-}
-
 static void on_stop(int sig)
 {
     (void)sig;
@@ -75,20 +63,16 @@ static void on_stop(int sig)
 /* The worker: cases in, results out, until -1 or end of file. Never returns. */
 static void worker(const rd_sweep_plan *p, int in, int out)
 {
-    char dir[RD_PATH_MAX];
     long k;
     rd_sweep_result *r = malloc(sizeof *r);
-    rd_error err;
     signal(SIGINT, on_stop);
     signal(SIGTERM, on_stop);
     signal(SIGHUP, on_stop);
-    if (rd_sweep_tmpdir(dir, sizeof dir, &err)) fprintf(stderr, "%s\n", err.msg);
-    while (r && dir[0] && read_all(in, &k, sizeof k) == 0 && k >= 0) {
-        rd_sweep_run_case(p, k, dir, r);
+    while (r && read_all(in, &k, sizeof k) == 0 && k >= 0) {
+        rd_sweep_run_case(p, k, r);
         if (write_all(out, r, sizeof *r)) break;
     }
-    if (dir[0]) rmdir(dir);
-    _exit(r && dir[0] ? 0 : 3);
+    _exit(r ? 0 : 3);
 }
 
 static int pool_send(void *ctx, int w, long k)

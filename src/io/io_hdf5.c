@@ -912,6 +912,18 @@ static int h5_precariousness(rd_h5 *h, const char *body, const double *table, in
     return rc;
 }
 
+static int h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err)
+{
+    char path[RD_NAME_MAX + 16];
+    snprintf(path, sizeof path, "/bodies/%s", body);
+    hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
+    if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
+    int rc = attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, size, err) ||
+             attr_units(h, g, "size", "m", err) ? -1 : 0;
+    H5Gclose(g);
+    return rc;
+}
+
 /* order[i] = index in s->body of the body written as /bodies/names[i]. */
 static int summary_order(const rd_h5 *h, const rd_summary *s, int *order, rd_error *err)
 {
@@ -1099,6 +1111,14 @@ int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 {
     rd_h5_quiet q = rd_h5_quiet_begin();
     int r = h5_summary(h, s, err);
+    rd_h5_quiet_end(q);
+    return r;
+}
+
+int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err)
+{
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int r = h5_body_size(h, body, size, err);
     rd_h5_quiet_end(q);
     return r;
 }

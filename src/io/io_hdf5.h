@@ -13,7 +13,10 @@
  *   /time /body /xyz /wxyz /rotation_part /corner     dimension scales (body: free body names)
  *   /bodies/names          [body] free bodies in output order
  *   /bodies/<name>/        every body, fixed ones too: attributes mass, inertia_principal[3],
- *                          size[3], alpha, fixed (fixed bodies: position[3], quaternion[4]);
+ *                          size[3] (extents at rest along x, y, z), alpha (static tipping angle
+ *                          about the edge of the support polygon at rest, least of the +-x, +-y
+ *                          leans; 0 for fixed bodies), fixed (fixed bodies: position[3],
+ *                          quaternion[4]);
  *                          datasets vertices [vertex][xyz] (body frame, about the centre of
  *                          mass), faces [face][corner], precariousness [lean][quantity]
  *   /position              [time][body][xyz]   centre of mass, ground frame, m
@@ -40,9 +43,9 @@
 #ifndef RD_IO_HDF5_H
 #define RD_IO_HDF5_H
 
+#include "rockdem/observer.h"
 #include "rockdem/rockdem.h"
 
-#define RD_NENERGY 7
 extern const char *const rd_energy_names[RD_NENERGY]; /* order of rd_h5_sample.energy */
 
 typedef struct rd_h5_body {
@@ -108,6 +111,9 @@ int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err);
  * +x), static tipping angle alpha (rad) and quasi-static tipping acceleration g tan(alpha)
  * (m/s^2, the ground acceleration pointing the opposite way). Replaces an earlier table. */
 int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err);
+/* Replace the attribute size [3] (m) of /bodies/<body> given at rd_h5_open by the body's
+ * extents at rest (known once it rests on its support; alpha follows with the summary). */
+int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err);
 /* Flush and close; safe on NULL. */
 void rd_h5_close(rd_h5 *h);
 

@@ -107,6 +107,9 @@ class Scenario:
         sim = lib.rd_sim_create(self._h, ctypes.byref(err))
         if not sim:
             raise RockdemError(err.text)
+        if lib.rd_sim_write_hdf5(sim, os.fsencode(output), ctypes.byref(err)):
+            lib.rd_sim_free(sim)
+            raise RockdemError(err.text)
         try:
             with _progress(progress), _interruptible():
                 status = lib.rd_sim_run(sim)

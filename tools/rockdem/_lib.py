@@ -101,6 +101,7 @@ def _prototypes(lib):
         "rd_scenario_set": (I, [P, ctypes.c_char_p, E]),
         "rd_scenario_validate": (I, [P, E]),
         "rd_sim_create": (P, [P, E]),
+        "rd_sim_write_hdf5": (I, [P, ctypes.c_char_p, E]),
         "rd_sim_run": (I, [P]),
         "rd_sim_summary": (None, [P, ctypes.POINTER(Summary)]),
         "rd_sim_error": (ctypes.c_char_p, [P]),
