@@ -39,14 +39,7 @@ def scene(xmf, ratio_max=1.5):
     reader.UpdatePipeline(reader.TimestepValues[0] if reader.TimestepValues else 0.0)
     view = pv.GetActiveViewOrCreate("RenderView")
     view.OrientationAxesVisibility = 1
-    bodies = pv.ExtractBlock(registrationName="bodies", Input=reader)
-    fixed = pv.ExtractBlock(registrationName="fixed", Input=reader)
-    for blk, sel in ((bodies, "bodies"), (fixed, "fixed")):
-        try:  # 5.11: Selectors; older: BlockIndices (1 = bodies, 2 = fixed)
-            blk.Selectors = ["/Root/%s" % sel]
-        except AttributeError:
-            blk.BlockIndices = [1 if sel == "bodies" else 2]
-    d = pv.Show(bodies, view)
+    d = pv.Show(reader, view)
     pv.ColorBy(d, ("CELLS", "tilt_ratio"))
     lut = pv.GetColorTransferFunction("tilt_ratio")
     lut.ApplyPreset("Cool to Warm", True)
@@ -55,10 +48,12 @@ def scene(xmf, ratio_max=1.5):
     bar = pv.GetScalarBar(lut, view)
     bar.Title = "tilt / alpha"
     bar.ComponentTitle = ""
+    bar.TitleFontSize = 14
+    bar.LabelFontSize = 12
+    bar.RangeLabelFormat = "%-#.2g"
+    bar.ScalarBarLength = 0.4
     d.SetScalarBarVisibility(view, True)
-    f = pv.Show(fixed, view)
-    f.ColorArrayName = ["POINTS", ""]  # solid colour
-    f.DiffuseColor = [0.62, 0.6, 0.57]
+    lut.NanColor = [0.62, 0.6, 0.57]  # fixed bodies: no tilt (NaN), drawn grey
     # the ground: a plane under everything, three times the scene's horizontal extent
     b = reader.GetDataInformation().GetBounds()
     cx, cy, w = 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 1.5 * max(b[1] - b[0], b[3] - b[2], 1e-3)
@@ -69,10 +64,13 @@ def scene(xmf, ratio_max=1.5):
     scene_ = pv.GetAnimationScene()
     scene_.UpdateAnimationUsingDataTimeSteps()
     scene_.PlayMode = "Snap To TimeSteps"
-    view.CameraPosition = [cx + 2.2 * w, cy - 2.8 * w, b[5] + 1.6 * w]
     view.CameraFocalPoint = [cx, cy, 0.5 * (b[4] + b[5])]
+    view.CameraPosition = [cx + 1.2 * w, cy - 2.0 * w, b[5] + 0.9 * w]
     view.CameraViewUp = [0, 0, 1]
-    pv.SetActiveSource(bodies)
+    view.CameraParallelScale = w
+    pv.ResetCamera(view)  # fits everything, keeps the direction set above
+    view.CenterOfRotation = view.CameraFocalPoint
+    pv.SetActiveSource(reader)
     return view, reader
 
 

@@ -4,7 +4,8 @@ DEM at several KN, time-step safety factors and subcontact spacings, and with it
 (`rockdem reference`, CVODE); both write the same HDF5 layout. Error = max |tilt_DEM - tilt_ref|
 over the run, relative to the reference's peak tilt (DEM tilts interpolated to the reference's
 sample times); wall time = the DEM's shaking stage (its `perf:` line).
-Usage: tools/study.py ROCKDEM OUTDIR   (writes OUTDIR/study.md and OUTDIR/study.png)"""
+Usage: tools/study.py ROCKDEM OUTDIR   (writes OUTDIR/study.md and OUTDIR/study.png)
+       tools/study.py --replot OUTDIR/study.md   (redraws study.png from the table)"""
 import os, re, subprocess, sys, tempfile
 import h5py, numpy as np
 import matplotlib
@@ -44,10 +45,63 @@ def run(exe, scen, args, out):
     return float(m.group(1)) if m else float("nan")
 
 
+SAFETY_COLOUR = {0.4: "#1b9e77", 0.2: "#d95f02", 0.1: "#7570b3"}
+SPACING_STYLE = {"vertices": ("o", "-"), "0.1": ("s", "--")}
+
+
+def figure(rows, path):
+    """Two rows of one panel per case, sized for a two-column page: the error (top) and the wall
+    time (bottom) against KN, one colour per time-step safety factor, one line style per
+    subcontact spacing — what was varied is on the axes and in the legend."""
+    plt.rcParams.update({"font.size": 9, "legend.fontsize": 7.5, "axes.titlesize": 9})
+    names = list(dict.fromkeys(r[0] for r in rows))
+    fig, ax = plt.subplots(2, len(names), figsize=(7.2, 5.0), sharex=True, squeeze=False)
+    for ci, name in enumerate(names):
+        for sf, col in SAFETY_COLOUR.items():
+            for sp, (mk, ls) in SPACING_STYLE.items():
+                pts = sorted((r[1], r[5], r[4]) for r in rows
+                             if r[0] == name and float(r[2]) == sf and str(r[3]) == sp)
+                if not pts:
+                    continue
+                kn, err, wall = zip(*pts)
+                lab = "safety %g, spacing %s" % (sf, sp) if ci == 0 else None
+                ax[0, ci].loglog(kn, err, marker=mk, ls=ls, color=col, ms=4, lw=1, label=lab)
+                ax[1, ci].loglog(kn, wall, marker=mk, ls=ls, color=col, ms=4, lw=1)
+        ax[0, ci].set_title(name)
+        ax[1, ci].set_xlabel("KN (Pa/m)")
+        ax[1, ci].set_xticks(KN)
+        for r_ in (0, 1):
+            ax[r_, ci].grid(True, which="major", alpha=0.3)
+            ax[r_, ci].yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax[0, 0].set_ylabel("tilt error (1)\nmax |tilt − ref| / peak ref")
+    ax[1, 0].set_ylabel("wall time of the\nshaking stage (s)")
+    fig.legend(loc="lower center", ncol=3, frameon=False, bbox_to_anchor=(0.5, -0.06))
+    fig.suptitle("DEM against the rigid reference (CVODE): error and cost as KN,\n"
+                 "the time-step safety factor and the subcontact spacing vary", fontsize=9)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.97))
+    fig.savefig(path, dpi=200, bbox_inches="tight")
+    plt.close(fig)
+
+
+def read_table(md):
+    """The rows of an earlier study.md (to redraw the figure without running again)."""
+    rows = []
+    for ln in open(md):
+        c = [x.strip() for x in ln.strip().strip("|").split("|")]
+        if len(c) == 6 and c[1][:1].isdigit():
+            rows.append((c[0], float(c[1]), float(c[2]), c[3], float(c[4]), float(c[5])))
+    return rows
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--replot":
+        md = sys.argv[2]
+        figure(read_table(md), os.path.join(os.path.dirname(md), "study.png"))
+        print("redrew %s" % os.path.join(os.path.dirname(md), "study.png"))
+        return
     exe, outdir = sys.argv[1], sys.argv[2]
     tmp = tempfile.mkdtemp(prefix="rockdem_study_")
-    rows, fig = [], plt.figure(figsize=(7, 5))
+    rows = []
     for ci, (name, upper, zeta, e, motion) in enumerate(CASES):
         scen = os.path.join(tmp, f"case{ci}.dat")
         text = BASE.format(upper=upper, zeta=zeta, motion=motion)
@@ -59,7 +113,6 @@ def main():
         subprocess.run([exe, "reference", scen, "-o", ref], check=True, capture_output=True)
         tr, thr = tilts(ref)
         peak = np.abs(thr).max()
-        pts = []
         for kn in KN:
             for sf in SAFETY:
                 for sp in SPACING:
@@ -75,24 +128,16 @@ def main():
                     err = max(np.max(np.abs(np.interp(tr[mask], td, thd[:, j]) - thr[mask, j]))
                               for j in range(thr.shape[1])) / peak
                     rows.append((name, kn, sf, sp, wall, err))
-                    pts.append((wall, err, sp))
-        for sp, mk in (("vertices", "o"), ("0.1", "s")):
-            w = [p[0] for p in pts if p[2] == sp]
-            er = [p[1] for p in pts if p[2] == sp]
-            plt.loglog(w, er, mk, color=f"C{ci}", label=f"{name}, spacing {sp}", alpha=0.8)
-    plt.xlabel("DEM wall time of the shaking stage, s")
-    plt.ylabel("max |tilt - tilt_ref| / peak tilt_ref")
-    plt.title("rockdem: error against run time (KN 1e8-1e11, safety 0.4-0.1)")
-    plt.legend(fontsize=7)
-    plt.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(outdir, "study.png"), dpi=110)
+    figure(rows, os.path.join(outdir, "study.png"))
     with open(os.path.join(outdir, "study.md"), "w") as fh:
         fh.write("# Error against run time\n\nGenerated by `make study` (tools/study.py): DEM vs the "
                  "CVODE rigid reference (`rockdem reference`, same HDF5 layout). Error = max |tilt_DEM - "
                  "tilt_ref| over the run / peak reference tilt; wall = DEM shaking stage. KS = KN, "
                  "friction 80 deg; spacing `vertices` = corner subcontacts, `0.1` = a bed of points "
-                 "every 0.1 m.\n\n![study](study.png)\n\n")
+                 "every 0.1 m. The figure shows error (top) and wall time (bottom) against KN, one "
+                 "colour per time-step safety factor, one line style per spacing "
+                 "(`tools/study.py --replot docs/study.md` redraws it from this table).\n\n"
+                 "![study](study.png)\n\n")
         fh.write("| case | KN (Pa/m) | safety | spacing | wall (s) | error |\n|---|---|---|---|---|---|\n")
         for r in rows:
             fh.write(f"| {r[0]} | {r[1]:.0e} | {r[2]} | {r[3]} | {r[4]:.4f} | {r[5]:.3e} |\n")

@@ -102,11 +102,12 @@ typedef struct progress {
     int tty, quiet;
 } progress;
 
-/* One progress line on stderr: at most 4 a second on a terminal, every 10 s otherwise. */
+/* The progress line on stderr: redrawn at most 4 times a second on a terminal; elsewhere (a
+ * log, a pipe) only the final line. */
 static void show(progress *g, int final)
 {
     double t = now();
-    if (g->quiet || (!final && t - g->shown < (g->tty ? 0.25 : 10.0))) return;
+    if (g->quiet || (!final && (!g->tty || t - g->shown < 0.25))) return;
     g->shown = t;
     char el[32], eta[32] = "?";
     hms(t - g->t0, el, sizeof el);

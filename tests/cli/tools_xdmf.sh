@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# rdxdmf: the XDMF sidecar parses, has one grid per output sample, and its step-0 world vertices
-# equal position + R(q) v computed independently (vector form of the quaternion rotation).
-# With pvpython on PATH the .xmf is also loaded headless and its point count checked.
+# rdxdmf: the XDMF sidecar parses; it is a temporal collection with one spatial collection per
+# written step (--every K: every K-th sample and the last), each holding the free bodies and the
+# fixed ones (the base); every HDF5 reference is "./<file>" relative to the .xmf; the step-0
+# world vertices equal position + R(q) v computed independently (vector form of the quaternion
+# rotation); the fixed base sits where the scenario put it; tilt_ratio = tilt / alpha.
+# (tests/cli/paraview.sh loads the files in ParaView.)
 set -eu
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/tools_xdmf; mkdir -p "$T"
 PY=/usr/bin/python3
@@ -16,64 +19,64 @@ model solve time 0.3
 output hdf5 'x.h5' interval 0.01
 DAT
 "$BIN" run "$T/s.dat" -q -o "$T/run.h5" >/dev/null
-$PY tools/rdxdmf.py "$T/run.h5" -o "$T/run.xmf" >/dev/null
+$PY tools/rdxdmf.py "$T/run.h5" -o "$T/run.xmf" --float64 >/dev/null
+$PY tools/rdxdmf.py "$T/run.h5" -o "$T/every.xmf" --every 4 >/dev/null
 test -s "$T/run.vis.h5"
-$PY - "$T/run.h5" "$T/run.xmf" "$T/run.vis.h5" <<'PY'
+$PY - "$T/run.h5" "$T/run.xmf" "$T/run.vis.h5" "$T/every.xmf" <<'PY'
 import sys, os, xml.etree.ElementTree as ET, h5py, numpy as np
-run, xmf, vis = sys.argv[1:]
+run, xmf, vis, every = sys.argv[1:]
 f = h5py.File(run, "r"); v = h5py.File(vis, "r")
 n = f["time"].shape[0]
 root = ET.parse(xmf).getroot()
 coll = root.find("Domain/Grid")
 assert coll.get("CollectionType") == "Temporal"
-grids = coll.findall("Grid")
-assert len(grids) == n, (len(grids), n)
-times = [float(g.find("Time").get("Value")) for g in grids]
+steps = coll.findall("Grid")
+assert len(steps) == n, (len(steps), n)
+assert all(s.get("CollectionType") == "Spatial" for s in steps)
+assert [g.get("Name") for g in steps[0].findall("Grid")] == ["bodies", "fixed"]
+times = [float(g.find("Time").get("Value")) for g in steps]
 assert np.allclose(times, f["time"][:], rtol=0, atol=1e-12)
-names = [x.decode().rstrip("\0") if isinstance(x, bytes) else x for x in f["bodies/names"][:]]
-assert len(names) == 2
-# every DataItem points at an existing dataset of the right shape
-for g in grids[:3] + grids[-2:]:
+names = list(f["bodies/names"].asstr()[()])
+assert names == ["b1", "b2"]
+# every DataItem is "./run.vis.h5:/path" and points at a dataset of the right shape
+for g in steps[:3] + steps[-2:]:
     for di in g.iter("DataItem"):
         fn, path = di.text.split(":")
-        assert os.path.join(os.path.dirname(xmf), fn) == vis
+        assert fn == "./run.vis.h5", fn
+        assert os.path.join(os.path.dirname(xmf), fn) == os.path.join(os.path.dirname(vis), "./run.vis.h5")
         dims = tuple(int(d) for d in di.get("Dimensions").split())
         assert v[path].shape == dims, (path, v[path].shape, dims)
 # independent world vertices at step 0: x = p + v + 2w (u x v) + 2 u x (u x v)
 xyz = v["step_0/xyz"][:]
-topo = v["topology"][:]
-off, expect = 0, []
+expect = []
 for k, nm in enumerate(names):
-    V = f["bodies/%s/vertices" % nm][:]; F = f["bodies/%s/faces" % nm][:]
+    V = f["bodies/%s/vertices" % nm][:]
     q = f["quaternion"][0, k, :]; q = q / np.linalg.norm(q); w, u = q[0], q[1:]
     t = 2 * np.cross(u, V)
     expect.append(f["position"][0, k, :] + V + w * t + np.cross(u, t))
-    off += len(V)
 expect = np.vstack(expect)
-assert xyz.shape == expect.shape
 err = np.abs(xyz - expect).max()
 assert err < 1e-12, err
-# the tilted body really is rotated at step 0 (the check is not trivially identity)
-assert abs(f["quaternion"][0, 0, 0]) < 0.9999
-# topology: the faces of body 1 are offset by the vertex count of body 0
-n0 = f["bodies/%s/vertices" % names[0]].shape[0]
-nf0 = f["bodies/%s/faces" % names[0]].shape[0]
-assert (topo[nf0:] == f["bodies/%s/faces" % names[1]][:] + n0).all()
-print("xdmf ok: %d grids, step-0 vertex error %.2e" % (len(grids), err))
+assert abs(f["quaternion"][0, 0, 0]) < 0.9999  # the tilted body really is rotated
+topo = v["topology"][:]
+n0, nf0 = f["bodies/b1/vertices"].shape[0], f["bodies/b1/faces"].shape[0]
+assert (topo[nf0:] == f["bodies/b2/faces"][:] + n0).all()
+# the fixed base: 3 x 3 x 0.5 m with its top at z = 0, where the scenario put it
+fx = v["fixed/xyz"][:]
+assert fx.shape == (8, 3) and np.allclose(fx.min(0), [-1.5, -1.5, -0.5]) and np.allclose(fx.max(0), [1.5, 1.5, 0])
+assert np.isnan(v["fixed/tilt"][:]).all()
+# tilt ratio = tilt / alpha (the summary's alpha)
+alpha = f["summary"].attrs["alpha"]
+k = n - 1
+tri_body = v["body"][:]
+assert np.allclose(v["step_%d/tilt_ratio" % k][:], f["tilt"][k][tri_body] / alpha[tri_body], rtol=1e-6)  # single precision
+# --every 4: samples 0, 4, 8, ... and the last; single precision
+ev = ET.parse(every).getroot().find("Domain/Grid").findall("Grid")
+want = list(range(0, n, 4)) + ([n - 1] if (n - 1) % 4 else [])
+assert [g.get("Name") for g in ev] == ["step_%d" % i for i in want], [g.get("Name") for g in ev][:5]
+assert h5py.File(every[:-4] + ".vis.h5", "r")["step_0/xyz"].dtype == np.float32
+print("xdmf ok: %d steps (%d with --every 4), step-0 vertex error %.2e" % (len(steps), len(ev), err))
 PY
 # bad input: one line, non-zero exit
 out=$($PY tools/rdxdmf.py "$T/nope.h5" 2>&1 >/dev/null) && { echo "missing file accepted"; exit 1; }
 echo "$out" | grep -q "no such file"
-if command -v pvpython >/dev/null 2>&1; then
-    cat > "$T/pv.py" <<PVPY
-from paraview.simple import XDMFReader, UpdatePipeline
-r = XDMFReader(FileNames=["$T/run.xmf"])
-r.UpdatePipeline(0.0)
-n = r.GetDataInformation().GetNumberOfPoints()
-assert n == 16, n
-print("pvpython ok:", n, "points")
-PVPY
-    timeout 60 pvpython "$T/pv.py"
-else
-    echo "pvpython not on PATH: ParaView load check skipped"
-fi

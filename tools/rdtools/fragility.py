@@ -225,7 +225,8 @@ def binned_fits(pga, pgv, y, nbins=4, edges=None, form="linear", method="auto", 
         f = logistic_fit(X, y[m], method)
         b0, b1 = f["beta"]
         d.update(b0=float(b0), b1=float(b1), se_b0=float(f["se"][0]), se_b1=float(f["se"][1]),
-                 method=f["method"], separated=f["separated"], converged=f["converged"])
+                 method=f["method"], separated=f["separated"], converged=f["converged"],
+                 cov=[[float(v) for v in row] for row in f["cov"]])
         if b1 > 0:
             for p in levels:
                 x = (logit(p) - b0) / b1
@@ -288,6 +289,8 @@ def lognormal_fit(x, y, bootstrap=0, seed=1):
         # no finite MLE: beta -> 0 (a step) or nothing to fit
         lo = x[y == 0].max() if (y == 0).any() else 0.0
         hi = x[y == 1].min() if (y == 1).any() else np.inf
+        if 0 < y.sum() < len(y):  # a finite curve all the same: Firth's logistic in ln PGA
+            res["firth"] = logistic_fit(X, y, "firth")
         res.update(separated=True, theta=float("nan"), beta=float("nan"),
                    theta_range=(float(lo), float(hi)),
                    note="outcomes separated by PGA: no finite ML estimate (beta -> 0); the "

@@ -1,4 +1,9 @@
-"""One run on one page: rocking, sliding, ground motion and energies against time, events marked."""
+"""One run on one page, sized for a two-column journal page (7.2 in wide, 9-pt text): rocking
+(tilt as a fraction of alpha, the body's static tipping angle, for every shape), sliding, the
+ground motion (acceleration and velocity on two axes aligned at zero, one colour per component)
+and the energies (in J, kJ or MJ, no offset) against time, events marked."""
+import textwrap
+
 import numpy as np
 
 from .runfile import Run
@@ -15,12 +20,47 @@ EVENT_STYLE = {  # colour, line style, line width
 ENERGY_STYLE = {"kinetic": "tab:blue", "gravitational": "tab:green", "elastic": "tab:olive",
                 "friction": "tab:purple", "damping": "tab:brown", "ground_work": "black",
                 "residual": "tab:red"}
+COMPONENT_COLOUR = {"x": "#1f77b4", "y": "#ff7f0e", "z": "#2ca02c"}
+G = 9.80665
+WIDTH_IN = 7.2
+FONT_PT = 9
 
 
-def plot_run(path, out, dpi=110, max_event_lines=400, width=9.0):
+def energy_unit(peak):
+    """(divisor, label) so that energies of this size read as plain numbers."""
+    for d, u in ((1e9, "GJ"), (1e6, "MJ"), (1e3, "kJ")):
+        if peak >= d:
+            return d, u
+    return 1.0, "J"
+
+
+def alphas_of(r, names):
+    """alpha (rad) of every free body: the summary's (support polygon at rest, any shape), else
+    /bodies/<name>/alpha; None where neither is positive."""
+    s = np.atleast_1d(np.asarray(r.summary().get("alpha", [np.nan] * len(names)), float))
+    out = []
+    for k, n in enumerate(names):
+        a = s[k] if k < len(s) else np.nan
+        if not (a > 0):
+            a = float(r.body_attr(n, "alpha", np.nan))
+        out.append(a if a > 0 else None)
+    return out
+
+
+def _symmetric(ax, values, pad=1.12):
+    """y limits symmetric about zero (so twin axes share their zero line)."""
+    m = float(np.nanmax(np.abs(values))) if np.size(values) else 1.0
+    m = m if m > 0 else 1.0
+    ax.set_ylim(-pad * m, pad * m)
+
+
+def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    plt.rcParams.update({"font.size": FONT_PT, "axes.labelsize": FONT_PT,
+                         "legend.fontsize": FONT_PT - 1.5, "xtick.labelsize": FONT_PT - 1,
+                         "ytick.labelsize": FONT_PT - 1})
 
     with Run(path) as r:
         t = r.time()
@@ -30,7 +70,7 @@ def plot_run(path, out, dpi=110, max_event_lines=400, width=9.0):
         vel = r.data("ground/velocity") if r.has("ground/velocity") else None
         en = r.energies()
         events = r.events()
-        alphas = [r.body_attr(n, "alpha", None) for n in names]
+        alphas = alphas_of(r, names)
         slides = [slide_series(r, k, n) for k, n in enumerate(names)]
         s = r.summary()
         title = r.title or path
@@ -40,75 +80,80 @@ def plot_run(path, out, dpi=110, max_event_lines=400, width=9.0):
         status = s.get("status", "no summary")
         damping = r.attr("damping", "")
 
-    fig, ax = plt.subplots(4, 1, figsize=(width, 10), sharex=True,
-                           gridspec_kw=dict(height_ratios=[1.2, 1, 1, 1.2]))
-    use_ratio = all(a is not None and np.isfinite(a) and a > 0 for a in alphas)
+    fig, ax = plt.subplots(4, 1, figsize=(width, 8.4), sharex=True,
+                           gridspec_kw=dict(height_ratios=[1.2, 1, 1, 1.1], hspace=0.12))
+    use_ratio = all(a is not None for a in alphas)
     for k, n in enumerate(names):
-        y = tilt[:, k] / alphas[k] if use_ratio else tilt[:, k]
-        ax[0].plot(t, y, lw=1.0, label=n)
+        yk = tilt[:, k] / alphas[k] if use_ratio else np.degrees(tilt[:, k])
+        ax[0].plot(t, yk, lw=1.0, label=n)
     if use_ratio:
         ax[0].axhline(1.0, color="0.5", lw=0.8, ls="--")
-        ax[0].set_ylabel("tilt / alpha")
+        ax[0].set_ylabel("tilt / α (1)")
     else:
-        ax[0].set_ylabel("tilt (rad)")
+        ax[0].set_ylabel("tilt (°)")
     for k, n in enumerate(names):
         ax[1].plot(t, slides[k] * 1e3, lw=1.0, label=n)
     ax[1].set_ylabel("base slide (mm)")
 
-    g = 9.80665
-    comp = ["x", "y", "z"]
-    for c in range(acc.shape[1]):
-        if np.any(acc[:, c] != 0):
-            ax[2].plot(t, acc[:, c] / g, lw=1.0, label="a_%s" % comp[c])
-    ax[2].set_ylabel("ground acc. (g)")
+    comps = [c for c in range(acc.shape[1]) if np.any(acc[:, c] != 0)]
+    for c in comps:
+        xyz = "xyz"[c]
+        ax[2].plot(t, acc[:, c] / G, lw=1.0, color=COMPONENT_COLOUR[xyz], label="a_%s" % xyz)
+    ax[2].set_ylabel("ground acceleration (g)\nsolid")
+    _symmetric(ax[2], acc[:, comps] / G if comps else np.zeros(1))
     if vel is not None:
         tw = ax[2].twinx()
-        for c in range(vel.shape[1]):
-            if np.any(vel[:, c] != 0):
-                tw.plot(t, vel[:, c], lw=0.9, ls="--", color="C%d" % (c + 3), label="v_%s" % comp[c])
-        tw.set_ylabel("ground vel. (m/s), dashed")
+        vc = [c for c in range(vel.shape[1]) if np.any(vel[:, c] != 0)]
+        for c in vc:
+            xyz = "xyz"[c]
+            tw.plot(t, vel[:, c], lw=0.9, ls="--", color=COMPONENT_COLOUR[xyz], label="v_%s" % xyz)
+        tw.set_ylabel("ground velocity (m/s)\ndashed")
+        _symmetric(tw, vel[:, vc] if vc else np.zeros(1))
+        tw.tick_params(labelsize=FONT_PT - 1)
         h1, l1 = ax[2].get_legend_handles_labels()
         h2, l2 = tw.get_legend_handles_labels()
-        ax[2].legend(h1 + h2, l1 + l2, loc="upper right", fontsize=7, ncol=2)
+        ax[2].legend(h1 + h2, l1 + l2, loc="upper right", ncol=2, framealpha=0.85)
     else:
-        ax[2].legend(loc="upper right", fontsize=7)
+        ax[2].legend(loc="upper right", framealpha=0.85)
+    ax[2].axhline(0, color="0.6", lw=0.6)
 
-    for k, y in en.items():
-        ax[3].plot(t, y, lw=1.3 if k == "residual" else 1.0, color=ENERGY_STYLE.get(k),
-                   label=k)
-    ax[3].set_ylabel("energy (J)")
+    peak = max((float(np.nanmax(np.abs(v))) for v in en.values() if np.size(v)), default=1.0)
+    div, unit = energy_unit(peak)
+    for k, v in en.items():
+        ax[3].plot(t, v / div, lw=1.3 if k == "residual" else 1.0, color=ENERGY_STYLE.get(k),
+                   label=k.replace("_", " "))
+    ax[3].ticklabel_format(axis="y", useOffset=False, style="plain")
+    ax[3].set_ylabel("energy (%s)" % unit)
     ax[3].set_xlabel("time (s)")
-    ax[3].legend(loc="upper left", fontsize=7, ncol=4)
+    ax[3].legend(loc="upper center", bbox_to_anchor=(0.5, -0.32), ncol=4, frameon=False)
 
-    # events: vertical lines on every panel, markers on the tilt curve
     seen = set()
     shown = events if len(events) <= max_event_lines else \
         [e for e in events if e[2] in ("overturn", "recover", "unstable")]
     for (te, b, ty, _v) in shown:
         col, ls, lw = EVENT_STYLE.get(ty, ("0.3", "-.", 0.6))
         for a in ax:
-            a.axvline(te, color=col, ls=ls, lw=lw, alpha=0.6, zorder=0)
+            a.axvline(te, color=col, ls=ls, lw=lw, alpha=0.5, zorder=0)
         if 0 <= b < len(names) and t.size:
-            y = np.interp(te, t, tilt[:, b] / alphas[b] if use_ratio else tilt[:, b])
-            ax[0].plot([te], [y], marker="v" if ty != "overturn" else "X", color=col, ms=4 if ty != "overturn" else 9,
-                       ls="none", label=None if ty in seen else ty)
+            yv = np.interp(te, t, tilt[:, b] / alphas[b] if use_ratio else np.degrees(tilt[:, b]))
+            ax[0].plot([te], [yv], marker="v" if ty != "overturn" else "X", color=col,
+                       ms=4 if ty != "overturn" else 8, ls="none", label=None if ty in seen else ty)
             seen.add(ty)
-    h, l = ax[0].get_legend_handles_labels()
-    ax[0].legend(h, l, loc="upper left", fontsize=7, ncol=3)
-    ax[1].legend(loc="upper left", fontsize=7)
+    ax[0].legend(loc="upper left", ncol=4, framealpha=0.85)
+    ax[1].legend(loc="upper left", framealpha=0.85)
     nev = {}
     for e in events:
         nev[e[2]] = nev.get(e[2], 0) + 1
     evtxt = ", ".join("%d %s" % (v, k) for k, v in sorted(nev.items())) or "no events"
     if len(shown) < len(events):
         evtxt += " (only overturn/recover drawn)"
-    fig.suptitle("%s\nstatus %s; damping %s; events: %s" % (title, status, damping or "?", evtxt),
-                 fontsize=9)
+    head = textwrap.fill(title, 95)
+    fig.suptitle("%s\nstatus %s; damping %s; events: %s" % (head, status, damping or "?", evtxt),
+                 fontsize=FONT_PT, y=0.995)
     for a in ax:
         a.grid(alpha=0.3)
     if t.size:
         ax[3].set_xlim(t[0], t[-1])
-    fig.tight_layout()
-    fig.savefig(out, dpi=dpi)
+    fig.savefig(out, dpi=dpi, bbox_inches="tight")
     plt.close(fig)
     return out
