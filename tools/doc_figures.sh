@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Remake the example figures of docs/TOOLS.md from real rockdem runs (about 15 s).
+# Remake the figures of docs/ (TOOLS.md, README) from real rockdem runs (about 15 s of CPU, plus
+# the stored tables: docs/pbr_sweep.h5 for the PBR fragility, docs/study.md for the study).
 #   bash tools/doc_figures.sh [path/to/rockdem] [workdir]
 set -eu
 BIN=${1:-bin/rockdem}; W=${2:-$(mktemp -d)}
@@ -7,7 +8,7 @@ PY=/usr/bin/python3
 mkdir -p "$W/sweep"
 # 1. one run that overturns: the default cask, 1.1 g one-sine at 0.7 Hz
 "$BIN" run scenarios/default.dat --set motion.amplitude=1.1g --set motion.frequency=0.7 -q -o "$W/over.h5"
-$PY tools/rdplot.py "$W/over.h5" -o docs/rdplot_example.png --dpi 72
+$PY tools/rdplot.py "$W/over.h5" -o docs/rdplot_example.png --dpi 150
 # 2. an 8 x 8 sweep of one-sine pulses (amplitude x frequency, PGV/PGA = 1/(pi f)); the
 #    runs go on after overturning ('stop off') so every run sees the whole pulse
 sed 's/^model overturn tilt-ratio 1.0$/model overturn tilt-ratio 1.0 stop off/' scenarios/default.dat > "$W/sweep.dat"
@@ -17,3 +18,7 @@ for a in 0.5 0.8 1.1 1.4 1.7 2.0 2.5 3.0; do for f in 0.25 0.35 0.5 0.7 1.0 1.4 
         --set model.duration=8 -q -o "$2/a${3}_f$4.h5" >/dev/null' "$BIN" "$W/sweep.dat" "$W/sweep"
 $PY tools/rdtable.py "$W"/sweep/*.h5 --csv "$W/sweep.csv" -q
 $PY tools/rdfragility.py "$W/sweep.csv" --outcome ever_overturned -o docs/rdfragility_example.png
+# 3. the README's PBR fragility from its stored sweep table (README: "Worked example")
+$PY tools/rdfragility.py docs/pbr_sweep.h5 --where direction=0 --bins 2 -o docs/pbr_fragility.png
+# 4. the study figure from its table (make study reruns the 72 DEM runs)
+$PY tools/study.py --replot docs/study.md

@@ -142,6 +142,12 @@ def main():
     elif ln["separated"]:
         o.write("  %s: theta in [%.4g, %.4g] %s\n" % (ln["note"], *ln["theta_range"], ustr))
         res["lognormal"] = dict(separated=True, theta_range=list(ln["theta_range"]), note=ln["note"])
+        if ln.get("firth") is not None:
+            fb, fse = ln["firth"]["beta"], ln["firth"]["se"]
+            o.write("  Firth's logistic in ln PGA instead: logit P = %.4g + %.4g ln PGA (s.e. %.3g, %.3g); "
+                    "median %.4g %s\n" % (fb[0], fb[1], fse[0], fse[1], math.exp(-fb[0] / fb[1]), ustr))
+            res["lognormal"]["firth"] = dict(b=[float(x) for x in fb], se=[float(x) for x in fse],
+                                             median=math.exp(-fb[0] / fb[1]))
     else:
         o.write("  theta (median) = %.4g %s  95%% CI [%.4g, %.4g]  (s.e. of ln theta %.3g)\n"
                 % (ln["theta"], ustr, *ln["theta_ci"], ln["se_ln_theta"]))

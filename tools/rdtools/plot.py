@@ -1,5 +1,6 @@
 """One run on one page, sized for a two-column journal page (7.2 in wide, 9-pt text): rocking
-(tilt as a fraction of alpha, the body's static tipping angle, for every shape), sliding, the
+(tilt as a fraction of alpha, the body's static tipping angle towards the side it leans to,
+for every shape, as the summary's max tilt ratio), sliding, the
 ground motion (acceleration and velocity on two axes aligned at zero, one colour per component)
 and the energies (in J, kJ or MJ, no offset) against time, events marked."""
 import textwrap
@@ -34,19 +35,6 @@ def energy_unit(peak):
     return 1.0, "J"
 
 
-def alphas_of(r, names):
-    """alpha (rad) of every free body: the summary's (support polygon at rest, any shape), else
-    /bodies/<name>/alpha; None where neither is positive."""
-    s = np.atleast_1d(np.asarray(r.summary().get("alpha", [np.nan] * len(names)), float))
-    out = []
-    for k, n in enumerate(names):
-        a = s[k] if k < len(s) else np.nan
-        if not (a > 0):
-            a = float(r.body_attr(n, "alpha", np.nan))
-        out.append(a if a > 0 else None)
-    return out
-
-
 def _symmetric(ax, values, pad=1.12):
     """y limits symmetric about zero (so twin axes share their zero line)."""
     m = float(np.nanmax(np.abs(values))) if np.size(values) else 1.0
@@ -70,7 +58,7 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
         vel = r.data("ground/velocity") if r.has("ground/velocity") else None
         en = r.energies()
         events = r.events()
-        alphas = alphas_of(r, names)
+        ratios = [r.tilt_ratio(k, n) for k, n in enumerate(names)]
         slides = [slide_series(r, k, n) for k, n in enumerate(names)]
         s = r.summary()
         title = r.title or path
@@ -82,20 +70,21 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
 
     fig, ax = plt.subplots(4, 1, figsize=(width, 8.4), sharex=True,
                            gridspec_kw=dict(height_ratios=[1.2, 1, 1, 1.1], hspace=0.12))
-    use_ratio = all(a is not None for a in alphas)
+    use_ratio = all(x is not None for x in ratios)
     for k, n in enumerate(names):
-        yk = tilt[:, k] / alphas[k] if use_ratio else np.degrees(tilt[:, k])
+        yk = ratios[k] if use_ratio else np.degrees(tilt[:, k])
         ax[0].plot(t, yk, lw=1.0, label=n)
     if use_ratio:
         ax[0].axhline(1.0, color="0.5", lw=0.8, ls="--")
-        ax[0].set_ylabel("tilt / α (1)")
+        ax[0].set_ylabel("tilt / α (1)\nα toward the lean")
     else:
         ax[0].set_ylabel("tilt (°)")
     for k, n in enumerate(names):
         ax[1].plot(t, slides[k] * 1e3, lw=1.0, label=n)
     ax[1].set_ylabel("base slide (mm)")
 
-    comps = [c for c in range(acc.shape[1]) if np.any(acc[:, c] != 0)]
+    big = max(float(np.abs(acc).max()), 1e-300)
+    comps = [c for c in range(acc.shape[1]) if np.abs(acc[:, c]).max() > 1e-9 * big]
     for c in comps:
         xyz = "xyz"[c]
         ax[2].plot(t, acc[:, c] / G, lw=1.0, color=COMPONENT_COLOUR[xyz], label="a_%s" % xyz)
@@ -103,7 +92,8 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
     _symmetric(ax[2], acc[:, comps] / G if comps else np.zeros(1))
     if vel is not None:
         tw = ax[2].twinx()
-        vc = [c for c in range(vel.shape[1]) if np.any(vel[:, c] != 0)]
+        vbig = max(float(np.abs(vel).max()), 1e-300)
+        vc = [c for c in range(vel.shape[1]) if np.abs(vel[:, c]).max() > 1e-9 * vbig]
         for c in vc:
             xyz = "xyz"[c]
             tw.plot(t, vel[:, c], lw=0.9, ls="--", color=COMPONENT_COLOUR[xyz], label="v_%s" % xyz)
@@ -135,7 +125,7 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
         for a in ax:
             a.axvline(te, color=col, ls=ls, lw=lw, alpha=0.5, zorder=0)
         if 0 <= b < len(names) and t.size:
-            yv = np.interp(te, t, tilt[:, b] / alphas[b] if use_ratio else np.degrees(tilt[:, b]))
+            yv = np.interp(te, t, ratios[b] if use_ratio else np.degrees(tilt[:, b]))
             ax[0].plot([te], [yv], marker="v" if ty != "overturn" else "X", color=col,
                        ms=4 if ty != "overturn" else 8, ls="none", label=None if ty in seen else ty)
             seen.add(ty)

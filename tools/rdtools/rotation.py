@@ -21,6 +21,24 @@ def quat_to_matrix(q):
     return R
 
 
+def lean_direction(quaternion):
+    """Direction (rad from +x, in [0, 2 pi)) the body leans towards at each sample: the
+    horizontal part of its rest vertical axis, the rest pose being the first sample (the output
+    starts when shaking starts, after settling). quaternion [n, 4] -> [n]."""
+    R = quat_to_matrix(quaternion)
+    z = R @ (R[0].T @ np.array([0.0, 0.0, 1.0]))
+    return np.mod(np.arctan2(z[:, 1], z[:, 0]), 2 * np.pi)
+
+
+def alpha_toward(table, psi):
+    """Static tipping angle (rad) towards lean directions psi, interpolated (periodically) from
+    a precariousness table [n][3] (direction, alpha, g tan alpha; /bodies/<b>/precariousness)."""
+    t = np.asarray(table, float)
+    d = np.mod(t[:, 0], 2 * np.pi)
+    o = np.argsort(d)
+    return np.interp(np.asarray(psi, float), d[o], t[o, 1], period=2 * np.pi)
+
+
 def world_vertices(position, quaternion, vertices):
     """x = p + R(q) v for one pose: position [3], quaternion [4], vertices [nv, 3]."""
     R = quat_to_matrix(quaternion)

@@ -156,6 +156,23 @@ class Run:
             return default
         return self.f[g].attrs.get(key, default)
 
+    def tilt_ratio(self, k, name):
+        """tilt / alpha of free body k (named name) at every sample, alpha being the static
+        tipping angle towards the side the body leans to (its precariousness table, any shape)
+        as in the summary's max_tilt_ratio; without a table, the summary's (least) alpha. None
+        when neither is known."""
+        from .rotation import alpha_toward, lean_direction
+        tilt = self.data("tilt")[:, k]
+        prec = "bodies/%s/precariousness" % name
+        if prec in self.f and self.f[prec].shape[0] >= 3:
+            psi = lean_direction(self.data("quaternion")[:, k, :])
+            return tilt / alpha_toward(self.f[prec][()], psi)
+        a = np.atleast_1d(np.asarray(self.summary().get("alpha", [np.nan] * (k + 1)), float))
+        a = a[k] if k < len(a) else np.nan
+        if not (a > 0):
+            a = float(self.body_attr(name, "alpha", np.nan))
+        return tilt / a if a > 0 else None
+
     def energies(self):
         """dict name -> [N] array for the /energy datasets present (in the canonical order)."""
         if "energy" not in self.f:

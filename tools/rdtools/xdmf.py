@@ -10,7 +10,8 @@ nothing):
                   /body            [ntri]    int32  body index (output order) of each triangle
                   /step_<k>/xyz    [nv][3]          world vertices of the free bodies at step k
                   /step_<k>/tilt   [ntri]           tilt of the triangle's body, rad
-                  /step_<k>/tilt_ratio [ntri]       tilt / alpha of the triangle's body
+                  /step_<k>/tilt_ratio [ntri]       tilt / alpha of the triangle's body, alpha
+                                                    towards the side it leans to (Run.tilt_ratio)
                   /fixed/topology, /fixed/xyz       the fixed bodies (static), if any; their
                                                     tilt is NaN (drawn in the NaN colour), body -1
   <stem>.xmf      Xdmf 2 XML: a Temporal collection of one Spatial collection per written step,
@@ -51,14 +52,10 @@ def _fixed_bodies(r, free):
     return out
 
 
-def _alphas(r, names):
-    """alpha of each free body (rad): /summary (support polygon at rest), else /bodies/<b>."""
-    s = r.summary()
-    a = np.asarray(s.get("alpha", [np.nan] * len(names)), float).reshape(-1)
-    for k, nm in enumerate(names):
-        if not (a[k] > 0):
-            a[k] = float(r.body_attr(nm, "alpha", np.nan))
-    return np.where(a > 0, a, np.nan)
+def _ratio(r, k, name, tilt):
+    """tilt / alpha toward the lean of body k (Run.tilt_ratio); NaN when alpha is unknown."""
+    x = r.tilt_ratio(k, name)
+    return x if x is not None else np.full(len(tilt), np.nan)
 
 
 def write_sidecar(run_path, xmf_path, stride=1, frame="ground", float32=False):
@@ -85,7 +82,7 @@ def write_sidecar(run_path, xmf_path, stride=1, frame="ground", float32=False):
             shift = r.data("ground/displacement")[:, :3]
         geo = [r.body_geometry(nm) for nm in names]
         fixed = _fixed_bodies(r, set(names))
-        alpha = _alphas(r, names)
+        ratio = np.column_stack([_ratio(r, k, nm, tilt[:, k]) for k, nm in enumerate(names)])
     if n == 0:
         raise RDError("%s: the run has no output samples" % run_path)
 
@@ -98,7 +95,6 @@ def write_sidecar(run_path, xmf_path, stride=1, frame="ground", float32=False):
         steps.append(n - 1)  # always show the final state
     dtype = np.float32 if float32 else np.float64
     R = quat_to_matrix(quat)  # [n, nb, 3, 3]
-    ratio = tilt / alpha[None, :]
 
     fv = np.cumsum([0] + [len(v) for _, v, _ in fixed])
     with h5py.File(vis_path, "w") as h:

@@ -52,7 +52,7 @@ class Run:
     def histories(self):
         """dict of numpy arrays: time [N] (s), position/velocity/angular_velocity [N][nb][3],
         quaternion [N][nb][4], tilt [N][nb] (rad), rotation [N][nb][3] (rad), tilt_ratio
-        [N][nb] (tilt / alpha), ground_acceleration/velocity/displacement [N][3],
+        [N][nb] (tilt / alpha towards the lean, as the summary's max_tilt_ratio), ground_acceleration/velocity/displacement [N][3],
         energy_<name> [N] (J)."""
         h5py = _h5py()
         out = {}
@@ -64,9 +64,26 @@ class Run:
                 out["ground_" + k] = f["ground"][k][()]
             for k in f["energy"]:
                 out["energy_" + k] = f["energy"][k][()]
-        alpha = np.array([b["alpha"] for b in self.summary["bodies"].values()])
-        out["tilt_ratio"] = out["tilt"] / np.where(alpha > 0, alpha, np.nan)
+        out["tilt_ratio"] = self._tilt_ratio(out)
         return out
+
+    def _tilt_ratio(self, h):
+        """tilt / alpha towards the side each body leans to (its precariousness table), as the
+        summary's max_tilt_ratio; the summary's least alpha where there is no table."""
+        import sys
+        sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        from rdtools.rotation import alpha_toward, lean_direction
+        h5py = _h5py()
+        ratio = np.full(h["tilt"].shape, np.nan)
+        with h5py.File(self.path, "r") as f:
+            for k, (name, b) in enumerate(self.summary["bodies"].items()):
+                prec = "bodies/%s/precariousness" % name
+                if prec in f and f[prec].shape[0] >= 3:
+                    a = alpha_toward(f[prec][()], lean_direction(h["quaternion"][:, k, :]))
+                else:
+                    a = b["alpha"] if b["alpha"] > 0 else np.nan
+                ratio[:, k] = h["tilt"][:, k] / a
+        return ratio
 
     def dataset(self, group=None):
         """The run file's group as an xarray.Dataset (dims time, body, xyz, ...)."""
