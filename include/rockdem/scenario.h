@@ -64,6 +64,10 @@ typedef struct rd_contact_def {
     double friction;  /* friction angle, rad (default 40 deg) */
     double cohesion;  /* peak cohesion, Pa (default 0); drops to 0 at the first slip */
     double tension;   /* peak tensile strength, Pa (default 0); drops to 0 at the first opening */
+    double restitution; /* impact loss: a new subcontact keeps this fraction of its normal
+                           stretch when it first unloads (a point mass rebounds with this
+                           ratio of speeds); 0 = perfectly plastic impacts (rigid rocking
+                           theory), 1 = elastic, no loss (3DEC's joint); in [0, 1] */
     double spacing;   /* subcontact spacing on contact faces, m; 0 = face vertices only
                          (3DEC's fewest-triangle default); < 0 (default) = automatic per body:
                          a tenth of its narrowest contact face (a mesh: its own vertices) */

@@ -1,20 +1,40 @@
-/* rockdem — contacts: common-plane normal, subcontact gaps and the Coulomb-slip joint law.
+/* rockdem — contacts: vertex-face subcontacts with an entrance face, and the Coulomb-slip joint
+ * law with an impact-loss model.
  *
- * For each pair of bodies that may touch, the contact normal is the face normal (of either
- * body) that maximises the separation of the other body's vertices — the separating-axis
- * choice, kept from the last step unless another axis is clearly better (hysteresis), in the
- * spirit of 3DEC's common plane. Each subcontact point p of the owner body, with tributary area
- * A, is tested against the other (convex) body: its gap along the normal u (pointing from the
- * other body to the owner) is the distance travelled along -u to enter that body,
- *     g = max over faces f with n_f.u > 0 of (n_f.p - d_f) / (n_f.u),
- * provided p lies within the other body's faces that are parallel or facing away (n_f.u <= 0).
+ * Geometry. Each subcontact point p of the owner body (tributary area A) is tested against the
+ * other body, which is convex: p is inside when it lies behind every face plane of the other
+ * body. A point that enters is attached to the face it entered through — its entrance face,
+ * found once per contact episode (as the entrance edge of Shi's DDA) — and for as long as it
+ * stays inside, its penetration is measured below that face and its normal force acts along
+ * that face's outward normal. The entrance face is the plane the point crossed last: for each
+ * plane it approaches (relative velocity into the plane), the time since it crossed is
+ * depth / approach speed, and the smallest wins. A point that slid off the other body's top
+ * face and comes back from the side is therefore pushed out through the side it crosses, never
+ * "re-entering buried" below the top face. With no approach (contact made at rest), the
+ * shallowest plane wins, and among planes equally shallow within the contact band, one that
+ * the point's own face looks at (a corner of two equal blocks bears on the top face, not on
+ * the side plane it also lies on).
+ * Faces that touch only later (a brick's sides, once it topples) carry their vertices as
+ * points that take part only while their face looks at the entrance face (outward normals at
+ * more than 135 deg, RD_FACING_COS): a brick's corner belongs to its base while it rocks, and
+ * its side's corners join once it has toppled past 45 deg.
+ * With the entrance face fixed, the normal force is the gradient of (1/2) KN A' depth^2, a
+ * potential of the relative pose: the normal law is conservative (no energy is created by
+ * the choice of normal, unlike a common plane that switches between the faces of two blocks).
+ *
  * Law (seed 002 eqs. 1-2, 3DEC Coulomb slip), per subcontact, with A' = weight * A:
- *     Fn = KN A' (-g)              compression only (tension up to T A' while bonded)
- *     Fs <- rot(Fs) - KS A' dUs    incremental, kept in the current contact plane
- *     |Fs| <= Fn tan(phi) + c A'   scaled back along its direction when exceeded
- * An opening subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
- * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn, so the active contact
- * of a pair is damped at the ratio zeta of its critical value.
+ *     Fn = KN A' (depth - dp)         compression only (tension up to T A' while bonded)
+ *     Fs <- proj(Fs) - KS A' dUs      incremental, kept in the plane of the entrance face
+ *     |Fs| <= Fn tan(phi) + c A'      scaled back along its direction when exceeded
+ * Impact loss (`contact property restitution e`): the first time a new subcontact unloads, its
+ * spring keeps the fraction e of its stretch, dp = (1 - e) depth_peak (a permanent set), so a
+ * point mass striking it rebounds with e times its speed (energy ratio e^2) while the
+ * stiffness, and so the stable time step, stay KN A. e = 0 makes every impact perfectly
+ * plastic at the point, which is the impact of rigid rocking theory (Housner; Kounadis):
+ * no rebound at the new pivot, angular momentum kept about it. e = 1 (3DEC's elastic joint)
+ * loses nothing.
+ * An exiting subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
+ * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/ and records/, never io/, scenario/ parsing or cli/.
  */
@@ -22,195 +42,74 @@
 #include "base/vec.h"
 
 #include <float.h>
-
-#define RD_AXIS_EVERY 8 /* steps between full searches for the common-plane face */
-/* A face of the other body whose normal makes less than acos(0.2) = 78 deg with the contact
- * normal measures the gap (the ray along the normal exits there); steeper faces only bound it
- * sideways. Without this cut a point on the rim of a tapered drum, lying on a side face that
- * leans by a fraction of a degree, gets a round-off gap e / (n.u) that hides its overlap. */
-#define RD_ALIGNED 0.2
 #include <math.h>
 #include <string.h>
 
-/* Per-face context for one side of a pair: the other body's face planes that matter for this
- * candidate face, expressed in the owner's body frame so a point's gap needs no transform.
- * Aligned planes (n.u > 0) are pre-divided by n.u: gap = max_k (a_k . p - b_k). Lateral planes
- * (n.u <= 0) only bound the other body sideways: the point must satisfy n . p <= d. Lateral
- * planes that every vertex of the face already satisfies are dropped (linear, so no point of
- * the face can cross them). */
+/* A subcontact acts only while its face and the entrance face are within 45 deg of facing each
+ * other (cos 135 deg = -RD_FACING_COS). */
+#define RD_FACING_COS 0.70710678118654752
+/* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
+ * its gap is below a tolerance of the order of 0.1 % of the model's dimension). */
+#define RD_CONTACT_BAND 1e-3
+/* A plane counts as approached when the point moves into it faster than this fraction of its
+ * relative speed (below, the motion is tangential: round-off must not pick a side face). */
+#define RD_APPROACH_FRACTION 1e-3
+
+/* The other body's face planes expressed in the owner's body frame, so a point's signed
+ * distances need no transform: s_k(p) = n_k . p - d_k (> 0: outside plane k). */
 typedef struct side_ctx {
-    int o, t;                 /* owner and other body */
-    double u[3];              /* unit normal from the other body towards the owner, ground frame */
-    double wa;                /* weight */
-    double damp_coef;         /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
-    double k_active;          /* accumulates KN A' over active points, N/m */
-    int nal, nlat;            /* aligned and lateral planes kept */
-    double al[RD_MAX_PLANES][4];  /* a (3), b: gap through an aligned plane, owner frame */
-    double lat[RD_MAX_PLANES][4]; /* n (3), d: a lateral plane, owner frame */
-    double rot[9];            /* rotation of stored shear forces (normal moved since last step) */
-    int rotate;               /* 1 when rot must be applied */
+    int o, t;                   /* owner and other body */
+    double wa;                  /* weight */
+    double damp_coef;           /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
+    double k_active;            /* accumulates KN A' over active points, N/m */
+    double tol;                 /* contact band: a point this far outside a plane still counts as
+                                   inside, m */
+    int np;                     /* planes of the other body */
+    double pl[RD_MAX_PLANES][4];/* n (3), d: plane k, owner frame */
+    int ncr;                    /* planes some point of the current face may cross */
+    int cr[RD_MAX_PLANES];
+    const double *m;            /* outward normal of the current owner face, ground frame */
+    int facing;                 /* 1: the face's points act only while it faces the entrance face */
 } side_ctx;
 
-/* Forget a pair's contact history (shear forces, active flags); bonds are kept. */
-static void reset_pair(rd_sim *s, rd_pair *pr)
+static inline double plane_dist(const double *pl, const double p[3])
 {
-    for (int k = 0; k < pr->nside; k++) {
-        const rd_side *sd = &pr->side[k];
-        int n = s->pt0[sd->owner + 1] - s->pt0[sd->owner];
-        memset(s->fs + sd->state0, 0, (size_t)n * sizeof *s->fs);
-        for (int j = 0; j < n; j++) s->pstate[sd->state0 + j] &= RD_PT_BONDED;
-        int nf = s->cf0[sd->owner + 1] - s->cf0[sd->owner];
-        memset(s->face_nactive + sd->face0, 0, (size_t)nf * sizeof(int));
-    }
-    pr->axis_body = -1;
-    pr->k_active = 0;
+    return pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] - pl[3];
 }
 
-void rd_contact_reset_body(rd_sim *s, int body)
+/* The point leaves the contact: its forces drop (3DEC); the shear spring energy it held is
+ * dissipated by the joint model and booked as friction so the energy balance stays closed. */
+static void point_exit(rd_sim *s, int st, double sA)
 {
-    for (int p = 0; p < s->npair; p++)
-        if (s->pair[p].a == body || s->pair[p].b == body) reset_pair(s, &s->pair[p]);
+    unsigned char *fl = &s->pstate[st];
+    if (*fl & RD_PT_ACTIVE) {
+        s->e_fric += 0.5 * rd_dot(s->fs[st], s->fs[st]) / sA;
+        s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
+    }
+    if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN);
+    s->pset[st] = 0;
 }
 
-/* Pairs that were live last step but whose boxes no longer overlap lose their history. */
-static void reset_departed(rd_sim *s)
+/* A point inside but not carrying force (not facing the entrance face, or lifted off its
+ * permanent set): its shear spring is released, the rest of its state kept. */
+static void point_idle(rd_sim *s, int st, double sA)
 {
-    for (int k = 0; k < s->nlive_prev; k++) {
-        rd_pair *pr = &s->pair[s->live_prev[k]];
-        if (pr->seen != s->stamp) reset_pair(s, pr);
-    }
-}
-
-/* Separation of body `y` from the plane of face f of body `x` (negative = overlap), m. */
-static double face_separation(const rd_sim *s, int x, int f, int y)
-{
-    const double *n = s->wn[s->face0[x] + f];
-    double d = s->wd[s->face0[x] + f], sep = DBL_MAX;
-    for (int k = s->vert0[y]; k < s->vert0[y + 1]; k++) {
-        double e = rd_dot(n, s->wv[k]) - d;
-        if (e < sep) sep = e;
-    }
-    return sep;
-}
-
-/* Choose the common-plane face (full separating-axis search every RD_AXIS_EVERY steps or when
- * the pair has no axis yet); in between the chosen face's normal simply follows its body. */
-static void pair_axis(rd_sim *s, rd_pair *pr)
-{
-    if (pr->axis_body >= 0 && ++pr->axis_age < RD_AXIS_EVERY) {
-        rd_copy3(s->wn[s->face0[pr->axis_body] + pr->axis_face], pr->n);
-        return;
-    }
-    pr->axis_age = 0;
-    double best = -DBL_MAX, prev = -DBL_MAX;
-    int bb = -1, bf = -1;
-    for (int side = 0; side < 2; side++) {
-        int x = side ? pr->b : pr->a, y = side ? pr->a : pr->b;
-        double c[3] = {s->x[y][0] - s->x[x][0], s->x[y][1] - s->x[x][1], s->x[y][2] - s->x[x][2]};
-        for (int f = 0; f < s->poly[x].nf; f++) {
-            int current = (x == pr->axis_body && f == pr->axis_face);
-            if (!current && rd_dot(s->wn[s->face0[x] + f], c) <= 0) continue; /* faces away */
-            double sep = face_separation(s, x, f, y);
-            if (current) prev = sep;
-            if (sep > best) { best = sep; bb = x; bf = f; }
-        }
-    }
-    double hyst = 1e-4 * (s->poly[pr->a].radius + s->poly[pr->b].radius);
-    if (pr->axis_body >= 0 && prev >= best - hyst) {
-        rd_copy3(s->wn[s->face0[pr->axis_body] + pr->axis_face], pr->n);
-        return;
-    }
-    pr->axis_body = bb;
-    pr->axis_face = bf;
-    rd_copy3(s->wn[s->face0[bb] + bf], pr->n);
-}
-
-/* Keep the other body's planes that matter for candidate face cf (owner frame, see side_ctx).
- * Returns the lower bound of the gap over the face (the gap through any aligned plane is
- * linear in p, so its minimum over the convex face is at a vertex). */
-static double face_planes(const rd_sim *s, side_ctx *c, int cf)
-{
-    const rd_poly *po = &s->poly[c->o];
-    const double *R = s->R[c->o], *xo = s->x[c->o];
-    int f = s->cf_face[cf], nv = po->flen[f];
-    const int *ix = po->fidx + po->fstart[f];
-    const double (*wv)[3] = s->wv + s->vert0[c->o];
-    /* a point on the other body's edge (coincident faces of equal blocks) is inside it: lateral
-       planes get a tolerance far above round-off and far below any subcontact spacing */
-    double tol = 1e-9 * (1.0 + s->poly[c->t].radius);
-    double lb = -DBL_MAX;
-    c->nal = c->nlat = 0;
-    for (int k = s->face0[c->t]; k < s->face0[c->t + 1]; k++) {
-        const double *n = s->wn[k];
-        double cu = rd_dot(n, c->u);
-        double emin = DBL_MAX, emax = -DBL_MAX;
-        for (int j = 0; j < nv; j++) { /* the face's vertices against this plane, world frame */
-            double e = rd_dot(n, wv[ix[j]]) - s->wd[k];
-            emin = rd_min(emin, e); emax = rd_max(emax, e);
-        }
-        if (cu <= RD_ALIGNED && emax <= tol) continue; /* lateral plane no point of the face crosses */
-        double nb[3], db = s->wd[k] - rd_dot(n, xo);
-        rd_mat_tvec(R, n, nb);
-        if (cu > RD_ALIGNED) {
-            double *a = c->al[c->nal++];
-            for (int j = 0; j < 3; j++) a[j] = nb[j] / cu;
-            a[3] = db / cu;
-            lb = rd_max(lb, emin / cu); /* the gap is at least this plane's, whose min is emin/cu */
-        } else {
-            if (emin > tol) return DBL_MAX; /* the whole face is beside the other body */
-            double *l = c->lat[c->nlat++];
-            rd_copy3(nb, l);
-            l[3] = db + tol;
-        }
-    }
-    return c->nal ? lb : DBL_MAX;
-}
-
-/* Gap of a point (owner frame) from the other body along u, m; +inf when beside it. */
-static inline double point_gap(const side_ctx *c, const double p[3])
-{
-    double g = -DBL_MAX;
-    for (int k = 0; k < c->nal; k++) {
-        const double *a = c->al[k];
-        double r = a[0] * p[0] + a[1] * p[1] + a[2] * p[2] - a[3];
-        if (r > g) g = r;
-    }
-    for (int k = 0; k < c->nlat; k++) {
-        const double *l = c->lat[k];
-        if (l[0] * p[0] + l[1] * p[1] + l[2] * p[2] > l[3]) return DBL_MAX;
-    }
-    return g;
-}
-
-/* An opening subcontact loses its shear force (3DEC); the spring energy it held is dissipated
- * by the joint model and booked as friction so the energy balance stays closed. */
-static inline void drop_shear(rd_sim *s, int st, double sA)
-{
+    unsigned char *fl = &s->pstate[st];
+    if (!(*fl & RD_PT_ACTIVE)) return;
     s->e_fric += 0.5 * rd_dot(s->fs[st], s->fs[st]) / sA;
     s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
 }
 
-/* Force of one subcontact on the owner; returns 1 if active. */
-static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
+/* Relative velocity of owner point ro (offset from the owner's centre, ground frame) against
+ * the other body, m/s; rt receives the point's offset from the other body's centre. */
+static void relative_velocity(const rd_sim *s, const side_ctx *c, const double ro[3], double rt[3],
+                              double vr[3])
 {
     const int o = c->o, t = c->t;
-    unsigned char *flags = &s->pstate[st];
-    double g = point_gap(c, s->pl[pt]);
-    double A = c->wa * s->pa[pt];
-    double kA = s->sc.contact.kn * A;
-    if (g >= 0 && !((*flags & RD_PT_BONDED) && g < s->sc.contact.tension / s->sc.contact.kn)) {
-        if (*flags & RD_PT_ACTIVE) {
-            drop_shear(s, st, s->sc.contact.ks * A);
-            *flags &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
-        }
-        return 0;
-    }
-    const double *u = c->u;
-    double ro[3];
-    rd_mat_vec(s->R[o], s->pl[pt], ro);
-    double rt[3] = {ro[0] + s->x[o][0] - s->x[t][0], ro[1] + s->x[o][1] - s->x[t][1],
-                    ro[2] + s->x[o][2] - s->x[t][2]};
-    double vr[3], tmp[3];
+    double tmp[3];
+    for (int k = 0; k < 3; k++) rt[k] = ro[k] + s->x[o][k] - s->x[t][k];
     rd_cross(s->w[o], ro, vr);
     rd_axpy(1.0, s->v[o], vr);
     if (!s->fixed[t]) {
@@ -218,39 +117,104 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
         rd_axpy(-1.0, tmp, vr);
         rd_axpy(-1.0, s->v[t], vr);
     }
-    double vn = rd_dot(vr, u);
-    double fel = -kA * g;                      /* elastic normal force, N (< 0: tension) */
+}
+
+/* The entrance face of a point that has just been found inside (see the header). */
+static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], const double vr[3])
+{
+    const double (*wn)[3] = s->wn + s->face0[c->t];
+    double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX;
+    int best = -1, shallow = -1;
+    for (int k = 0; k < c->np; k++) {
+        double depth = fmax(-plane_dist(c->pl[k], p), 0.0);
+        double approach = -rd_dot(vr, wn[k]); /* > 0: moving into plane k */
+        if (approach > RD_APPROACH_FRACTION * speed && approach > 0 && depth / approach < tmin) {
+            tmin = depth / approach;
+            best = k;
+        }
+        /* the shallowest plane; within the contact band, one the point's face looks at */
+        double rank = depth + (rd_dot(c->m, wn[k]) <= -RD_FACING_COS ? 0.0 : c->tol);
+        if (rank < dmin) { dmin = rank; shallow = k; }
+    }
+    return best >= 0 ? best : shallow;
+}
+
+/* Force of one subcontact on the owner; returns 1 if it carries force. */
+static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, int st)
+{
+    const int o = c->o, t = c->t;
+    unsigned char *fl = &s->pstate[st];
+    const double *p = s->pl[pt];
+    double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
+    double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
+    for (int k = 0; k < c->ncr; k++)
+        if (plane_dist(c->pl[c->cr[k]], p) > c->tol + slack) { point_exit(s, st, sA); return 0; }
+
+    double ro[3], rt[3], vr[3], tmp[3];
+    rd_mat_vec(s->R[o], p, ro);
+    relative_velocity(s, c, ro, rt, vr);
+    if (!(*fl & RD_PT_INSIDE)) {
+        s->pface[st] = (short)entrance_face(s, c, p, vr);
+        *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
+        s->pset[st] = 0;
+    }
+    int e = s->pface[st];
+    const double *u = s->wn[s->face0[t] + e]; /* outward normal of the entrance face */
+    if (c->facing && rd_dot(c->m, u) > -RD_FACING_COS) { point_idle(s, st, sA); return 0; }
+    double depth = -plane_dist(c->pl[e], p), vn = rd_dot(vr, u);
+    if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
+                                                   touch is a new impact */
+        point_idle(s, st, sA);
+        *fl |= RD_PT_VIRGIN;
+        s->pset[st] = 0;
+        return 0;
+    }
+    if ((*fl & RD_PT_VIRGIN) && vn > 0) { /* first unloading: the impact loss (permanent set) */
+        double stretch = depth - s->pset[st], set = (1.0 - j->restitution) * stretch;
+        if (stretch > 0) s->e_damp += 0.5 * kA * (stretch * stretch - (stretch - set) * (stretch - set));
+        s->pset[st] += set;
+        *fl &= (unsigned char)~RD_PT_VIRGIN;
+    }
+    double stretch = depth - s->pset[st];
+    double fel = kA * stretch;                 /* elastic normal force, N (< 0: tension) */
     double fn = fel - c->damp_coef * kA * vn;  /* plus the dashpot */
     if (fn < 0) {
-        int bonded = (*flags & RD_PT_BONDED) && fel > -s->sc.contact.tension * A;
-        if (!bonded) *flags &= (unsigned char)~RD_PT_BONDED;
-        if (!bonded || fn < -s->sc.contact.tension * A) fn = bonded ? -s->sc.contact.tension * A : 0.0;
+        int bonded = (*fl & RD_PT_BONDED) && fel > -j->tension * A;
+        if (!bonded) {
+            *fl &= (unsigned char)~RD_PT_BONDED;
+            if (stretch <= 0) { point_idle(s, st, sA); return 0; }
+        }
+        fn = bonded ? fmax(fn, -j->tension * A) : 0.0;
     }
     s->e_damp -= (fn - fel) * vn * s->dt * (fn != fel);
     c->k_active += kA;
 
-    /* shear: turn last step's force with the contact plane, then add the elastic increment
-       of the relative tangential displacement */
+    /* shear: keep last step's force in the plane of the entrance face (turned with it, its
+       magnitude kept), then add the elastic increment of the tangential displacement */
     double *fs = s->fs[st];
-    if (c->rotate) rd_mat_vec(c->rot, fs, fs);
-    double prev2 = rd_dot(fs, fs);
-    double sA = s->sc.contact.ks * A;
+    double fu = rd_dot(fs, u), prev2 = rd_dot(fs, fs);
+    if (fu != 0) {
+        for (int k = 0; k < 3; k++) fs[k] -= fu * u[k];
+        double now2 = rd_dot(fs, fs);
+        double r = now2 > 0 ? sqrt(prev2 / now2) : 0.0;
+        fs[0] *= r; fs[1] *= r; fs[2] *= r;
+    }
     for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * u[k]) * s->dt;
-    double cohesion = (*flags & RD_PT_BONDED) ? s->sc.contact.cohesion * A : 0.0;
-    double lim = rd_max(fn, 0.0) * s->tan_phi + cohesion;
+    double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
+    double lim = fmax(fn, 0.0) * s->tan_phi + cohesion;
     double mag2 = rd_dot(fs, fs);
-    *flags = (unsigned char)((*flags | RD_PT_ACTIVE) & ~RD_PT_SLIP);
+    *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (mag2 > lim * lim) {
         /* slip d = (|F_trial| - F_lim) / (KS A) happens at a force between F_lim and the
            smaller of |F_prev|, |F_trial|: this books lim*d when sliding steadily, the released
            spring energy when the limit drops, and nothing when frictionless */
         double mag = sqrt(mag2), r = lim / mag;
-        s->e_fric += (mag - lim) * (lim + rd_min(sqrt(prev2), mag)) / (2.0 * sA);
+        s->e_fric += (mag - lim) * (lim + fmin(sqrt(prev2), mag)) / (2.0 * sA);
         fs[0] *= r; fs[1] *= r; fs[2] *= r;
         mag2 = lim * lim;
-        *flags = (unsigned char)((*flags | RD_PT_SLIP) & ~RD_PT_BONDED);
+        *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     }
-    s->e_elastic += 0.5 * (kA * g * g + mag2 / sA);
+    s->e_elastic += 0.5 * (kA * stretch * stretch + mag2 / sA);
 
     double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};
     rd_axpy(1.0, F, s->f[o]);
@@ -264,69 +228,130 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     return 1;
 }
 
-static void clear_face(rd_sim *s, const rd_side *sd, int cf, int k)
+/* Forget a pair's contact history (shear forces, entrance faces, sets); bonds are kept. */
+static void reset_pair(rd_sim *s, rd_pair *pr)
+{
+    for (int k = 0; k < pr->nside; k++) {
+        const rd_side *sd = &pr->side[k];
+        int n = s->pt0[sd->owner + 1] - s->pt0[sd->owner];
+        memset(s->fs + sd->state0, 0, (size_t)n * sizeof *s->fs);
+        memset(s->pset + sd->state0, 0, (size_t)n * sizeof *s->pset);
+        for (int j = 0; j < n; j++) s->pstate[sd->state0 + j] &= RD_PT_BONDED;
+        int nf = s->cf0[sd->owner + 1] - s->cf0[sd->owner];
+        memset(s->face_nactive + sd->face0, 0, (size_t)nf * sizeof(int));
+    }
+    pr->k_active = 0;
+}
+
+void rd_contact_reset_body(rd_sim *s, int body)
+{
+    for (int p = 0; p < s->npair; p++)
+        if (s->pair[p].a == body || s->pair[p].b == body) reset_pair(s, &s->pair[p]);
+}
+
+/* Contacts made while settling are seated, not impacts: no impact loss when they first unload. */
+void rd_contact_seat(rd_sim *s)
+{
+    for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~RD_PT_VIRGIN;
+}
+
+/* Pairs that were live last step but whose boxes no longer overlap lose their history. */
+static void reset_departed(rd_sim *s)
+{
+    for (int k = 0; k < s->nlive_prev; k++) {
+        rd_pair *pr = &s->pair[s->live_prev[k]];
+        if (pr->seen != s->stamp) reset_pair(s, pr);
+    }
+}
+
+/* Every point of candidate face cf (k-th of its side) leaves the contact. */
+static void clear_face(rd_sim *s, const rd_side *sd, const rd_contact_def *j, int cf, int k)
 {
     int *na = &s->face_nactive[sd->face0 + k];
     if (*na == 0) return;
     int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
     int n = s->cf_pt0[cf + 1] - s->cf_pt0[cf];
-    for (int j = 0; j < n; j++) {
-        drop_shear(s, first + j, s->sc.contact.ks * sd->weight * s->pa[s->cf_pt0[cf] + j]);
-        s->pstate[first + j] &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP);
-    }
+    for (int q = 0; q < n; q++) point_exit(s, first + q, j->ks * sd->weight * s->pa[s->cf_pt0[cf] + q]);
     *na = 0;
 }
 
-/* Rotation matrix taking unit vector a to unit vector b about a x b (Rodrigues). */
-static void rotation_between(const double a[3], const double b[3], double m[9])
+/* The other body's planes in the owner frame (once per side and step). */
+static void side_planes(const rd_sim *s, side_ctx *c)
 {
-    double k[3], c = rd_dot(a, b);
-    rd_cross(a, b, k);
-    double f = c > -1 + 1e-12 ? 1.0 / (1.0 + c) : 0.0;
-    m[0] = c + f * k[0] * k[0];        m[1] = -k[2] + f * k[0] * k[1]; m[2] = k[1] + f * k[0] * k[2];
-    m[3] = k[2] + f * k[1] * k[0];     m[4] = c + f * k[1] * k[1];     m[5] = -k[0] + f * k[1] * k[2];
-    m[6] = -k[1] + f * k[2] * k[0];    m[7] = k[0] + f * k[2] * k[1];  m[8] = c + f * k[2] * k[2];
+    const double *R = s->R[c->o], *xo = s->x[c->o];
+    c->np = s->poly[c->t].nf;
+    for (int k = 0; k < c->np; k++) {
+        const double *n = s->wn[s->face0[c->t] + k];
+        double *pl = c->pl[k];
+        rd_mat_tvec(R, n, pl);
+        pl[3] = s->wd[s->face0[c->t] + k] - rd_dot(n, xo);
+    }
+}
+
+/* Planes that some point of candidate face cf may cross (its vertices are not all inside by a
+ * margin); 0, or 1 when the whole face lies outside one plane (no point can touch). */
+static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack)
+{
+    const rd_poly *po = &s->poly[c->o];
+    int f = s->cf_face[cf], nv = po->flen[f];
+    const int *ix = po->fidx + po->fstart[f];
+    const double (*wv)[3] = s->wv + s->vert0[c->o];
+    double raise = s->sc.contact.perturb.raise; /* a raised point lies up to this far inside */
+    c->ncr = 0;
+    c->m = s->wn[s->face0[c->o] + f];
+    c->facing = s->cf_facing[cf];
+    for (int k = s->face0[c->t], q = 0; k < s->face0[c->t + 1]; k++, q++) {
+        double emin = DBL_MAX, emax = -DBL_MAX;
+        for (int v = 0; v < nv; v++) {
+            double e = rd_dot(s->wn[k], wv[ix[v]]) - s->wd[k];
+            emin = fmin(emin, e); emax = fmax(emax, e);
+        }
+        if (emin > c->tol + slack + raise) return 1;
+        if (emax > -c->tol - raise) c->cr[c->ncr++] = q;
+    }
+    return 0;
 }
 
 static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
 {
+    const rd_contact_def *j = &s->sc.contact;
     side_ctx c;
     c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
-    double sign = (sd->owner == pr->axis_body) ? -1.0 : 1.0;
-    for (int k = 0; k < 3; k++) c.u[k] = sign * pr->n[k];
-    c.rotate = rd_dot(sd->u_prev, sd->u_prev) > 0 && memcmp(c.u, sd->u_prev, sizeof c.u) != 0;
-    if (c.rotate) rotation_between(sd->u_prev, c.u, c.rot);
-    rd_copy3(c.u, sd->u_prev);
     c.k_active = 0;
     c.damp_coef = 0;
+    /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
+       to this far beyond the other body's edge still bears on it (the corners of two equal
+       blocks lying on each other, twisted or slid by a hair), and one hovering this close
+       above a face is already attached to it (with no force until it touches) */
+    c.tol = RD_CONTACT_BAND * fmin(s->poly[c.o].radius, s->poly[c.t].radius);
     if (s->sc.damping.kind == RD_DAMPING_VISCOUS && !s->settling) {
         double K = pr->k_active > 0 ? pr->k_active : INFINITY; /* a new contact: undamped step */
         c.damp_coef = 2.0 * s->sc.damping.value * sqrt(pr->m_eff / K);
     }
+    double slack = s->bonds ? j->tension / j->kn : 0.0;
+    side_planes(s, &c);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
-        double lb = face_planes(s, &c, cf);
-        /* beside the other body (plane lists incomplete): no contact, bonds or not; otherwise
-           a face wholly above the other body is skipped unless bonds may act across gaps */
-        if (lb == DBL_MAX || (s->can_cull && lb > 0)) { clear_face(s, sd, cf, k); continue; }
-        int na = 0, nslip = 0;
+        if (face_planes(s, &c, cf, slack)) { clear_face(s, sd, j, cf, k); continue; }
+        int na = 0, nin = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         double area = 0;
         for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
-            if (subcontact(s, &c, pt, st)) {
+            if (subcontact(s, &c, j, pt, st)) {
                 na++;
                 area += c.wa * s->pa[pt];
                 nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
             }
+            nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
         }
-        s->face_nactive[sd->face0 + k] = na;
+        s->face_nactive[sd->face0 + k] = nin;
         if (!s->settling) s->active_point_steps += na;
         rd_monitor_contact(s, c.o, c.t, area, na, nslip);
     }
     *k_active += c.k_active;
 }
 
-/* Broad phase, then every live pair: common plane and subcontact forces. 0, or -1 when the
- * broad phase ran out of memory growing the pair cache. */
+/* Broad phase, then every live pair's subcontact forces. 0, or -1 when the broad phase ran out
+ * of memory growing the pair cache. */
 int rd_contact_step(rd_sim *s)
 {
     s->e_elastic = 0;
@@ -334,7 +359,6 @@ int rd_contact_step(rd_sim *s)
     reset_departed(s);
     for (int k = 0; k < s->nlive; k++) {
         rd_pair *pr = &s->pair[s->live[k]];
-        pair_axis(s, pr);
         double k_active = 0;
         for (int q = 0; q < pr->nside; q++) side_step(s, pr, &pr->side[q], &k_active);
         pr->k_active = k_active;

@@ -74,12 +74,15 @@ static int pair_create(rd_sim *s, int a, int b)
         reserve((void **)&s->face_nactive, &s->cap_face_state, s->nface_state + nf, sizeof *s->face_nactive))
         return -1;
     int cap = s->cap_state_flags;
-    if (reserve((void **)&s->pstate, &cap, s->nstate + ns, sizeof *s->pstate)) return -1;
+    if (reserve((void **)&s->pstate, &cap, s->nstate + ns, sizeof *s->pstate) ||
+        reserve((void **)&s->pface, &s->cap_pface, s->nstate + ns, sizeof *s->pface) ||
+        reserve((void **)&s->pset, &s->cap_pset, s->nstate + ns, sizeof *s->pset))
+        return -1;
     s->cap_state_flags = cap;
     int p = s->npair++;
     rd_pair *pr = &s->pair[p];
     memset(pr, 0, sizeof *pr);
-    pr->a = a; pr->b = b; pr->axis_body = -1; pr->seen = -1;
+    pr->a = a; pr->b = b; pr->seen = -1;
     double w = (pa && pb) ? 0.5 : 1.0;
     for (int k = 0; k < 2; k++) {
         int o = k ? b : a;

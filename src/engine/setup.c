@@ -164,19 +164,25 @@ static int face_touches(const rd_sim *s, int i, int f, double tol)
     return 0;
 }
 
-/* A face carries subcontact points if it lies on another body's face, or if it faces down
- * and lies in the lowest fifth of the body (a rock's base region, not its overhangs); zr is
- * the body's height range (world z, m: lowest, highest vertex). */
-static int is_candidate(const rd_sim *s, int i, int f, const double zr[2])
+/* What a face carries: RD_FACE_BED (a point bed at the body's spacing) if it lies on another
+ * body's face, or faces down in the lowest fifth of the body (a rock's base region, not its
+ * overhangs); RD_FACE_LATE (its vertices only, acting while the face looks at the other body)
+ * for the other faces of a convex free body, which touch only later (a toppled block's side, a
+ * drum's side against the rim below); RD_FACE_NONE otherwise. zr is the body's height range
+ * (world z, m: lowest, highest vertex). */
+enum { RD_FACE_NONE = 0, RD_FACE_BED = 1, RD_FACE_LATE = 2 };
+
+static int face_role(const rd_sim *s, int i, int f, const double zr[2])
 {
-    if (s->fixed[i]) return 0;
+    if (s->fixed[i]) return RD_FACE_NONE;
     const rd_poly *p = &s->poly[i];
     const double *n = s->wn[s->face0[i] + f];
-    if (face_touches(s, i, f, 1e-6 * (1.0 + p->radius))) return 1;
-    if (n[2] >= -0.5) return 0;
+    int late = s->convex[i] ? RD_FACE_LATE : RD_FACE_NONE;
+    if (face_touches(s, i, f, 1e-6 * (1.0 + p->radius))) return RD_FACE_BED;
+    if (n[2] >= -0.5) return late;
     double fmin_z = INFINITY;
     for (int k = 0; k < p->flen[f]; k++) fmin_z = fmin(fmin_z, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]][2]);
-    return fmin_z <= zr[0] + 0.2 * (zr[1] - zr[0]);
+    return fmin_z <= zr[0] + 0.2 * (zr[1] - zr[0]) ? RD_FACE_BED : late;
 }
 
 /* Lowest and highest world z of body i's vertices, m (once per body: a per-face scan made
@@ -219,12 +225,12 @@ static double body_spacing(const rd_sim *s, int i, const char *cand)
     if (s->sc.bodies[i].shape == RD_SHAPE_MESH) return 0;
     double w = INFINITY;
     for (int f = 0; f < s->poly[i].nf; f++)
-        if (cand[s->face0[i] + f]) w = fmin(w, face_width(&s->poly[i], f));
+        if (cand[s->face0[i] + f] == RD_FACE_BED) w = fmin(w, face_width(&s->poly[i], f));
     return isfinite(w) ? w / 10.0 : 0.0;
 }
 
 /* Count the points of every candidate face (pass 0), then mesh them into place (pass 1).
- * cand[face0[i] + f] marks candidate faces; spacing[i] is body i's spacing. */
+ * cand[face0[i] + f] is each face's RD_FACE_* role; spacing[i] is body i's bed spacing. */
 static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, rd_error *err)
 {
     int nb = s->nb, npts = 0, ncf = 0;
@@ -233,18 +239,21 @@ static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, r
         for (int i = 0; i < nb; i++) {
             s->pt0[i] = npts; s->cf0[i] = ncf;
             for (int f = 0; f < s->poly[i].nf; f++) {
-                if (!cand[s->face0[i] + f]) continue;
-                int n = pass ? rd_poly_face_points(&s->poly[i], f, spacing[i], s->pl + npts, s->pa + npts, s->npts - npts)
-                             : rd_poly_face_points(&s->poly[i], f, spacing[i], NULL, NULL, 0);
+                int role = cand[s->face0[i] + f];
+                if (role == RD_FACE_NONE) continue;
+                double h = role == RD_FACE_BED ? spacing[i] : 0.0;
+                int n = pass ? rd_poly_face_points(&s->poly[i], f, h, s->pl + npts, s->pa + npts, s->npts - npts)
+                             : rd_poly_face_points(&s->poly[i], f, h, NULL, NULL, 0);
                 if (n < 0) return rd_error_set(err, "cannot mesh face %d of body '%s'", f, s->sc.bodies[i].name);
-                if (pass) { s->cf_face[ncf] = f; s->cf_pt0[ncf] = npts; }
+                if (pass) { s->cf_face[ncf] = f; s->cf_pt0[ncf] = npts; s->cf_facing[ncf] = role == RD_FACE_LATE; }
                 npts += n; ncf++;
             }
         }
         s->pt0[nb] = npts; s->cf0[nb] = ncf;
         if (!pass) {
             s->npts = npts; s->ncf = ncf;
-            if (!ALLOC(s->pl, npts) || !ALLOC(s->pa, npts) || !ALLOC(s->cf_face, ncf) || !ALLOC(s->cf_pt0, ncf + 1))
+            if (!ALLOC(s->pl, npts) || !ALLOC(s->pa, npts) || !ALLOC(s->cf_face, ncf) || !ALLOC(s->cf_pt0, ncf + 1) ||
+                !ALLOC(s->cf_facing, ncf))
                 return rd_error_set(err, "out of memory");
         }
     }
@@ -264,7 +273,7 @@ static int build_points(rd_sim *s, rd_error *err)
         for (int i = 0; i < s->nb; i++) {
             double zr[2];
             body_z_range(s, i, zr);
-            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)is_candidate(s, i, f, zr);
+            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)face_role(s, i, f, zr);
         }
         for (int i = 0; i < s->nb; i++) spacing[i] = body_spacing(s, i, cand);
         rc = mesh_candidates(s, cand, spacing, err);

@@ -166,6 +166,7 @@ static void settle(rd_sim *s)
         memset(s->w[i], 0, sizeof s->w[i]);
     }
     if (s->settle_ratio >= s->sc.settle.ratio) rd_event_add(s, 0, -1, "unsettled", s->settle_ratio);
+    rd_contact_seat(s);
     s->settling = 0;
     s->t = 0;
     /* bonds exist only where the joint is closed at rest: a re-created contact starts from zero */
@@ -387,7 +388,7 @@ void rd_sim_free(rd_sim *s)
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
-                      s->pair, s->fs, s->pstate, s->face_nactive, s->watch, s->event, s->obuf,
+                      s->pair, s->fs, s->pstate, s->pface, s->pset, s->cf_facing, s->face_nactive, s->watch, s->event, s->obuf,
                       s->aabb, s->order, s->hkey, s->live, s->live_prev};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) free(arrays[k]);
     free(s);

@@ -20,7 +20,13 @@
 #define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left (power of 2) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
-enum { RD_PT_ACTIVE = 1, RD_PT_BONDED = 2, RD_PT_SLIP = 4 };
+enum {
+    RD_PT_ACTIVE = 1, /* carries force this step */
+    RD_PT_BONDED = 2, /* cohesion and tension intact */
+    RD_PT_SLIP = 4,   /* at the Coulomb limit this step */
+    RD_PT_INSIDE = 8, /* inside the other body; rd_sim.pface holds its entrance face */
+    RD_PT_VIRGIN = 16 /* new contact not yet unloaded: the impact loss is still to come */
+};
 
 /* One side of a contact pair: the owner's subcontact points tested against the other body's
  * surface. Contact history is keyed by (pair, side, point index on the owner): a stable key,
@@ -30,20 +36,14 @@ typedef struct rd_side {
     double weight;    /* 1, or 1/2 when both bodies carry points (3DEC averaging of both sets) */
     int state0;       /* index of the owner's first point in rd_sim.fs / rd_sim.pstate */
     int face0;        /* index of the owner's first candidate face in rd_sim.face_nactive */
-    double u_prev[3]; /* contact normal of this side at the last step (stored shear forces lie
-                         in its plane) */
 } rd_side;
 
-/* A pair of bodies that may touch; its common-plane normal is a face normal of one of them
- * (separating-axis choice with hysteresis, updated every step). */
+/* A pair of bodies that may touch: one or two sides, each the points of one body tested
+ * against the other (contact.c). */
 typedef struct rd_pair {
     int a, b;          /* body indices, a < b */
     int nside;         /* 1 (one body carries points) or 2 */
     rd_side side[2];
-    int axis_body;     /* body whose face gives the normal, -1 before the first contact */
-    int axis_face;     /* that face's index */
-    int axis_age;      /* steps since the face was last chosen */
-    double n[3];       /* common-plane unit normal, ground frame, pointing away from axis_body */
     double m_eff;      /* reduced mass of the pair, kg (for viscous damping) */
     long seen;         /* broad-phase stamp of the last step its boxes overlapped */
     double k_active;   /* sum of KN*A over points active last step, N/m (viscous damping) */
@@ -122,6 +122,8 @@ struct rd_sim {
     int *cf0;              /* [nb+1] first candidate face of each body */
     int *cf_face;          /* [ncf] face index on its body */
     int *cf_pt0;           /* [ncf+1] first point of each candidate face */
+    char *cf_facing;       /* [ncf] 1: a face that touches only later (its vertices act only
+                              while it faces the other body's entrance face) */
 
     /* broad phase (pairs.c) */
     double (*aabb)[6];     /* per body: min xyz, max xyz, grown by `margin`, m */
@@ -140,6 +142,9 @@ struct rd_sim {
     int nstate, cap_state, cap_state_flags;
     double (*fs)[3];       /* shear force on the owner, ground frame, N */
     unsigned char *pstate; /* RD_PT_* bits */
+    short *pface;          /* entrance face (index on the other body) while RD_PT_INSIDE */
+    double *pset;          /* permanent set of the normal spring after the impact loss, m */
+    int cap_pface, cap_pset;
     int nface_state, cap_face_state;
     int *face_nactive;     /* active points per (side, candidate face) last step */
     int bonds;             /* 1 when cohesion or tension is set */
@@ -198,6 +203,7 @@ int rd_pairs_update(rd_sim *s);
 /* contact.c */
 int rd_contact_step(rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
+void rd_contact_seat(rd_sim *s);
 
 /* integrate.c */
 void rd_body_refresh(rd_sim *s, int i);

@@ -37,9 +37,17 @@ double rd_timestep_critical(const rd_sim *s)
     double k = fmax(s->sc.contact.kn, s->sc.contact.ks), w2max = 0, lmax = 0;
     for (int i = 0; i < s->nb; i++) {
         if (s->fixed[i]) continue;
-        double area = 0; /* its own subcontacts at full weight: where two free bodies meet, the
-                            two half-weight sets together carry about the shared area */
-        for (int j = s->pt0[i]; j < s->pt0[i + 1]; j++) area += s->pa[j];
+        /* its own subcontacts at full weight (where two free bodies meet, the two half-weight
+           sets together carry about the shared area): every bed face at once, or, once it has
+           toppled, the largest face that touches only later with the largest bed face */
+        double bed = 0, bed_max = 0, late = 0;
+        for (int c = s->cf0[i]; c < s->cf0[i + 1]; c++) {
+            double a = 0;
+            for (int j = s->cf_pt0[c]; j < s->cf_pt0[c + 1]; j++) a += s->pa[j];
+            if (s->cf_facing[c]) late = fmax(late, a);
+            else { bed += a; bed_max = fmax(bed_max, a); }
+        }
+        double area = fmax(bed, late + bed_max); /* a toppled body: one side and one end */
         double w2 = k * area * (mobility(s, i) + other_mobility(s, i));
         if (w2 > w2max) w2max = w2;
         double l = s->sc.damping.kind == RD_DAMPING_VISCOUS

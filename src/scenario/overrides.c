@@ -41,6 +41,7 @@ static const set_key set_keys[] = {
     {"contact.cohesion", S_NUMBER, offsetof(rd_scenario, contact.cohesion), R_NONNEG, U_PLAIN},
     {"contact.tension", S_NUMBER, offsetof(rd_scenario, contact.tension), R_NONNEG, U_PLAIN},
     {"contact.spacing", S_SPACING, 0, R_NONNEG, U_PLAIN},
+    {"contact.restitution", S_NUMBER, offsetof(rd_scenario, contact.restitution), R_UNIT, U_PLAIN},
     {"contact.interface-seed", S_NUMBER, offsetof(rd_scenario, contact.perturb.seed), R_NONNEG, U_PLAIN},
     {"contact.interface-remove", S_NUMBER, offsetof(rd_scenario, contact.perturb.remove), R_NONNEG, U_PLAIN},
     {"contact.interface-raise", S_NUMBER, offsetof(rd_scenario, contact.perturb.raise), R_NONNEG, U_PLAIN},

@@ -32,6 +32,7 @@ typedef enum range {
     R_FRAC,   /* (0, 1] */
     R_DAMP,   /* (0, 10]: a viscous damping ratio (above 1: over-critical contact dashpots) */
     R_OPEN01, /* (0, 1) */
+    R_UNIT,   /* [0, 1] */
     R_ANGLE,  /* [0, 90) degrees */
     R_TURN    /* (0, 180] degrees */
 } range;

@@ -182,7 +182,8 @@ static int read_spacing(parser *P, const token *kw, double *v)
 int contact_property(parser *P)
 {
     static const char *const names[] = {"stiffness-normal", "stiffness-shear", "friction",
-                                        "cohesion",         "tension",         "spacing", NULL};
+                                        "cohesion",         "tension",         "spacing",
+                                        "restitution",      NULL};
     rd_contact_def *c = &P->sc->contact;
     const token *kw;
     unsigned seen = 0;
@@ -195,7 +196,8 @@ int contact_property(parser *P)
         case 2: rc = read_value(P, kw, R_ANGLE, U_DEG, &c->friction); break;
         case 3: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->cohesion); break;
         case 4: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->tension); break;
-        default: rc = read_spacing(P, kw, &c->spacing); break;
+        case 5: rc = read_spacing(P, kw, &c->spacing); break;
+        default: rc = read_value(P, kw, R_UNIT, U_PLAIN, &c->restitution); break;
         }
         if (rc)
             return -1;

@@ -117,6 +117,7 @@ const char *range_error(double v, range r)
     case R_FRAC: return v > 0 && v <= 1 ? NULL : "must be in (0, 1]";
     case R_DAMP: return v > 0 && v <= 10 ? NULL : "must be in (0, 10]";
     case R_OPEN01: return v > 0 && v < 1 ? NULL : "must be in (0, 1)";
+    case R_UNIT: return v >= 0 && v <= 1 ? NULL : "must be in [0, 1]";
     case R_ANGLE: return v >= 0 && v < 90 ? NULL : "must be in [0, 90) degrees";
     case R_TURN: return v > 0 && v <= 180 ? NULL : "must be in (0, 180] degrees";
     }
