@@ -91,26 +91,40 @@ RD_API int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_thresh
 /* ---- restitution of the discretised contact --------------------------------------------- */
 
 /* Free rocking of the scenario's single free block released from rest at theta0 (rad, about
- * the corner along +x; the scenario's motion is removed). The effective restitution of impact
- * k is r_k = w_{k+1} / w_k, w_k = angular speed just before impact k (the impact events).
- * Between impacts free rocking conserves energy (0.5 w^2 + p^2 cos(alpha - |theta|)), so the
- * speed leaving impact k equals the speed arriving at impact k + 1: r_k is the ratio of the
- * angular velocities after / before impact k. r is the geometric mean of the first n ratios. */
+ * the corner along +x; the scenario's motion is removed), the way rocking theory defines
+ * restitution (Housner 1963): the ratio of the angular velocities just after and just before
+ * an impact, once the impact is complete. Between impacts free rocking conserves
+ * 0.5 w^2 + p^2 cos(alpha - |theta|), so the speed leaving impact k follows from the amplitude
+ * theta_{k+1} of the next half-cycle and the speed arriving from theta_k:
+ *     r_k^2 = (cos(alpha - theta_{k+1}) - cos alpha) / (cos(alpha - theta_k) - cos alpha)
+ * (amplitude decay: whole half-cycles, so the compliant impact is complete). The speeds at the
+ * zero crossings (w_{k+1} / w_k, `speed_ratio`) are read partway through each compliant impact
+ * and are reported beside it as a check. r is the geometric mean of the first n ratios. */
 typedef struct rd_restitution {
-    int nimpacts;     /* impacts seen */
-    int n;            /* ratios averaged (<= 3) */
-    double ratio[3];  /* r_1.. r_n */
-    double r;         /* geometric mean, or -1 when fewer than 2 impacts */
+    int nimpacts;       /* impacts seen */
+    int n;              /* ratios averaged (<= 3) */
+    double ratio[3];    /* r_1 .. r_n from the amplitude decay */
+    double speed_ratio[3]; /* w_{k+1} / w_k at the zero crossings */
+    double amplitude[4];/* rad: release angle, then the amplitude after each impact */
+    double r;           /* geometric mean of ratio[], or -1 when fewer than 2 impacts */
+    double r_speed;     /* geometric mean of speed_ratio[] */
     double t_impact[4]; /* s, first impact times */
 } rd_restitution;
 
 RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
                            rd_error *err);
 
-/* Viscous damping ratio (normal dashpot, contact.c) that gives restitution `target` in free
- * rocking, by bisection on zeta in [0, 1] (r falls as zeta grows). Returns 0 with *zeta set
- * when reachable; 1 when not: *zeta is then the nearest end (0 or 1) and *reached its r. */
-RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *zeta,
+/* The contact restitution (`contact property restitution e`, the impact loss of contact.c)
+ * that gives the block restitution `target` in free rocking, by bisection on e in [0, 1]
+ * (r grows with e) to |r - target| < RD_CAL_RTOL. Returns 0 with *e set when reachable; 1
+ * when not: *e is then the nearest end and *reached its r (below r(e = 0) the impacts are
+ * already perfectly plastic: less needs sliding or dashpots; above r(e = 1) the contact is
+ * elastic). */
+RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                              double *reached, rd_error *err);
+
+/* |r - target| at which the calibration stops: a quarter of the 0.5 % the amplitude-decay
+ * and speed measurements of one run agree to. */
+#define RD_CAL_RTOL 0.002
 
 #endif

@@ -1,7 +1,7 @@
 /* rockdem — `rockdem restitution SCENARIO [--target r] [--theta0 rad] [--set k=v]...`:
- * the DEM's effective restitution in free rocking (src/restitution.c) for KN from 1e8 to
- * 1e11 Pa/m and damping ratios 0 .. 1, then the damping ratio that reaches the target
- * (default Housner's r = 1 - 1.5 sin^2 alpha) at the scenario's own KN.
+ * the DEM's effective restitution in free rocking (src/ensembles/restitution.c) for KN from
+ * 1e8 to 1e11 Pa/m and contact restitution 0 .. 1, then the contact restitution that reaches
+ * the target (default Housner's r = 1 - 1.5 sin^2 alpha) at the scenario's own KN.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
@@ -28,27 +28,30 @@ static int restitution_option(void *ctx, int argc, char **argv, int *i)
     return 0;
 }
 
+/* r by amplitude decay (and, in brackets, the speed ratio at the zero crossings) for KN
+ * 1e8 .. 1e11 Pa/m (KS scaled with it) and contact restitution e = 0 .. 1. */
 static void print_table(rd_scenario *sc, double theta0)
 {
-    static const double kn[] = {1e8, 1e9, 1e10, 1e11}, zeta[] = {0, 0.1, 0.3, 0.6, 1.0};
+    static const double kn[] = {1e8, 1e9, 1e10, 1e11}, e[] = {0, 0.25, 0.5, 0.75, 1.0};
     rd_scenario copy = *sc;
-    printf("effective restitution r (free rocking from %.4g rad; r = w_after / w_before, mean of "
-           "the first 3 impacts)\n%-10s", theta0, "KN \\ zeta");
-    for (size_t j = 0; j < sizeof zeta / sizeof *zeta; j++) printf(" %7.2f", zeta[j]);
+    printf("block restitution r (free rocking from %.4g rad, mean of the first 3 impacts; amplitude "
+           "decay [speed ratio at the zero crossings])\n%-10s", theta0, "KN \\ e");
+    for (size_t j = 0; j < sizeof e / sizeof *e; j++) printf(" %15.2f", e[j]);
     printf("\n");
     for (size_t i = 0; i < sizeof kn / sizeof *kn; i++) {
         printf("%-10.0e", kn[i]);
-        for (size_t j = 0; j < sizeof zeta / sizeof *zeta; j++) {
+        for (size_t j = 0; j < sizeof e / sizeof *e; j++) {
             copy.contact.kn = kn[i];
             copy.contact.ks = kn[i] * sc->contact.ks / sc->contact.kn;
-            copy.damping = (rd_damping_def){zeta[j] > 0 ? RD_DAMPING_VISCOUS : RD_DAMPING_NONE, zeta[j]};
+            copy.contact.restitution = e[j];
             rd_restitution m;
             rd_error err;
-            if (rd_restitution_measure(&copy, theta0, &m, &err) || m.r < 0) printf(" %7s", "-");
-            else printf(" %7.3f", m.r);
+            if (rd_restitution_measure(&copy, theta0, &m, &err) || m.r < 0) printf(" %15s", "-");
+            else printf("   %.3f [%.3f]", m.r, m.r_speed);
         }
         rd_cli_progress_clear(); /* the row replaces the progress line */
         printf("\n");
+        fflush(stdout);
     }
 }
 
@@ -70,22 +73,23 @@ int rd_cli_restitution(int argc, char **argv)
     /* 4 x 5 table runs, then up to RD_CAL_ITER + 2 calibration runs (restitution.c) */
     rd_cli_progress_start("restitution", 36);
     print_table(&sc, theta0);
-    double zeta, reached;
-    int rc = rd_restitution_calibrate(&sc, theta0, target, &zeta, &reached, &err);
+    double e, reached;
+    int rc = rd_restitution_calibrate(&sc, theta0, target, &e, &reached, &err);
     rd_cli_progress_stop();
     if (rc < 0) {
         fprintf(stderr, "%s\n", err.msg);
     } else if (rc == 0) {
-        printf("calibrated: model damping viscous %.4f gives r = %.4f (target %.4f%s) at KN %.3g Pa/m\n",
-               zeta, reached, target, a.target > 0 ? "" : ", Housner's r", sc.contact.kn);
+        printf("calibrated: contact property restitution %.4f gives r = %.4f (target %.4f%s, "
+               "|error| < %g) at KN %.3g Pa/m\n", e, reached, target,
+               a.target > 0 ? "" : ", Housner's r", RD_CAL_RTOL, sc.contact.kn);
     } else {
-        const char *why = zeta == 0 ? "even without damping the contact loses more energy than asked"
-                        : sc.contact.spacing != 0 ? "a bed of many subcontacts rolls the pivot across the "
-                          "base and saturates near 0.82-0.85; use corner subcontacts (contact property "
-                          "spacing vertices)"
-                        : "the strongest damping accepted (ratio 10) cannot remove more at impact";
-        printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at damping "
-               "ratio %g: %s\n", target, reached, zeta, why);
+        const char *why = e == 0 ? "perfectly plastic point impacts (restitution 0) already give "
+                                   "less loss than asked: a lower r needs sliding at the pivot or "
+                                   "contact dashpots (model damping viscous)"
+                                 : "the elastic contact (restitution 1) loses more than asked "
+                                   "(hops and slip at the impacting edge: raise KS or friction)";
+        printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at "
+               "restitution %g: %s\n", target, reached, e, why);
     }
     rd_scenario_free(&sc);
     return rc < 0 ? 3 : rc ? 4 : 0;

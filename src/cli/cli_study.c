@@ -56,13 +56,12 @@ static int run_one(const rd_scenario *base, double kn, double safety, study_run 
 
 static void print_row(const study_run *r, const study_run *ref)
 {
-    static const char *st[] = {"done", "overturned", "interrupted", "UNSTABLE", "io_error", "error", "PENETRATED", "LOST"};
     printf("%9.2e %6.3f %9.2e %8.3f %10.4g %10.2e", r->kn, r->safety, r->dt, r->wall, r->max_tilt,
            ref->max_tilt > 0 ? fabs(r->max_tilt - ref->max_tilt) / ref->max_tilt : 0.0);
     if (r->t_impact >= 0 && ref->t_impact >= 0) printf(" %10.2e", fabs(r->t_impact - ref->t_impact));
     else printf(" %10s", r->t_impact < 0 && ref->t_impact < 0 ? "none" : "missing");
     printf(" %5s %s\n", r->overturned == ref->overturned ? "same" : "DIFF",
-           r->status >= 0 && r->status <= 5 ? st[r->status] : "?");
+           rd_status_name((rd_status)r->status));
 }
 
 int rd_cli_study(int argc, char **argv)

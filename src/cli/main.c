@@ -21,12 +21,6 @@ static void on_signal(int sig)
     rd_sim_request_stop();
 }
 
-static const char *status_word(rd_status st)
-{
-    static const char *w[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error", "penetrated", "lost"};
-    return w[st];
-}
-
 static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
 {
     int invalid = s->status == RD_STATUS_PENETRATED || s->status == RD_STATUS_LOST;
@@ -52,7 +46,7 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
     double sim_s = s->steps * s->dt;
     long aps = rd_sim_active_point_steps(sim);
     printf("run: status %s, t = %.4g s, dt = %.3g s (limit %.3g s), %ld steps, settle %.3g s, "
-           "energy residual %.2e\n", status_word(s->status), s->end_time, s->dt, s->dt_critical, s->steps,
+           "energy residual %.2e\n", rd_status_name(s->status), s->end_time, s->dt, s->dt_critical, s->steps,
            s->settle_time, s->energy_residual_max);
     printf("perf: steps=%ld wall_s=%.6f steps_per_s=%.6g ns_per_subcontact_step=%.4g "
            "mean_active_subcontacts=%.4g wall_per_sim_s=%.6g\n", s->steps, s->wall_seconds,
@@ -124,8 +118,7 @@ static int cmd_run(int argc, char **argv, int check_only)
             fprintf(stderr, "rockdem: warning: settling stopped at force ratio %.3g (asked %.3g)\n",
                     ev[k].value, sc.settle.ratio);
     int rc = 0;
-    if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR ||
-        st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST) {
+    if (rd_status_failed(st)) {
         fprintf(stderr, "%s: %s\n", sc.file, rd_sim_error(sim));
         rc = 3;
     } else if (st == RD_STATUS_INTERRUPTED) {

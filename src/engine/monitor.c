@@ -8,6 +8,8 @@
  *   uplift   the contact area drops below 60 % of its value at rest (rocking starts; with
  *            corner subcontacts, losing one edge halves it)
  *   impact   the signed rocking angle about the axis of the first rocking crosses zero
+ *   peak     logged with each impact: the largest rocking angle since the last one (rad), the
+ *            amplitude of the half-cycle that ends in this impact
  *   slip     every active subcontact of the body is at its Coulomb limit (sliding as a whole)
  *   overturn the overturn criterion is first met; recover if the body comes back
  * The rotation from rest is split (swing-twist) into a twist about the vertical and a swing
@@ -397,6 +399,7 @@ static void watch_step(rd_sim *s, int k)
     double r = -z[1] * w->rock_axis[0] + z[0] * w->rock_axis[1];
     if (r * w->rock_prev < 0 && w->rock_peak >= RD_ROCK_MIN * w->alpha_min) {
         double f = w->rock_prev / (w->rock_prev - r); /* linear interpolation of the crossing */
+        rd_event_add(s, s->t - s->dt + f * s->dt, k, "peak", asin(rd_min(w->rock_peak, 1.0)));
         rd_event_add(s, s->t - s->dt + f * s->dt, k, "impact", rd_norm(s->w[i]));
         w->rock_peak = 0;
     }

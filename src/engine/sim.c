@@ -305,6 +305,19 @@ fail:
     return NULL;
 }
 
+/* A run that ended normally but whose energy balance drifted past RD_ENERGY_TRUST. */
+static void judge_energy(rd_sim *s)
+{
+    if ((s->status != RD_STATUS_DONE && s->status != RD_STATUS_OVERTURNED) ||
+        !(s->resid_max > RD_ENERGY_TRUST))
+        return;
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "energy balance residual %.3g of the energy scale exceeds %g: the answer is not to be "
+             "trusted (reduce the time step with 'model timestep auto safety ...', or check the "
+             "contact stiffness and discretisation)", s->resid_max, RD_ENERGY_TRUST);
+    s->status = RD_STATUS_UNTRUSTED;
+}
+
 rd_status rd_sim_run(rd_sim *s)
 {
     stop_requested = 0;
@@ -332,6 +345,8 @@ rd_status rd_sim_run(rd_sim *s)
     s->wall = wall_now() - t0;
     rd_progress_report(s->t, end);
     rd_monitor_finish(s);
+    rd_energy_sample(s);
+    judge_energy(s);
     rd_observe_end(s);
     return s->status;
 }
@@ -355,6 +370,20 @@ void rd_sim_summary(const rd_sim *s, rd_summary *out)
 }
 
 const char *rd_sim_error(const rd_sim *s) { return s->errmsg; }
+
+const char *rd_status_name(rd_status st)
+{
+    static const char *const names[] = {"done", "overturned", "interrupted", "unstable", "io_error",
+                                        "error", "penetrated", "lost", "untrusted"};
+    return (unsigned)st < sizeof names / sizeof names[0] ? names[st] : "unknown";
+}
+
+int rd_status_failed(rd_status st)
+{
+    return st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR ||
+           st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST || st == RD_STATUS_UNTRUSTED;
+}
+
 
 const rd_event *rd_sim_events(const rd_sim *s, int *n)
 {

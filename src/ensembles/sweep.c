@@ -406,8 +406,7 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, rd_sweep_result *r)
         rd_sim_summary(sim, &s);
         copy_summary(&s, r);
         r->status = (int)st;
-        if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR ||
-            st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST)
+        if (rd_status_failed(st))
             snprintf(r->message, sizeof r->message, "%.199s", rd_sim_error(sim));
     }
     rd_sim_free(sim);

@@ -86,7 +86,7 @@ struct rd_sweep_table {
     char path[RD_PATH_MAX];
     hid_t file, group, str; /* str: fixed-length UTF-8 text cells */
     hid_t vstr;             /* variable-length UTF-8 string (attributes, the body scale) */
-    hid_t status_t;         /* enum of status_names */
+    hid_t status_t;         /* enum of the run statuses (rd_status_name) */
     const rd_sweep_plan *plan;
     int ncols;
     column col[RD_SWEEP_MAX_AXES + NOUT];
@@ -95,8 +95,6 @@ struct rd_sweep_table {
     int fd;       /* the file's descriptor (sec2 driver), for reserve() */
 };
 
-static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable", "io_error", "error",
-                                           "penetrated", "lost"};
 
 static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty, int width)
 {
@@ -400,8 +398,8 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
     H5Tset_size(t->vstr, H5T_VARIABLE);
     H5Tset_cset(t->vstr, H5T_CSET_UTF8);
     t->status_t = H5Tenum_create(H5T_NATIVE_UCHAR);
-    for (unsigned char v = 0; v < sizeof status_names / sizeof status_names[0]; v++)
-        H5Tenum_insert(t->status_t, status_names[v], &v);
+    for (unsigned char v = 0; v <= RD_STATUS_UNTRUSTED; v++)
+        H5Tenum_insert(t->status_t, rd_status_name((rd_status)v), &v);
     layout(t);
     H5dont_atexit(); /* closed by rd_sweep_table_close; HDF5's exit hook crashed on a failed file */
     FILE *f = fopen(path, "rb");
@@ -421,7 +419,7 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
         if (a->number) memcpy(buf, &a->number[v], sizeof(double));
         else snprintf(buf, RD_SWEEP_TEXT, "%s", a->value[v]);
     } else if (c->spec->type == C_STATUS) {
-        buf[0] = (char)(r->status >= 0 && r->status <= RD_STATUS_LOST ? r->status : RD_STATUS_ERROR);
+        buf[0] = (char)(r->status >= 0 && r->status <= RD_STATUS_UNTRUSTED ? r->status : RD_STATUS_ERROR);
     } else {
         size_t n = c->spec->per_body ? (size_t)t->plan->nbodies : 1;
         memcpy(buf, (const char *)r + c->spec->off, n * c->size);

@@ -31,8 +31,8 @@ static int dem_overturns(const rd_scenario *base, double amplitude, int *over, r
         rd_sim_summary(sim, &sum);
         *over = sum.any_overturned;
         rc = 0;
-        if (st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR)
-            rc = rd_error_set(err, "%s", rd_sim_error(sim));
+        if (rd_status_failed(st)) /* no outcome: unstable, or an untrusted energy balance */
+            rc = rd_error_set(err, "run at %.4g m/s^2: %s", amplitude, rd_sim_error(sim));
         rd_sim_free(sim);
     }
     free(sc);
@@ -52,6 +52,9 @@ static int ref_overturns(const rd_scenario *base, double amplitude, int *over, r
     if (rd_refscene_map(sc, rs, err)) goto done;
     rc = rd_refscene_solve(sc, rs, &res, err);
     *over = res.summary.overturned;
+    if (rc == 0 && res.summary.lifted_off) /* the rigid model stops: a jump is not an outcome */
+        rc = rd_error_set(err, "reference run at %.4g m/s^2: the pivot lifts off (the block "
+                               "jumps); the rigid rocking model does not cover it", amplitude);
 done:
     rd_ref_result_free(&res);
     free(sc);

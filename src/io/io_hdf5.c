@@ -64,11 +64,12 @@ static const char *const energy_long_names[RD_NENERGY] = {
 
 /* Event types, in the order of the HDF5 enum /events/type (value = index). */
 static const char *const event_types[] = {"uplift", "impact", "slip", "overturn", "recover",
-                                          "unstable", "unsettled", "rest", "lock", "liftoff", "lost"};
+                                          "unstable", "unsettled", "rest", "lock", "liftoff", "lost",
+                                          "peak"};
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
 static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
-                                           "io_error", "error", "penetrated", "lost"};
+                                           "io_error", "error", "penetrated", "lost", "untrusted"};
 #define RD_H5_NSTATUS ((int)(sizeof status_names / sizeof status_names[0]))
 
 /* How subcontact points were spaced (root attribute spacing_rule). */

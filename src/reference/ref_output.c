@@ -115,9 +115,9 @@ static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_
         const rd_ref_sample *sm = &res->samples[i];
         pose ps;
         sample_pose(rs, sm, &ps);
-        double pos[6], quat[8], vel[6], ang[6], tilt[2];
+        double pos[6], quat[8], vel[6], ang[6], tilt[2], rot[6] = {0};
         rd_h5_sample out = {.time = sm->t, .position = pos, .quaternion = quat, .velocity = vel,
-                            .angular_velocity = ang, .tilt = tilt};
+                            .angular_velocity = ang, .tilt = tilt, .rotation = rot};
         rd_motion_eval(&rs->motion, sm->t, out.ground_acc, out.ground_vel, out.ground_disp);
         for (int k = 0; k < rs->nblock; k++) {
             int o = rs->out[k];
@@ -131,6 +131,7 @@ static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_
                 ang[3 * o + j] = a[j] * sm->omega[k];
             }
             tilt[o] = fabs(th);
+            rot[3 * o] = th; /* planar: all in-plane rocking (about a), no out-of-plane, no twist */
             double v2 = ps.v[k][0] * ps.v[k][0] + ps.v[k][1] * ps.v[k][1] + ps.v[k][2] * ps.v[k][2];
             out.energy[0] += 0.5 * m * v2 + 0.5 * Ic * sm->omega[k] * sm->omega[k];
             double z0 = rs->base_z + (k ? 2 * rs->h[0] : 0) + rs->h[k];

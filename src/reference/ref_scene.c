@@ -77,10 +77,18 @@ static void block_dims(rd_refscene *rs, int k, const rd_body_def *b)
     rs->h[k] = 0.5 * b->size[2];
 }
 
+/* Height of a brick's base, m: seated bodies (`seat-on`, `block create stack`) are placed by
+ * the engine with their base on the top of their support (at z = top). */
+static double brick_bottom(const rd_body_def *blk, const rd_body_def *base, double top)
+{
+    if (blk->seat_on[0] && !strcmp(blk->seat_on, base->name)) return top;
+    return blk->position[2] - 0.5 * blk->size[2];
+}
+
 static int check_support(const rd_scenario *sc, const rd_body_def *base, const rd_body_def *blk,
                          double top, double scale, rd_error *err)
 {
-    double bottom = blk->position[2] - 0.5 * blk->size[2];
+    double bottom = brick_bottom(blk, base, top);
     if (fabs(bottom - top) > RD_FIT_TOL * scale)
         return rd_error_set(err, "%s:%d: reference: body '%s' does not stand on '%s' (its base is "
                                  "at z = %.6g m, the support at %.6g m)", sc->file, blk->line,
@@ -149,7 +157,8 @@ int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err)
         if (b1->tilt > 0 || b2->tilt > 0)
             return rd_error_set(err, "%s: reference: initial tilts of a stack are not supported; "
                                      "start the stack from rest", sc->file);
-        if (check_support(sc, b1, b2, b1->position[2] + 0.5 * b1->size[2], scale, err)) return -1;
+        double top1 = brick_bottom(b1, base, rs->base_z) + b1->size[2];
+        if (check_support(sc, b1, b2, top1, scale, err)) return -1;
         if (fabs(b2->position[0] - b1->position[0]) + fabs(b2->position[1] - b1->position[1]) >
             RD_FIT_TOL * scale)
             return rd_error_set(err, "%s:%d: reference: the upper block '%s' is not centred on the "
