@@ -229,6 +229,13 @@ typedef struct rd_scenario {
 /* Fill every field with its default (no bodies, no motion). */
 RD_API void rd_scenario_defaults(rd_scenario *sc);
 
+/* Set a named contact preset (`contact preset NAME`): "rigid" (rigid rocking theory: corners,
+ * KN 1e10, KS 1e11, 80 deg, restitution 0), "3dec" (seed 002's 3DEC practice: corners,
+ * KN 1e10, KS 1e9, 40 deg, elastic, undamped) or "default" (automatic bed, KN 1e10, KS 1e9,
+ * 40 deg, restitution 0); damping is switched off, the interface perturbation kept.
+ * 0, or -1 for an unknown name (nothing changed). */
+RD_API int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name);
+
 /* Parse a scenario file into sc (defaults first). Returns 0, or -1 with err = "file:line:col: ...". */
 RD_API int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err);
 

@@ -205,6 +205,24 @@ int contact_property(parser *P)
     return k == KW_ERR ? -1 : 0;
 }
 
+/* contact preset rigid|3dec|default: a whole contact setting in one line (rd_contact_preset);
+ * `contact property` lines after it change single values. */
+int contact_preset(parser *P)
+{
+    static const char *const names[] = {"rigid", "3dec", "default", NULL};
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (exclusive(P, &prev, kw))
+            return -1;
+        rd_contact_preset(&P->sc->contact, &P->sc->damping, names[k]);
+    }
+    if (k == KW_ERR)
+        return -1;
+    return prev ? 0 : missing_keyword(P, names);
+}
+
 /* Largest seed a generator takes (gsl_rng seeds are unsigned long; 32 bits everywhere). */
 #define RD_SEED_MAX 4294967295.0
 

@@ -40,6 +40,7 @@ static const struct command {
     {"block", "initial", block_initial},
     {"contact", "property", contact_property},
     {"contact", "interface-perturbation", contact_perturbation},
+    {"contact", "preset", contact_preset},
     {"ground-motion", "pulse", motion_pulse},
     {"ground-motion", "import", motion_import},
     {"ground-motion", "stochastic", motion_stochastic},
@@ -86,14 +87,38 @@ static int run_command(parser *P)
 
 /* ---- public: defaults, parse, load, free ---- */
 
+int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
+{
+    rd_contact_def keep = *c;
+    *c = (rd_contact_def){.perturb = keep.perturb};
+    if (!strcmp(name, "rigid")) {
+        /* rigid rocking theory (Housner, Kounadis): corner subcontacts, perfectly plastic point
+           impacts, and a shear spring stiff enough (KS = 10 KN) to give the impacting edge
+           its full tangential impulse within the normal impact, so the impact keeps the
+           angular momentum about the new pivot; friction high enough not to slide */
+        c->kn = 1e10; c->ks = 1e11; c->friction = 80.0 * RD_DEG; c->spacing = 0; c->restitution = 0;
+    } else if (!strcmp(name, "3dec")) {
+        /* the 3DEC practice of seed 002: KN 10 GPa/m, KS 1 GPa/m, 40 deg, fewest-triangle
+           (corner) subcontacts, elastic joint, no damping */
+        c->kn = 1e10; c->ks = 1e9; c->friction = 40.0 * RD_DEG; c->spacing = 0; c->restitution = 1;
+    } else if (!strcmp(name, "default")) {
+        /* README "Contact defaults": a point bed that rolls the pivot like a real base, plastic
+           point impacts (no hop), seed 002's stiffnesses and friction */
+        c->kn = 1e10; c->ks = 1e9; c->friction = 40.0 * RD_DEG; c->spacing = -1.0; c->restitution = 0;
+    } else {
+        *c = keep;
+        return -1;
+    }
+    *d = (rd_damping_def){RD_DAMPING_NONE, 0.0};
+    return 0;
+}
+
 void rd_scenario_defaults(rd_scenario *sc)
 {
     memset(sc, 0, sizeof *sc);
     sc->gravity = RD_GRAVITY_DEFAULT;
     sc->density = 2700.0;
-    sc->contact = (rd_contact_def){.kn = 1e10, .ks = 1e9, .friction = 40.0 * RD_DEG, .spacing = -1.0,
-                                   .perturb.raise_fraction = 0.5};
-    sc->damping = (rd_damping_def){RD_DAMPING_NONE, 0.0};
+    rd_contact_preset(&sc->contact, &sc->damping, "default");
     sc->motion.horizontal.cycles = 1.0;
     sc->motion.vertical.cycles = 1.0;
     sc->motion.baseline = 4;
