@@ -72,10 +72,17 @@ typedef struct rd_threshold_result {
     double static_amp;  /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
     double w_over_p;    /* 2 pi f / p of block 1 (0 without a frequency) */
     int runs;           /* simulations made */
+    int lifted_off;     /* reference only: 1 when the upper end of the bracket is the onset of
+                           pivot lift-off (the block jumps; the rigid model stops there), not
+                           of overturning */
 } rd_threshold_result;
 
+/* rd_overturns' *over for a reference run whose pivot lifts off (the block jumps). */
+#define RD_LIFTS_OFF 2
+
 /* Does the scene overturn at this horizontal pulse amplitude (m/s^2)? DEM: the scenario's
- * criterion; reference: certain overturning of either block. The DEM writes no file. */
+ * criterion; reference: certain overturning of either block, or RD_LIFTS_OFF when a pivot
+ * lifts off first. The DEM writes no file. */
 RD_API int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int *over,
                  rd_error *err);
 

@@ -80,8 +80,8 @@ static int curve_row(rd_scenario *sc, const threshold_args *a, double f)
     }
     rd_cli_progress_clear(); /* the row on a clean line; the bar comes back with the next run */
     if (r.found)
-        printf("%10.4g %10.4f %14.4f %12.4f %6d\n", f, r.w_over_p, r.amplitude / r.static_amp,
-               r.amplitude / RD_G_STANDARD, r.runs);
+        printf("%10.4g %10.4f %14.4f %12.4f %6d%s\n", f, r.w_over_p, r.amplitude / r.static_amp,
+               r.amplitude / RD_G_STANDARD, r.runs, r.lifted_off ? "  lift-off (jumps), not overturning" : "");
     else
         printf("%10.4g %10.4f %14s %12s %6d\n", f, r.w_over_p, "none", "-", r.runs);
     return 0;
@@ -91,6 +91,12 @@ static void print_single(const rd_scenario *sc, const threshold_args *a, const r
 {
     if (!r->found) {
         printf("no overturning up to the top of the range (%d runs); raise --hi\n", r->runs);
+        return;
+    }
+    if (r->lifted_off) {
+        printf("lift-off: the pivot lifts off (the block jumps) before it overturns; the rigid "
+               "model stops at %.5g m/s^2 = %.4f g (a / a_uplift = %.4f); below it nothing "
+               "overturned\n", r->amplitude, r->amplitude / RD_G_STANDARD, r->amplitude / r->static_amp);
         return;
     }
     printf("engine %s: minimum overturning amplitude %.5g m/s^2 = %.4f g "

@@ -169,7 +169,11 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
         s->pset[st] = 0;
         return 0;
     }
-    if ((*fl & RD_PT_VIRGIN) && vn > 0) { /* first unloading: the impact loss (permanent set) */
+    if (c->facing && !(*fl & RD_PT_ACTIVE)) /* a face that has just turned towards the other
+                                               body: its vertex bears from where it is now */
+        s->pset[st] = fmax(s->pset[st], depth);
+    if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE) && vn > 0) {
+        /* first unloading of a new contact that bore force: the impact loss (permanent set) */
         double stretch = depth - s->pset[st], set = (1.0 - j->restitution) * stretch;
         if (stretch > 0) s->e_damp += 0.5 * kA * (stretch * stretch - (stretch - set) * (stretch - set));
         s->pset[st] += set;

@@ -51,10 +51,8 @@ static int ref_overturns(const rd_scenario *base, double amplitude, int *over, r
     sc->output.interval = sc->duration; /* no history needed */
     if (rd_refscene_map(sc, rs, err)) goto done;
     rc = rd_refscene_solve(sc, rs, &res, err);
-    *over = res.summary.overturned;
-    if (rc == 0 && res.summary.lifted_off) /* the rigid model stops: a jump is not an outcome */
-        rc = rd_error_set(err, "reference run at %.4g m/s^2: the pivot lifts off (the block "
-                               "jumps); the rigid rocking model does not cover it", amplitude);
+    /* a pivot that lifts off (the block jumps) ends the rigid model: its own outcome */
+    *over = res.summary.lifted_off ? RD_LIFTS_OFF : res.summary.overturned;
 done:
     rd_ref_result_free(&res);
     free(sc);
@@ -104,11 +102,13 @@ int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opt
                                  "rtol %g)", lo, hi, opts->rtol);
     /* coarse scan up from lo: the first amplitude that overturns closes the first bracket */
     double below = lo, above = -1;
+    /* (a reference run that lifts off ends the search like an overturning one: the bracket then
+       closes on the onset of jumping, reported as such) */
     for (int k = 0; k <= n && above < 0; k++) {
         double a = lo + (hi - lo) * k / n;
         if (rd_overturns(sc, engine, a, &over, err)) return -1;
         out->runs++;
-        if (over) above = a;
+        if (over) { above = a; out->lifted_off = over == RD_LIFTS_OFF; }
         else below = a;
     }
     if (above < 0) return 0;
@@ -117,7 +117,7 @@ int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opt
         double mid = 0.5 * (below + above);
         if (rd_overturns(sc, engine, mid, &over, err)) return -1;
         out->runs++;
-        if (over) above = mid;
+        if (over) { above = mid; out->lifted_off = over == RD_LIFTS_OFF; }
         else below = mid;
     }
     out->found = 1;
