@@ -431,7 +431,7 @@ static void test_error_unknown_keyword(void **state)
     parse_fails("model solve time 1\n\n\n\n\n\n"
                 "   contact property frction 30\n",
                 "run.dat:7:21: unknown keyword 'frction' for 'contact property' (expected "
-                "stiffness-normal, stiffness-shear, friction, cohesion, tension, spacing)");
+                "stiffness-normal, stiffness-shear, friction, cohesion, tension, spacing, restitution)");
 }
 
 static void test_error_duplicate_keyword(void **state)

@@ -1,19 +1,12 @@
-/* DEM against the rigid-block references (validation ladder, DESIGN.md section 5, rungs 2 and
- * 4). Scenes: a 0.5 x 0.5 x 1.0 m block (b = 0.25, h = 0.5, alpha = 0.4636, p = 3.628 1/s) and
- * a stack of it with a 0.4 x 0.4 x 0.8 m block on top, corner subcontacts, KS = KN, friction
- * 80 deg (the rigid models do not slide), normal dashpot. Restitution is a property of the
- * discretised contact: the DEM's r is measured (rd_restitution_measure) or calibrated
- * (rd_restitution_calibrate) and the reference gets the same e.
- *
- * Measured convergence behind the tolerances (rockdem threshold thr.dat --engine dem, 2 Hz,
- * block): KN 1e9 -> 1e11 Pa/m moves the DEM threshold by < 0.1 %, time-step safety 0.2 -> 0.05
- * by 0.3 %. The remaining DEM - reference difference is the impact model: the DEM's per-impact
- * restitution scatters by about +-0.012 around its mean (measured ratios 0.735 .. 0.759 at
- * zeta 0.5), and where the rigid threshold is steep in e that moves it: at 2 Hz the Housner
- * threshold drops from 1.26 g (e 0.70) to 0.915 g (e 0.75), about 7 g per unit e, and the DEM
- * differs by 7 % there (docs/validation.md). The tests use frequencies where the threshold is
- * not on that cliff and allow 3 %: above the 1.3 % measured, below any error in mapping,
- * uplift or overturning (those move thresholds by >= 10 %). */
+/* DEM against the rigid-block references (validation ladder, rungs 2 and 4). Scenes: a
+ * 0.5 x 0.5 x 1.0 m block (b = 0.25, h = 0.5, alpha = 0.4636, p = 3.628 1/s) and a stack of it
+ * with a 0.4 x 0.4 x 0.8 m block on top, with the contact preset that reproduces rigid rocking
+ * theory (`contact preset rigid`: corner subcontacts, perfectly plastic point impacts, KS =
+ * 10 KN, friction 80 deg), undamped. The references use their own impact laws (Housner's r,
+ * Kounadis' plastic impacts): nothing measured on the DEM is handed to them.
+ * Tolerances: 3 % on thresholds and history amplitudes, 1 % on event times (issue 10's
+ * acceptance figures for rigid-theory agreement); the threshold search scans the whole range
+ * from 0.9 a_uplift to 10 a_uplift, so an early overturning would be seen. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -34,8 +27,7 @@
 static const char *block_scene =
     "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
     "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b\n"
-    "contact property stiffness-normal 1e10 stiffness-shear 1e10 friction 80 spacing vertices\n"
-    "model damping viscous 0.5\n"
+    "contact preset rigid\n"
     "ground-motion pulse one-sine amplitude 1g frequency 2\n"
     "model solve time 3\n";
 
@@ -43,8 +35,7 @@ static const char *stack_scene =
     "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
     "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower\n"
     "block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper\n"
-    "contact property stiffness-normal 1e10 stiffness-shear 1e10 friction 80 spacing vertices\n"
-    "model damping viscous 1.0\n"
+    "contact preset rigid\n"
     "ground-motion pulse one-sine amplitude 1g frequency 2\n"
     "model solve time 3\n";
 
@@ -78,16 +69,10 @@ static size_t read_tilt(const char *path, int body, int nb, double **t, double *
     return n;
 }
 
-/* ---- free rocking: first three impacts, calibrated damping -------------------------------- */
-/* The DEM's damping ratio is calibrated to r = 0.75 (reachable with corner contacts: r runs
- * from 0.90 undamped to 0.733 at ratio 1), then the block is released from 0.5 alpha and the
- * impact times and the rocking amplitudes between impacts are compared with Housner's ODE with
- * e = 0.75. Measured (unchanged from KN 1e9 to 1e11 and safety 0.2 to 0.05, so not a
- * discretisation error): impact times 0.003 %, 1.4 %, 1.4 %; amplitudes after them 2.2 %,
- * 4.5 %, 7.3 % high. The DEM's first impact returns r = 0.757 instead of 0.75 and the
- * amplitude goes as r^2 (+2 % per impact, compounding); after an impact the DEM block spends a
- * short time on both edges, so its half-cycles run 1.4 % short. Tolerances: times 2 %,
- * amplitude after impact k 3 k %. */
+/* ---- free rocking: first three impacts, rigid preset against Housner ---------------------- */
+/* Released from 0.5 alpha; impact times and the rocking amplitudes after impacts 1-3 against
+ * Housner's ODE with his r = 1 - 1.5 sin^2 alpha = 0.70 (no calibration). Tolerances: 1 % on
+ * times, 2 % on amplitudes (issue 11's rigid-theory figures). */
 static void test_free_rocking_impacts(void **state)
 {
     (void)state;
@@ -95,12 +80,7 @@ static void test_free_rocking_impacts(void **state)
     rd_error err;
     load(&sc, block_scene);
     memset(&sc.motion, 0, sizeof sc.motion);
-    double alpha = atan(0.5), theta0 = 0.5 * alpha, zeta, reached;
-    int rc = rd_restitution_calibrate(&sc, theta0, 0.75, &zeta, &reached, &err);
-    if (rc < 0) fail_msg("%s", err.msg);
-    assert_int_equal(rc, 0);
-    print_message("calibrated zeta %.4f -> r %.4f\n", zeta, reached);
-    sc.damping = (rd_damping_def){RD_DAMPING_VISCOUS, zeta};
+    double alpha = atan(0.5), theta0 = 0.5 * alpha;
     sc.bodies[1].tilt = theta0;
     sc.duration = 1.6;
     rd_sim *sim = rd_sim_create(&sc, &err);
@@ -117,7 +97,7 @@ static void test_free_rocking_impacts(void **state)
     double *t, *tilt;
     size_t ns = read_tilt(outfile, 0, 1, &t, &tilt);
 
-    rd_housner_def h = {.b = 0.25, .h = 0.5, .g = sc.gravity, .e = 0.75};
+    rd_housner_def h = {.b = 0.25, .h = 0.5, .g = sc.gravity, .e = rd_housner_r(alpha)};
     rd_ref_opts o = rd_ref_opts_default();
     o.t_end = 1.6;
     o.theta0[0] = theta0;
@@ -138,8 +118,8 @@ static void test_free_rocking_impacts(void **state)
             if (t[i] > td[k] && (k == 2 || t[i] < td[k + 1])) peak = fmax(peak, tilt[i]);
         print_message("impact %d: DEM %.5f s, rigid %.5f s; amplitude after: DEM %.5f, rigid %.5f rad\n",
                       k + 1, td[k], tr[k], peak, amp[k]);
-        assert_true(fabs(td[k] - tr[k]) < 0.02 * tr[k]);
-        assert_true(fabs(peak - amp[k]) < 0.03 * (k + 1) * amp[k]);
+        assert_true(fabs(td[k] - tr[k]) < 0.01 * tr[k]);
+        assert_true(fabs(peak - amp[k]) < 0.02 * amp[k]);
     }
     free(t);
     free(tilt);
@@ -161,9 +141,7 @@ static void compare_thresholds(const char *text, double e, const double *freq, i
         rd_threshold_result ref, dem;
         if (rd_threshold(&sc, RD_ENGINE_REFERENCE, &o, &ref, &err)) fail_msg("%s", err.msg);
         assert_true(ref.found);
-        o.lo = 0.85 * ref.amplitude; /* the DEM search starts near the reference: saves runs */
-        o.hi = 1.25 * ref.amplitude;
-        o.nscan = 4;
+        assert_false(ref.lifted_off);
         if (rd_threshold(&sc, RD_ENGINE_DEM, &o, &dem, &err)) fail_msg("%s", err.msg);
         assert_true(dem.found);
         assert_true(dem.below < dem.amplitude); /* lo itself must not overturn */
@@ -175,16 +153,16 @@ static void compare_thresholds(const char *text, double e, const double *freq, i
     }
 }
 
-/* One block, zeta 0.5: the DEM's measured r = 0.75 is given to Housner as e. */
+/* One block against Housner (his r): w/p 1.73, 2.60 and 3.46, the last on the steep part of
+ * the curve (2 Hz: the rigid threshold moves 0.26 g per 0.02 of r). */
 static void test_block_thresholds(void **state)
 {
     (void)state;
-    const double f[3] = {1.0, 1.5, 2.5};
-    compare_thresholds(block_scene, 0.75, f, 3);
+    const double f[3] = {1.0, 1.5, 2.0};
+    compare_thresholds(block_scene, -1, f, 3);
 }
 
-/* Stack, zeta 1 (the DEM's closest to the plastic, angular-momentum impacts of Kounadis: r
- * 0.733 vs Housner's 0.70 for the lower block). */
+/* Undamped stack against Kounadis (plastic impacts) at w/p 1.73, 2.60, 4.33. */
 static void test_stack_thresholds(void **state)
 {
     (void)state;

@@ -230,7 +230,7 @@ typedef struct rd_scenario {
 RD_API void rd_scenario_defaults(rd_scenario *sc);
 
 /* Set a named contact preset (`contact preset NAME`): "rigid" (rigid rocking theory: corners,
- * KN 1e10, KS 1e11, 80 deg, restitution 0), "3dec" (seed 002's 3DEC practice: corners,
+ * KN 1e11, KS 1e12, 80 deg, restitution 0), "3dec" (seed 002's 3DEC practice: corners,
  * KN 1e10, KS 1e9, 40 deg, elastic, undamped) or "default" (automatic bed, KN 1e10, KS 1e9,
  * 40 deg, restitution 0); damping is switched off, the interface perturbation kept.
  * 0, or -1 for an unknown name (nothing changed). */

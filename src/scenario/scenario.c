@@ -95,8 +95,10 @@ int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
         /* rigid rocking theory (Housner, Kounadis): corner subcontacts, perfectly plastic point
            impacts, and a shear spring stiff enough (KS = 10 KN) to give the impacting edge
            its full tangential impulse within the normal impact, so the impact keeps the
-           angular momentum about the new pivot; friction high enough not to slide */
-        c->kn = 1e10; c->ks = 1e11; c->friction = 80.0 * RD_DEG; c->spacing = 0; c->restitution = 0;
+           angular momentum about the new pivot; friction high enough not to slide. KN 1e11:
+           the amplitude after a free-rocking impact is 2.3 % above Housner's at 1e10 and
+           0.7 % at 1e11 (0.5 x 1.0 m block), converging as the contact stiffens */
+        c->kn = 1e11; c->ks = 1e12; c->friction = 80.0 * RD_DEG; c->spacing = 0; c->restitution = 0;
     } else if (!strcmp(name, "3dec")) {
         /* the 3DEC practice of seed 002: KN 10 GPa/m, KS 1 GPa/m, 40 deg, fewest-triangle
            (corner) subcontacts, elastic joint, no damping */
