@@ -68,9 +68,7 @@ static const char *const event_types[] = {"uplift", "impact", "slip", "overturn"
                                           "peak"};
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
-static const char *const status_names[] = {"done", "overturned", "interrupted", "unstable",
-                                           "io_error", "error", "penetrated", "lost", "untrusted"};
-#define RD_H5_NSTATUS ((int)(sizeof status_names / sizeof status_names[0]))
+#define RD_H5_NSTATUS (RD_STATUS_UNTRUSTED + 1) /* run statuses, named by rd_status_name */
 
 /* How subcontact points were spaced (root attribute spacing_rule). */
 static const char *const spacing_rules[] = {"auto", "vertices", "fixed"};
@@ -147,7 +145,7 @@ struct rd_h5 {
     char *path;
     hid_t file;
     hid_t str_type;    /* variable-length UTF-8 string */
-    hid_t status_type; /* enum of status_names */
+    hid_t status_type; /* enum of the run statuses */
     hid_t event_type;  /* enum of event_types */
     int nb;
     char (*names)[RD_NAME_MAX]; /* [nb] free bodies in output order */
@@ -683,6 +681,8 @@ static rd_h5 *alloc_handle(const char *path, const rd_h5_meta *m)
 static int make_types(rd_h5 *h)
 {
     h->str_type = H5Tcopy(H5T_C_S1);
+    const char *status_names[RD_H5_NSTATUS];
+    for (int i = 0; i < RD_H5_NSTATUS; i++) status_names[i] = rd_status_name((rd_status)i);
     h->status_type = enum_type(status_names, RD_H5_NSTATUS);
     h->event_type = enum_type(event_types, RD_H5_NEVTYPES);
     return h->str_type >= 0 && H5Tset_size(h->str_type, H5T_VARIABLE) >= 0 &&
@@ -1012,7 +1012,7 @@ static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
     H5Gclose(g);
     if (rc) return fault_h5(h, err, "cannot write /summary");
     unsigned st = (unsigned)s->status;
-    if (write_status(h, st < sizeof status_names / sizeof status_names[0] ? status_names[st] : "unknown", ""))
+    if (write_status(h, rd_status_name((rd_status)st), ""))
         return fault_h5(h, err, "cannot write the status");
     return 0;
 }
