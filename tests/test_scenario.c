@@ -422,7 +422,7 @@ static void test_error_unknown_and_missing_verb(void **state)
     (void)state;
     parse_fails("  block crate brick\n",
                 "run.dat:1:9: unknown verb 'crate' for 'block' (expected create, import, initial)");
-    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation)");
+    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation, preset)");
 }
 
 static void test_error_unknown_keyword(void **state)
@@ -686,7 +686,7 @@ static void test_set_bad_key(void **state)
     set_fails("contact.frction=30",
               "--set contact.frction=30: unknown key 'contact.frction' (expected "
               "contact.stiffness-normal, contact.stiffness-shear, contact.friction, "
-              "contact.cohesion, contact.tension, contact.spacing, contact.interface-seed, "
+              "contact.cohesion, contact.tension, contact.spacing, contact.restitution, contact.interface-seed, "
               "contact.interface-remove, contact.interface-raise, contact.interface-scatter)");
     set_fails("solver.dt=1", "--set solver.dt=1: unknown key 'solver.dt' (expected a key in "
                              "contact, model, motion, output or block.<name>)");

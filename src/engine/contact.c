@@ -77,28 +77,34 @@ static inline double plane_dist(const double *pl, const double p[3])
     return pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] - pl[3];
 }
 
-/* The point leaves the contact: its forces drop (3DEC); the shear spring energy it held is
- * dissipated by the joint model and booked as friction so the energy balance stays closed. */
-static void point_exit(rd_sim *s, int st, double sA)
+/* Spring energy, J, released by a subcontact that stops bearing (it leaves the contact, its
+ * face turns away, its bond breaks): normal (elastic stretch `stretch`, m) and shear. The joint
+ * model dissipates it (3DEC drops the forces of an opening contact); it is booked as friction
+ * so the energy balance stays closed. */
+static void release(rd_sim *s, int st, double kA, double sA, double stretch)
+{
+    if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
+    s->e_fric += 0.5 * (kA * stretch * stretch + rd_dot(s->fs[st], s->fs[st]) / sA);
+    s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
+}
+
+/* The point leaves the contact (stretch: its elastic normal stretch, m): forces drop, the
+ * contact episode ends, and so does a bond. */
+static void point_exit(rd_sim *s, int st, double kA, double sA, double stretch)
 {
     unsigned char *fl = &s->pstate[st];
-    if (*fl & RD_PT_ACTIVE) {
-        s->e_fric += 0.5 * rd_dot(s->fs[st], s->fs[st]) / sA;
-        s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
-    }
+    release(s, st, kA, sA, stretch);
     if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
     *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN);
     s->pset[st] = 0;
 }
 
-/* A point inside but not carrying force (not facing the entrance face, or lifted off its
- * permanent set): its shear spring is released, the rest of its state kept. */
-static void point_idle(rd_sim *s, int st, double sA)
+/* A point inside but not bearing (its face turned away, or lifted off its permanent set):
+ * forces drop, the rest of its state is kept. */
+static void point_idle(rd_sim *s, int st, double kA, double sA, double stretch)
 {
     unsigned char *fl = &s->pstate[st];
-    if (!(*fl & RD_PT_ACTIVE)) return;
-    s->e_fric += 0.5 * rd_dot(s->fs[st], s->fs[st]) / sA;
-    s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
+    release(s, st, kA, sA, stretch);
     *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
 }
 
@@ -148,7 +154,11 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
     for (int k = 0; k < c->ncr; k++)
-        if (plane_dist(c->pl[c->cr[k]], p) > c->tol + slack) { point_exit(s, st, sA); return 0; }
+        if (plane_dist(c->pl[c->cr[k]], p) > c->tol + slack) {
+            double stretch = (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
+            point_exit(s, st, kA, sA, stretch);
+            return 0;
+        }
 
     double ro[3], rt[3], vr[3], tmp[3];
     rd_mat_vec(s->R[o], p, ro);
@@ -160,11 +170,14 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     }
     int e = s->pface[st];
     const double *u = s->wn[s->face0[t] + e]; /* outward normal of the entrance face */
-    if (c->facing && rd_dot(c->m, u) > -RD_FACING_COS) { point_idle(s, st, sA); return 0; }
     double depth = -plane_dist(c->pl[e], p), vn = rd_dot(vr, u);
+    if (c->facing && rd_dot(c->m, u) > -RD_FACING_COS) {
+        point_idle(s, st, kA, sA, depth - s->pset[st]);
+        return 0;
+    }
     if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
                                                    touch is a new impact */
-        point_idle(s, st, sA);
+        point_idle(s, st, kA, sA, 0.0);
         *fl |= RD_PT_VIRGIN;
         s->pset[st] = 0;
         return 0;
@@ -172,8 +185,10 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     if (c->facing && !(*fl & RD_PT_ACTIVE)) /* a face that has just turned towards the other
                                                body: its vertex bears from where it is now */
         s->pset[st] = fmax(s->pset[st], depth);
-    if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE) && vn > 0) {
-        /* first unloading of a new contact that bore force: the impact loss (permanent set) */
+    if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE) && vn > 0 &&
+        !s->settling) {
+        /* first unloading of a new contact that bore force: the impact loss (permanent set);
+           settling seats the bodies quasi-statically, with no impacts */
         double stretch = depth - s->pset[st], set = (1.0 - j->restitution) * stretch;
         if (stretch > 0) s->e_damp += 0.5 * kA * (stretch * stretch - (stretch - set) * (stretch - set));
         s->pset[st] += set;
@@ -185,8 +200,9 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     if (fn < 0) {
         int bonded = (*fl & RD_PT_BONDED) && fel > -j->tension * A;
         if (!bonded) {
+            int was_bonded = (*fl & RD_PT_BONDED) != 0; /* a breaking bond releases its tension */
             *fl &= (unsigned char)~RD_PT_BONDED;
-            if (stretch <= 0) { point_idle(s, st, sA); return 0; }
+            if (stretch <= 0) { point_idle(s, st, kA, sA, was_bonded ? stretch : 0.0); return 0; }
         }
         fn = bonded ? fmax(fn, -j->tension * A) : 0.0;
     }
@@ -275,7 +291,10 @@ static void clear_face(rd_sim *s, const rd_side *sd, const rd_contact_def *j, in
     if (*na == 0) return;
     int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
     int n = s->cf_pt0[cf + 1] - s->cf_pt0[cf];
-    for (int q = 0; q < n; q++) point_exit(s, first + q, j->ks * sd->weight * s->pa[s->cf_pt0[cf] + q]);
+    for (int q = 0; q < n; q++) {
+        double A = sd->weight * s->pa[s->cf_pt0[cf] + q];
+        point_exit(s, first + q, j->kn * A, j->ks * A, 0.0);
+    }
     *na = 0;
 }
 
