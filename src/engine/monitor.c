@@ -5,8 +5,8 @@
  * direction is atan(d / h): d is the distance from the centre of mass (projected on the
  * support plane at rest) to the edge of the support polygon along the lean direction, h the
  * height of the centre of mass above the support. Events (per free body):
- *   uplift   the contact area drops below 60 % of its value at rest (rocking starts; with
- *            corner subcontacts, losing one edge halves it)
+ *   uplift   the area of the joints that support it (with bodies below it) drops below 60 % of
+ *            its value at rest (rocking starts; with corner subcontacts, losing one edge halves it)
  *   impact   the signed rocking angle about the axis of the first rocking crosses zero
  *   peak     logged with each impact: the largest rocking angle since the last one (rad), the
  *            amplitude of the half-cycle that ends in this impact
@@ -307,11 +307,13 @@ void rd_monitor_start(rd_sim *s)
     }
 }
 
+/* A joint counts for the body it supports: the one of the pair whose centre of mass is higher
+ * (a stack's lower block rocks on its base joint, not on the joint under the upper block). */
 void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip)
 {
     for (int b = 0; b < 2; b++) {
-        int k = s->free_of[b ? other : owner];
-        if (k < 0) continue;
+        int me = b ? other : owner, below = b ? owner : other, k = s->free_of[me];
+        if (k < 0 || s->x[below][2] >= s->x[me][2]) continue;
         rd_watch *w = &s->watch[k];
         w->area += area; w->nactive += nactive; w->nslip += nslip;
     }
