@@ -94,9 +94,11 @@ def main():
         "PGV/PGA bin (s)", "n", "over", "median", "b0", "b1", "method", "PGA10%", "PGA50%", "PGA95%"))
     for d in bins:
         if "b0" in d:
-            o.write("  %7.4g-%-9.4g %5d %5d %8.4g %10.4g %10.4g %8s  %9.4g %9.4g %9.4g%s\n" % (
+            # a linear-PGA logistic can put a low quantile below PGA 0: say so, not nan
+            at = ["%9.4g" % x if x == x else "%9s" % "<0" for x in (d["pga_at"][q] for q in F.LEVELS)]
+            o.write("  %7.4g-%-9.4g %5d %5d %8.4g %10.4g %10.4g %8s  %s %s %s%s\n" % (
                 d["lo"], d["hi"], d["n"], d["n_over"], d["T_median"], d["b0"], d["b1"], d["method"],
-                *(d["pga_at"][q] for q in F.LEVELS), ("  " + d["note"]) if "note" in d else ""))
+                *at, ("  " + d["note"]) if "note" in d else ""))
         else:
             o.write("  %7.4g-%-9.4g %5d %5d %8.4g  (%s)\n" % (d["lo"], d["hi"], d["n"], d["n_over"],
                                                             d["T_median"], d["note"]))

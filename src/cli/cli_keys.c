@@ -28,6 +28,7 @@ static const key_doc keys[] = {
     {"contact.cohesion", "Pa", "0", "peak cohesion (lost at the first slip)"},
     {"contact.tension", "Pa", "0", "peak tensile strength (lost at the first opening)"},
     {"contact.spacing", "m | auto | vertices", "auto", "subcontact spacing (auto: a tenth of the narrowest face)"},
+    {"contact.restitution", "1", "0", "impact loss: fraction of a new subcontact's stretch kept when it first unloads, [0, 1] (0 plastic, 1 elastic)"},
     {"contact.interface-seed", "1", "0", "seed of the interface perturbation (0: off)"},
     {"contact.interface-remove", "1", "0", "fraction of subcontacts removed, [0, 1)"},
     {"contact.interface-raise", "m", "0", "a raised subcontact moves up to this far into its body"},
