@@ -1,10 +1,12 @@
 #!/usr/bin/python3
-"""Slide of the upper of two stacked free blocks on the lower one, from a rockdem HDF5 run.
+"""Joint slip of stacked free bodies (a two-block stack, a drum column), from a rockdem HDF5 run.
 
-The upper block's footprint centre (the mean of its lowest body-frame vertices at the start) is
-expressed in the lower block's body frame; its horizontal displacement from the start is the
-slip at the joint, free of the rocking sway that moves both blocks together. Prints the largest
-and the final slip (mm). Usage: relative_slide.py RUN.h5
+Free body k + 1 is taken to rest on free body k (output order, bottom up). Its footprint centre
+(the mean of its lowest vertices at the start: the centre of its base face) is expressed in
+body k's frame; its
+horizontal displacement from the start is the slip at that joint, free of the rocking sway that
+moves the bodies together. Prints, per joint, the largest and the final slip (mm).
+Usage: relative_slide.py RUN.h5
 """
 import sys
 
@@ -17,15 +19,17 @@ def main(path):
     with h5py.File(path, "r") as f:
         x, q = f["position"][:], f["quaternion"][:]
         names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["bodies"]["names"][:]]
-        verts = f["bodies"][names[1]]["vertices"][:]
-    rot = [Rotation.from_quat(np.c_[q[:, k, 1], q[:, k, 2], q[:, k, 3], q[:, k, 0]]) for k in range(2)]
-    world0 = x[0, 1] + rot[1][0].apply(verts)
-    base = np.argsort(world0[:, 2])[:4]
-    foot = verts[base].mean(axis=0)                           # upper's footprint, its own frame
-    foot_w = x[:, 1] + rot[1].apply(foot)                     # ... in the world
-    rel = rot[0].inv().apply(foot_w - x[:, 0])                # ... in the lower block's frame
-    d = np.hypot(rel[:, 0] - rel[0, 0], rel[:, 1] - rel[0, 1])
-    print("slide of the upper block on the lower one: max %.3f mm, final %.3f mm" % (1e3 * d.max(), 1e3 * d[-1]))
+        verts = [f["bodies"][n]["vertices"][:] for n in names]
+    free = list(range(x.shape[1]))  # /position holds the free bodies, in output order
+    rot = [Rotation.from_quat(np.c_[q[:, k, 1], q[:, k, 2], q[:, k, 3], q[:, k, 0]]) for k in free]
+    for k in free[:-1]:
+        up = k + 1
+        world0 = x[0, up] + rot[up][0].apply(verts[up])
+        low = world0[:, 2] < world0[:, 2].min() + 1e-6 * np.ptp(world0[:, 2])
+        foot = verts[up][low].mean(axis=0)                     # its base face's centre
+        rel = rot[k].inv().apply(x[:, up] + rot[up].apply(foot) - x[:, k])
+        d = np.hypot(rel[:, 0] - rel[0, 0], rel[:, 1] - rel[0, 1])
+        print("joint %s/%s: slip max %.3f mm, final %.3f mm" % (names[k], names[up], 1e3 * d.max(), 1e3 * d[-1]))
 
 
 if __name__ == "__main__":
