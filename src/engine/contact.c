@@ -42,6 +42,7 @@ typedef struct side_ctx {
     int o, t;                 /* owner and other body */
     double u[3];              /* unit normal from the other body towards the owner, ground frame */
     double wa;                /* weight */
+    const rd_joint *j;        /* the pair's joint properties */
     double damp_coef;         /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
     double k_active;          /* accumulates KN A' over active points, N/m */
     int nal, nlat;            /* aligned and lateral planes kept */
@@ -197,10 +198,12 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     unsigned char *flags = &s->pstate[st];
     double g = point_gap(c, s->pl[pt]);
     double A = c->wa * s->pa[pt];
-    double kA = s->sc.contact.kn * A;
-    if (g >= 0 && !((*flags & RD_PT_BONDED) && g < s->sc.contact.tension / s->sc.contact.kn)) {
+    double kA = c->j->kn * A;
+    s->pj[st][0] = 0;
+    s->pj[st][1] = g;
+    if (g >= 0 && !((*flags & RD_PT_BONDED) && g < c->j->tension / c->j->kn)) {
         if (*flags & RD_PT_ACTIVE) {
-            drop_shear(s, st, s->sc.contact.ks * A);
+            drop_shear(s, st, c->j->ks * A);
             *flags &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
         }
         return 0;
@@ -222,9 +225,9 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     double fel = -kA * g;                      /* elastic normal force, N (< 0: tension) */
     double fn = fel - c->damp_coef * kA * vn;  /* plus the dashpot */
     if (fn < 0) {
-        int bonded = (*flags & RD_PT_BONDED) && fel > -s->sc.contact.tension * A;
+        int bonded = (*flags & RD_PT_BONDED) && fel > -c->j->tension * A;
         if (!bonded) *flags &= (unsigned char)~RD_PT_BONDED;
-        if (!bonded || fn < -s->sc.contact.tension * A) fn = bonded ? -s->sc.contact.tension * A : 0.0;
+        if (!bonded || fn < -c->j->tension * A) fn = bonded ? -c->j->tension * A : 0.0;
     }
     s->e_damp -= (fn - fel) * vn * s->dt * (fn != fel);
     c->k_active += kA;
@@ -234,10 +237,10 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     double *fs = s->fs[st];
     if (c->rotate) rd_mat_vec(c->rot, fs, fs);
     double prev2 = rd_dot(fs, fs);
-    double sA = s->sc.contact.ks * A;
+    double sA = c->j->ks * A;
     for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * u[k]) * s->dt;
-    double cohesion = (*flags & RD_PT_BONDED) ? s->sc.contact.cohesion * A : 0.0;
-    double lim = rd_max(fn, 0.0) * s->tan_phi + cohesion;
+    double cohesion = (*flags & RD_PT_BONDED) ? c->j->cohesion * A : 0.0;
+    double lim = rd_max(fn, 0.0) * c->j->tan_phi + cohesion;
     double mag2 = rd_dot(fs, fs);
     *flags = (unsigned char)((*flags | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (mag2 > lim * lim) {
@@ -252,6 +255,7 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     }
     s->e_elastic += 0.5 * (kA * g * g + mag2 / sA);
 
+    s->pj[st][0] = fn;
     double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};
     rd_axpy(1.0, F, s->f[o]);
     rd_cross(ro, F, tmp);
@@ -264,14 +268,14 @@ static int subcontact(rd_sim *s, side_ctx *c, int pt, int st)
     return 1;
 }
 
-static void clear_face(rd_sim *s, const rd_side *sd, int cf, int k)
+static void clear_face(rd_sim *s, const rd_side *sd, const rd_joint *jt, int cf, int k)
 {
     int *na = &s->face_nactive[sd->face0 + k];
     if (*na == 0) return;
     int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
     int n = s->cf_pt0[cf + 1] - s->cf_pt0[cf];
     for (int j = 0; j < n; j++) {
-        drop_shear(s, first + j, s->sc.contact.ks * sd->weight * s->pa[s->cf_pt0[cf] + j]);
+        drop_shear(s, first + j, jt->ks * sd->weight * s->pa[s->cf_pt0[cf] + j]);
         s->pstate[first + j] &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP);
     }
     *na = 0;
@@ -291,7 +295,7 @@ static void rotation_between(const double a[3], const double b[3], double m[9])
 static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
 {
     side_ctx c;
-    c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
+    c.o = sd->owner; c.t = sd->other; c.wa = sd->weight; c.j = &s->joint[pr->joint];
     double sign = (sd->owner == pr->axis_body) ? -1.0 : 1.0;
     for (int k = 0; k < 3; k++) c.u[k] = sign * pr->n[k];
     c.rotate = rd_dot(sd->u_prev, sd->u_prev) > 0 && memcmp(c.u, sd->u_prev, sizeof c.u) != 0;
@@ -299,15 +303,19 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
     rd_copy3(c.u, sd->u_prev);
     c.k_active = 0;
     c.damp_coef = 0;
-    if (s->sc.damping.kind == RD_DAMPING_VISCOUS && !s->settling) {
+    if (c.j->damping > 0 && !s->settling) {
         double K = pr->k_active > 0 ? pr->k_active : INFINITY; /* a new contact: undamped step */
-        c.damp_coef = 2.0 * s->sc.damping.value * sqrt(pr->m_eff / K);
+        c.damp_coef = 2.0 * c.j->damping * sqrt(pr->m_eff / K);
     }
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double lb = face_planes(s, &c, cf);
         /* beside the other body (plane lists incomplete): no contact, bonds or not; otherwise
            a face wholly above the other body is skipped unless bonds may act across gaps */
-        if (lb == DBL_MAX || (s->can_cull && lb > 0)) { clear_face(s, sd, cf, k); continue; }
+        if (lb == DBL_MAX || (s->can_cull && lb > 0)) {
+            clear_face(s, sd, c.j, cf, k);
+            rd_joint_face_open(s, sd, cf, lb);
+            continue;
+        }
         int na = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         double area = 0;

@@ -1016,6 +1016,8 @@ static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
     return 0;
 }
 
+long long rd_h5_file_id(const rd_h5 *h) { return (long long)h->file; }
+
 static void h5_close(rd_h5 *h)
 {
     if (!h) return;

@@ -16,8 +16,8 @@
 
 /* Keywords every single-body command accepts, after its shape's own. */
 static const char *const body_common[] = {"position", "seat-on", "at",   "rotation",
-                                          "density",  "mass",    "name", "fixed"};
-#define NCOMMON 8
+                                          "density",  "mass",    "name", "fixed", "group"};
+#define NCOMMON 9
 
 typedef struct body_cmd {
     rd_body_def b;
@@ -51,7 +51,8 @@ static int common_body_keyword(parser *P, int k, const token *kw, body_cmd *c)
     case 4: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->density);
     case 5: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->mass);
     case 6: return read_name(P, kw, &c->name, b->name);
-    default: b->fixed = 1; return 0;
+    case 7: b->fixed = 1; return 0;
+    default: return read_name(P, kw, &(const token *){NULL}, b->group); /* joint group */
     }
 }
 
