@@ -4,6 +4,7 @@
 # largest slip is compared with Newmark's rigid-plastic sliding block (integrated here); the
 # tolerance is the error estimated from a convergence study at two shear stiffnesses: the slip
 # error of a penalty joint falls as 1/KS, so at KS = 1e9 it is about (S(1e8) - S(1e9)) / 9.
+# Then the resolution of overlapping ranges: properties resolved per pair as documented.
 set -eu
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
 S=scenarios/joint_groups.dat
@@ -46,4 +47,33 @@ assert abs(pad9 - umax) <= tol, (pad9, umax, tol)
 # the block on rock sticks: its slip (elastic shear removed) stays far below the elastic shear
 # at the friction limit, tan(35 deg) W / (KS A) = 9 um
 assert rock9 < 1e-7, rock9
+PY
+# resolution: a one-sided range (every pair with a 'pad' body) and a later two-sided range that
+# overrides its friction only; block ranges; the default for the rest
+cat > "$T/res.dat" <<'DAT'
+block create brick size 3 3 0.5 position 0 0 -0.25 fixed name rock group 'rock'
+block create brick size 3 3 0.5 position 5 0 -0.25 fixed name pad group 'pad'
+block create brick size 1 1 0.5 seat-on rock name a group 'block'
+block create brick size 1 1 0.5 seat-on pad name b group 'block'
+block create brick size 0.5 0.5 0.5 seat-on a name c
+contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 35
+contact property stiffness-normal 5e9 friction 20 damping 0.5 range group 'pad'
+contact property friction 10 range group 'pad' group 'block'
+contact property cohesion 1e4 range block 'a' block 'c'
+model solve time 0.01
+DAT
+"$BIN" run "$T/res.dat" -o "$T/res.h5" -q > /dev/null
+/usr/bin/python3 - "$T/res.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+dec = lambda v: v.decode() if isinstance(v, bytes) else v
+names = [dec(n) for n in f["joints/joint"][()]]
+cols = [dec(p) for p in f["joints/property"][()]]
+P = {n: dict(zip(cols, row)) for n, row in zip(names, f["joints/properties"][()])}
+deg = np.radians
+want = {"rock-a": (1e10, 1e9, deg(35), 0, 0), "pad-b": (5e9, 1e9, deg(10), 0, 0.5), "a-c": (1e10, 1e9, deg(35), 1e4, 0)}
+for j, (kn, ks, fr, coh, zeta) in want.items():
+    p = P[j]
+    got = (p["kn"], p["ks"], p["friction"], p["cohesion"], p["damping_ratio"])
+    assert np.allclose(got, (kn, ks, fr, coh, zeta), rtol=1e-12, atol=0), (j, got)
 PY
