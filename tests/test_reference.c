@@ -1,6 +1,6 @@
 /* rockdem — tests of the rigid-block reference solvers (Housner 1-DOF, Kounadis 2-DOF) against
  * closed forms, quadrature, energy integrals, limits and an independent finite-difference
- * Lagrangian (the checks listed at the end of shared/reference/ROCKING-EQUATIONS.md). */
+ * Lagrangian (the checks listed in docs/ROCKING-EQUATIONS.md). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
