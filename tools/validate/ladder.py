@@ -182,6 +182,18 @@ def attr(v):
     return v.decode() if isinstance(v, bytes) else v
 
 
+def event_times(path, kind):
+    """Times (s) of the events of one type ("impact", "overturn", ...), in file order. HDF5
+    layout 2: /events is a group of columns and /events/type an enum (docs/HDF5-LAYOUT.md)."""
+    with h5py.File(path, "r") as f:
+        e = f["events"]
+        if isinstance(e, h5py.Dataset):   # layout 1: a compound table (time, body, type, value)
+            return [float(r[0]) for r in e[()] if attr(r[2]) == kind]
+        names = {v: k for k, v in (h5py.check_enum_dtype(e["type"].dtype) or {}).items()}
+        types = [names.get(int(t), attr(t)) for t in e["type"][()]]
+        return [float(t) for t, k in zip(e["time"][()], types) if k == kind]
+
+
 # ==== scenes =====================================================================================
 # One block: 0.5 x 0.5 x 1.0 m (b 0.25, h 0.5, alpha = atan 0.5 = 0.4636 rad, p = 3.628 1/s) on a
 # fixed base, corner subcontacts, KS = KN, friction 80 deg (mu g = 5.7 g: the rigid models do not
@@ -230,9 +242,8 @@ def zeta_housner(L):
 
 # ==== rung 1: single block, free rocking vs CVODE Housner ========================================
 def impacts_and_amps(path, k=0, n=3):
-    events, t, tilt = h5(path, "events", "time", "tilt")
-    ev = [(float(e[0]), attr(e[2])) for e in events]
-    ti = [t for t, kind in ev if kind == "impact"][:n]
+    t, tilt = h5(path, "time", "tilt")
+    ti = event_times(path, "impact")[:n]
     th = tilt[:, k]
     amps = []
     for i in range(len(ti)):
@@ -305,12 +316,12 @@ def case_stack_history(L):
     motion = "ground-motion pulse one-sine amplitude 0.5g frequency 2"
     for label, damping in (("damped", "model damping viscous 1.0"), ("undamped", "")):
         ref = L.reference(stack_scene(L, "sh_ref", 1.0, damping, motion, T=2), "sh_ref.h5")
-        events, tr, thr = h5(ref, "events", "time", "tilt")
-        t_imp = [float(e[0]) for e in events if attr(e[2]) == "impact"][0]
+        tr, thr = h5(ref, "time", "tilt")
+        t_imp = event_times(ref, "impact")[0]
         sel = tr < t_imp
 
-        def dem(kf):
-            p = L.run(stack_scene(L, "sh%g" % kf, kf, damping, motion, T=2), "sh%g.h5" % kf)
+        def dem(kf):   # run to just past the reference's first impact: the history compared
+            p = L.run(stack_scene(L, "sh%g" % kf, kf, damping, motion, T="%.4f" % (t_imp + 0.05)), "sh%g.h5" % kf)
             td, thd = h5(p, "time", "tilt")
             out = []
             for b in range(2):
