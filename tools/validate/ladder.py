@@ -82,6 +82,8 @@ class Ladder:
         self.nrun += 1
         p = subprocess.run([self.bin] + [str(a) for a in args], stdout=subprocess.PIPE,
                            stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
+        if p.returncode == 3 and args[0] == "run" and "left the scene" in p.stdout:
+            return p.stdout   # a body fell off the model (status lost): the file holds the run
         if p.returncode not in (0,):
             raise RuntimeError("rockdem %s: exit %d\n%s" % (" ".join(map(str, args)), p.returncode, p.stdout[-2000:]))
         return p.stdout
@@ -511,7 +513,9 @@ def case_yade_stack(L):
     for a in amps:
         rd1, rd2, y1, y2 = yade_pair(L, "stack.dat", "stack-%s" % a, a, sets=[ks])
         for k, n in enumerate(("lower", "upper")):
-            o = [int(R.sumval("overturned", k)) for R in (rd1, y1, y2)]
+            # a rockdem run that ends because a body left the scene (status lost) gives no
+            # overturned flag: the scenario's own criterion (tilt ratio >= 1.5) is applied instead
+            o = [int(R.sumval("overturned", k) or R.sumval("max_tilt_ratio", k) >= 1.5) for R in (rd1, y1, y2)]
             L.check("yade-stack/%sg-%s-overturned" % (a, n), "%s block overturned at %s g" % (n, a), bool(o[1]),
                     "YADE (stored; dt/2 %s)" % ("agrees" if o[1] == o[2] else "DIFFERS"), bool(o[0]),
                     int(o[0] != o[1]), 0, "a flag: must agree")
