@@ -8,4 +8,4 @@
 # with rockdem's shear stiffness matched to YADE's per-face law (docs/YADE.md, "contact law").
 # A missing stored file is a failure, not a skip. Known gaps print "XFAIL: ... gap=".
 set -u
-exec /usr/bin/python3 tools/validate/ladder.py --depth fast --only yade --bin "${RD_BIN:-bin/rockdem}"
+exec /usr/bin/python3 tools/validate/ladder.py --depth fast --only yade,column --bin "${RD_BIN:-bin/rockdem}"
