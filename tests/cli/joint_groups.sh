@@ -77,3 +77,6 @@ for j, (kn, ks, fr, coh, zeta) in want.items():
     got = (p["kn"], p["ks"], p["friction"], p["cohesion"], p["damping_ratio"])
     assert np.allclose(got, (kn, ks, fr, coh, zeta), rtol=1e-12, atol=0), (j, got)
 PY
+# builders put every member in the assembly's group
+printf "block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base\nblock create column drums 2 diameter 0.8 height 0.9 sides 12 seat-on base name col group 'drums'\nmodel solve time 0.01\n" > "$T/col.dat"
+[ "$("$BIN" check "$T/col.dat" -q | grep -c "group 'drums'")" -eq 2 ]
