@@ -27,7 +27,7 @@ skips=(); xfails=()
 classify_cmocka() {
     printf '%s\n' "$2" | awk -v prog="$1" '
         /^\[ RUN      \] / { tc = $4; xf = ""; sk = ""; next }
-        /^XFAIL: /  { xf = (xf == "" ? "" : xf "; ") substr($0, 8); next }
+        /^XFAIL: /  { d = substr($0, 8); sub(/ \(.*$/, "", d); xf = (xf == "" ? "" : xf "; ") d; next }
         /^XPASS: /  { xp[tc] = substr($0, 8); next }
         /^SKIP: /   { sk = substr($0, 7); next }
         /^\[       OK \] / {
@@ -35,13 +35,13 @@ classify_cmocka() {
             else if (xf != "") print "xfail\t" prog "/" tc "\t" xf
             else print "pass\t" prog "/" tc "\t"
             ran++; next }
-        /^\[  FAILED  \] [a-z_]/ && $3 !~ /^[0-9]/ { if (!($3 in seen)) print "fail\t" prog "/" $3 "\t"; seen[$3] = 1; ran++; next }
-        /^\[  SKIPPED \] [a-z_]/ && $3 !~ /^[0-9]/ {
-            if (!($3 in seen)) {
-                if (sk == "") print "fail\t" prog "/" $3 "\tskipped without a SKIP: reason"
-                else print "skip\t" prog "/" $3 "\t" sk
+        /^\[  FAILED  \] / && $4 !~ /^[0-9]/ { if (!($4 in seen)) print "fail\t" prog "/" $4 "\t"; seen[$4] = 1; ran++; next }
+        /^\[  SKIPPED \] / && $4 !~ /^[0-9]/ {
+            if (!($4 in seen)) {
+                if (sk == "") print "fail\t" prog "/" $4 "\tskipped without a SKIP: reason"
+                else print "skip\t" prog "/" $4 "\t" sk
             }
-            seen[$3] = 1; ran++; next }
+            seen[$4] = 1; ran++; next }
         END { if (!ran) print "fail\t" prog "\tran no test" }'
     # a crash after the summary (or before any test) with a non-zero status
     if [ "$3" -ne 0 ] && ! printf '%s\n' "$2" | grep -q '^\[  FAILED  \]'; then
@@ -49,20 +49,29 @@ classify_cmocka() {
     fi
 }
 
-# classify_script NAME OUTPUT RC
+# classify_script NAME OUTPUT RC. A script that prints one line per check ("CHECK ..." when met,
+# "XFAIL: ..." for a known gap, "FAIL ..." when missed: tools/validate/ladder.py) is counted per
+# check; any other script is one case.
 classify_script() {
-    local xf sk xp
+    local xp sk nchk
     xp=$(printf '%s\n' "$2" | sed -n 's/^XPASS: //p' | paste -sd ';' -)
-    xf=$(printf '%s\n' "$2" | sed -n 's/^XFAIL: //p' | paste -sd ';' -)
     sk=$(printf '%s\n' "$2" | sed -n 's/^SKIP: //p' | paste -sd ';' -)
+    nchk=$(printf '%s\n' "$2" | grep -cE '^(CHECK |XFAIL: |FAIL )')
     if [ "$3" -eq "$SKIP_RC" ]; then   # the reason: its "SKIP:" line, else its last line
         [ -z "$sk" ] && sk=$(printf '%s\n' "$2" | sed '/^[[:space:]]*$/d' | tail -n1)
         if [ -n "$sk" ]; then printf 'skip\t%s\t%s\n' "$1" "$sk"
         else printf 'fail\t%s\texit %d (skip) without a printed reason\n' "$1" "$SKIP_RC"; fi
+        return
+    fi
+    [ -n "$xp" ] && printf 'fail\t%s\tXPASS: %s\n' "$1" "$xp"
+    if [ "$nchk" -gt 0 ]; then
+        printf '%s\n' "$2" | awk -v n="$1" '
+            /^CHECK / { print "pass\t" n "\t"; next }
+            /^XFAIL: / { d = substr($0, 8); sub(/ \(.*$/, "", d); print "xfail\t" n "\t" d; next }
+            /^FAIL / { print "fail\t" n "\t" substr($0, 6); f++ }
+            END { if (!f && rc != 0) print "fail\t" n "\texit status " rc }' rc="$3"
     elif [ "$3" -ne 0 ]; then printf 'fail\t%s\texit status %d\n' "$1" "$3"
-    elif [ -n "$xp" ]; then printf 'fail\t%s\tXPASS: %s\n' "$1" "$xp"
-    elif [ -n "$xf" ]; then printf 'xfail\t%s\t%s\n' "$1" "$xf"
-    else printf 'pass\t%s\t\n' "$1"; fi
+    elif [ -z "$xp" ]; then printf 'pass\t%s\t\n' "$1"; fi
 }
 
 # tally OUTPUT CLASSES: add the classified cases to the counts, print one line per program
@@ -78,7 +87,7 @@ tally() {
     done <<< "$lines"
     printf '%-40s %3d passed, %d failed, %d skipped, %d xfail\n' "$name" "$p" "$f" "$s" "$x"
     printf '%s\n' "$out" | grep -E '^(XFAIL|XPASS|SKIP): ' | sed 's/^/  /'
-    [ "$f" -ne 0 ] && printf '%s\n' "$out" | grep -E 'FAILED|ERROR|error|Assert|FAIL|Traceback' | head -30
+    [ "$f" -ne 0 ] && printf '%s\n' "$out" | grep -E 'FAILED|ERROR|error|Assert|FAIL|Traceback' | grep -v '^XFAIL' | head -30
     pass=$((pass + p)); fail=$((fail + f)); skip=$((skip + s)); xfail=$((xfail + x))
 }
 

@@ -45,4 +45,4 @@ printf '%s\n' "$curve" | awk -v one="$one" 'NR > 2 { if (NR > 3 && $4 <= prev) b
     END { exit !(NR == 5 && !bad && g == one) }' || fail "curve not rising, or its 2 Hz entry differs from the single search ($one g): $curve"
 err=$("$BIN" threshold "$blk" --engine nope 2>&1 >/dev/null); rc=$?
 [ "$rc" -eq 2 ] || fail "bad engine accepted: $err"
-[ "$fails" -eq 0 ]
+[ "$fails" -eq 0 ] && echo "CHECK rockdem reference / threshold command-line contract"
