@@ -77,6 +77,12 @@ scenarios/pbr.obj: tools/make_pbr.py
 test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(TESTBIN) scenarios/pbr.obj
 	@bash tests/run.sh $(BUILD) $(BIN)
 
+# the full validation ladder (tools/validate/ladder.py; `make test` runs its fast depth): writes
+# docs/validation.md, a generated report (never edit it by hand). About 10-15 min on 2 cores.
+.PHONY: validate
+validate: $(BIN)/rockdem
+	/usr/bin/python3 tools/validate/ladder.py --depth full --bin $(BIN)/rockdem --md docs/validation.md
+
 asan:
 	$(MAKE) test BUILD=build-asan BIN=build-asan/bin OPT=-O1 \
 	    SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
@@ -98,10 +104,11 @@ bench: $(BIN)/rockdem
 	@bash bench/run.sh $(BIN)
 	@bash bench/columns.sh $(BIN)
 
-# regenerate the stored YADE cross-check results in tests/data/yade/ (needs yade): docs/YADE.md
+# regenerate the stored YADE runs in tests/data/yade/ (dt) and tests/data/yade/half/ (dt/2) and
+# compare (needs yade: `apt-get install yade`, ~1.5 GB); docs/YADE.md
 check-yade: $(BIN)/rockdem
 	/usr/bin/python3 tools/yade/regen.py
-	@RD_BIN=$(BIN)/rockdem bash tests/cli/yade_compare.sh
+	/usr/bin/python3 tools/validate/ladder.py --depth full --only yade,column --bin $(BIN)/rockdem
 
 # error against run time of the DEM vs the rigid references: docs/study.md, docs/study.png
 study: $(BIN)/rockdem

@@ -414,7 +414,7 @@ static void test_error_unknown_command(void **state)
     (void)state;
     parse_fails("modle solve time 1\n",
                 "run.dat:1:1: unknown command 'modle' (expected model, block, contact, "
-                "ground-motion, output)");
+                "ground-motion, history, output)");
 }
 
 static void test_error_unknown_and_missing_verb(void **state)

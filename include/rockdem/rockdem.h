@@ -67,7 +67,25 @@ typedef struct rd_body_summary {
     double max_rocking_out;/* max |out-of-plane rocking| (about the motion direction), rad */
     double max_twist;      /* max |twist about the vertical|, rad */
     double final_twist;    /* twist at the end (residual), rad */
+    int unsupported;       /* 1 if it touched nothing at rest or during the run: it fell freely */
+    double final_position[3]; /* centre of mass at the end, ground frame, m */
+    double travel;         /* horizontal distance of the centre of mass from its rest position at
+                              the end, m (where an overturned or falling body ended up) */
+    double drop;           /* fall of the centre of mass from where it was placed to the end, m */
 } rd_body_summary;
+
+/* What one joint (pair of bodies that came into contact) had and did. */
+typedef struct rd_joint_summary {
+    char a[RD_NAME_MAX], b[RD_NAME_MAX]; /* its two bodies */
+    double kn, ks;        /* Pa/m */
+    double friction;      /* rad */
+    double cohesion, tension; /* Pa */
+    double damping;       /* viscous ratio of its normal dashpot */
+    int closed;           /* 1 if it carried load while shaking */
+    double max_opening;   /* largest opening while shaking, m */
+    double max_slip;      /* largest relative slip of b against a at the joint, m */
+    double final_slip;    /* slip at the end, m */
+} rd_joint_summary;
 
 typedef struct rd_summary {
     int nbodies;                 /* free bodies */
@@ -160,6 +178,10 @@ RD_API double rd_sim_dt(const rd_sim *sim);
 
 /* Sum over the shaking steps of the active subcontacts (for ns per subcontact-step). */
 RD_API long rd_sim_active_point_steps(const rd_sim *sim);
+
+/* Joints (pairs of bodies that came near each other) and what each did; k < count. */
+RD_API int rd_sim_joint_count(const rd_sim *sim);
+RD_API void rd_sim_joint(const rd_sim *sim, int k, rd_joint_summary *out);
 
 RD_API void rd_sim_free(rd_sim *sim);
 

@@ -11,6 +11,8 @@
 #define RD_NAME_MAX 64
 #define RD_PATH_MAX 512
 #define RD_MAX_BODIES 256
+#define RD_MAX_JOINTS 32     /* `contact property ... range` overrides */
+#define RD_MAX_HISTORIES 64  /* `history` commands */
 
 typedef enum rd_shape_kind {
     RD_SHAPE_BRICK = 0, /* rectangular box, edge lengths size[0..2] along its local x, y, z */
@@ -28,6 +30,8 @@ typedef struct rd_body_def {
     int nverts;                 /* hull: number of points */
     double *verts;              /* hull: points [nverts][3], m (owned by the scenario) */
     char mesh[RD_PATH_MAX];     /* mesh: file path (relative paths: to the scenario's folder) */
+    char group[RD_NAME_MAX];    /* joint group (`group 'pad'`), "" = none: selects the body in
+                                   `contact property ... range group 'pad'` */
     char seat_on[RD_NAME_MAX];  /* if set: place the body so its lowest point rests on the top of
                                    this body, centre of mass above position[0..1] */
     double size[3];             /* brick edge lengths, m (> 0) */
@@ -73,6 +77,63 @@ typedef struct rd_contact_def {
                          a tenth of its narrowest contact face (a mesh: its own vertices) */
     rd_perturb_def perturb; /* interface perturbation (default: off) */
 } rd_contact_def;
+
+/* One end of a joint range: any body, the bodies of a group, or one body by name. */
+typedef enum rd_range_kind { RD_RANGE_ANY = 0, RD_RANGE_GROUP = 1, RD_RANGE_BLOCK = 2 } rd_range_kind;
+
+typedef struct rd_range_def {
+    rd_range_kind kind;
+    char name[RD_NAME_MAX]; /* group or block name */
+} rd_range_def;
+
+/* Properties a joint override sets (rd_joint_def.set); the others come from the default. */
+enum { RD_JOINT_KN = 1, RD_JOINT_KS = 2, RD_JOINT_FRICTION = 4, RD_JOINT_COHESION = 8,
+       RD_JOINT_TENSION = 16, RD_JOINT_DAMPING = 32, RD_JOINT_RESTITUTION = 64 };
+
+/* A per-range joint (3DEC `block contact property ... range group A group B`):
+ * `contact property stiffness-normal 5e9 friction 20 range group 'pad' group 'cask'`.
+ * A pair of bodies takes the default (rd_scenario.contact, model damping) and then every
+ * override whose range holds it, in file order (a later one wins where both set a property).
+ * range[1] of kind ANY: the pair needs only one of its bodies in range[0]. */
+typedef struct rd_joint_def {
+    unsigned set;      /* RD_JOINT_* bits */
+    double kn, ks;     /* Pa/m */
+    double friction;   /* rad */
+    double cohesion;   /* Pa */
+    double tension;    /* Pa */
+    double damping;    /* ratio of critical damping of the joint's normal dashpot (0 = none);
+                          default: the model's `damping viscous` ratio, else 0 */
+    double restitution;/* impact loss of its subcontacts, [0, 1] (rd_contact_def.restitution) */
+    rd_range_def range[2];
+    int line;          /* scenario line */
+} rd_joint_def;
+
+/* Histories (`history ...`): sampled every rd_scenario.history_interval, written under
+ * /history in the output with units. */
+typedef enum rd_history_kind { RD_HISTORY_BODY = 0, RD_HISTORY_JOINT = 1, RD_HISTORY_ENERGY = 2 } rd_history_kind;
+
+enum { /* what a body history records */
+    RD_HB_POSITION = 1,         /* centre of mass, m */
+    RD_HB_ROTATION = 2,         /* in-plane rocking, out-of-plane rocking, twist, rad */
+    RD_HB_VELOCITY = 4,         /* m/s */
+    RD_HB_ANGULAR_VELOCITY = 8  /* rad/s */
+};
+enum { /* what a joint history records (joint = the pair of bodies) */
+    RD_HJ_NORMAL_FORCE = 1,     /* compression, N */
+    RD_HJ_SHEAR_FORCE = 2,      /* on the second body, x y z and magnitude, N */
+    RD_HJ_OPENING = 4,          /* largest gap of the joint's subcontacts, m */
+    RD_HJ_SLIP = 8,             /* relative tangential displacement at the joint, elastic part
+                                   removed, m (x y z and magnitude) */
+    RD_HJ_AREA = 16,            /* active contact area, m^2 */
+    RD_HJ_PRESSURE_CENTRE = 32  /* centre of pressure (normal-force weighted), ground frame, m */
+};
+
+typedef struct rd_history_def {
+    rd_history_kind kind;
+    char a[RD_NAME_MAX], b[RD_NAME_MAX]; /* body; joint: its two bodies */
+    unsigned what;                       /* RD_HB_* or RD_HJ_* bits */
+    int line;
+} rd_history_def;
 
 typedef enum rd_damping_kind {
     RD_DAMPING_NONE = 0,    /* default, as in seed 002 */
@@ -208,7 +269,9 @@ typedef struct rd_scenario {
     double density;         /* default body density, kg/m^3 (default 2700) */
     int nbodies;
     rd_body_def bodies[RD_MAX_BODIES];
-    rd_contact_def contact;
+    rd_contact_def contact;      /* the default joint */
+    int njoints;
+    rd_joint_def joint[RD_MAX_JOINTS]; /* per-range overrides, file order */
     rd_damping_def damping;
     rd_motion_def motion;
     rd_timestep_def timestep;
@@ -222,6 +285,12 @@ typedef struct rd_scenario {
     int solve_line;  /* scenario line of `model solve` (0: none), for messages */
     rd_overturn_def overturn;
     rd_output_def output;
+    int nhistories;
+    rd_history_def history[RD_MAX_HISTORIES];
+    double history_interval; /* s between history samples (`history interval`; default 0.001) */
+    char save_path[RD_PATH_MAX];    /* `model save 'f.h5'`: checkpoint after settling ("" = none) */
+    char restore_path[RD_PATH_MAX]; /* `model restore 'f.h5'`: start from a checkpoint instead
+                                       of settling ("" = none) */
     double ref_restitution; /* rigid reference solvers only (`model reference restitution e`):
                                impact restitution e in (0, 1]; < 0 = Housner's r (default -1) */
 } rd_scenario;

@@ -43,9 +43,14 @@ static const sub_help pages[] = {
               "Read and build everything run would, writing nothing: the scenario (every number\n"
               "within its range, docs/LIMITS.md), meshes (read and checked), records (read; their\n"
               "intensity measures printed unless -q), the perturbed subcontact points, the time\n"
-              "step and the step budget (1e9 steps; --force lifts it), the output folder. Prints\n"
-              "one summary line. Exit status 0 when valid, 2 with one line naming file, line and\n"
-              "problem.\n"},
+              "step and the step budget (1e9 steps; --force lifts it), the output folder. Then\n"
+              "reports the time step and its limit, every block (mass, volume, tipping angle,\n"
+              "subcontacts, what it rests on), the joints and the measured cost of a simulated\n"
+              "second, and warns of a block with nothing under it, a block placed above its\n"
+              "support, overlapping blocks, a step far below the output interval and a record\n"
+              "shorter than the run. The last line is 'FILE: ok (...)' or 'FILE: N warnings\n"
+              "(...)'. Exit status 0 when valid (warnings included), 2 with one line naming file,\n"
+              "line and problem.\n"},
     {"reference", "usage: rockdem reference FILE [--set KEY=VALUE]... [-o OUT.h5]\n"
                   "Solve the scene as rigid blocks with CVODE: Housner's equation for one free brick\n"
                   "on a fixed base, Kounadis' two-block equations for a stack of two. Same HDF5\n"

@@ -31,16 +31,34 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
                    "a body left the scene" : "a body passed into another");
             continue;
         }
+        if (b->unsupported) {
+            printf("%s: FELL FREELY: it touched nothing (no support under it); fell %.4g m, ended at "
+                   "(%.4g, %.4g, %.4g) m\n", b->name, b->drop, b->final_position[0], b->final_position[1],
+                   b->final_position[2]);
+            continue;
+        }
         const char *what = b->overturned ? "OVERTURNED" : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
         printf("%s: %s", b->name, what);
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
         printf("; max tilt %.4g rad = %.3g alpha; max slide %.3g mm%s%s\n", b->max_tilt, b->max_tilt_ratio,
                1e3 * b->max_slide, b->slid ? "; slid" : "", b->uplifted && !b->overturned ? "; uplifted" : "");
+        if (b->overturned)
+            printf("%s: ended at (%.4g, %.4g, %.4g) m: %.4g m from where it stood, %.4g m lower\n",
+                   b->name, b->final_position[0], b->final_position[1], b->final_position[2], b->travel,
+                   b->drop);
         if (!quiet)
             printf("%s: precariousness: least tipping angle %.4g deg leaning towards %.0f deg "
                    "(quasi-static tipping acceleration %.3g g); twist at end %.3g deg\n", b->name,
                    b->alpha_min * 180 / M_PI, b->alpha_min_direction * 180 / M_PI,
                    b->tip_accel_min / RD_G_STANDARD, b->final_twist * 180 / M_PI);
+    }
+    for (int k = 0; k < rd_sim_joint_count(sim); k++) {
+        rd_joint_summary j;
+        rd_sim_joint(sim, k, &j);
+        if (!j.closed) continue;
+        printf("joint %s-%s: max slip %.4g mm, final slip %.4g mm, max opening %.4g mm "
+               "(KN %.3g, KS %.3g Pa/m, friction %.3g deg)\n", j.a, j.b, 1e3 * j.max_slip,
+               1e3 * j.final_slip, 1e3 * j.max_opening, j.kn, j.ks, j.friction * 180 / M_PI);
     }
     if (quiet) return;
     double sim_s = s->steps * s->dt;
@@ -67,17 +85,6 @@ static int force_option(void *ctx, int argc, char **argv, int *i)
 
 /* rockdem check: everything run would read and build (meshes, records with their IMs,
  * perturbed subcontact points, time step and step budget, output folder), nothing written. */
-static int cmd_check(rd_scenario *sc, int quiet)
-{
-    rd_error err;
-    rd_check_info info;
-    if (!quiet && rd_cli_print_motion(&sc->motion)) return 2;
-    if (rd_sim_check(sc, &info, &err)) { fprintf(stderr, "%s\n", err.msg); return 2; }
-    printf("%s: ok (%d bodies, %d subcontact points, %.4g s; dt %.3g s, about %.3g steps; output %s)\n", sc->file,
-           sc->nbodies, info.npoints, sc->duration, info.dt, info.steps, sc->output.path);
-    return 0;
-}
-
 static int cmd_run(int argc, char **argv, int check_only)
 {
     rd_scenario sc;
@@ -87,7 +94,7 @@ static int cmd_run(int argc, char **argv, int check_only)
     int quiet = rd_cli_quiet;
     if (force) sc.force = 1;
     if (check_only) {
-        int rc = cmd_check(&sc, quiet);
+        int rc = rd_cli_check(&sc, quiet);
         rd_scenario_free(&sc);
         return rc;
     }

@@ -70,6 +70,8 @@ typedef struct side_ctx {
     int cr[RD_MAX_PLANES];
     const double *m;            /* outward normal of the current owner face, ground frame */
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
+    double nsum[3];             /* sum of fn times the normal from body a towards b, N */
+    double to_b;                /* +1 when the owner is the pair's body b, -1 when it is a */
 } side_ctx;
 
 static inline double plane_dist(const double *pl, const double p[3])
@@ -146,7 +148,7 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], 
 }
 
 /* Force of one subcontact on the owner; returns 1 if it carries force. */
-static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, int st)
+static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
     const int o = c->o, t = c->t;
     unsigned char *fl = &s->pstate[st];
@@ -155,6 +157,8 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
     for (int k = 0; k < c->ncr; k++)
         if (plane_dist(c->pl[c->cr[k]], p) > c->tol + slack) {
+            s->pj[st][0] = 0;
+            s->pj[st][1] = plane_dist(c->pl[c->cr[k]], p);
             double stretch = (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
             point_exit(s, st, kA, sA, stretch);
             return 0;
@@ -171,6 +175,8 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     int e = s->pface[st];
     const double *u = s->wn[s->face0[t] + e]; /* outward normal of the entrance face */
     double depth = -plane_dist(c->pl[e], p), vn = rd_dot(vr, u);
+    s->pj[st][0] = 0;
+    s->pj[st][1] = -depth;
     if (c->facing && rd_dot(c->m, u) > -RD_FACING_COS) {
         point_idle(s, st, kA, sA, depth - s->pset[st]);
         return 0;
@@ -221,7 +227,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
     }
     for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * u[k]) * s->dt;
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
-    double lim = fmax(fn, 0.0) * s->tan_phi + cohesion;
+    double lim = fmax(fn, 0.0) * j->tan_phi + cohesion;
     double mag2 = rd_dot(fs, fs);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (mag2 > lim * lim) {
@@ -235,6 +241,9 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_contact_def *j, int pt, i
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     }
     s->e_elastic += 0.5 * (kA * stretch * stretch + mag2 / sA);
+    s->pj[st][0] = fn;
+    s->pj[st][1] = -stretch;
+    for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];
 
     double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};
     rd_axpy(1.0, F, s->f[o]);
@@ -285,7 +294,7 @@ static void reset_departed(rd_sim *s)
 }
 
 /* Every point of candidate face cf (k-th of its side) leaves the contact. */
-static void clear_face(rd_sim *s, const rd_side *sd, const rd_contact_def *j, int cf, int k)
+static void clear_face(rd_sim *s, const rd_side *sd, const rd_joint *j, int cf, int k)
 {
     int *na = &s->face_nactive[sd->face0 + k];
     if (*na == 0) return;
@@ -312,8 +321,9 @@ static void side_planes(const rd_sim *s, side_ctx *c)
 }
 
 /* Planes that some point of candidate face cf may cross (its vertices are not all inside by a
- * margin); 0, or 1 when the whole face lies outside one plane (no point can touch). */
-static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack)
+ * margin); 0, or 1 when the whole face lies outside one plane (no point can touch), with *gap
+ * the face's clearance from that plane, m. */
+static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack, double *gap)
 {
     const rd_poly *po = &s->poly[c->o];
     int f = s->cf_face[cf], nv = po->flen[f];
@@ -329,17 +339,19 @@ static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack)
             double e = rd_dot(s->wn[k], wv[ix[v]]) - s->wd[k];
             emin = fmin(emin, e); emax = fmax(emax, e);
         }
-        if (emin > c->tol + slack + raise) return 1;
+        if (emin > c->tol + slack + raise) { *gap = emin - raise; return 1; }
         if (emax > -c->tol - raise) c->cr[c->ncr++] = q;
     }
     return 0;
 }
 
-static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
+static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, double nsum[3])
 {
-    const rd_contact_def *j = &s->sc.contact;
+    const rd_joint *j = &s->joint[pr->joint];
     side_ctx c;
     c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
+    c.to_b = sd->owner == pr->b ? 1.0 : -1.0;
+    c.nsum[0] = c.nsum[1] = c.nsum[2] = 0;
     c.k_active = 0;
     c.damp_coef = 0;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
@@ -347,14 +359,19 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
        blocks lying on each other, twisted or slid by a hair), and one hovering this close
        above a face is already attached to it (with no force until it touches) */
     c.tol = RD_CONTACT_BAND * fmin(s->poly[c.o].radius, s->poly[c.t].radius);
-    if (s->sc.damping.kind == RD_DAMPING_VISCOUS && !s->settling) {
+    if (j->damping > 0 && !s->settling) {
         double K = pr->k_active > 0 ? pr->k_active : INFINITY; /* a new contact: undamped step */
-        c.damp_coef = 2.0 * s->sc.damping.value * sqrt(pr->m_eff / K);
+        c.damp_coef = 2.0 * j->damping * sqrt(pr->m_eff / K);
     }
     double slack = s->bonds ? j->tension / j->kn : 0.0;
     side_planes(s, &c);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
-        if (face_planes(s, &c, cf, slack)) { clear_face(s, sd, j, cf, k); continue; }
+        double gap;
+        if (face_planes(s, &c, cf, slack, &gap)) {
+            clear_face(s, sd, j, cf, k);
+            rd_joint_face_open(s, sd, cf, gap);
+            continue;
+        }
         int na = 0, nin = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         double area = 0;
@@ -371,6 +388,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active)
         rd_monitor_contact(s, c.o, c.t, area, na, nslip);
     }
     *k_active += c.k_active;
+    rd_axpy(1.0, c.nsum, nsum);
 }
 
 /* Broad phase, then every live pair's subcontact forces. 0, or -1 when the broad phase ran out
@@ -382,9 +400,11 @@ int rd_contact_step(rd_sim *s)
     reset_departed(s);
     for (int k = 0; k < s->nlive; k++) {
         rd_pair *pr = &s->pair[s->live[k]];
-        double k_active = 0;
-        for (int q = 0; q < pr->nside; q++) side_step(s, pr, &pr->side[q], &k_active);
+        double k_active = 0, nsum[3] = {0, 0, 0};
+        for (int q = 0; q < pr->nside; q++) side_step(s, pr, &pr->side[q], &k_active, nsum);
         pr->k_active = k_active;
+        double nn = rd_norm(nsum);
+        if (nn > 0) for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
     }
     int *t = s->live_prev; s->live_prev = s->live; s->live = t;
     int c = s->cap_live_prev; s->cap_live_prev = s->cap_live; s->cap_live = c;

@@ -156,7 +156,7 @@ static void support_polygon(rd_sim *s, int k, double zmin)
     int i = s->free_body[k];
     rd_watch *w = &s->watch[k];
     double (*pts)[2] = NULL;
-    int n = s->sc.settle.enabled && w->rests_on >= 0 ? contact_points(s, i, w->rests_on, &pts) : 0;
+    int n = (s->sc.settle.enabled || s->restored) && w->rests_on >= 0 ? contact_points(s, i, w->rests_on, &pts) : 0;
     if (n < 0) n = 0;
     double (*all)[2] = realloc(pts, (size_t)(n + s->poly[i].nv) * sizeof *pts);
     if (!all) { free(pts); pts = NULL; n = 0; }
@@ -316,6 +316,7 @@ void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactiv
         if (k < 0 || s->x[below][2] >= s->x[me][2]) continue;
         rd_watch *w = &s->watch[k];
         w->area += area; w->nactive += nactive; w->nslip += nslip;
+        if (area > 0 && s->shaking) w->touched = 1;
     }
 }
 
@@ -446,6 +447,11 @@ void rd_monitor_finish(rd_sim *s)
         rd_mat_vec(s->R[i], w->base_local, b);
         rd_axpy(1.0, s->x[i], b);
         w->sum.final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
+        /* where it ended up: a body that never touched anything fell freely */
+        w->sum.unsupported = w->rest_area <= 0 && !w->touched;
+        rd_copy3(s->x[i], w->sum.final_position);
+        w->sum.travel = hypot(s->x[i][0] - w->x_ref[0], s->x[i][1] - w->x_ref[1]);
+        w->sum.drop = w->z_start - s->x[i][2];
         if (!w->sum.overturned) w->sum.overturn_time = -1;
     }
 }

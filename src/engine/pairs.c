@@ -79,10 +79,15 @@ static int pair_create(rd_sim *s, int a, int b)
         reserve((void **)&s->pset, &s->cap_pset, s->nstate + ns, sizeof *s->pset))
         return -1;
     s->cap_state_flags = cap;
+    cap = s->cap_state_joint;
+    if (reserve((void **)&s->pj, &cap, s->nstate + ns, sizeof *s->pj)) return -1;
+    s->cap_state_joint = cap;
+    int joint = rd_joint_resolve(s, a, b);
+    if (joint < 0) return -1;
     int p = s->npair++;
     rd_pair *pr = &s->pair[p];
     memset(pr, 0, sizeof *pr);
-    pr->a = a; pr->b = b; pr->seen = -1;
+    pr->a = a; pr->b = b; pr->seen = -1; pr->joint = joint;
     double w = (pa && pb) ? 0.5 : 1.0;
     for (int k = 0; k < 2; k++) {
         int o = k ? b : a;
@@ -94,7 +99,8 @@ static int pair_create(rd_sim *s, int a, int b)
         s->nface_state += s->cf0[o + 1] - s->cf0[o];
     }
     /* bonds (cohesion, tension) exist only in joints closed before shaking starts */
-    unsigned char init = (s->bonds && !s->shaking) ? RD_PT_BONDED : 0;
+    const rd_joint *jt = &s->joint[joint];
+    unsigned char init = ((jt->cohesion > 0 || jt->tension > 0) && !s->shaking) ? RD_PT_BONDED : 0;
     for (int k = s->nstate - ns; k < s->nstate; k++) s->pstate[k] = init;
     pr->m_eff = s->fixed[a] ? s->mass[b] : s->fixed[b] ? s->mass[a]
                             : s->mass[a] * s->mass[b] / (s->mass[a] + s->mass[b]);

@@ -285,8 +285,7 @@ static int build_points(rd_sim *s, rd_error *err)
 
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
-    s->tan_phi = tan(s->sc.contact.friction);
-    s->bonds = s->sc.contact.tension > 0 || s->sc.contact.cohesion > 0;
+    if (rd_joints_init(s, err)) return -1;
     s->can_cull = !s->bonds;
     if (build_points(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err)) return -1;
     return 0;

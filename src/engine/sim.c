@@ -138,8 +138,10 @@ static void step_once(rd_sim *s)
         if (s->t >= s->next_out - 1e-9 * s->dt) {
             rd_energy_sample(s);
             rd_observe_sample(s);
+            rd_joints_sample(s);
             s->next_out += s->sc.output.interval;
         }
+        rd_history_step(s);
     }
     rd_integrate_drift(s);
     memcpy(s->ag_prev, s->ag, sizeof s->ag);
@@ -172,6 +174,23 @@ static void settle(rd_sim *s)
     /* bonds exist only where the joint is closed at rest: a re-created contact starts from zero */
     for (int k = 0; k < s->nstate; k++)
         if (!(s->pstate[k] & RD_PT_ACTIVE)) s->pstate[k] &= (unsigned char)~RD_PT_BONDED;
+}
+
+/* The state at rest: from a checkpoint (`model restore`, read by rd_sim_create), or by
+ * settling (then `model save`),
+ * or as placed. 0 when the run cannot go on (status and message set). */
+static int restore_or_settle(rd_sim *s)
+{
+    rd_error err;
+    if (s->restored) return 1; /* rd_sim_create read the checkpoint */
+    if (s->sc.settle.enabled) settle(s);
+    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
+    if (s->status == RD_STATUS_DONE && s->sc.save_path[0] && rd_checkpoint_save(s, s->sc.save_path, &err)) {
+        snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
+        s->status = RD_STATUS_IO_ERROR;
+        return 0;
+    }
+    return 1;
 }
 
 /* Rotate body k about the edge of its support on the side it leans to. */
@@ -274,7 +293,8 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
     rd_sim *s = calloc(1, sizeof *s);
     if (!s) { rd_error_set(err, "out of memory"); return NULL; }
     s->sc = *sc;
-    if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err) || check_budget(s, err)) {
+    if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err) || check_budget(s, err) ||
+        rd_history_init(s, err)) {
         rd_sim_free(s);
         return NULL;
     }
@@ -292,13 +312,15 @@ int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err)
     return rc;
 }
 
-rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
+rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err)
 {
     rd_sim *s = sim_build(sc, err);
     if (!s) return NULL;
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
     s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
-    if (!s->watch || !s->obuf) { rd_error_set(err, "out of memory"); goto fail; }
+    s->rest_area = calloc((size_t)s->nfree + 1, sizeof *s->rest_area);
+    if (!s->watch || !s->obuf || !s->rest_area) { rd_error_set(err, "out of memory"); goto fail; }
+    for (int k = 0; k < s->nfree; k++) s->watch[k].z_start = s->x[s->free_body[k]][2];
     return s;
 fail:
     rd_sim_free(s);
@@ -318,12 +340,30 @@ static void judge_energy(rd_sim *s)
     s->status = RD_STATUS_UNTRUSTED;
 }
 
+rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
+{
+    rd_sim *s = rd_sim_build(sc, err);
+    if (s && s->sc.restore_path[0] && rd_checkpoint_restore(s, s->sc.restore_path, err)) {
+        rd_sim_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+double rd_sim_trial_steps(rd_sim *s, int n)
+{
+    s->settling = 1;
+    double t0 = wall_now();
+    for (int k = 0; k < n && s->status == RD_STATUS_DONE; k++) step_once(s);
+    s->settling = 0;
+    return wall_now() - t0;
+}
+
 rd_status rd_sim_run(rd_sim *s)
 {
     stop_requested = 0;
     s->status = RD_STATUS_DONE;
-    if (s->sc.settle.enabled) settle(s);
-    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
+    if (!restore_or_settle(s)) return s->status;
     rd_bodies_refresh(s);
     rd_monitor_rest(s);
     s->rested = 1;
@@ -345,6 +385,7 @@ rd_status rd_sim_run(rd_sim *s)
     s->wall = wall_now() - t0;
     rd_progress_report(s->t, end);
     rd_monitor_finish(s);
+    rd_joints_sample(s);
     rd_energy_sample(s);
     judge_energy(s);
     rd_observe_end(s);
@@ -408,6 +449,24 @@ double rd_sim_dt(const rd_sim *s) { return s->dt; }
 
 long rd_sim_active_point_steps(const rd_sim *s) { return s->active_point_steps; }
 
+int rd_sim_joint_count(const rd_sim *s) { return s->npair; }
+
+void rd_sim_joint(const rd_sim *s, int k, rd_joint_summary *out)
+{
+    const rd_pair *pr = &s->pair[k];
+    const rd_joint *j = &s->joint[pr->joint];
+    memset(out, 0, sizeof *out);
+    snprintf(out->a, sizeof out->a, "%s", s->sc.bodies[pr->a].name);
+    snprintf(out->b, sizeof out->b, "%s", s->sc.bodies[pr->b].name);
+    out->kn = j->kn; out->ks = j->ks; out->friction = j->friction;
+    out->cohesion = j->cohesion; out->tension = j->tension; out->damping = j->damping;
+    out->closed = pr->closed;
+    out->max_opening = pr->open_max;
+    out->max_slip = pr->slip_max;
+    out->final_slip = sqrt(pr->slip_end[0] * pr->slip_end[0] + pr->slip_end[1] * pr->slip_end[1] +
+                           pr->slip_end[2] * pr->slip_end[2]);
+}
+
 void rd_sim_free(rd_sim *s)
 {
     if (!s) return;
@@ -417,8 +476,9 @@ void rd_sim_free(rd_sim *s)
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
-                      s->pair, s->fs, s->pstate, s->pface, s->pset, s->cf_facing, s->face_nactive, s->watch, s->event, s->obuf,
-                      s->aabb, s->order, s->hkey, s->live, s->live_prev};
+                      s->pair, s->fs, s->pstate, s->pface, s->pset, s->cf_facing, s->face_nactive,
+                      s->watch, s->event, s->obuf, s->aabb, s->order, s->hkey, s->live, s->live_prev,
+                      s->joint, s->pj, s->hist_pair, s->hist_body, s->hist, s->rest_area};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) free(arrays[k]);
     free(s);
 }

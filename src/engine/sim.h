@@ -28,6 +28,29 @@ enum {
     RD_PT_VIRGIN = 16 /* new contact not yet unloaded: the impact loss is still to come */
 };
 
+/* The resolved properties of one joint (joint.c): the default or a per-range override. Pairs
+ * with equal properties share one entry of rd_sim.joint. */
+typedef struct rd_joint {
+    double kn, ks;     /* normal and shear stiffness per unit area, Pa/m */
+    double friction;   /* rad */
+    double tan_phi;    /* tan(friction) */
+    double cohesion;   /* Pa */
+    double tension;    /* Pa */
+    double damping;    /* viscous ratio of the normal dashpot (0 = none) */
+    double restitution;/* impact loss of a subcontact, [0, 1] (contact.c) */
+} rd_joint;
+
+/* Joint measures of one pair at one instant (joint.c: rd_joint_measure). */
+typedef struct rd_joint_state {
+    double fn;         /* normal force (compression), N */
+    double fs[3];      /* shear force on the pair's second body, ground frame, N */
+    double area;       /* active contact area, m^2 */
+    double cop[3];     /* centre of pressure, ground frame, m (the pair's midpoint when no load) */
+    double opening;    /* largest gap among its evaluated subcontacts (>= 0), m */
+    double slip[3];    /* relative tangential displacement of the second body at the joint's
+                          reference point, elastic shear removed, m */
+} rd_joint_state;
+
 /* One side of a contact pair: the owner's subcontact points tested against the other body's
  * surface. Contact history is keyed by (pair, side, point index on the owner): a stable key,
  * because subcontact points are fixed on their body for the whole run. */
@@ -47,6 +70,17 @@ typedef struct rd_pair {
     double m_eff;      /* reduced mass of the pair, kg (for viscous damping) */
     long seen;         /* broad-phase stamp of the last step its boxes overlapped */
     double k_active;   /* sum of KN*A over points active last step, N/m (viscous damping) */
+    int joint;         /* index of its properties in rd_sim.joint */
+    double n[3];       /* the joint's normal, unit, from a towards b: its subcontacts' normals
+                          weighted by their normal forces (the last loaded step's) */
+    int ref_set;       /* 1 while the joint carried load at its last measure */
+    double ref[2][3];  /* its centre of pressure then, in the frames of a and b, m */
+    double slip_acc[3];/* accumulated tangential displacement of b against a at the centre of
+                          pressure while loaded (elastic shear included), m */
+    double open_max;   /* largest opening while shaking, m */
+    double slip_max;   /* largest |slip| while shaking, m */
+    double slip_end[3];/* slip at the last sample, m */
+    int closed;        /* 1 if the joint ever carried load while shaking */
 } rd_pair;
 
 
@@ -78,6 +112,8 @@ typedef struct rd_watch {
     double rock_peak;    /* largest |rocking angle| since the last impact, rad */
     int sliding;         /* currently sliding as a whole (every active point at the Coulomb limit) */
     int over;            /* currently beyond the overturn criterion */
+    int touched;         /* 1 once it had contact area while shaking */
+    double z_start;      /* height of the centre of mass as placed, m */
     rd_body_summary sum; /* what the run found */
     int lost;            /* fell out of the scene after overturning (event "lost" written) */
 } rd_watch;
@@ -150,7 +186,11 @@ struct rd_sim {
     int bonds;             /* 1 when cohesion or tension is set */
     int can_cull;          /* 0 when cohesion/tension bonds may act across open gaps */
     int shaking;           /* 1 once the shaking stage has started */
-    double tan_phi;        /* tan(friction angle) */
+    int njoint, cap_joint;
+    rd_joint *joint;       /* distinct joint property sets; 0 = the default */
+    double (*pj)[2];       /* per subcontact state: normal force (N, 0 when open) and last gap
+                              (m; faces skipped as wholly open get their lower bound) */
+    int cap_state_joint;
 
     /* time */
     double t;              /* s, 0 at the start of shaking */
@@ -189,12 +229,43 @@ struct rd_sim {
     double settle_ratio;   /* unbalanced-force ratio reached by the settle stage */
     double rest_since;     /* tail: time since which every free body has been at rest, s
                               (-1 while something moves) */
+    /* histories (history.c) */
+    int nhist_col;         /* columns per history sample (time first) */
+    int *hist_pair;        /* [nhistories] pair index of a joint history, -1 before it exists */
+    int *hist_body;        /* [nhistories][2] body indices */
+    double *hist;          /* [nhist_rows][nhist_col] */
+    long nhist_rows, cap_hist_rows;
+    double next_hist;      /* time of the next history sample, s */
+    int restored;          /* 1: the state came from `model restore` (no settling) */
+    double *rest_area;     /* [nfree] checkpoint staging: each free body's contact area, m^2 */
     rd_status status;
     atomic_int stop;       /* rd_sim_stop: 1 = stop at the next step */
     char errmsg[RD_ERROR_MAX];
     double floor_z;        /* lowest point of the fixed bodies, m (-INFINITY without any) */
     long nsteps_all;       /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
 };
+
+/* sim.c: a simulation without output (for `rockdem check`), and n settle-mode steps from its
+ * current state (returns the wall seconds they took) */
+rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err);
+double rd_sim_trial_steps(rd_sim *s, int n);
+
+/* joint.c */
+int rd_joints_init(rd_sim *s, rd_error *err);
+int rd_joint_resolve(rd_sim *s, int a, int b);
+void rd_joint_body_limits(const rd_sim *s, int i, double *k, double *zeta);
+void rd_joint_face_open(rd_sim *s, const rd_side *sd, int cf, double gap);
+void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m);
+void rd_joints_sample(rd_sim *s);
+int rd_pair_find(const rd_sim *s, int a, int b);
+
+/* history.c */
+int rd_history_init(rd_sim *s, rd_error *err);
+void rd_history_step(rd_sim *s);
+
+/* checkpoint.c: `model save` / `model restore` */
+int rd_checkpoint_save(const rd_sim *s, const char *path, rd_error *err);
+int rd_checkpoint_restore(rd_sim *s, const char *path, rd_error *err);
 
 /* pairs.c */
 int rd_pairs_init(rd_sim *s, rd_error *err);

@@ -7,7 +7,8 @@
  * each acting between it and the most mobile other body, bound w_max^2; dt_crit = 2 / w_max,
  * reduced by sqrt(1 + l^2) - l for a normal dashpot of damping ratio l. A body's own points
  * cover its joints (weight 1 on pedestals; two half-weight sets on a shared face), so the
- * bound holds as contacts come and go.
+ * bound holds as contacts come and go. Each body takes the stiffest joint it can form with
+ * any other body (joint.c: per-range contact properties).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/ and records/, never io/, scenario/ parsing or cli/.
  */
@@ -34,9 +35,11 @@ static double other_mobility(const rd_sim *s, int i)
 
 double rd_timestep_critical(const rd_sim *s)
 {
-    double k = fmax(s->sc.contact.kn, s->sc.contact.ks), w2max = 0, lmax = 0;
+    double w2max = 0, lmax = 0;
     for (int i = 0; i < s->nb; i++) {
         if (s->fixed[i]) continue;
+        double k, zeta; /* the stiffest joint body i can form, and its largest dashpot ratio */
+        rd_joint_body_limits(s, i, &k, &zeta);
         /* its own subcontacts at full weight (where two free bodies meet, the two half-weight
            sets together carry about the shared area): every bed face at once, or, once it has
            toppled, the largest face that touches only later with the largest bed face */
@@ -50,8 +53,7 @@ double rd_timestep_critical(const rd_sim *s)
         double area = fmax(bed, late + bed_max); /* a toppled body: one side and one end */
         double w2 = k * area * (mobility(s, i) + other_mobility(s, i));
         if (w2 > w2max) w2max = w2;
-        double l = s->sc.damping.kind == RD_DAMPING_VISCOUS
-                       ? s->sc.damping.value * sqrt(s->mass[i] * mobility(s, i)) : 0.0;
+        double l = zeta * sqrt(s->mass[i] * mobility(s, i));
         if (l > lmax) lmax = l;
     }
     if (w2max <= 0) return INFINITY;

@@ -116,5 +116,7 @@ int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n,
 int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err);
 /* Flush and close; safe on NULL. */
 void rd_h5_close(rd_h5 *h);
+/* The open file's HDF5 id, for the table writer (io_table.h): /history, /joints. */
+long long rd_h5_file_id(const rd_h5 *h);
 
 #endif

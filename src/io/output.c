@@ -7,6 +7,7 @@
 #include "rockdem/output.h"
 #include "rockdem/observer.h"
 #include "io/io_hdf5.h"
+#include "io/output_scene.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -66,8 +67,10 @@ static int on_event(void *user, rd_sim *sim, const rd_event *e, rd_error *err)
 
 static int on_end(void *user, rd_sim *sim, const rd_summary *s, rd_error *err)
 {
-    (void)sim;
-    return rd_h5_summary(user, s, err) || rd_h5_flush(user, err) ? -1 : 0;
+    /* the time series first, then the tables of histories, joints and outcomes (flushed when
+       the file closes) */
+    return rd_h5_summary(user, s, err) || rd_h5_flush(user, err) ||
+           rd_h5_scene_tables(user, sim, s, err) ? -1 : 0;
 }
 
 static void on_release(void *user) { rd_h5_close(user); }

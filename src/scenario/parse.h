@@ -133,5 +133,13 @@ int block_initial(parser *P);
 int motion_pulse(parser *P);    /* parse_motion.c */
 int motion_import(parser *P);
 int motion_stochastic(parser *P);
+int contact_is_range(const parser *P); /* parse_scene.c: `contact property ... range ...` */
+int contact_joint(parser *P);
+int history_interval(parser *P);
+int history_body(parser *P);
+int history_joint(parser *P);
+int history_energy(parser *P);
+int model_save(parser *P);
+int model_restore(parser *P);
 
 #endif

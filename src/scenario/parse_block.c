@@ -16,8 +16,8 @@
 
 /* Keywords every single-body command accepts, after its shape's own. */
 static const char *const body_common[] = {"position", "seat-on", "at",   "rotation",
-                                          "density",  "mass",    "name", "fixed"};
-#define NCOMMON 8
+                                          "density",  "mass",    "name", "fixed", "group"};
+#define NCOMMON 9
 
 typedef struct body_cmd {
     rd_body_def b;
@@ -51,7 +51,8 @@ static int common_body_keyword(parser *P, int k, const token *kw, body_cmd *c)
     case 4: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->density);
     case 5: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->mass);
     case 6: return read_name(P, kw, &c->name, b->name);
-    default: b->fixed = 1; return 0;
+    case 7: b->fixed = 1; return 0;
+    default: return read_name(P, kw, &(const token *){NULL}, b->group); /* joint group */
     }
 }
 
@@ -185,6 +186,7 @@ static int add_member(parser *P, const body_cmd *c, const char *prefix, const ch
 {
     b->density = c->b.density;
     b->mass = 0;
+    memcpy(b->group, c->b.group, sizeof b->group); /* every member in the assembly's group */
     b->position[0] = c->b.position[0];
     b->position[1] = c->b.position[1];
     if ((size_t)snprintf(b->name, sizeof b->name, "%s-%s", prefix, suffix) >= sizeof b->name)
@@ -226,7 +228,8 @@ static int add_chain(parser *P, const body_cmd *c, const char *prefix, rd_body_d
 static int block_column(parser *P, const token *at)
 {
     static const char *const names[] = {"drums", "diameter", "height", "sides", "taper", "plinth",
-                                        "capital", "abacus", "seat-on", "at", "name", "density", NULL};
+                                        "capital", "abacus", "seat-on", "at", "name", "density", "group",
+                                        NULL};
     body_cmd c = {.b = {.shape = RD_SHAPE_PRISM}};
     int ndrums = 0, sides = 20;
     double d = 0, h = 0, taper = 1, plinth[2] = {0}, cap = 0, abacus[2] = {0};
@@ -246,7 +249,8 @@ static int block_column(parser *P, const token *at)
         case 8: rc = read_seat(P, kw, &c.b); c.place = kw; break;
         case 9: rc = read_values(P, kw, 2, R_ANY, U_PLAIN, c.b.position); break;
         case 10: rc = read_name(P, kw, &c.name, c.b.name); break;
-        default: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
+        case 11: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
+        default: rc = read_name(P, kw, &(const token *){NULL}, c.b.group); break;
         }
         if (rc)
             return -1;
@@ -269,7 +273,7 @@ static int block_column(parser *P, const token *at)
  * A two-block assembly (a statue on its pedestal): P-lower on NAME, P-upper on P-lower. */
 static int block_stack(parser *P, const token *at)
 {
-    static const char *const names[] = {"lower", "upper", "seat-on", "at", "name", "density", NULL};
+    static const char *const names[] = {"lower", "upper", "seat-on", "at", "name", "density", "group", NULL};
     body_cmd c = {.b = {.shape = RD_SHAPE_BRICK}};
     double lo[3], up[3];
     const token *kw;
@@ -282,7 +286,8 @@ static int block_stack(parser *P, const token *at)
         case 2: rc = read_seat(P, kw, &c.b); c.place = kw; break;
         case 3: rc = read_values(P, kw, 2, R_ANY, U_PLAIN, c.b.position); break;
         case 4: rc = read_name(P, kw, &c.name, c.b.name); break;
-        default: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
+        case 5: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
+        default: rc = read_name(P, kw, &(const token *){NULL}, c.b.group); break;
         }
         if (rc)
             return -1;

@@ -181,6 +181,8 @@ static int read_spacing(parser *P, const token *kw, double *v)
 
 int contact_property(parser *P)
 {
+    if (contact_is_range(P))
+        return contact_joint(P); /* a per-range joint (parse_scene.c) */
     static const char *const names[] = {"stiffness-normal", "stiffness-shear", "friction",
                                         "cohesion",         "tension",         "spacing",
                                         "restitution",      NULL};

@@ -35,6 +35,8 @@ static const struct command {
     {"model", "solve", model_solve},
     {"model", "overturn", model_overturn},
     {"model", "reference", model_reference},
+    {"model", "save", model_save},
+    {"model", "restore", model_restore},
     {"block", "create", block_create},
     {"block", "import", block_import},
     {"block", "initial", block_initial},
@@ -44,6 +46,10 @@ static const struct command {
     {"ground-motion", "pulse", motion_pulse},
     {"ground-motion", "import", motion_import},
     {"ground-motion", "stochastic", motion_stochastic},
+    {"history", "interval", history_interval},
+    {"history", "body", history_body},
+    {"history", "joint", history_joint},
+    {"history", "energy", history_energy},
     {"output", "hdf5", output_hdf5},
 };
 
@@ -131,6 +137,7 @@ void rd_scenario_defaults(rd_scenario *sc)
     sc->ref_restitution = -1.0;
     snprintf(sc->output.path, sizeof sc->output.path, "%s", "rockdem.h5");
     sc->output.interval = 0.005;
+    sc->history_interval = 0.001;
 }
 
 /* Baseline-corrects and scales the records once all of them are read; errors "name: ...". */

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # rockdem-mpi: the same sweep over 2 MPI ranks (rank 0 writes the table, rank 1 runs cases)
-# gives exactly the outcome columns of the single-machine sweep. Skipped (passes) without mpicc.
+# gives exactly the outcome columns of the single-machine sweep. Skipped (exit 77, counted as
+# skipped by tests/run.sh) without mpicc/mpirun.
 set -eu
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/sweep_mpi; mkdir -p "$T"
-command -v mpicc > /dev/null && command -v mpirun > /dev/null || { echo "skip: no mpicc/mpirun"; exit 0; }
+. "$(dirname "$0")/lib/check.sh"
+command -v mpicc > /dev/null && command -v mpirun > /dev/null ||
+    skip "no mpicc/mpirun on PATH (Debian libopenmpi-dev openmpi-bin: tools/install-deps.sh)"
 BINDIR=$(dirname "$BIN")
 BUILD=${RD_BUILD:-build}   # tests/run.sh passes its build folder
 san=""   # a sanitizer build (make asan): link rockdem-mpi the same way

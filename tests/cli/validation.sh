@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
-# rockdem reference / threshold / restitution / study from the command line: the reference run
-# writes the DEM's HDF5 layout; the reference threshold of the 0.5 x 1.0 m block under a 2 Hz
-# one-sine pulse with Housner's r = 0.70 is 1.26 g (DESIGN.md section 2, two digits); scenes
-# the references cannot take are refused with one line and a non-zero exit.
+# The fast depth of the validation ladder (tools/validate/ladder.py; `make validate` runs the full
+# depth and writes docs/validation.md): one block against the CVODE Housner solver (free rocking
+# with Housner's closed-form r, thresholds at 1.5 and 2 Hz searched over the whole amplitude
+# range), the two-block stack against the CVODE Kounadis solver (damped and undamped: history to
+# the first impact, threshold at 1.5 Hz), sliding against Newmark's closed form, static tipping
+# at g tan(alpha), restitution from the amplitude decay against Housner's r. Tolerances from a
+# two-KN convergence study of the DEM (docstring of ladder.py); known gaps print "XFAIL: ... gap=".
+# Then the command-line contract of `rockdem reference / threshold / restitution`.
 set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
 fails=0
 fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+/usr/bin/python3 tools/validate/ladder.py --depth fast --only block,stack,slide,tipping,restitution --bin "$BIN" ||
+    fail "validation ladder (fast)"
 blk="$T/val_block.dat"
 cat > "$blk" <<'DAT'
 block create brick size 4 4 1 position 0 0 -0.5 fixed name base
@@ -21,9 +27,6 @@ printf '%s' "$out" | grep -q "Housner" || fail "reference: no model line: $out"
 for d in time position quaternion tilt ground/acceleration energy/kinetic events summary; do
     h5ls "$T/ref.h5/$d" >/dev/null 2>&1 || fail "reference file lacks /$d"
 done
-out=$("$BIN" threshold "$blk" --engine reference --rtol 0.002) || fail "threshold: $out"
-g=$(printf '%s' "$out" | sed -n 's/.*= \([0-9.]*\) g .*/\1/p')
-awk -v g="$g" 'BEGIN { exit !(g > 1.25 && g < 1.27) }' || fail "threshold $g g, expected 1.26 g"
 "$BIN" reference "$blk" --set reference.restitution=0.8 -o "$T/r8.h5" | grep -q "e = 0.8" ||
     fail "reference.restitution override not used"
 err=$("$BIN" reference "$blk" --set motion.direction=30 2>&1 >/dev/null); rc=$?
@@ -33,18 +36,13 @@ three="$T/val_three.dat"
 err=$("$BIN" reference "$three" 2>&1 >/dev/null); rc=$?
 { [ "$rc" -eq 2 ] && [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] && printf '%s' "$err" | grep -q "does not stand on"; } ||
     fail "unstacked pair: rc=$rc $err"
-# the minimum-overturning curve: rises with w/p (Housner), 2 Hz gives the single threshold above
+# the minimum-overturning curve of the reference: the single-frequency searches give the same
+# numbers (one code path), and the threshold rises with w/p over 1-2 Hz (Housner 1963, fig. 7:
+# the rigid block's minimum one-sine amplitude grows with the pulse frequency)
 curve=$("$BIN" threshold "$blk" --engine reference --frequencies 1,1.5,2) || fail "curve: $curve"
-printf '%s\n' "$curve" | awk 'NR > 2 { if (NR > 3 && $3 <= prev) bad = 1; prev = $3; g = $4 }
-    END { exit !(NR == 5 && !bad && g > 1.25 && g < 1.27) }' || fail "curve not rising to 1.26 g: $curve"
-# restitution: the damping ratio that gives Housner's r = 1 - 1.5 sin^2(alpha) = 0.70 for the
-# 0.5 x 0.5 x 1 m block with corner subcontacts (over-critical, about 4.3), within the
-# calibration tolerance
-free="$T/val_free.dat"
-grep -v "ground-motion" "$blk" | sed 's/^model solve time .*/model solve time 3/' > "$free"
-cal=$("$BIN" restitution "$free" | grep '^calibrated:') || fail "no Housner calibration: $cal"
-r=$(printf '%s' "$cal" | sed -n 's/.* gives r = \([0-9.]*\) .*/\1/p')
-awk -v r="$r" 'BEGIN { exit !(r > 0.69 && r < 0.71) }' || fail "calibrated r $r, expected 0.70"
+one=$("$BIN" threshold "$blk" --engine reference | sed -n 's/.*= \([0-9.]*\) g .*/\1/p')
+printf '%s\n' "$curve" | awk -v one="$one" 'NR > 2 { if (NR > 3 && $4 <= prev) bad = 1; prev = $4; g = $4 }
+    END { exit !(NR == 5 && !bad && g == one) }' || fail "curve not rising, or its 2 Hz entry differs from the single search ($one g): $curve"
 err=$("$BIN" threshold "$blk" --engine nope 2>&1 >/dev/null); rc=$?
 [ "$rc" -eq 2 ] || fail "bad engine accepted: $err"
-[ "$fails" -eq 0 ]
+[ "$fails" -eq 0 ] && echo "CHECK rockdem reference / threshold command-line contract"

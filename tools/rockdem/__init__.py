@@ -138,6 +138,7 @@ def _summary_dict(s):
         d = {name: getattr(b, name) for name, _ in _lib.BodySummary._fields_ if name != "name"}
         d["overturned"] = bool(d["overturned"])
         d["uplifted"], d["slid"] = bool(d["uplifted"]), bool(d["slid"])
+        d["unsupported"], d["final_position"] = bool(d["unsupported"]), list(d["final_position"])
         bodies[b.name.decode()] = d
     return {"status": STATUS[s.status], "any_overturned": bool(s.any_overturned),
             "end_time": s.end_time, "dt": s.dt, "dt_critical": s.dt_critical, "steps": s.steps,

@@ -43,7 +43,11 @@ class BodySummary(ctypes.Structure):  # rd_body_summary
                 ("max_rocking_in", ctypes.c_double),
                 ("max_rocking_out", ctypes.c_double),
                 ("max_twist", ctypes.c_double),
-                ("final_twist", ctypes.c_double)]
+                ("final_twist", ctypes.c_double),
+                ("unsupported", ctypes.c_int),
+                ("final_position", ctypes.c_double * 3),
+                ("travel", ctypes.c_double),
+                ("drop", ctypes.c_double)]
 
 
 class Summary(ctypes.Structure):  # rd_summary

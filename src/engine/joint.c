@@ -1,0 +1,238 @@
+/* rockdem — joints: per-range contact properties and what each joint does.
+ *
+ * Properties (3DEC `block contact property ... range group A group B`): every pair of bodies
+ * starts from the default joint (`contact property` without a range, and the model's viscous
+ * damping ratio), then takes each override whose range holds the pair, in file order, so a
+ * later override wins where two set the same property. A pair is resolved once, when the broad
+ * phase first creates it; pairs with equal properties share one rd_joint.
+ *
+ * Measures (rd_joint_measure), from the contact law's per-subcontact state:
+ *   normal force   sum of the normal forces of the joint's active subcontacts, N
+ *   shear force    vector sum of their shear forces, on the pair's second body, N
+ *   area           active contact area, m^2 (half-weight sets summed where both bodies carry
+ *                  points)
+ *   centre of pressure   normal-force weighted mean of their positions, m
+ *   opening        the largest gap among the subcontacts evaluated this step on the faces
+ *                  turned towards the other body, m
+ *   slip           tangential displacement of the second body against the first, summed
+ *                  measure to measure while the joint carries load, of the material points
+ *                  at the centre of pressure of the previous measure, minus the elastic shear
+ *                  sum(Fs) / (KS A): the joint's own slip, not the sway of a rocking stack (a
+ *                  joint that rocks as one with its neighbours does not move) nor the roll of
+ *                  a block tipping about its edge (the pivot stays put). Measures are taken
+ *                  at output and history samples.
+ */
+#include "engine/sim.h"
+#include "base/vec.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Does body i belong to range r? */
+static int in_range(const rd_sim *s, const rd_range_def *r, int i)
+{
+    const rd_body_def *d = &s->sc.bodies[i];
+    switch (r->kind) {
+    case RD_RANGE_ANY: return 1;
+    case RD_RANGE_GROUP: return strcmp(d->group, r->name) == 0;
+    case RD_RANGE_BLOCK: return strcmp(d->name, r->name) == 0;
+    }
+    return 0;
+}
+
+static int applies(const rd_sim *s, const rd_joint_def *j, int a, int b)
+{
+    return (in_range(s, &j->range[0], a) && in_range(s, &j->range[1], b)) ||
+           (in_range(s, &j->range[0], b) && in_range(s, &j->range[1], a));
+}
+
+static void override(rd_joint *p, const rd_joint_def *j)
+{
+    if (j->set & RD_JOINT_KN) p->kn = j->kn;
+    if (j->set & RD_JOINT_KS) p->ks = j->ks;
+    if (j->set & RD_JOINT_FRICTION) p->friction = j->friction;
+    if (j->set & RD_JOINT_COHESION) p->cohesion = j->cohesion;
+    if (j->set & RD_JOINT_TENSION) p->tension = j->tension;
+    if (j->set & RD_JOINT_DAMPING) p->damping = j->damping;
+    if (j->set & RD_JOINT_RESTITUTION) p->restitution = j->restitution;
+    p->tan_phi = tan(p->friction);
+}
+
+/* Properties of the joint between bodies a and b (no table entry). */
+static rd_joint joint_of(const rd_sim *s, int a, int b)
+{
+    rd_joint p = s->joint[0];
+    for (int k = 0; k < s->sc.njoints; k++)
+        if (applies(s, &s->sc.joint[k], a, b)) override(&p, &s->sc.joint[k]);
+    return p;
+}
+
+/* Index of properties p in the table, appending them when new; -1 without memory. */
+static int intern(rd_sim *s, const rd_joint *p)
+{
+    for (int k = 0; k < s->njoint; k++)
+        if (!memcmp(&s->joint[k], p, sizeof *p)) return k;
+    if (s->njoint == s->cap_joint) {
+        int cap = s->cap_joint ? 2 * s->cap_joint : 8;
+        rd_joint *t = realloc(s->joint, (size_t)cap * sizeof *t);
+        if (!t) return -1;
+        s->joint = t; s->cap_joint = cap;
+    }
+    s->joint[s->njoint] = *p;
+    return s->njoint++;
+}
+
+int rd_joint_resolve(rd_sim *s, int a, int b)
+{
+    rd_joint p = joint_of(s, a, b);
+    return intern(s, &p);
+}
+
+/* Is range r's name known (a group some body carries, or a body)? */
+static int range_known(const rd_sim *s, const rd_range_def *r)
+{
+    if (r->kind == RD_RANGE_ANY) return 1;
+    for (int i = 0; i < s->nb; i++)
+        if (!strcmp(r->kind == RD_RANGE_GROUP ? s->sc.bodies[i].group : s->sc.bodies[i].name, r->name))
+            return 1;
+    return 0;
+}
+
+int rd_joints_init(rd_sim *s, rd_error *err)
+{
+    const rd_contact_def *c = &s->sc.contact;
+    rd_joint def = {.kn = c->kn, .ks = c->ks, .friction = c->friction, .tan_phi = tan(c->friction),
+                    .cohesion = c->cohesion, .tension = c->tension, .restitution = c->restitution,
+                    .damping = s->sc.damping.kind == RD_DAMPING_VISCOUS ? s->sc.damping.value : 0.0};
+    s->njoint = 0;
+    if (intern(s, &def) < 0) return rd_error_set(err, "out of memory");
+    s->bonds = def.cohesion > 0 || def.tension > 0;
+    for (int k = 0; k < s->sc.njoints; k++) {
+        const rd_joint_def *j = &s->sc.joint[k];
+        for (int e = 0; e < 2; e++)
+            if (!range_known(s, &j->range[e]))
+                return rd_error_set(err, "%s:%d: contact property range: no block %s '%s'", s->sc.file,
+                                    j->line, j->range[e].kind == RD_RANGE_GROUP ? "is in group" : "is named",
+                                    j->range[e].name);
+        if (((j->set & RD_JOINT_COHESION) && j->cohesion > 0) || ((j->set & RD_JOINT_TENSION) && j->tension > 0))
+            s->bonds = 1;
+    }
+    return 0;
+}
+
+/* Stiffest joint stiffness max(KN, KS) and largest dashpot ratio of the joints body i can form
+ * (with every other body), for the critical time step. */
+void rd_joint_body_limits(const rd_sim *s, int i, double *k, double *zeta)
+{
+    const rd_joint *d = &s->joint[0];
+    *k = fmax(d->kn, d->ks);
+    *zeta = d->damping;
+    if (s->sc.njoints == 0) return;
+    *k = 0; *zeta = 0;
+    for (int j = 0; j < s->nb; j++) {
+        if (j == i) continue;
+        rd_joint p = joint_of(s, i, j);
+        *k = fmax(*k, fmax(p.kn, p.ks));
+        *zeta = fmax(*zeta, p.damping);
+    }
+}
+
+/* A face skipped as wholly clear of the other body: its points' gaps are at least `gap`. */
+void rd_joint_face_open(rd_sim *s, const rd_side *sd, int cf, double gap)
+{
+    int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
+    int n = s->cf_pt0[cf + 1] - s->cf_pt0[cf];
+    for (int j = 0; j < n; j++) { s->pj[first + j][0] = 0; s->pj[first + j][1] = gap; }
+}
+
+int rd_pair_find(const rd_sim *s, int a, int b)
+{
+    if (a > b) { int t = a; a = b; b = t; }
+    for (int p = 0; p < s->npair; p++)
+        if (s->pair[p].a == a && s->pair[p].b == b) return p;
+    return -1;
+}
+
+/* World position of point j of body o. */
+static void point_world(const rd_sim *s, int o, int j, double out[3])
+{
+    rd_mat_vec(s->R[o], s->pl[j], out);
+    rd_axpy(1.0, s->x[o], out);
+}
+
+void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
+{
+    memset(m, 0, sizeof *m);
+    const rd_joint *jt = &s->joint[pr->joint];
+    double fs_b[3] = {0, 0, 0}, fsum = 0, open = 0;
+    int live = pr->seen == s->stamp; /* a pair whose boxes parted holds no contact */
+    for (int q = 0; q < pr->nside && live; q++) {
+        const rd_side *sd = &pr->side[q];
+        int o = sd->owner;
+        double sign = o == pr->b ? 1.0 : -1.0; /* stored forces act on the owner */
+        double to_other = o == pr->a ? 1.0 : -1.0; /* pr->n points from a towards b */
+        int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
+        for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
+            /* only faces turned towards the other body measure the joint's opening */
+            int facing = normal && to_other * rd_dot(s->wn[s->face0[o] + s->cf_face[cf]], pr->n) > 0.5;
+            for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
+                int st = sd->state0 + (j - s->pt0[o]);
+                if (facing && s->pj[st][1] < 1e300) open = fmax(open, s->pj[st][1]);
+                if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
+                double p[3], fn = s->pj[st][0], a = sd->weight * s->pa[j];
+                point_world(s, o, j, p);
+                m->fn += fn;
+                m->area += a;
+                fsum += fabs(fn);
+                for (int k = 0; k < 3; k++) {
+                    m->cop[k] += fabs(fn) * p[k];
+                    fs_b[k] += sign * s->fs[st][k];
+                }
+            }
+        }
+    }
+    m->opening = live ? open : INFINITY;
+    rd_copy3(fs_b, m->fs);
+    for (int k = 0; k < 3; k++) {
+        m->cop[k] = fsum > 0 ? m->cop[k] / fsum : 0.5 * (s->x[pr->a][k] + s->x[pr->b][k]);
+    }
+    int loaded = m->area > 0 && s->shaking;
+    if (pr->ref_set && loaded) { /* the material points at the last centre of pressure */
+        double pa[3], pb[3], d[3];
+        rd_mat_vec(s->R[pr->a], pr->ref[0], pa);
+        rd_mat_vec(s->R[pr->b], pr->ref[1], pb);
+        for (int k = 0; k < 3; k++) d[k] = (pb[k] + s->x[pr->b][k]) - (pa[k] + s->x[pr->a][k]);
+        double dn = rd_dot(d, pr->n);
+        for (int k = 0; k < 3; k++) pr->slip_acc[k] += d[k] - dn * pr->n[k];
+    }
+    pr->ref_set = loaded;
+    for (int e = 0; loaded && e < 2; e++) {
+        int i = e ? pr->b : pr->a;
+        double d[3] = {m->cop[0] - s->x[i][0], m->cop[1] - s->x[i][1], m->cop[2] - s->x[i][2]};
+        rd_mat_tvec(s->R[i], d, pr->ref[e]);
+    }
+    for (int k = 0; k < 3; k++) {
+        /* elastic shear of the second body: its shear force is -KS A times its displacement */
+        double el = m->area > 0 ? -fs_b[k] / (jt->ks * m->area) : 0.0;
+        m->slip[k] = pr->slip_acc[k] - el;
+    }
+}
+
+/* Outcomes of every joint while shaking: largest opening and slip, final slip. */
+void rd_joints_sample(rd_sim *s)
+{
+    for (int p = 0; p < s->npair; p++) {
+        rd_pair *pr = &s->pair[p];
+        if (pr->seen != s->stamp) continue; /* parted: keeps what it had */
+        rd_joint_state m;
+        rd_joint_measure(s, pr, &m);
+        if (m.area > 0) pr->closed = 1;
+        if (!pr->closed) continue;
+        if (isfinite(m.opening)) pr->open_max = fmax(pr->open_max, m.opening);
+        pr->slip_max = fmax(pr->slip_max, rd_norm(m.slip));
+        rd_copy3(m.slip, pr->slip_end);
+    }
+}
+

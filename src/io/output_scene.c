@@ -1,0 +1,118 @@
+/* rockdem — the scene-control tables of a run file, written when the run ends (after the
+ * time series' last flush, so small files stay small while the series are written):
+ *   /history/time, /history/<series>     the `history` table (rockdem/history.h), every series
+ *                                        on the /history/time axis, its columns on a scale
+ *   /joints/joint, body_a, body_b         every pair of bodies that came near each other
+ *   /joints/properties [joint][property]  kn, ks, friction, cohesion, tension, damping_ratio
+ *   /joints/outcomes [joint][outcome]     max_opening, max_slip, final_slip, closed
+ *   /outcomes/bodies [body][quantity]     x, y, z at the end, travel, drop, unsupported
+ * docs/HDF5-LAYOUT.md describes them with the rest of the file. */
+#include "io/output_scene.h"
+#include "io/io_table.h"
+#include "rockdem/history.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int history(long long f, const rd_sim *sim, rd_error *err)
+{
+    int ns = rd_sim_history_count(sim), cols;
+    long rows;
+    const double *tab = rd_sim_history_table(sim, &rows, &cols);
+    if (ns == 0) return 0;
+    double *buf = malloc((size_t)(rows ? rows : 1) * (size_t)cols * sizeof *buf);
+    if (!buf) return rd_error_set(err, "out of memory");
+    for (long r = 0; r < rows; r++) buf[r] = tab[r * cols];
+    int rc = rd_h5t_write(f, "history/time", RD_H5T_DOUBLE, buf, rows, 0, "s",
+                          "time of the history samples since the shaking started", NULL, err) ||
+             rd_h5t_make_scale(f, "history/time", err);
+    for (int k = 0; k < ns && !rc; k++) {
+        rd_history_series se;
+        rd_sim_history_series(sim, k, &se);
+        for (long r = 0; r < rows; r++)
+            for (int c = 0; c < se.ncol; c++) buf[r * se.ncol + c] = tab[r * cols + se.col + c];
+        char path[sizeof se.path + 16], dim[sizeof se.path + 64];
+        snprintf(path, sizeof path, "history/%s", se.path);
+        const char *slash = strrchr(path, '/');
+        if (se.dim && se.dim[0] != '/') /* a scale of the series' own group */
+            snprintf(dim, sizeof dim, "%.*s/%s", (int)(slash - path), path, se.dim);
+        else
+            snprintf(dim, sizeof dim, "%s", se.dim ? se.dim : "");
+        rd_h5t_axes ax = {{"/history/time", se.ncol > 1 ? dim : NULL}, {NULL, se.labels}};
+        rc = rd_h5t_write(f, path, RD_H5T_DOUBLE, buf, rows, se.ncol > 1 ? se.ncol : 0, se.units, se.long_name,
+                          &ax, err);
+    }
+    free(buf);
+    return rc ? -1 : 0;
+}
+
+enum { NPROP = 6, NOUT = 4, NBODY = 6 };
+
+static int joints(long long f, const rd_sim *sim, rd_error *err)
+{
+    int n = rd_sim_joint_count(sim), rc = 0;
+    rd_joint_summary *j = malloc((size_t)(n + 1) * sizeof *j);
+    char (*label)[2 * RD_NAME_MAX + 2] = malloc((size_t)(n + 1) * sizeof *label);
+    const char **lab = malloc((size_t)(n + 1) * 3 * sizeof *lab);
+    double *prop = malloc((size_t)(n + 1) * NPROP * sizeof *prop), *out = malloc((size_t)(n + 1) * NOUT * sizeof *out);
+    if (!j || !label || !lab || !prop || !out) rc = rd_error_set(err, "out of memory");
+    const char **a = lab + n, **b = lab + 2 * n;
+    for (int p = 0; !rc && p < n; p++) {
+        rd_sim_joint(sim, p, &j[p]);
+        snprintf(label[p], sizeof label[p], "%s-%s", j[p].a, j[p].b);
+        lab[p] = label[p]; a[p] = j[p].a; b[p] = j[p].b;
+        double v[NPROP] = {j[p].kn, j[p].ks, j[p].friction, j[p].cohesion, j[p].tension, j[p].damping};
+        double o[NOUT] = {j[p].max_opening, j[p].max_slip, j[p].final_slip, j[p].closed};
+        memcpy(prop + NPROP * p, v, sizeof v);
+        memcpy(out + NOUT * p, o, sizeof o);
+    }
+    rd_h5t_axes pax = {{"joint", "property"}, {NULL, "kn,ks,friction,cohesion,tension,damping_ratio"}};
+    rd_h5t_axes oax = {{"joint", "outcome"}, {NULL, "max_opening,max_slip,final_slip,closed"}};
+    if (!rc) rc = rd_h5t_strings(f, "joints/joint", lab, n, "joint: its two bodies", "joints/joint", err) ||
+                  rd_h5t_strings(f, "joints/body_a", a, n, "first body of the joint", "/joints/joint", err) ||
+                  rd_h5t_strings(f, "joints/body_b", b, n, "second body of the joint", "/joints/joint", err);
+    long long g = rc ? -1 : rd_h5t_group(f, "joints", err);
+    if (g >= 0) {
+        rc = rd_h5t_write(g, "properties", RD_H5T_DOUBLE, prop, n, NPROP, "Pa/m,Pa/m,rad,Pa,Pa,1",
+                          "joint properties: kn, ks (per unit area), friction angle, cohesion, tensile "
+                          "strength, normal dashpot ratio", &pax, err) ||
+             rd_h5t_write(g, "outcomes", RD_H5T_DOUBLE, out, n, NOUT, "m,m,m,1",
+                          "largest opening and slip while shaking, final slip (slip of the second body "
+                          "against the first at the centre of pressure, elastic shear removed), 1 if it "
+                          "carried load", &oax, err);
+        rd_h5t_close_group(g);
+    } else {
+        rc = -1;
+    }
+    free(j); free(label); free(lab); free(prop); free(out);
+    return rc ? -1 : 0;
+}
+
+static int outcomes(long long f, const rd_summary *s, rd_error *err)
+{
+    int nf = s->nbodies;
+    double *v = malloc((size_t)(nf + 1) * NBODY * sizeof *v);
+    if (!v) return rd_error_set(err, "out of memory");
+    for (int k = 0; k < nf; k++) {
+        const rd_body_summary *b = &s->body[k];
+        double row[NBODY] = {b->final_position[0], b->final_position[1], b->final_position[2],
+                             b->travel, b->drop, b->unsupported};
+        memcpy(v + NBODY * k, row, sizeof row);
+    }
+    rd_h5t_axes ax = {{"/body", "quantity"}, {NULL, "x,y,z,travel,drop,unsupported"}};
+    long long g = rd_h5t_group(f, "outcomes", err);
+    int rc = g < 0 || rd_h5t_write(g, "bodies", RD_H5T_DOUBLE, v, nf, NBODY, "m,m,m,m,m,1",
+                                   "where each free body ended up: centre of mass x, y, z at the end, "
+                                   "horizontal travel from rest, drop from placement, 1 if it touched "
+                                   "nothing (fell freely)", &ax, err);
+    rd_h5t_close_group(g);
+    free(v);
+    return rc ? -1 : 0;
+}
+
+int rd_h5_scene_tables(rd_h5 *h, const rd_sim *sim, const rd_summary *s, rd_error *err)
+{
+    long long f = rd_h5_file_id(h);
+    return history(f, sim, err) || joints(f, sim, err) || outcomes(f, s, err) ? -1 : 0;
+}

@@ -1,0 +1,651 @@
+#!/usr/bin/python3
+"""rockdem's validation ladder: one list of cases, run at two depths.
+
+    /usr/bin/python3 tools/validate/ladder.py --depth fast            (make test: tests/cli/validation.sh)
+    /usr/bin/python3 tools/validate/ladder.py --depth full --md docs/validation.md   (make validate)
+    options: --bin bin/rockdem  --only GROUP[,GROUP]  --tmp DIR
+
+Each case runs bin/rockdem (run / reference / threshold / restitution) and reads its HDF5, and
+compares one quantity with an independent reference: a closed form (tools/validate/
+closed_forms.py), the CVODE rigid-body solvers (`rockdem reference`: Housner for one block,
+Kounadis for a two-block stack; themselves checked against closed forms in
+tests/test_reference.c), or stored YADE runs (tests/data/yade, made by tools/yade/regen.py).
+
+Tolerances (the `tol source` column) are never taken from rockdem's own answer:
+  - "two-KN study": the DEM is run at KN and 10 KN (the step follows KN). If its error against a
+    rigid reference is a discretisation error of order >= 1/2 in KN, the error at KN is at most
+    1.5 x |q(KN) - q(10 KN)| (Richardson: 1 / (1 - 10^-0.5) = 1.46). Plus the measurement's own
+    resolution (bisection bracket, output sampling), stated per case.
+  - "dt/2 (both codes)": for YADE, the change of YADE's answer when its step is halved (stored
+    half-step runs in tests/data/yade/half) plus the change of rockdem's answer at dt/2.
+  - closed-form allowances (the volumetric pivot inset) are computed, not chosen.
+A known disagreement is an expected failure (XFAIL, in XFAILS below with its reason): it prints
+its measured gap on every run and does not fail; when it starts to pass it prints XPASS and the
+run fails, so that the mark is removed. Output lines: CHECK / XFAIL / XPASS / FAIL (tests/run.sh).
+"""
+import argparse
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "tools", "yade"))
+import closed_forms as cf  # noqa: E402
+
+try:
+    import h5py  # noqa: E402
+except ImportError:
+    raise SystemExit("ladder: needs h5py: run with /usr/bin/python3")
+
+YADE = os.path.join(ROOT, "tests", "data", "yade")
+RICHARDSON = 1.5   # error bound factor from a two-KN study with KN ratio 10, order >= 1/2
+KN_RATIO = 10.0
+
+# Known gaps (issue numbers refer to the project's tracker). Each key is a row id; the check is
+# made with its derived tolerance and reported XFAIL with the measured gap while it misses.
+XFAILS = {
+    "block-free/impact2-time": "DEM impacts last a few ms on both edges: later half-cycles run short (issues 10/11)",
+    "block-free/amp1": "the DEM's per-impact restitution differs from Housner's plastic impact (issue 11)",
+    "block-free/amp2": "the DEM's per-impact restitution differs from Housner's plastic impact (issue 11)",
+    "block-threshold/2Hz": "2 Hz sits on the threshold's cliff in e: restitution bias (issue 11)",
+    "stack-threshold/undamped-1Hz": "undamped stacks gain energy at impacts (issue 10)",
+    "stack-threshold/undamped-1.5Hz": "undamped stacks gain energy at impacts (issue 10)",
+    "stack-threshold/undamped-2Hz": "undamped stacks gain energy at impacts (issue 10)",
+    "stack-threshold/undamped-2.5Hz": "undamped stacks gain energy at impacts (issue 10)",
+    "stack-threshold/damped-2Hz": "stack impact law differs from Kounadis' plastic impacts (issue 11)",
+    "restitution/amplitude-decay": "the DEM's impact is not a single instant: amplitude decay and velocity ratio disagree (issue 11)",
+    "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
+    "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
+    "yade-overturn/bracket-scenario-ks": "shear stiffness per point, not per face: with the scenario's KS the pivot slides (docs/YADE.md)",
+    "yade-stack/0.3g-lower-tilt": "stack rocking amplitude: contact law difference (docs/YADE.md)",
+    "yade-stack/0.3g-upper-tilt": "stack rocking amplitude: contact law difference (docs/YADE.md)",
+    "yade-column/0.7g-d2-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/0.7g-d3-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/0.7g-d4-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/1.0g-d1-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/1.0g-d2-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/1.0g-d3-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/1.0g-d4-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/1.6g-d1-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-column/1.6g-d2-fell": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
+    "yade-stack/1.0g-lower-overturned": "with the matched shear stiffness rockdem's lower block stays (docs/YADE.md)",
+}
+
+
+class Ladder:
+    def __init__(self, bin_, tmp, depth):
+        self.bin, self.tmp, self.depth = bin_, tmp, depth
+        self.rows, self.failed, self.xpassed = [], 0, 0
+        self.nrun = 0
+
+    # ---- running rockdem ---------------------------------------------------------------------
+    def rockdem(self, *args):
+        self.nrun += 1
+        p = subprocess.run([self.bin] + [str(a) for a in args], stdout=subprocess.PIPE,
+                           stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
+        if p.returncode == 3 and args[0] == "run" and "left the scene" in p.stdout:
+            return p.stdout   # a body fell off the model (status lost): the file holds the run
+        if p.returncode not in (0,):
+            raise RuntimeError("rockdem %s: exit %d\n%s" % (" ".join(map(str, args)), p.returncode, p.stdout[-2000:]))
+        return p.stdout
+
+    def scene(self, name, text):
+        path = os.path.join(self.tmp, name + ".dat")
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def run(self, dat, out, *sets):
+        args = ["run", dat, "-q", "-o", os.path.join(self.tmp, out)]
+        for s in sets:
+            args += ["--set", s]
+        self.rockdem(*args)
+        return os.path.join(self.tmp, out)
+
+    def reference(self, dat, out, *sets):
+        args = ["reference", dat, "-o", os.path.join(self.tmp, out)]
+        for s in sets:
+            args += ["--set", s]
+        self.rockdem(*args)
+        return os.path.join(self.tmp, out)
+
+    def threshold(self, dat, engine, *sets):
+        """(amplitude m/s^2, relative bracket width) of the minimum overturning amplitude; the
+        search scans from 0.9 to 10 x g tan(alpha) (the whole range: an early overturning is
+        seen) and bisects to rtol 0.005."""
+        args = ["threshold", dat, "--engine", engine]
+        for s in sets:
+            args += ["--set", s]
+        out = self.rockdem(*args)
+        m = re.search(r"minimum overturning amplitude ([0-9.e+-]+) m/s\^2 .*bracket ([0-9.e+-]+) \.\. ([0-9.e+-]+)", out)
+        if not m:
+            raise RuntimeError("threshold: no answer in\n" + out)
+        a, lo, hi = (float(x) for x in m.groups())
+        return a, (hi - lo) / hi
+
+    def calibrate(self, dat, target, *sets):
+        args = ["restitution", dat, "--target", target]
+        for s in sets:
+            args += ["--set", s]
+        out = self.rockdem(*args)
+        m = re.search(r"calibrated: model damping viscous ([0-9.e+-]+) gives r = ([0-9.e+-]+)", out)
+        if not m:
+            raise RuntimeError("restitution: no calibration in\n" + out)
+        return float(m.group(1)), float(m.group(2))
+
+    # ---- verdicts ----------------------------------------------------------------------------
+    def check(self, rid, quantity, ref, ref_src, got, err, tol, tol_src, unit=""):
+        """err and tol are in the same measure (stated in `quantity`); ok when err <= tol."""
+        ok = bool(err <= tol)
+        mode = "xfail" if rid in XFAILS else "strict"
+        if mode == "xfail":
+            verdict = "xpass" if ok else "xfail"
+        else:
+            verdict = "pass" if ok else "FAIL"
+        line = "%s %s: rockdem %s, reference %s, error %.3g, tol %.3g" % (
+            rid, quantity, fmt(got), fmt(ref), err, tol)
+        if verdict == "pass":
+            print("CHECK " + line)
+        elif verdict == "xfail":
+            print("XFAIL: %s gap=%.3g tol=%.3g (%s)" % (rid, err, tol, XFAILS[rid]))
+        elif verdict == "xpass":
+            print("XPASS: %s gap=%.3g tol=%.3g: remove it from XFAILS in tools/validate/ladder.py" % (rid, err, tol))
+            self.xpassed += 1
+        else:
+            print("FAIL " + line)
+            self.failed += 1
+        sys.stdout.flush()
+        self.rows.append(dict(id=rid, quantity=quantity, ref=ref, ref_src=ref_src, got=got, err=err,
+                              tol=tol, tol_src=tol_src, verdict=verdict, unit=unit))
+
+    def kn_pair(self, fn):
+        """fn(kn_factor) -> value; returns (q at KN, q at 10 KN)."""
+        return fn(1.0), fn(KN_RATIO)
+
+
+def fmt(v):
+    if isinstance(v, str):
+        return v
+    if isinstance(v, (bool, np.bool_)):
+        return "yes" if v else "no"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    return "%.5g" % v
+
+
+def h5(path, *keys):
+    """Read datasets (and "summary:<attr>" attributes) into memory and close the file, so that
+    rockdem can overwrite it in the next run."""
+    with h5py.File(path, "r") as f:
+        out = [f["summary"].attrs[k[8:]] if k.startswith("summary:") else f[k][()] for k in keys]
+    return out if len(out) > 1 else out[0]
+
+
+def attr(v):
+    return v.decode() if isinstance(v, bytes) else v
+
+
+def event_times(path, kind):
+    """Times (s) of the events of one type ("impact", "overturn", ...), in file order. HDF5
+    layout 2: /events is a group of columns and /events/type an enum (docs/HDF5-LAYOUT.md)."""
+    with h5py.File(path, "r") as f:
+        e = f["events"]
+        if isinstance(e, h5py.Dataset):   # layout 1: a compound table (time, body, type, value)
+            return [float(r[0]) for r in e[()] if attr(r[2]) == kind]
+        names = {v: k for k, v in (h5py.check_enum_dtype(e["type"].dtype) or {}).items()}
+        types = [names.get(int(t), attr(t)) for t in e["type"][()]]
+        return [float(t) for t, k in zip(e["time"][()], types) if k == kind]
+
+
+# ==== scenes =====================================================================================
+# One block: 0.5 x 0.5 x 1.0 m (b 0.25, h 0.5, alpha = atan 0.5 = 0.4636 rad, p = 3.628 1/s) on a
+# fixed base, corner subcontacts, KS = KN, friction 80 deg (mu g = 5.7 g: the rigid models do not
+# slide). Stack: the same block with a 0.4 x 0.4 x 0.8 m block on top.
+KN0 = 1e10
+BLOCK = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
+block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b
+contact property stiffness-normal {kn} stiffness-shear {kn} friction 80 spacing vertices
+{damping}
+{motion}
+model solve time {T}
+output hdf5 'x.h5' interval 0.001
+"""
+STACK = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
+block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower
+block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper
+contact property stiffness-normal {kn} stiffness-shear {kn} friction 80 spacing vertices
+{damping}
+{motion}
+model solve time {T}
+output hdf5 'x.h5' interval 0.001
+"""
+ALPHA = math.atan(0.5)
+R_HOUSNER = cf.housner_r(ALPHA)   # 0.70: the reference's e, a closed form, not a DEM measurement
+
+
+def block_scene(L, name, kf=1.0, damping="", motion="", T=3):
+    return L.scene(name, BLOCK.format(kn=KN0 * kf, damping=damping, motion=motion, T=T))
+
+
+def stack_scene(L, name, kf=1.0, damping="", motion="", T=3):
+    return L.scene(name, STACK.format(kn=KN0 * kf, damping=damping, motion=motion, T=T))
+
+
+_zeta = {}
+
+
+def zeta_housner(L):
+    """The DEM's viscous damping ratio that makes its impact restitution Housner's r (0.70) on
+    the block scene: calibrated once per ladder run by `rockdem restitution --target`."""
+    if "z" not in _zeta:
+        dat = block_scene(L, "cal")
+        _zeta["z"], _zeta["r"] = L.calibrate(dat, "%.4f" % R_HOUSNER)
+    return _zeta["z"]
+
+
+# ==== rung 1: single block, free rocking vs CVODE Housner ========================================
+def impacts_and_amps(path, k=0, n=3):
+    t, tilt = h5(path, "time", "tilt")
+    ti = event_times(path, "impact")[:n]
+    th = tilt[:, k]
+    amps = []
+    for i in range(len(ti)):
+        sel = (t > ti[i]) & ((t < ti[i + 1]) if i + 1 < len(ti) else (t < ti[i] + 10))
+        amps.append(float(th[sel].max()))
+    return ti, amps
+
+
+def case_block_free(L):
+    z = zeta_housner(L)
+    th0 = 0.5 * ALPHA
+    init = "block initial name b tilt %.10g direction 0" % math.degrees(th0)
+    ref = L.reference(block_scene(L, "free_ref", damping="model damping viscous %g\n%s" % (z, init), T=1.6),
+                      "free_ref.h5", "reference.restitution=%.6f" % R_HOUSNER)
+    rt, ra = impacts_and_amps(ref)
+
+    def dem(kf):
+        p = L.run(block_scene(L, "free%g" % kf, kf, "model damping viscous %g\n%s" % (z, init), T=1.6), "free%g.h5" % kf)
+        return impacts_and_amps(p)
+    (t1, a1), (t2, a2) = L.kn_pair(dem)
+    src = "CVODE Housner, e = Housner's r = 1 - 1.5 sin^2(alpha) = 0.70"
+    dt_out = 1e-3
+    for i in range(2):
+        tol = RICHARDSON * abs(t1[i] - t2[i]) + 1e-5 * rt[i]
+        L.check("block-free/impact%d-time" % (i + 1), "impact %d time (s), relative error" % (i + 1), rt[i], src, t1[i],
+                abs(t1[i] - rt[i]) / rt[i], tol / rt[i], "two-KN study (+ event location 1e-5)")
+    for i in range(2):
+        # sampling at 1 ms misses a peak by at most p^2 theta dt^2 / 8 (parabola at the top)
+        samp = 3.628 ** 2 * dt_out ** 2 / 8
+        tol = RICHARDSON * abs(a1[i] - a2[i]) + samp * ra[i]
+        L.check("block-free/amp%d" % (i + 1), "rocking amplitude after impact %d (rad), relative error" % (i + 1), ra[i], src,
+                a1[i], abs(a1[i] - ra[i]) / ra[i], tol / ra[i], "two-KN study + 1 ms sampling")
+
+
+# ==== rung 2: single block thresholds vs CVODE Housner ===========================================
+def threshold_case(L, rid, scene_fn, freq, damping, ref_sets, src):
+    motion = "ground-motion pulse one-sine amplitude 1g frequency %g" % freq
+
+    def dem(kf):
+        return L.threshold(scene_fn(L, "thr_%s_%g" % (rid.replace("/", "_"), kf), kf, damping, motion), "dem")
+    ref, wr = L.threshold(scene_fn(L, "thr_ref", 1.0, damping, motion), "reference", *ref_sets)
+    (a1, w1), (a2, w2) = L.kn_pair(dem)
+    tol = RICHARDSON * abs(a1 - a2) / ref + w1 + wr
+    L.check(rid, "minimum overturning amplitude at %g Hz (g), relative error" % freq, ref / cf.G0, src,
+            a1 / cf.G0, abs(a1 - ref) / ref, tol, "two-KN study + both bisection brackets (rtol 0.005)")
+
+
+def case_block_threshold(L):
+    z = zeta_housner(L)
+    freqs = (1.5, 2.0) if L.depth == "fast" else (1.0, 1.5, 2.0, 2.5)
+    for f in freqs:
+        threshold_case(L, "block-threshold/%gHz" % f, block_scene, f, "model damping viscous %g" % z,
+                       ["reference.restitution=%.6f" % R_HOUSNER], "CVODE Housner, e = 0.70 (closed form r)")
+
+
+# ==== rung 3: two-block stack vs CVODE Kounadis ==================================================
+def case_stack_threshold(L):
+    freqs = (1.5,) if L.depth == "fast" else (1.0, 1.5, 2.0, 2.5)
+    # zeta 1: the DEM's nearest to Kounadis' plastic (angular-momentum) impacts; undamped: the
+    # contact law alone (the lead's presets, issues 10/11, should bring it to the reference)
+    for label, damping in (("damped", "model damping viscous 1.0"), ("undamped", "")):
+        for f in freqs:
+            threshold_case(L, "stack-threshold/%s-%gHz" % (label, f), stack_scene, f, damping, [],
+                           "CVODE Kounadis (plastic impacts)")
+
+
+def case_stack_history(L):
+    """0.5 g at 2 Hz (no overturning): each block's tilt against Kounadis' ODE up to the
+    reference's first impact; error = max |difference| / peak tilt."""
+    motion = "ground-motion pulse one-sine amplitude 0.5g frequency 2"
+    for label, damping in (("damped", "model damping viscous 1.0"), ("undamped", "")):
+        ref = L.reference(stack_scene(L, "sh_ref", 1.0, damping, motion, T=2), "sh_ref.h5")
+        tr, thr = h5(ref, "time", "tilt")
+        t_imp = event_times(ref, "impact")[0]
+        sel = tr < t_imp
+
+        def dem(kf):   # run to just past the reference's first impact: the history compared
+            p = L.run(stack_scene(L, "sh%g" % kf, kf, damping, motion, T="%.4f" % (t_imp + 0.05)), "sh%g.h5" % kf)
+            td, thd = h5(p, "time", "tilt")
+            out = []
+            for b in range(2):
+                d = np.interp(tr[sel], td, thd[:, b])
+                peak = np.abs(thr[sel, b]).max()
+                out.append(float(np.abs(d - np.abs(thr[sel, b])).max() / peak))
+            return out
+        e1, e2 = L.kn_pair(dem)
+        for b, name in enumerate(("lower", "upper")):
+            # the reference's own error is nil here; the DEM's, by the two-KN study; 1 ms
+            # interpolation of a smooth history adds < 1e-4 of the peak
+            tol = RICHARDSON * abs(e1[b] - e2[b]) + 1e-4
+            L.check("stack-history/%s-%s" % (label, name), "%s block tilt up to the first impact: max |diff| / peak" % name,
+                    0.0, "CVODE Kounadis (%s)" % label, e1[b], e1[b], tol, "two-KN study (+1e-4 interpolation)")
+
+
+# ==== rung 4: sliding vs Newmark ================================================================
+SLIDE = """block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base
+block create brick size 1 1 0.25 position 0 0 0.125 density 2700 name block
+contact property stiffness-normal {kn} stiffness-shear {ks} friction 20
+model settle on
+ground-motion pulse one-sine amplitude 0.6g frequency 2 direction 0
+model solve time 1.5
+output hdf5 'slide.h5' interval 0.005
+"""
+
+
+def case_slide(L):
+    mu, A, f = math.tan(math.radians(20)), 0.6 * cf.G0, 2.0
+    umax, ufin = cf.newmark_slide(mu, A, f)
+
+    def dem(kf):
+        p = L.run(L.scene("slide%g" % kf, SLIDE.format(kn=1e10 * kf, ks=1e9 * kf)), "slide%g.h5" % kf)
+        return float(h5(p, "summary:max_slide")[0])
+    s1, s2 = L.kn_pair(dem)
+    # the elastic shear deflection mu m g / (KS A) is part of the DEM's slide and vanishes as
+    # KS -> oo: it is inside the two-KN study (KS scaled with KN)
+    tol = RICHARDSON * abs(s1 - s2) / umax + 1e-6
+    L.check("slide/newmark", "max slide, 0.6 g one-sine 2 Hz, mu = tan 20 deg (m), relative error", umax,
+            "Newmark rigid-plastic (closed form integrated, 1e-11)", s1, abs(s1 - umax) / umax, tol,
+            "two-KN study (KS with KN)")
+
+
+# ==== rung 5: static tipping g tan(alpha) =======================================================
+def case_tipping(L):
+    """A triangle pulse ramps the ground acceleration at k = g tan(alpha) per second (1 g over
+    2 s): a rigid block uplifts when k t = g tan(alpha) (t = 1 s) and its tilt then grows from
+    0. Quantity: the time the tilt first passes 1e-4 rad, DEM vs the CVODE rigid reference (the
+    rigid solver's uplift is the closed form to 1e-6, tests/test_reference.c)."""
+    k = cf.G0 * math.tan(ALPHA)
+    motion = "ground-motion pulse triangle amplitude %.10g duration 4" % (2 * k)
+
+    def cross(path):
+        t, th = h5(path, "time", "tilt")
+        th = th[:, 0]
+        i = int(np.argmax(th > 1e-4))
+        return float(t[i - 1] + (1e-4 - th[i - 1]) / (th[i] - th[i - 1]) * (t[i] - t[i - 1]))
+    tr = cross(L.reference(block_scene(L, "tip_ref", motion=motion, T=1.3), "tip_ref.h5"))
+
+    def dem(kf):
+        return cross(L.run(block_scene(L, "tip%g" % kf, kf, motion=motion, T=1.3), "tip%g.h5" % kf))
+    t1, t2 = L.kn_pair(dem)
+    tol = RICHARDSON * abs(t1 - t2) + 1e-3 * 0.05   # + linear interpolation over 1 ms samples
+    L.check("tipping/ramp", "ground acceleration when the tilt passes 1e-4 rad (m/s^2), abs error", k * tr,
+            "CVODE Housner (uplift at g tan(alpha) = %.4f m/s^2)" % k, k * t1, k * abs(t1 - tr), k * tol,
+            "two-KN study + sampling")
+
+
+# ==== rung 6: restitution vs amplitude decay ====================================================
+def case_restitution(L):
+    """With the damping calibrated to Housner's r (the calibrator measures r as w_after /
+    w_before), the amplitude decay of a free-rocking run must give the same r through the
+    rigid block's energy balance (closed form): a measurement independent of the calibrator's."""
+    z = zeta_housner(L)
+    init = "block initial name b tilt %.10g direction 0" % math.degrees(0.5 * ALPHA)
+
+    def dem(kf):
+        p = L.run(block_scene(L, "rest%g" % kf, kf, "model damping viscous %g\n%s" % (z, init), T=1.6), "rest%g.h5" % kf)
+        _, amps = impacts_and_amps(p, n=3)
+        rs = [cf.restitution_from_amplitudes(ALPHA, 0.5 * ALPHA if i == 0 else amps[i - 1], amps[i]) for i in range(3)]
+        return float(np.mean(rs))
+    r1, r2 = L.kn_pair(dem)
+    # + the calibrator's stopping tolerance (RD_CAL_RTOL 0.002 in src/ensembles/restitution.c)
+    tol = RICHARDSON * abs(r1 - r2) + 0.002
+    L.check("restitution/amplitude-decay", "r from the amplitude decay of impacts 1-3 (mean), abs error", R_HOUSNER,
+            "Housner's r = 1 - 1.5 sin^2(alpha) (closed form)", r1, abs(r1 - R_HOUSNER), tol,
+            "two-KN study + calibrator tolerance 0.002")
+
+
+# ==== rung 7: YADE stored runs ==================================================================
+from compare import RunFile  # noqa: E402  (tools/yade/compare.py)
+
+# rockdem's shear stiffness matched to YADE's law. YADE's Polyhedra law gives one interaction
+# the shear stiffness ks = KS x A (A: the whole contact face, tools/yade/translate.py), kept in
+# full while the block rocks on an edge. rockdem gives each subcontact point KS x its tributary
+# area; the automatic spacing meshes a square face into 10 x 10 cells, and the edge row a block
+# rocks on carries 10 half cells = A / 20. rockdem's KS = 20 x the scenario's KS gives the
+# rocking block YADE's shear stiffness (2e10 x 0.0125 m^2 = 1e9 x 0.25 m^2 = 2.5e8 N/m).
+YADE_KS_MATCH = 20
+
+
+def yade_pair(L, scen, name, amp=None, sets=()):
+    """rockdem at dt and dt/2 on a stored YADE scenario; YADE's stored dt and dt/2 files."""
+    dat = os.path.join(YADE, scen)
+    base = list(sets) + (["motion.amplitude=%sg" % amp] if amp else [])
+    fix = {}
+    for line in open(dat):
+        m = re.match(r"model timestep fixed ([0-9.e+-]+)", line)
+        if m:
+            fix["dt"] = float(m.group(1))
+    rd1 = RunFile(L.run(dat, name + "_rd.h5", *base))
+    rd2 = RunFile(L.run(dat, name + "_rd2.h5", *(base + ["model.timestep=%g" % (fix["dt"] / 2)])))
+    stored = os.path.join(YADE, name + ".h5")
+    half = os.path.join(YADE, "half", name + ".h5")
+    for p in (stored, half):
+        if not os.path.exists(p):
+            raise RuntimeError("missing stored YADE file %s (make check-yade regenerates it)" % p)
+    return rd1, rd2, RunFile(stored), RunFile(half)
+
+
+def rel(a, b):
+    return abs(a - b) / abs(b)
+
+
+def case_yade_free(L):
+    ks = "contact.stiffness-shear=%g" % (1e9 * YADE_KS_MATCH)
+    rd1, rd2, y1, y2 = yade_pair(L, "free.dat", "free", sets=[ks])
+    t = [R.impacts(0)[0][0] for R in (rd1, rd2, y1, y2)]
+    wedge, edge = cf.winkler_inset_first_impact(0.25, 0.5, 0.5, 2700 * 0.25, 1e10, math.radians(10), 9.81)
+    tol = abs(t[0] - t[1]) + abs(t[2] - t[3]) + (wedge - edge)
+    L.check("yade-free/impact-time", "first impact time (s), abs difference", t[2], "YADE 2023.02a (stored, dt 5e-5)",
+            t[0], abs(t[0] - t[2]), tol, "dt/2 (both codes) + Winkler-wedge pivot inset %.2g s (closed form)" % (wedge - edge))
+
+    def amp(R):
+        imp = R.impacts(0)
+        return float(np.max(R.tilt[imp[0][1]:imp[1][1] if len(imp) > 1 else len(R.time), 0]))
+    a = [amp(R) for R in (rd1, rd2, y1, y2)]
+    tol = rel(a[0], a[1]) + rel(a[2], a[3])
+    L.check("yade-free/amp-after-impact", "peak tilt between impacts 1 and 2 (rad), relative to YADE", a[2],
+            "YADE (stored)", a[0], rel(a[0], a[2]), tol, "dt/2 (both codes)")
+    L.check("yade-free/release-tilt", "release tilt (rad), relative", y1.sumval("max_tilt", 0), "YADE (stored)",
+            rd1.sumval("max_tilt", 0), rel(rd1.sumval("max_tilt", 0), y1.sumval("max_tilt", 0)), 1e-6,
+            "same initial condition; 1e-6 = YADE's 1 um lift over the 1 m block")
+
+
+def overturns(L, dat, amp, sets):
+    p = L.run(dat, "ovb.h5", *(list(sets) + ["motion.amplitude=%.6gg" % amp]))
+    return int(h5(p, "summary:overturned")[0])
+
+
+def case_yade_overturn(L):
+    dat = os.path.join(YADE, "overturn.dat")
+    y = {a: (RunFile(os.path.join(YADE, "overturn-%s.h5" % a)), RunFile(os.path.join(YADE, "half", "overturn-%s.h5" % a)))
+         for a in ("0.77", "0.78")}
+    yo = {a: (int(p.sumval("overturned", 0)), int(q.sumval("overturned", 0))) for a, (p, q) in y.items()}
+    assert yo["0.77"] == (0, 0) and yo["0.78"] == (1, 1), "stored YADE bracket is not 0.77 / 0.78 g at dt and dt/2: %s" % yo
+    ks = "contact.stiffness-shear=%g" % (1e9 * YADE_KS_MATCH)
+    # matched law: rockdem must stand at 0.77 g and overturn at 0.78 g, at dt and at dt/2.
+    # Error: how many of those 4 outcomes differ; tolerance 0 (the bracket is YADE's bisection
+    # resolution, 1.3 %, and YADE's dt/2 leaves it in place).
+    wrong = 0
+    for dt in (None, 2.5e-5):
+        sets = [ks] + (["model.timestep=%g" % dt] if dt else [])
+        wrong += overturns(L, dat, 0.77, sets) != 0
+        wrong += overturns(L, dat, 0.78, sets) != 1
+    L.check("yade-overturn/bracket-matched-ks", "outcomes at 0.77 / 0.78 g, dt and dt/2 (count wrong)", "0.77 / 0.78 g",
+            "YADE (stored, dt and dt/2)", "%d of 4 wrong" % wrong, wrong, 0,
+            "YADE's bracket resolution 1.3 %%, unmoved at dt/2; KS matched x%d" % YADE_KS_MATCH)
+    # the scenario's own KS (per point): bisect rockdem's threshold (1 % steps) for the gap
+    lo, hi = 0.77, 4.0
+    if overturns(L, dat, lo, []) == 1:
+        hi = lo
+    else:
+        while hi / lo > 1.01:
+            mid = math.sqrt(lo * hi)
+            if overturns(L, dat, mid, []):
+                hi = mid
+            else:
+                lo = mid
+    L.check("yade-overturn/bracket-scenario-ks", "overturning amplitude (g), relative to YADE's 0.78 g", 0.78,
+            "YADE (stored)", hi, rel(hi, 0.78), 0.013 + 0.01, "YADE's bracket 1.3 % + rockdem's 1 % bisection")
+
+
+def case_yade_stack(L):
+    ks = "contact.stiffness-shear=%g" % (1e9 * YADE_KS_MATCH)
+    amps = ("0.3", "1.0") if L.depth == "fast" else ("0.3", "0.6", "1.0")
+    for a in amps:
+        rd1, rd2, y1, y2 = yade_pair(L, "stack.dat", "stack-%s" % a, a, sets=[ks])
+        for k, n in enumerate(("lower", "upper")):
+            # a rockdem run that ends because a body left the scene (status lost) gives no
+            # overturned flag: the scenario's own criterion (tilt ratio >= 1.5) is applied instead
+            o = [int(R.sumval("overturned", k) or R.sumval("max_tilt_ratio", k) >= 1.5) for R in (rd1, y1, y2)]
+            L.check("yade-stack/%sg-%s-overturned" % (a, n), "%s block overturned at %s g" % (n, a), bool(o[1]),
+                    "YADE (stored; dt/2 %s)" % ("agrees" if o[1] == o[2] else "DIFFERS"), bool(o[0]),
+                    int(o[0] != o[1]), 0, "a flag: must agree")
+            if not o[0] and not o[1]:
+                m = [R.sumval("max_tilt", k) for R in (rd1, rd2, y1, y2)]
+                tol = rel(m[0], m[1]) + rel(m[2], m[3])
+                L.check("yade-stack/%sg-%s-tilt" % (a, n), "%s block max tilt at %s g (rad), relative" % (n, a), m[2],
+                        "YADE (stored)", m[0], rel(m[0], m[2]), tol, "dt/2 (both codes)")
+
+
+def case_yade_column(L):
+    amps = ("1.6",) if L.depth == "fast" else ("0.4", "0.7", "1.0", "1.6")
+    FELL = 0.8   # rad: a drum past 0.8 rad (46 deg, above every drum's alpha 0.46 rad) has fallen
+    for a in amps:
+        rd1, rd2, y1, y2 = yade_pair(L, "column.dat", "column-%s" % a, a)
+        for k, n in enumerate(y1.names):
+            m = [R.sumval("max_tilt", R.body(n)) for R in (rd1, rd2, y1, y2)]
+            fell = [x >= FELL for x in m]
+            L.check("yade-column/%sg-%s-fell" % (a, n), "drum %s fell (max tilt >= 0.8 rad) at %s g" % (n, a), fell[2],
+                    "YADE (stored; dt/2 %s)" % ("agrees" if fell[2] == fell[3] else "DIFFERS"), fell[0],
+                    int(fell[0] != fell[2]), 0, "a flag: must agree")
+            if not fell[0] and not fell[2]:
+                tol = rel(m[0], m[1]) + rel(m[2], m[3])
+                L.check("yade-column/%sg-%s-tilt" % (a, n), "drum %s max tilt at %s g (rad), relative" % (n, a), m[2],
+                        "YADE (stored)", m[0], rel(m[0], m[2]), tol, "dt/2 (both codes)")
+
+
+def case_yade_slide(L):
+    rd1, rd2, y1, y2 = yade_pair(L, "slide.dat", "slide")
+    s = [R.sumval("max_slide", 0) for R in (rd1, rd2, y1, y2)]
+    umax, _ = cf.newmark_slide(math.tan(math.radians(20)), 0.6 * cf.G0, 2.0)
+    # Both codes approximate Newmark's rigid-plastic slide. Each may be off it by its own error:
+    # YADE's distance from the closed form (measured on the stored run) and rockdem's bound from
+    # a two-KN study (KN and KS x 10, step / sqrt 10); plus each code's dt/2 change.
+    r10 = RunFile(L.run(os.path.join(YADE, "slide.dat"), "slide_kn10.h5", "contact.stiffness-normal=1e11",
+                        "contact.stiffness-shear=1e10", "model.timestep=%g" % (5e-5 / math.sqrt(10))))
+    s10 = r10.sumval("max_slide", 0)
+    tol = rel(s[0], s[1]) + rel(s[2], s[3]) + rel(s[2], umax) + RICHARDSON * abs(s[0] - s10) / umax
+    L.check("yade-slide/max-slide", "max slide (m), relative to YADE", s[2], "YADE (stored)", s[0], rel(s[0], s[2]), tol,
+            "dt/2 (both codes) + YADE's distance from Newmark (%.5g m) + rockdem's two-KN bound" % umax)
+
+
+# ==== the case list: one definition, two depths =================================================
+CASES = [
+    # (group, function, in the fast subset)
+    ("block", case_block_free, True),
+    ("block", case_block_threshold, True),
+    ("stack", case_stack_history, True),
+    ("stack", case_stack_threshold, True),
+    ("slide", case_slide, True),
+    ("tipping", case_tipping, True),
+    ("restitution", case_restitution, True),
+    ("yade", case_yade_free, True),
+    ("yade", case_yade_overturn, True),
+    ("yade", case_yade_stack, True),
+    ("yade", case_yade_slide, True),
+    ("column", case_yade_column, True),
+]
+
+
+def markdown(L, path, wall):
+    rows = L.rows
+    n = {v: sum(r["verdict"] == v for r in rows) for v in ("pass", "FAIL", "xfail", "xpass")}
+    out = ["<!-- GENERATED by `make validate` (tools/validate/ladder.py --depth full): do not edit by hand. -->",
+           "# rockdem validation report", "",
+           "Generated by `make validate` from runs of `bin/rockdem` (%s); never edited by hand." % time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+           "The cases and their tolerances are defined once in `tools/validate/ladder.py`; `make test` runs a fast",
+           "subset of the same definitions (`tests/cli/validation.sh`). How each tolerance is derived: the module's",
+           "docstring. The rocking equations behind the references: [ROCKING-EQUATIONS.md](ROCKING-EQUATIONS.md).", "",
+           "Verdicts: **pass** (error <= tolerance), **FAIL**, **xfail** (a known gap, listed with its reason below;",
+           "it prints its gap on every run), **xpass** (a known gap that closed: remove its mark).", "",
+           "Totals: %d pass, %d FAIL, %d xfail, %d xpass; %d rockdem runs in %.0f s." % (
+               n["pass"], n["FAIL"], n["xfail"], n["xpass"], L.nrun, wall), "",
+           "| case | quantity | reference | reference source | rockdem | error | tolerance | tolerance source | verdict |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        out.append("| %s | %s | %s | %s | %s | %.3g | %.3g | %s | %s |" % (
+            r["id"], r["quantity"], fmt(r["ref"]), r["ref_src"], fmt(r["got"]), r["err"], r["tol"], r["tol_src"],
+            "**%s**" % r["verdict"] if r["verdict"] != "pass" else "pass"))
+    out += ["", "## Known gaps (expected failures)", ""]
+    for r in rows:
+        if r["verdict"] in ("xfail", "xpass"):
+            out.append("- `%s`: gap %.3g against %.3g. %s" % (r["id"], r["err"], r["tol"], XFAILS[r["id"]]))
+    out.append("")
+    with open(path, "w") as f:
+        f.write("\n".join(out))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--depth", choices=["fast", "full"], default="fast")
+    ap.add_argument("--bin", default=os.path.join(ROOT, "bin", "rockdem"))
+    ap.add_argument("--only", help="groups: block,stack,slide,tipping,restitution,yade,column")
+    ap.add_argument("--md", help="write the markdown report here")
+    ap.add_argument("--tmp")
+    a = ap.parse_args()
+    only = set(a.only.split(",")) if a.only else None
+    tmp = a.tmp or tempfile.mkdtemp(prefix="rd_ladder_")
+    os.makedirs(tmp, exist_ok=True)
+    L = Ladder(os.path.abspath(a.bin), tmp, a.depth)
+    t0 = time.time()
+    errors = 0
+    for group, fn, fast in CASES:
+        if (only and group not in only) or (a.depth == "fast" and not fast):
+            continue
+        try:
+            fn(L)
+        except Exception as e:  # a case that cannot run is a failure, never a silent skip
+            print("FAIL %s: %s" % (fn.__name__, e))
+            errors += 1
+    wall = time.time() - t0
+    if a.md:
+        markdown(L, a.md, wall)
+    if not a.tmp:
+        shutil.rmtree(tmp, ignore_errors=True)
+    n = {v: sum(r["verdict"] == v for r in L.rows) for v in ("pass", "FAIL", "xfail", "xpass")}
+    print("ladder (%s): %d pass, %d FAIL, %d xfail, %d xpass, %d errors; %d runs, %.0f s" % (
+        a.depth, n["pass"], n["FAIL"], n["xfail"], n["xpass"], errors, L.nrun, wall))
+    return 1 if (L.failed or L.xpassed or errors) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
