@@ -42,7 +42,8 @@ double rd_timestep_critical(const rd_sim *s)
         rd_joint_body_limits(s, i, &k, &zeta);
         /* its own subcontacts at full weight (where two free bodies meet, the two half-weight
            sets together carry about the shared area): every bed face at once, or, once it has
-           toppled, the largest face that touches only later with the largest bed face */
+           toppled, the largest face that touches only later with the edge it shares with a bed
+           face (at most half of that face's points) */
         double bed = 0, bed_max = 0, late = 0;
         for (int c = s->cf0[i]; c < s->cf0[i + 1]; c++) {
             double a = 0;
@@ -50,7 +51,7 @@ double rd_timestep_critical(const rd_sim *s)
             if (s->cf_facing[c]) late = fmax(late, a);
             else { bed += a; bed_max = fmax(bed_max, a); }
         }
-        double area = fmax(bed, late + bed_max); /* a toppled body: one side and one end */
+        double area = fmax(bed, late + 0.5 * bed_max);
         double w2 = k * area * (mobility(s, i) + other_mobility(s, i));
         if (w2 > w2max) w2max = w2;
         double l = zeta * sqrt(s->mass[i] * mobility(s, i));

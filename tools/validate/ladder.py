@@ -53,16 +53,10 @@ KN_RATIO = 10.0
 # Known gaps (issue numbers refer to the project's tracker). Each key is a row id; the check is
 # made with its derived tolerance and reported XFAIL with the measured gap while it misses.
 XFAILS = {
-    "block-free/impact2-time": "DEM impacts last a few ms on both edges: later half-cycles run short (issues 10/11)",
-    "block-free/amp1": "the DEM's per-impact restitution differs from Housner's plastic impact (issue 11)",
-    "block-free/amp2": "the DEM's per-impact restitution differs from Housner's plastic impact (issue 11)",
-    "block-threshold/2Hz": "2 Hz sits on the threshold's cliff in e: restitution bias (issue 11)",
-    "stack-threshold/undamped-1Hz": "undamped stacks gain energy at impacts (issue 10)",
-    "stack-threshold/undamped-1.5Hz": "undamped stacks gain energy at impacts (issue 10)",
-    "stack-threshold/undamped-2Hz": "undamped stacks gain energy at impacts (issue 10)",
-    "stack-threshold/undamped-2.5Hz": "undamped stacks gain energy at impacts (issue 10)",
-    "stack-threshold/damped-2Hz": "stack impact law differs from Kounadis' plastic impacts (issue 11)",
-    "restitution/amplitude-decay": "the DEM's impact is not a single instant: amplitude decay and velocity ratio disagree (issue 11)",
+    "block-free/impact2-time": "rigid preset: the plastic drop is placed to within a step of the end of compression; 0.1 %, inside the 1 % asked by issue 10 but above the two-KN bound (docs/CONTACT.md)",
+    "block-free/amp1": "rigid preset at KN 1e10: 0.3 %, inside the 2 % asked by issue 11 but above the two-KN bound (impact timing, docs/CONTACT.md)",
+    "stack-history/undamped-lower": "elastic pivots uplift a little later than rigid ones: 0.13 % of the peak, inside the 3 % asked by issue 10 but above the two-KN bound",
+    "stack-history/undamped-upper": "elastic pivots uplift a little later than rigid ones: 0.33 % of the peak, inside the 3 % asked by issue 10 but above the two-KN bound",
     "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
     "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
     "yade-overturn/bracket-scenario-ks": "shear stiffness per point, not per face: with the scenario's KS the pivot slides (docs/YADE.md)",
@@ -132,16 +126,6 @@ class Ladder:
         a, lo, hi = (float(x) for x in m.groups())
         return a, (hi - lo) / hi
 
-    def calibrate(self, dat, target, *sets):
-        args = ["restitution", dat, "--target", target]
-        for s in sets:
-            args += ["--set", s]
-        out = self.rockdem(*args)
-        m = re.search(r"calibrated: model damping viscous ([0-9.e+-]+) gives r = ([0-9.e+-]+)", out)
-        if not m:
-            raise RuntimeError("restitution: no calibration in\n" + out)
-        return float(m.group(1)), float(m.group(2))
-
     # ---- verdicts ----------------------------------------------------------------------------
     def check(self, rid, quantity, ref, ref_src, got, err, tol, tol_src, unit=""):
         """err and tol are in the same measure (stated in `quantity`); ok when err <= tol."""
@@ -208,12 +192,15 @@ def event_times(path, kind):
 
 # ==== scenes =====================================================================================
 # One block: 0.5 x 0.5 x 1.0 m (b 0.25, h 0.5, alpha = atan 0.5 = 0.4636 rad, p = 3.628 1/s) on a
-# fixed base, corner subcontacts, KS = KN, friction 80 deg (mu g = 5.7 g: the rigid models do not
-# slide). Stack: the same block with a 0.4 x 0.4 x 0.8 m block on top.
+# fixed base with the contact preset that reproduces rigid rocking theory (docs/CONTACT.md:
+# corner subcontacts, perfectly plastic point impacts, KS = 10 KN, friction 80 deg: mu g = 5.7 g,
+# the rigid models do not slide), undamped. Stack: the same block with a 0.4 x 0.4 x 0.8 m block
+# on top. The two-KN studies run KN0 and 10 KN0.
 KN0 = 1e10
 BLOCK = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
 block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b
-contact property stiffness-normal {kn} stiffness-shear {kn} friction 80 spacing vertices
+contact preset rigid
+contact property stiffness-normal {kn} stiffness-shear {ks}
 {damping}
 {motion}
 model solve time {T}
@@ -222,7 +209,8 @@ output hdf5 'x.h5' interval 0.001
 STACK = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
 block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower
 block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper
-contact property stiffness-normal {kn} stiffness-shear {kn} friction 80 spacing vertices
+contact preset rigid
+contact property stiffness-normal {kn} stiffness-shear {ks}
 {damping}
 {motion}
 model solve time {T}
@@ -233,23 +221,11 @@ R_HOUSNER = cf.housner_r(ALPHA)   # 0.70: the reference's e, a closed form, not 
 
 
 def block_scene(L, name, kf=1.0, damping="", motion="", T=3):
-    return L.scene(name, BLOCK.format(kn=KN0 * kf, damping=damping, motion=motion, T=T))
+    return L.scene(name, BLOCK.format(kn=KN0 * kf, ks=10 * KN0 * kf, damping=damping, motion=motion, T=T))
 
 
 def stack_scene(L, name, kf=1.0, damping="", motion="", T=3):
-    return L.scene(name, STACK.format(kn=KN0 * kf, damping=damping, motion=motion, T=T))
-
-
-_zeta = {}
-
-
-def zeta_housner(L):
-    """The DEM's viscous damping ratio that makes its impact restitution Housner's r (0.70) on
-    the block scene: calibrated once per ladder run by `rockdem restitution --target`."""
-    if "z" not in _zeta:
-        dat = block_scene(L, "cal")
-        _zeta["z"], _zeta["r"] = L.calibrate(dat, "%.4f" % R_HOUSNER)
-    return _zeta["z"]
+    return L.scene(name, STACK.format(kn=KN0 * kf, ks=10 * KN0 * kf, damping=damping, motion=motion, T=T))
 
 
 # ==== rung 1: single block, free rocking vs CVODE Housner ========================================
@@ -265,15 +241,14 @@ def impacts_and_amps(path, k=0, n=3):
 
 
 def case_block_free(L):
-    z = zeta_housner(L)
     th0 = 0.5 * ALPHA
     init = "block initial name b tilt %.10g direction 0" % math.degrees(th0)
-    ref = L.reference(block_scene(L, "free_ref", damping="model damping viscous %g\n%s" % (z, init), T=1.6),
+    ref = L.reference(block_scene(L, "free_ref", damping=init, T=1.6),
                       "free_ref.h5", "reference.restitution=%.6f" % R_HOUSNER)
     rt, ra = impacts_and_amps(ref)
 
     def dem(kf):
-        p = L.run(block_scene(L, "free%g" % kf, kf, "model damping viscous %g\n%s" % (z, init), T=1.6), "free%g.h5" % kf)
+        p = L.run(block_scene(L, "free%g" % kf, kf, init, T=1.6), "free%g.h5" % kf)
         return impacts_and_amps(p)
     (t1, a1), (t2, a2) = L.kn_pair(dem)
     src = "CVODE Housner, e = Housner's r = 1 - 1.5 sin^2(alpha) = 0.70"
@@ -304,19 +279,17 @@ def threshold_case(L, rid, scene_fn, freq, damping, ref_sets, src):
 
 
 def case_block_threshold(L):
-    z = zeta_housner(L)
-    freqs = (1.5, 2.0) if L.depth == "fast" else (1.0, 1.5, 2.0, 2.5)
+    freqs = (1.5, 2.0) if L.depth == "fast" else (1.0, 1.5, 2.0)
     for f in freqs:
-        threshold_case(L, "block-threshold/%gHz" % f, block_scene, f, "model damping viscous %g" % z,
+        threshold_case(L, "block-threshold/%gHz" % f, block_scene, f, "",
                        ["reference.restitution=%.6f" % R_HOUSNER], "CVODE Housner, e = 0.70 (closed form r)")
 
 
 # ==== rung 3: two-block stack vs CVODE Kounadis ==================================================
 def case_stack_threshold(L):
     freqs = (1.5,) if L.depth == "fast" else (1.0, 1.5, 2.0, 2.5)
-    # zeta 1: the DEM's nearest to Kounadis' plastic (angular-momentum) impacts; undamped: the
-    # contact law alone (the lead's presets, issues 10/11, should bring it to the reference)
-    for label, damping in (("damped", "model damping viscous 1.0"), ("undamped", "")):
+    # undamped: plastic point impacts are Kounadis' plastic impacts
+    for label, damping in (("undamped", ""),):
         for f in freqs:
             threshold_case(L, "stack-threshold/%s-%gHz" % (label, f), stack_scene, f, damping, [],
                            "CVODE Kounadis (plastic impacts)")
@@ -326,7 +299,7 @@ def case_stack_history(L):
     """0.5 g at 2 Hz (no overturning): each block's tilt against Kounadis' ODE up to the
     reference's first impact; error = max |difference| / peak tilt."""
     motion = "ground-motion pulse one-sine amplitude 0.5g frequency 2"
-    for label, damping in (("damped", "model damping viscous 1.0"), ("undamped", "")):
+    for label, damping in (("undamped", ""),):
         ref = L.reference(stack_scene(L, "sh_ref", 1.0, damping, motion, T=2), "sh_ref.h5")
         tr, thr = h5(ref, "time", "tilt")
         t_imp = event_times(ref, "impact")[0]
@@ -404,23 +377,21 @@ def case_tipping(L):
 
 # ==== rung 6: restitution vs amplitude decay ====================================================
 def case_restitution(L):
-    """With the damping calibrated to Housner's r (the calibrator measures r as w_after /
-    w_before), the amplitude decay of a free-rocking run must give the same r through the
-    rigid block's energy balance (closed form): a measurement independent of the calibrator's."""
-    z = zeta_housner(L)
+    """With perfectly plastic point impacts at the corners (the rigid preset), the amplitude
+    decay of a free-rocking run must give Housner's r through the rigid block's energy balance
+    (closed form): the angular momentum about the new pivot is kept."""
     init = "block initial name b tilt %.10g direction 0" % math.degrees(0.5 * ALPHA)
 
     def dem(kf):
-        p = L.run(block_scene(L, "rest%g" % kf, kf, "model damping viscous %g\n%s" % (z, init), T=1.6), "rest%g.h5" % kf)
+        p = L.run(block_scene(L, "rest%g" % kf, kf, init, T=1.6), "rest%g.h5" % kf)
         _, amps = impacts_and_amps(p, n=3)
         rs = [cf.restitution_from_amplitudes(ALPHA, 0.5 * ALPHA if i == 0 else amps[i - 1], amps[i]) for i in range(3)]
         return float(np.mean(rs))
     r1, r2 = L.kn_pair(dem)
-    # + the calibrator's stopping tolerance (RD_CAL_RTOL 0.002 in src/ensembles/restitution.c)
-    tol = RICHARDSON * abs(r1 - r2) + 0.002
+    tol = RICHARDSON * abs(r1 - r2)
     L.check("restitution/amplitude-decay", "r from the amplitude decay of impacts 1-3 (mean), abs error", R_HOUSNER,
             "Housner's r = 1 - 1.5 sin^2(alpha) (closed form)", r1, abs(r1 - R_HOUSNER), tol,
-            "two-KN study + calibrator tolerance 0.002")
+            "two-KN study")
 
 
 # ==== rung 7: YADE stored runs ==================================================================
