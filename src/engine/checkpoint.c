@@ -151,7 +151,7 @@ int rd_checkpoint_restore(rd_sim *s, const char *path, rd_error *err)
 {
     long h[H_COUNT];
     double fig[2];
-    char buf[160];
+    char buf[2 * RD_NAME_MAX + 64]; /* two block names and the words around them */
     const char *bad = NULL;
     long long f = rd_h5t_open(path, err);
     if (f < 0) return rd_error_set(err, "%s: model restore: cannot open '%s' as a checkpoint", s->sc.file, path);

@@ -16,7 +16,7 @@
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn, so the active contact
  * of a pair is damped at the ratio zeta of its critical value.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"
