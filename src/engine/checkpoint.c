@@ -13,7 +13,12 @@
  * The file is HDF5: readable datasets for the bodies (/bodies/names, position, quaternion,
  * velocity, angular_momentum) and the engine's contact tables under /state (pairs and joints
  * as raw records with their record size, checked on restore, so a checkpoint is tied to the
- * rockdem build that wrote it, like 3DEC's save files). */
+ * rockdem build that wrote it, like 3DEC's save files).
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/. This file is
+ * the one exception left: it reads and writes its checkpoint through io/io_table.c
+ * (docs/ARCHITECTURE.md).
+ */
 #include "engine/sim.h"
 #include "io/io_table.h"
 
