@@ -32,6 +32,11 @@ all: $(BIN)/rockdem $(BUILD)/librockdem.so
 # the engine library alone, static and shared (an embedding program or Python's ctypes)
 lib: $(BUILD)/librockdem.a $(BUILD)/librockdem.so
 
+# examples/embed.c: a scene run through the public API alone, no file (docs/ARCHITECTURE.md)
+examples: $(BUILD)/embed
+$(BUILD)/embed: examples/embed.c $(BUILD)/librockdem.a $(HEADERS)
+	$(CC) $(WFLAGS) $(CFLAGS) $(SAN) -Iinclude $< $(BUILD)/librockdem.a $(LDLIBS) -o $@
+
 deps: $(DEPS_STAMP)
 $(DEPS_STAMP): tools/install-deps.sh
 	@bash tools/install-deps.sh
@@ -74,7 +79,7 @@ run: $(BIN)/rockdem
 scenarios/pbr.obj: tools/make_pbr.py
 	/usr/bin/python3 tools/make_pbr.py --seed 1 -o $@
 
-test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(TESTBIN) scenarios/pbr.obj
+test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed $(TESTBIN) scenarios/pbr.obj
 	@bash tests/run.sh $(BUILD) $(BIN)
 
 # the full validation ladder (tools/validate/ladder.py; `make test` runs its fast depth): writes

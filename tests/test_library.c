@@ -14,6 +14,7 @@
 
 #include <hdf5.h>
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -187,12 +188,60 @@ static void test_observers_no_file(void **state)
     rd_scenario_free(&sc);
 }
 
+/* Ownership: rd_sim_create copies what it needs (records, hull vertices, text), so the scenario
+ * may be freed before rd_sim_run. A stochastic record (samples on the heap) drives a hull block;
+ * the freed scenario's memory is then reused and scribbled over. The run must equal one whose
+ * scenario stayed alive, bit for bit (same code path, same inputs); `valgrind
+ * build/tests/test_library` reports no invalid read. */
+static const char *owned_scene =
+    "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+    "block create polyhedron vertices -0.2 -0.2 0  0.2 -0.2 0  0.2 0.2 0  -0.2 0.2 0 &\n"
+    "    -0.2 -0.2 1.2  0.2 -0.2 1.2  0.2 0.2 1.2  -0.2 0.2 1.2 position 0 0 0.6 name b\n"
+    "contact property stiffness-normal 1e9 stiffness-shear 1e8 friction 40 spacing vertices\n"
+    "ground-motion stochastic seed 7 pga 0.4g duration 1 dt 0.01\n"
+    "model solve time 1\n";
+
+static void owned_run(int free_first, rd_summary *sum)
+{
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "own.dat", owned_scene, &err), 0);
+    rd_sim *sim = rd_sim_create(&sc, &err);
+    if (!sim) fail_msg("%s", err.msg);
+    void *scribble[64] = {0};
+    if (free_first) {
+        rd_scenario_free(&sc);
+        memset(&sc, 0xab, sizeof sc);
+        for (int k = 0; k < 64; k++) /* reuse the freed blocks */
+            if ((scribble[k] = malloc(4096))) memset(scribble[k], 0xcd, 4096);
+    }
+    assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
+    for (int k = 0; k < 64; k++) free(scribble[k]);
+    rd_sim_summary(sim, sum);
+    assert_string_equal(rd_sim_scenario(sim)->bodies[1].name, "b");
+    rd_sim_free(sim);
+    if (!free_first) rd_scenario_free(&sc);
+}
+
+static void test_free_scenario_before_run(void **state)
+{
+    (void)state;
+    rd_summary kept, freed;
+    owned_run(0, &kept);
+    owned_run(1, &freed);
+    assert_true(kept.body[0].max_tilt > 0);
+    assert_true(kept.body[0].max_tilt == freed.body[0].max_tilt);
+    assert_true(kept.body[0].max_slide == freed.body[0].max_slide);
+    assert_int_equal(kept.steps, freed.steps);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_one_simulation),
         cmocka_unit_test(test_hdf5_error_handler_kept),
         cmocka_unit_test(test_observers_no_file),
+        cmocka_unit_test(test_free_scenario_before_run),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

@@ -18,7 +18,7 @@
 #define G0 9.80665
 #define EPS 1e-12
 
-static rd_scenario *sc; /* large (RD_MAX_BODIES bodies): one on the heap for all tests */
+static rd_scenario *sc; /* one on the heap for all tests */
 
 static int group_setup(void **state)
 {
@@ -539,11 +539,12 @@ static void test_error_invalid_block_name(void **state)
                 "run.dat:1:51: invalid block name 'a.b' (1 to 63 letters, digits, '_' or '-')");
 }
 
-static void test_error_too_many_blocks(void **state)
+/* No cap on the number of blocks (issue 14): 5,000 load, named block1 .. block5000. */
+static void test_many_blocks(void **state)
 {
     (void)state;
     static const char line[] = "block create brick size 1 1 1 position 0 0 0\n";
-    size_t n = RD_MAX_BODIES + 1, len = strlen(line);
+    size_t n = 5000, len = strlen(line);
     char *text = malloc(n * len + 1);
     assert_non_null(text);
     for (size_t i = 0; i < n; i++)
@@ -552,8 +553,9 @@ static void test_error_too_many_blocks(void **state)
     rd_error err = {""};
     int rc = rd_scenario_parse(sc, "run.dat", text, &err);
     free(text);
-    assert_int_equal(rc, -1);
-    assert_string_equal(err.msg, "run.dat:257:7: too many blocks (at most 256)");
+    if (rc) fail_msg("%s", err.msg);
+    assert_int_equal(sc->nbodies, 5000);
+    assert_string_equal(sc->bodies[4999].name, "block5000");
 }
 
 static void test_error_block_initial(void **state)
@@ -807,7 +809,7 @@ int main(void)
         cmocka_unit_test_teardown(test_error_block_shape_and_required, test_teardown),
         cmocka_unit_test_teardown(test_error_duplicate_block_name, test_teardown),
         cmocka_unit_test_teardown(test_error_invalid_block_name, test_teardown),
-        cmocka_unit_test_teardown(test_error_too_many_blocks, test_teardown),
+        cmocka_unit_test_teardown(test_many_blocks, test_teardown),
         cmocka_unit_test_teardown(test_error_block_initial, test_teardown),
         cmocka_unit_test_teardown(test_error_pulse, test_teardown),
         cmocka_unit_test_teardown(test_error_second_pulse, test_teardown),

@@ -41,6 +41,10 @@ RD_API int rd_motion_has_records(const rd_motion_def *m);
 /* Free the records of every component (the definitions stay). */
 RD_API void rd_motion_release(rd_motion_def *m);
 
+/* Deep copy of src's records into dst (the rest of dst is src's by value): dst owns its
+ * records (rd_motion_release). 0, or -1 with err (dst then holds no records). */
+RD_API int rd_motion_copy(rd_motion_def *dst, const rd_motion_def *src, rd_error *err);
+
 /* Intensity measures of one applied component: peaks, Arias, D5-95 (im) and the 5 %-damped
  * pseudo-spectral accelerations at 0.2 s and 1 s (sa[0], sa[1], m/s^2; the record is padded with
  * 2 s of rest so long-period oscillators reach their peak). 0, or -1 (no record, no memory). */

@@ -87,9 +87,13 @@ typedef struct rd_joint_summary {
     double final_slip;    /* slip at the end, m */
 } rd_joint_summary;
 
+/* Free bodies listed in rd_summary (a by-value struct): the first RD_SUMMARY_BODIES in output
+ * order; rd_sim_body_summary gives any body of a larger scene. */
+#define RD_SUMMARY_BODIES 256
+
 typedef struct rd_summary {
-    int nbodies;                 /* free bodies */
-    rd_body_summary body[RD_MAX_BODIES];
+    int nbodies;                 /* free bodies listed in body[] (at most RD_SUMMARY_BODIES) */
+    rd_body_summary body[RD_SUMMARY_BODIES];
     int any_overturned;
     double end_time;             /* simulated time reached, s */
     double dt;                   /* time step used, s */
@@ -140,6 +144,9 @@ RD_API rd_status rd_sim_run(rd_sim *sim);
 
 /* Fill the summary (valid after rd_sim_run, also after an early stop). */
 RD_API void rd_sim_summary(const rd_sim *sim, rd_summary *out);
+
+/* What the run found for free body k (0 <= k < rd_sim_body_count), any scene size. */
+RD_API void rd_sim_body_summary(const rd_sim *sim, int k, rd_body_summary *out);
 
 /* The message for an UNSTABLE or IO_ERROR status ("" otherwise). */
 RD_API const char *rd_sim_error(const rd_sim *sim);

@@ -10,7 +10,6 @@
 
 #define RD_NAME_MAX 64
 #define RD_PATH_MAX 512
-#define RD_MAX_BODIES 256
 #define RD_MAX_JOINTS 32     /* `contact property ... range` overrides */
 #define RD_MAX_HISTORIES 64  /* `history` commands */
 
@@ -268,7 +267,8 @@ typedef struct rd_scenario {
     double gravity;         /* m/s^2, acts along -z (default 9.81) */
     double density;         /* default body density, kg/m^3 (default 2700) */
     int nbodies;
-    rd_body_def bodies[RD_MAX_BODIES];
+    rd_body_def *bodies;    /* [nbodies] (owned; grown by the parser and rd_scenario_add_body) */
+    int cap_bodies;         /* bodies allocated */
     rd_contact_def contact;      /* the default joint */
     int njoints;
     rd_joint_def joint[RD_MAX_JOINTS]; /* per-range overrides, file order */
@@ -320,6 +320,15 @@ RD_API int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
 
 /* Free what rd_scenario_load/parse allocated (the text and the motion records). */
 RD_API void rd_scenario_free(rd_scenario *sc);
+
+/* Deep copy of src into dst (bodies, hull vertices, scenario text, ground-motion records): dst
+ * owns its copy (rd_scenario_free) and src may be freed or changed afterwards. 0, or -1 with
+ * err (out of memory; dst is then empty). */
+RD_API int rd_scenario_copy(rd_scenario *dst, const rd_scenario *src, rd_error *err);
+
+/* Append a copy of b (its hull vertices too) to the scenario's bodies; no checks (those are
+ * rd_scenario_validate's). 0, or -1 with err (out of memory). */
+RD_API int rd_scenario_add_body(rd_scenario *sc, const rd_body_def *b, rd_error *err);
 
 /* A scenario on the heap with its defaults, for bindings that cannot size rd_scenario (the
  * Python module tools/rockdem); NULL when out of memory. */

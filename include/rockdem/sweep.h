@@ -46,7 +46,7 @@ typedef struct rd_sweep_plan {
     long ncases;            /* product of the axis lengths */
     char *axes_text;        /* canonical "key=v1,v2\n" per axis, then "--set a\n" (owned) */
     int nbodies;            /* free bodies */
-    char body[RD_MAX_BODIES][RD_NAME_MAX];
+    char body[RD_SUMMARY_BODIES][RD_NAME_MAX];
     int pulse;              /* 1: the scenario's horizontal motion is a pulse (no records) */
     double amplitude;       /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
     int perturbed;          /* 1: the scenario's interface perturbation removes, raises or scatters */
@@ -71,9 +71,9 @@ typedef struct rd_sweep_result {
     double end_time;             /* simulated time reached, s */
     double wall_seconds;         /* wall time of the whole case (setup + run), s */
     int nbodies;
-    int b_overturned[RD_MAX_BODIES];
-    double b_overturn_time[RD_MAX_BODIES], b_max_tilt_ratio[RD_MAX_BODIES];
-    double b_max_slide[RD_MAX_BODIES], b_final_twist[RD_MAX_BODIES];
+    int b_overturned[RD_SUMMARY_BODIES];
+    double b_overturn_time[RD_SUMMARY_BODIES], b_max_tilt_ratio[RD_SUMMARY_BODIES];
+    double b_max_slide[RD_SUMMARY_BODIES], b_final_twist[RD_SUMMARY_BODIES];
 } rd_sweep_result;
 
 /* --- sweep.c ----------------------------------------------------------------------------- */

@@ -9,7 +9,10 @@
  *   - a ground-motion record that ends before the requested duration
  * It first does everything a run would refuse (rd_sim_check: meshes, the step budget, the
  * output file). Exit status: 2 when a run would be refused (bad input), else 0; the last line
- * is "FILE: ok (...)" without warnings, "FILE: N warnings (...)" with them. */
+ * is "FILE: ok (...)" without warnings, "FILE: N warnings (...)" with them.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "rockdem/check.h"
 #include "cli/cli.h"
 

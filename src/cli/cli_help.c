@@ -1,5 +1,8 @@
 /* rockdem — `rockdem --help`, `rockdem help SUB` and `rockdem SUB --help`: the global usage and
- * one page per subcommand listing every option it takes, with units and defaults. */
+ * one page per subcommand listing every option it takes, with units and defaults.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 
 #include <stdio.h>

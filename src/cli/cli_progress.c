@@ -1,7 +1,10 @@
 /* rockdem — the terminal progress line of the long subcommands (run, threshold, restitution,
  * study; sweep has its own): simulated time of the current run, runs so far for the ensembles,
  * elapsed time and an ETA, redrawn on stderr at most RD_PROGRESS_HZ times a second. Silent when
- * stderr is not a terminal or with -q (rd_cli_quiet), so logs and pipes stay clean. */
+ * stderr is not a terminal or with -q (rd_cli_quiet), so logs and pipes stay clean.
+ * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
+ * ensembles/.
+ */
 #include "cli/cli.h"
 
 #include <math.h>

@@ -3,7 +3,10 @@
  * The scene is built as a run would build it (shapes, subcontacts, joints, time step), one
  * contact pass finds what each body touches as placed, and a short stretch of settle-mode
  * steps is timed. Under each free body the nearest body is the one whose box covers its centre
- * of mass in plan and whose top lies highest below the body's lowest point. */
+ * of mass in plan and whose top lies highest below the body's lowest point.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
+ */
 #include "rockdem/check.h"
 #include "engine/sim.h"
 #include "base/vec.h"

@@ -13,7 +13,12 @@
  * The file is HDF5: readable datasets for the bodies (/bodies/names, position, quaternion,
  * velocity, angular_momentum) and the engine's contact tables under /state (pairs and joints
  * as raw records with their record size, checked on restore, so a checkpoint is tied to the
- * rockdem build that wrote it, like 3DEC's save files). */
+ * rockdem build that wrote it, like 3DEC's save files).
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/. This file is
+ * the one exception left: it reads and writes its checkpoint through io/io_table.c
+ * (docs/ARCHITECTURE.md).
+ */
 #include "engine/sim.h"
 #include "io/io_table.h"
 
@@ -155,7 +160,7 @@ int rd_checkpoint_restore(rd_sim *s, const char *path, rd_error *err)
 {
     long h[H_COUNT];
     double fig[2];
-    char buf[160];
+    char buf[2 * RD_NAME_MAX + 64]; /* two block names and the words around them */
     const char *bad = NULL;
     long long f = rd_h5t_open(path, err);
     if (f < 0) return rd_error_set(err, "%s: model restore: cannot open '%s' as a checkpoint", s->sc.file, path);

@@ -36,7 +36,7 @@
  * An exiting subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"

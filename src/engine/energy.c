@@ -12,7 +12,7 @@
  * The residual is the balance error of the scheme; |residual| / (largest term seen), taken at
  * every output sample, is the health figure reported in the summary.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"

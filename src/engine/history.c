@@ -13,7 +13,10 @@
  *   /history/joint/<a>-<b>/area              [N] m^2
  *   /history/joint/<a>-<b>/pressure_centre   [N][3] m
  *   /history/energy                          [N][7] J        as /energy
- * A joint's values are NaN while its two bodies are apart (no contact pair). */
+ * A joint's values are NaN while its two bodies are apart (no contact pair).
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
+ */
 #include "engine/sim.h"
 #include "base/vec.h"
 #include "rockdem/history.h"

@@ -7,7 +7,7 @@
  * fixed-point iteration of the implicit midpoint rule, second order, as Omelyan's leapfrog).
  * This solves Euler's equations with the full inertia tensor, gyroscopic terms included.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"

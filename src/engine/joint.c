@@ -21,6 +21,9 @@
  *                  joint that rocks as one with its neighbours does not move) nor the roll of
  *                  a block tipping about its edge (the pivot stays put). Measures are taken
  *                  at output and history samples.
+ *
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"

@@ -17,7 +17,7 @@
  * d = the motion's horizontal direction) and out-of-plane rocking (about -d), as in seed 002
  * Figs. 9-10. Twist is unwrapped sample to sample, so accumulated spins exceed pi.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/constants.h"
@@ -199,6 +199,20 @@ static int inside_convex(const rd_sim *s, int j, const double c[3])
  * (by the scenario's criterion) before it fell off is a result, not an error: it gets a "lost"
  * event and the run goes on. Called every few steps, while settling too. Returns 1 when the run
  * must stop. */
+/* Body i's centre of mass inside convex body j: one error, 1. Only bodies whose boxes overlap
+ * (the broad phase's live pairs) can hold each other's centre, so only those are tested: the
+ * check costs O(bodies), not O(bodies^2). */
+static int penetrated(rd_sim *s, int i, int j, const char *stage)
+{
+    if (s->fixed[i] || !s->convex[j] || !inside_convex(s, j, s->x[i])) return 0;
+    snprintf(s->errmsg, sizeof s->errmsg, "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): its "
+             "centre of mass is inside it; the contact stiffness (stiffness-normal %g Pa/m) is far too "
+             "soft for the load", s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t,
+             s->nsteps_all, s->sc.contact.kn);
+    s->status = RD_STATUS_PENETRATED;
+    return 1;
+}
+
 int rd_monitor_escape(rd_sim *s)
 {
     const char *stage = s->settling ? " while settling" : "";
@@ -215,15 +229,10 @@ int rd_monitor_escape(rd_sim *s)
             s->status = RD_STATUS_LOST;
             return 1;
         }
-        for (int j = 0; j < s->nb; j++) {
-            if (j == i || !s->convex[j] || !inside_convex(s, j, c)) continue;
-            snprintf(s->errmsg, sizeof s->errmsg, "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): its "
-                     "centre of mass is inside it; the contact stiffness (stiffness-normal %g Pa/m) is far too "
-                     "soft for the load", s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t,
-                     s->nsteps_all, s->sc.contact.kn);
-            s->status = RD_STATUS_PENETRATED;
-            return 1;
-        }
+    }
+    for (int l = 0; l < s->nlive; l++) {
+        const rd_pair *p = &s->pair[s->live[l]];
+        if (penetrated(s, p->a, p->b, stage) || penetrated(s, p->b, p->a, stage)) return 1;
     }
     return 0;
 }

@@ -2,7 +2,7 @@
  * interval of shaking, and each sample, event and the summary go to whoever registered. The
  * engine itself writes nothing; the HDF5 file is io/output.c's observer.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"

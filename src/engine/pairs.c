@@ -8,7 +8,7 @@
  * is allocated only when two bodies meet for the first time, never in a steady step. A pair
  * whose boxes separate forgets its history (3DEC: a re-created contact starts from zero).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/constants.h"

@@ -10,7 +10,7 @@
  *             of mean 1 and coefficient of variation C: exp(sigma z - sigma^2/2),
  *             sigma^2 = ln(1 + C^2); C = 0 gives exactly 1.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/perturb.h"
 

@@ -1,6 +1,6 @@
 /* rockdem (private) — seeded perturbation of the subcontact points (perturb.c).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #ifndef RD_PERTURB_H
 #define RD_PERTURB_H

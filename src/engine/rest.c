@@ -6,7 +6,7 @@
  * In the ground frame after the motion ends the ground velocity is constant (zero after
  * baseline correction), so this frame is inertial and the kinetic energy is the physical one.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/vec.h"

@@ -8,7 +8,7 @@
  * the stiffness (3DEC's averaging of the two faces' subcontacts). Pairs are made by the broad
  * phase (pairs.c) when two bodies first come near each other.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "engine/perturb.h"

@@ -7,7 +7,7 @@
  * The frame of reference moves with the ground, so pedestals are at rest and every free body
  * feels the pseudo-force -m a_g(t) (exact for a translating frame).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "base/constants.h"
@@ -292,9 +292,8 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
     if (rd_scenario_validate(sc, err)) return NULL;
     rd_sim *s = calloc(1, sizeof *s);
     if (!s) { rd_error_set(err, "out of memory"); return NULL; }
-    s->sc = *sc;
-    if (rd_setup_bodies(s, err) || rd_setup_contacts(s, err) || choose_timestep(s, err) || check_budget(s, err) ||
-        rd_history_init(s, err)) {
+    if (rd_scenario_copy(&s->sc, sc, err) || rd_setup_bodies(s, err) || rd_setup_contacts(s, err) ||
+        choose_timestep(s, err) || check_budget(s, err) || rd_history_init(s, err)) {
         rd_sim_free(s);
         return NULL;
     }
@@ -395,10 +394,10 @@ rd_status rd_sim_run(rd_sim *s)
 void rd_sim_summary(const rd_sim *s, rd_summary *out)
 {
     memset(out, 0, sizeof *out);
-    out->nbodies = s->nfree;
+    out->nbodies = s->nfree < RD_SUMMARY_BODIES ? s->nfree : RD_SUMMARY_BODIES;
     for (int k = 0; k < s->nfree; k++) {
-        out->body[k] = s->watch[k].sum;
-        out->any_overturned |= out->body[k].overturned;
+        if (k < out->nbodies) out->body[k] = s->watch[k].sum;
+        out->any_overturned |= s->watch[k].sum.overturned;
     }
     out->end_time = s->t;
     out->dt = s->dt;
@@ -409,6 +408,8 @@ void rd_sim_summary(const rd_sim *s, rd_summary *out)
     out->wall_seconds = s->wall;
     out->status = s->status;
 }
+
+void rd_sim_body_summary(const rd_sim *s, int k, rd_body_summary *out) { *out = s->watch[k].sum; }
 
 const char *rd_sim_error(const rd_sim *s) { return s->errmsg; }
 
@@ -471,6 +472,7 @@ void rd_sim_free(rd_sim *s)
 {
     if (!s) return;
     rd_observe_release(s);
+    rd_scenario_free(&s->sc);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,

@@ -2,7 +2,7 @@
  * style); per-body and per-point data are flat arrays (structs of arrays) indexed by body or
  * point, so the contact loop streams through memory and never allocates.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #ifndef RD_SIM_H
 #define RD_SIM_H
@@ -119,7 +119,7 @@ typedef struct rd_watch {
 } rd_watch;
 
 struct rd_sim {
-    rd_scenario sc;        /* copy of the scenario (text pointer borrowed from the caller) */
+    rd_scenario sc;        /* deep copy of the scenario (owned: the caller's may be freed) */
     int nb;                /* bodies, fixed and free, in scenario order */
     int nfree;             /* free bodies */
     int *free_body;        /* [nfree] body index of each free body (output order) */

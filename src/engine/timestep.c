@@ -10,7 +10,7 @@
  * bound holds as contacts come and go. Each body takes the stiffest joint it can form with
  * any other body (joint.c: per-range contact properties).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
- * geometry/ and records/, never io/, scenario/ parsing or cli/.
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 

@@ -15,11 +15,13 @@
 
 #define RD_CAL_ITER 12 /* secant steps on e in [0, 1] */
 
-/* The free-rocking scene: no motion, the single block tilted by theta0 toward +x. */
+/* The free-rocking scene: no motion, the single block tilted by theta0 toward +x (a copy of
+ * base the caller frees with rd_scenario_free, also on error). */
 static int free_rocking_scene(const rd_scenario *base, double theta0, rd_scenario *sc,
                               double *p, double *alpha, rd_error *err)
 {
-    *sc = *base;
+    if (rd_scenario_copy(sc, base, err)) return -1;
+    rd_motion_release(&sc->motion);
     memset(&sc->motion, 0, sizeof sc->motion);
     int k = -1, nfree = 0;
     for (int i = 0; i < sc->nbodies; i++)
@@ -63,9 +65,8 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     if (!sc) return rd_error_set(err, "out of memory");
     double p = 0, alpha = 0;
     int rc = free_rocking_scene(base, theta0, sc, &p, &alpha, err);
-    if (rc) { free(sc); return -1; }
-    rd_sim *sim = rd_sim_create(sc, err); /* no file: the events are all it needs */
-    if (!sim) { free(sc); return -1; }
+    rd_sim *sim = rc ? NULL : rd_sim_create(sc, err); /* no file: the events are all it needs */
+    if (!sim) { rd_scenario_free(sc); free(sc); return -1; }
     rd_status st = rd_sim_run(sim);
     if (st != RD_STATUS_DONE && st != RD_STATUS_OVERTURNED)
         rc = rd_error_set(err, "restitution: %s", rd_sim_error(sim));
@@ -97,6 +98,7 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
         out->r_speed = exp(logspeed / out->n);
     }
     rd_sim_free(sim);
+    rd_scenario_free(sc);
     free(sc);
     return rc;
 }

@@ -245,7 +245,11 @@ static int inspect_base(rd_sweep_plan *p, rd_error *err)
     rd_scenario sc;
     int rc = base_scenario(p, &sc, err) || rd_scenario_validate(&sc, err) ? -1 : 0;
     for (int i = 0; !rc && i < sc.nbodies; i++)
-        if (!sc.bodies[i].fixed) snprintf(p->body[p->nbodies++], RD_NAME_MAX, "%s", sc.bodies[i].name);
+        if (!sc.bodies[i].fixed && p->nbodies == RD_SUMMARY_BODIES)
+            rc = rd_error_set(err, "rockdem sweep: more than %d free blocks (the table's per-block "
+                                   "columns hold %d)", RD_SUMMARY_BODIES, RD_SUMMARY_BODIES);
+        else if (!sc.bodies[i].fixed)
+            snprintf(p->body[p->nbodies++], RD_NAME_MAX, "%s", sc.bodies[i].name);
     p->pulse = !rd_motion_has_records(&sc.motion);
     p->amplitude = sc.motion.horizontal.amplitude;
     const rd_perturb_def *d = &sc.contact.perturb;

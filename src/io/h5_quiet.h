@@ -26,4 +26,14 @@ static inline rd_h5_quiet rd_h5_quiet_begin(void)
 /* Restores the handler saved by rd_h5_quiet_begin. */
 static inline void rd_h5_quiet_end(rd_h5_quiet q) { H5Eset_auto2(H5E_DEFAULT, q.fn, q.data); }
 
+/* The whole body of an entry point: returns `call` (of type `type`), evaluated with HDF5's
+ * error printing off. */
+#define RD_H5_QUIETLY(type, call)                                                              \
+    do {                                                                                       \
+        rd_h5_quiet q_ = rd_h5_quiet_begin();                                                  \
+        type r_ = (call);                                                                      \
+        rd_h5_quiet_end(q_);                                                                   \
+        return r_;                                                                             \
+    } while (0)
+
 #endif

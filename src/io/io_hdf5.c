@@ -379,7 +379,7 @@ static int create_dims(rd_h5 *h, rd_error *err)
                                   ds->labels, ds->long_name, err);
         if (h->dims[i] < 0) return -1;
     }
-    const char *names[RD_MAX_BODIES];
+    const char *names[RD_SUMMARY_BODIES];
     for (int i = 0; i < h->nb; i++) names[i] = h->names[i];
     h->body_dim = scale_create(h, h->file, "body", h->str_type, (hsize_t)h->nb, names,
                                "free body, in output order", err);
@@ -494,15 +494,15 @@ static int write_body(const rd_h5 *h, const rd_h5_body *b, rd_error *err)
     return rc;
 }
 
-/* 1..RD_MAX_BODIES bodies, named as HDF5 groups can be and short enough for rd_body_summary. */
+/* 1..RD_SUMMARY_BODIES bodies, named as HDF5 groups can be and short enough for rd_body_summary. */
 static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
 {
-    if (m->nbodies < 1 || m->nbodies > RD_MAX_BODIES)
+    if (m->nbodies < 1 || m->nbodies > RD_SUMMARY_BODIES)
         return rd_error_set(err, "%s: %d free bodies (1 to %d can be written)", path,
-                            m->nbodies, RD_MAX_BODIES);
-    if (m->nfixed < 0 || m->nfixed > RD_MAX_BODIES)
+                            m->nbodies, RD_SUMMARY_BODIES);
+    if (m->nfixed < 0 || m->nfixed > RD_SUMMARY_BODIES)
         return rd_error_set(err, "%s: %d fixed bodies (at most %d)", path, m->nfixed,
-                            RD_MAX_BODIES);
+                            RD_SUMMARY_BODIES);
     for (int i = 0; i < m->nbodies + m->nfixed; i++) {
         const char *n = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
         if (!n || !n[0] || strlen(n) >= RD_NAME_MAX || strchr(n, '/') || !strcmp(n, ".") ||
@@ -518,7 +518,7 @@ static int write_bodies(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
         if (write_body(h, &m->bodies[i], err)) return -1;
     for (int i = 0; i < m->nfixed; i++)
         if (write_body(h, &m->fixed_bodies[i], err)) return -1;
-    const char *names[RD_MAX_BODIES];
+    const char *names[RD_SUMMARY_BODIES];
     for (int i = 0; i < h->nb; i++) names[i] = h->names[i];
     hsize_t n = (hsize_t)h->nb;
     hid_t space = H5Screate_simple(1, &n, NULL);
@@ -946,8 +946,8 @@ static int summary_order(const rd_h5 *h, const rd_summary *s, int *order, rd_err
 static int write_body_fields(const rd_h5 *h, hid_t g, const rd_summary *s, const int *order,
                              rd_error *err)
 {
-    double d[RD_MAX_BODIES];
-    int n[RD_MAX_BODIES];
+    double d[RD_SUMMARY_BODIES];
+    int n[RD_SUMMARY_BODIES];
     size_t nf = sizeof body_fields / sizeof body_fields[0];
     for (size_t f = 0; f < nf; f++) {
         const rd_h5_body_field *bf = &body_fields[f];
@@ -1001,7 +1001,7 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
 static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 {
     if (reserve(h, 0, err)) return -1;
-    int order[RD_MAX_BODIES];
+    int order[RD_SUMMARY_BODIES];
     if (summary_order(h, s, order, err)) return -1;
     htri_t exists = H5Lexists(h->file, "/summary", H5P_DEFAULT);
     if (exists <= 0 && make_group(h, "/summary", "what the run found (per-body attributes in "
@@ -1074,58 +1074,37 @@ static int h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
 
 rd_h5 *rd_h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    rd_h5 *r = h5_open(path, meta, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(rd_h5 *, h5_open(path, meta, err));
 }
 
 int rd_h5_append(rd_h5 *h, const rd_h5_sample *s, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_append(h, s, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_append(h, s, err));
 }
 
 int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_event(h, time, body, type, value, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_event(h, time, body, type, value, err));
 }
 
 int rd_h5_flush(rd_h5 *h, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_flush(h, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_flush(h, err));
 }
 
 int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_precariousness(h, body, table, n, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_precariousness(h, body, table, n, err));
 }
 
 int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_summary(h, s, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_summary(h, s, err));
 }
 
 int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_body_size(h, body, size, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_body_size(h, body, size, err));
 }
 
 void rd_h5_close(rd_h5 *h)
@@ -1137,8 +1116,5 @@ void rd_h5_close(rd_h5 *h)
 
 int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
 {
-    rd_h5_quiet q = rd_h5_quiet_begin();
-    int r = h5_ground_im(h, m, err);
-    rd_h5_quiet_end(q);
-    return r;
+    RD_H5_QUIETLY(int, h5_ground_im(h, m, err));
 }

@@ -1,4 +1,7 @@
-/* rockdem — plain HDF5 tables (io_table.h). */
+/* rockdem — plain HDF5 tables (io_table.h).
+ * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
+ * internals or cli/.
+ */
 #include "io/io_table.h"
 
 #include <hdf5.h>

@@ -3,7 +3,10 @@
  * attached to an HDF5 dimension scale, and variable-length UTF-8 string lists. Intermediate
  * groups are created on the way. Used for /history, /joints and /outcomes in a run's output
  * and for checkpoints (`model save`). Locations are HDF5 ids (hid_t) passed as long long, so
- * callers need not include hdf5.h. */
+ * callers need not include hdf5.h.
+ * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
+ * internals or cli/.
+ */
 #ifndef RD_IO_TABLE_H
 #define RD_IO_TABLE_H
 

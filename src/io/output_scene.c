@@ -6,7 +6,10 @@
  *   /joints/properties [joint][property]  kn, ks, friction, cohesion, tension, damping_ratio
  *   /joints/outcomes [joint][outcome]     max_opening, max_slip, final_slip, closed
  *   /outcomes/bodies [body][quantity]     x, y, z at the end, travel, drop, unsupported
- * docs/HDF5-LAYOUT.md describes them with the rest of the file. */
+ * docs/HDF5-LAYOUT.md describes them with the rest of the file.
+ * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
+ * internals or cli/.
+ */
 #include "io/output_scene.h"
 #include "io/io_table.h"
 #include "rockdem/history.h"

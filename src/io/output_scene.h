@@ -1,4 +1,7 @@
-/* rockdem (private) — the scene-control tables of a run file (output_scene.c). */
+/* rockdem (private) — the scene-control tables of a run file (output_scene.c).
+ * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
+ * internals or cli/.
+ */
 #ifndef RD_IO_OUTPUT_SCENE_H
 #define RD_IO_OUTPUT_SCENE_H
 

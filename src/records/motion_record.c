@@ -40,6 +40,39 @@ void rd_motion_release(rd_motion_def *m)
     }
 }
 
+/* A new record holding a copy of r's samples; NULL without memory. */
+static rd_record *record_clone(const rd_record *r)
+{
+    rd_record *c = malloc(sizeof *c);
+    rd_error e;
+    if (!c || rd_record_alloc(c, r->npts, r->dt, &e)) {
+        free(c);
+        return NULL;
+    }
+    memcpy(c->name, r->name, sizeof c->name);
+    memcpy(c->source, r->source, sizeof c->source);
+    memcpy(c->acc, r->acc, r->npts * sizeof *r->acc);
+    memcpy(c->vel, r->vel, r->npts * sizeof *r->vel);
+    memcpy(c->disp, r->disp, r->npts * sizeof *r->disp);
+    return c;
+}
+
+int rd_motion_copy(rd_motion_def *dst, const rd_motion_def *src, rd_error *err)
+{
+    *dst = *src;
+    int ok = 1;
+    for (int c = 0; c < RD_NCOMPONENTS; c++) {
+        rd_component_def *d = &dst->record[c];
+        d->raw = ok && src->record[c].raw ? record_clone(src->record[c].raw) : NULL;
+        d->applied = ok && src->record[c].applied ? record_clone(src->record[c].applied) : NULL;
+        ok = ok && (d->raw != NULL) == (src->record[c].raw != NULL) &&
+             (d->applied != NULL) == (src->record[c].applied != NULL);
+    }
+    if (ok) return 0;
+    rd_motion_release(dst);
+    return rd_error_set(err, "out of memory copying the ground-motion records");
+}
+
 int rd_motion_has_records(const rd_motion_def *m)
 {
     for (int c = 0; c < RD_NCOMPONENTS; c++)

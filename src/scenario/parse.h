@@ -59,6 +59,8 @@ double pulse_duration(const rd_pulse_def *p);
 int valid_name(const char *s, size_t len);
 /* Index of the body named name[0..len), or -1. */
 int find_body(const rd_scenario *sc, const char *name, size_t len);
+/* Room for one more body in sc->bodies (scenario.c). 0, or -1 without memory. */
+int rd_scenario_grow(rd_scenario *sc);
 /* Appends ", word" (or "word" to an empty buf), truncating quietly. */
 void append(char *buf, size_t size, const char *word);
 /* Resolves a file name relative to the directory of the scenario file `base` into dst. */

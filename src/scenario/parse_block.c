@@ -143,12 +143,13 @@ static int body_command(parser *P, const shape_syntax *sh, body_cmd *c)
     return 0;
 }
 
-/* Appends b, naming it "block<k>" when unnamed; refuses duplicates and overflow. */
+/* Appends b (taking over its vertices), naming it "block<k>" when unnamed; refuses
+ * duplicates. */
 static int add_body(parser *P, const rd_body_def *b, const token *name, const token *at)
 {
     rd_scenario *sc = P->sc;
-    if (sc->nbodies == RD_MAX_BODIES)
-        return perr(P, verb_token(P), "too many blocks (at most %d)", RD_MAX_BODIES);
+    if (rd_scenario_grow(sc))
+        return perr(P, verb_token(P), "out of memory for block %d", sc->nbodies + 1);
     rd_body_def d = *b;
     d.line = P->tok[0].line;
     if (!d.name[0])

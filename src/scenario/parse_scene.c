@@ -15,6 +15,9 @@
  *   history energy
  *   model save 'settled.h5'     checkpoint after settling (the run goes on)
  *   model restore 'settled.h5'  start from a checkpoint instead of settling
+ *
+ * Folder scenario/ owns the scenario language (parse, --set overrides, validation); it may call
+ * base/, records/ and geometry/, never engine/, io/ or cli/.
  */
 #include "scenario/parse.h"
 

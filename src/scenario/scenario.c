@@ -234,10 +234,59 @@ int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err)
 void rd_scenario_free(rd_scenario *sc)
 {
     rd_motion_release(&sc->motion);
-    for (int i = 0; i < sc->nbodies; i++) {
-        free(sc->bodies[i].verts);
-        sc->bodies[i].verts = NULL;
-    }
+    for (int i = 0; i < sc->nbodies; i++) free(sc->bodies[i].verts);
+    free(sc->bodies);
+    sc->bodies = NULL;
+    sc->nbodies = sc->cap_bodies = 0;
     free(sc->text);
     sc->text = NULL;
+}
+
+int rd_scenario_grow(rd_scenario *sc)
+{
+    if (sc->nbodies < sc->cap_bodies) return 0;
+    int cap = sc->cap_bodies ? 2 * sc->cap_bodies : 16;
+    rd_body_def *b = realloc(sc->bodies, (size_t)cap * sizeof *b);
+    if (!b) return -1;
+    sc->bodies = b;
+    sc->cap_bodies = cap;
+    return 0;
+}
+
+int rd_scenario_add_body(rd_scenario *sc, const rd_body_def *b, rd_error *err)
+{
+    double *v = NULL;
+    if (b->verts && b->nverts > 0) {
+        v = malloc((size_t)b->nverts * 3 * sizeof *v);
+        if (v) memcpy(v, b->verts, (size_t)b->nverts * 3 * sizeof *v);
+    }
+    if ((b->verts && b->nverts > 0 && !v) || rd_scenario_grow(sc)) {
+        free(v);
+        return rd_error_set(err, "out of memory adding block '%s'", b->name);
+    }
+    sc->bodies[sc->nbodies] = *b;
+    sc->bodies[sc->nbodies++].verts = v;
+    return 0;
+}
+
+int rd_scenario_copy(rd_scenario *dst, const rd_scenario *src, rd_error *err)
+{
+    *dst = *src;
+    dst->text = NULL;
+    dst->bodies = NULL;
+    dst->nbodies = dst->cap_bodies = 0;
+    if (rd_motion_copy(&dst->motion, &src->motion, err)) {
+        rd_scenario_free(dst);
+        return -1;
+    }
+    if (src->text && !(dst->text = strdup(src->text))) {
+        rd_scenario_free(dst);
+        return rd_error_set(err, "out of memory copying the scenario text");
+    }
+    for (int i = 0; i < src->nbodies; i++)
+        if (rd_scenario_add_body(dst, &src->bodies[i], err)) {
+            rd_scenario_free(dst);
+            return -1;
+        }
+    return 0;
 }

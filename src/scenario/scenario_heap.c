@@ -1,5 +1,8 @@
 /* rockdem — scenarios on the heap, for bindings that cannot size rd_scenario themselves (the
- * Python module tools/rockdem calls these through ctypes). */
+ * Python module tools/rockdem calls these through ctypes).
+ * Folder scenario/ owns the scenario language (parse, --set overrides, validation); it may call
+ * base/, records/ and geometry/, never engine/, io/ or cli/.
+ */
 #include "rockdem/scenario.h"
 
 #include <stdlib.h>

@@ -16,8 +16,8 @@ static const char *model_problem(const rd_scenario *sc)
     const rd_contact_def *c = &sc->contact;
     const rd_damping_def *d = &sc->damping;
     const double right = 90.0 * RD_DEG;
-    if (sc->nbodies < 0 || sc->nbodies > RD_MAX_BODIES)
-        return "too many blocks";
+    if (sc->nbodies < 0 || (sc->nbodies > 0 && !sc->bodies))
+        return "block list missing";
     if (!(sc->gravity >= 0))
         return "gravity must be >= 0";
     if (!(sc->density > 0))
@@ -103,7 +103,7 @@ int rd_scenario_validate(const rd_scenario *sc, rd_error *err)
 {
     const char *f = sc->file, *bad;
     int nfree = 0;
-    for (int i = 0; i < sc->nbodies && i < RD_MAX_BODIES; i++)
+    for (int i = 0; i < sc->nbodies && sc->bodies; i++)
         nfree += !sc->bodies[i].fixed;
     if (nfree == 0)
         return rd_error_set(err,

@@ -572,10 +572,11 @@ def markdown(L, path, wall):
                n["pass"], n["FAIL"], n["xfail"], n["xpass"], L.nrun, wall), "",
            "| case | quantity | reference | reference source | rockdem | error | tolerance | tolerance source | verdict |",
            "|---|---|---|---|---|---|---|---|---|"]
+    cell = lambda v: str(v).replace("|", "\\|")   # a "|" inside a cell would split the table
     for r in rows:
-        out.append("| %s | %s | %s | %s | %s | %.3g | %.3g | %s | %s |" % (
-            r["id"], r["quantity"], fmt(r["ref"]), r["ref_src"], fmt(r["got"]), r["err"], r["tol"], r["tol_src"],
-            "**%s**" % r["verdict"] if r["verdict"] != "pass" else "pass"))
+        out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % tuple(cell(v) for v in (
+            r["id"], r["quantity"], fmt(r["ref"]), r["ref_src"], fmt(r["got"]), "%.3g" % r["err"], "%.3g" % r["tol"], r["tol_src"],
+            "**%s**" % r["verdict"] if r["verdict"] != "pass" else "pass")))
     out += ["", "## Known gaps (expected failures)", ""]
     for r in rows:
         if r["verdict"] in ("xfail", "xpass"):
