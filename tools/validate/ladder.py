@@ -71,7 +71,6 @@ XFAILS = {
     "yade-column/1.0g-d4-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
     "yade-column/1.6g-d1-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
     "yade-column/1.6g-d2-fell": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
-    "yade-stack/1.0g-lower-overturned": "with the matched shear stiffness rockdem's lower block stays (docs/YADE.md)",
 }
 
 
