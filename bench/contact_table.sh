@@ -6,7 +6,7 @@
 # of its footprint from its upright place once at rest (tools/rocking_hop.py).
 # Usage: bash bench/contact_table.sh [bin/rockdem]   (about a minute)
 set -eu
-BIN=${1:-bin/rockdem}
+BIN=$(realpath "${1:-bin/rockdem}")
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 cat > "$T/free.dat" <<'DAT'
 block create brick size 2 2 0.4 position 0 0 -0.2 fixed name floor

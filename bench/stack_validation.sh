@@ -6,7 +6,7 @@
 # (0.4x1.6 twice). Then the high-friction stack's slide of the upper block on the lower one.
 # Usage: bash bench/stack_validation.sh [bin/rockdem]   (about 15 minutes on one core)
 set -eu
-BIN=${1:-bin/rockdem}
+BIN=$(realpath "${1:-bin/rockdem}")
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 stack() { # name lower(w h) upper(w h)
   cat > "$T/$1.dat" <<DAT
