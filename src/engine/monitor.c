@@ -205,9 +205,21 @@ static int inside_convex(const rd_sim *s, int j, const double c[3])
 static int penetrated(rd_sim *s, int i, int j, const char *stage)
 {
     if (s->fixed[i] || !s->convex[j] || !inside_convex(s, j, s->x[i])) return 0;
+    int k = s->free_of[i];
+    if (k >= 0 && s->watch[k].sum.overturned) {
+        /* it had overturned (the verdict stands) and, falling, crossed the other body edge to
+           edge where no subcontact point guards (a documented limit): the run ends there */
+        rd_event_add(s, s->t, k, "lost", 0.0);
+        snprintf(s->errmsg, sizeof s->errmsg, "body '%s' overturned, then fell through body '%s' "
+                 "at t = %.6g s (edges crossing between subcontact points): the run stops there",
+                 s->sc.bodies[i].name, s->sc.bodies[j].name, s->t);
+        s->status = RD_STATUS_OVERTURNED;
+        return 1;
+    }
     snprintf(s->errmsg, sizeof s->errmsg, "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): its "
-             "centre of mass is inside it; the contact stiffness (stiffness-normal %g Pa/m) is far too "
-             "soft for the load", s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t,
+             "centre of mass is inside it: the contact stiffness (stiffness-normal %g Pa/m) is far too "
+             "soft for the load, or the bodies crossed edge to edge between subcontact points (give "
+             "their faces a finer spacing)", s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t,
              s->nsteps_all, s->sc.contact.kn);
     s->status = RD_STATUS_PENETRATED;
     return 1;
