@@ -187,6 +187,11 @@ def parse(text, path="scenario"):
                         raise TranslateError("%s: YADE's volumetric law has no %s" % (where, k))
                 elif k == "spacing":
                     pass  # rockdem's subcontact spacing: no YADE counterpart (volumetric law)
+                elif k == "restitution":
+                    # YADE's polyhedra law is elastic (no impact loss): only restitution 1 matches
+                    if num(rest[i + 1], where) != 1:
+                        raise TranslateError("%s: YADE's polyhedra law is elastic: only restitution 1 "
+                                             "has a YADE counterpart" % where)
                 else:
                     raise TranslateError("%s: unknown contact keyword '%s'" % (where, k))
                 i += 2
