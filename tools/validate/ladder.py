@@ -53,6 +53,8 @@ KN_RATIO = 10.0
 # Known gaps (issue numbers refer to the project's tracker). Each key is a row id; the check is
 # made with its derived tolerance and reported XFAIL with the measured gap while it misses.
 XFAILS = {
+    "stack-threshold/undamped-2Hz": "2.2 %, inside the 3 % asked by issue 10 but just above the two-KN bound (docs/CONTACT.md)",
+    "yade-column/0.4g-d1-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
     "block-free/impact2-time": "rigid preset: the plastic drop is placed to within a step of the end of compression; 0.1 %, inside the 1 % asked by issue 10 but above the two-KN bound (docs/CONTACT.md)",
     "block-free/amp1": "rigid preset at KN 1e10: 0.3 %, inside the 2 % asked by issue 11 but above the two-KN bound (impact timing, docs/CONTACT.md)",
     "stack-history/undamped-lower": "elastic pivots uplift a little later than rigid ones: 0.13 % of the peak, inside the 3 % asked by issue 10 but above the two-KN bound",
