@@ -198,25 +198,18 @@ def event_times(path, kind):
 # the rigid models do not slide), undamped. Stack: the same block with a 0.4 x 0.4 x 0.8 m block
 # on top. The two-KN studies run KN0 and 10 KN0.
 KN0 = 1e10
-BLOCK = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
-block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b
+SCENE = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
+{blocks}
 contact preset rigid
-contact property stiffness-normal {kn} stiffness-shear {ks}
-{damping}
-{motion}
-model solve time {T}
+contact property stiffness-normal {{kn}} stiffness-shear {{ks}}
+{{damping}}
+{{motion}}
+model solve time {{T}}
 output hdf5 'x.h5' interval 0.001
 """
-STACK = """block create brick size 4 4 1 position 0 0 -0.5 fixed name base
-block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower
-block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper
-contact preset rigid
-contact property stiffness-normal {kn} stiffness-shear {ks}
-{damping}
-{motion}
-model solve time {T}
-output hdf5 'x.h5' interval 0.001
-"""
+BLOCK = SCENE.format(blocks="block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b")
+STACK = SCENE.format(blocks="block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower\n"
+                            "block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper")
 ALPHA = math.atan(0.5)
 R_HOUSNER = cf.housner_r(ALPHA)   # 0.70: the reference's e, a closed form, not a DEM measurement
 
