@@ -155,14 +155,16 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
-    for (int k = 0; k < c->ncr; k++)
-        if (plane_dist(c->pl[c->cr[k]], p) > c->tol + slack) {
+    for (int k = 0; k < c->ncr; k++) {
+        double out = plane_dist(c->pl[c->cr[k]], p);
+        if (out > c->tol + slack) {
             s->pj[st][0] = 0;
-            s->pj[st][1] = plane_dist(c->pl[c->cr[k]], p);
+            s->pj[st][1] = out;
             double stretch = (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
             point_exit(s, st, kA, sA, stretch);
             return 0;
         }
+    }
 
     double ro[3], rt[3], vr[3], tmp[3];
     rd_mat_vec(s->R[o], p, ro);
@@ -242,7 +244,6 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     }
     s->e_elastic += 0.5 * (kA * stretch * stretch + mag2 / sA);
     s->pj[st][0] = fn;
-    s->pj[st][1] = -stretch;
     for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];
 
     double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};

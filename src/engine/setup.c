@@ -286,7 +286,6 @@ static int build_points(rd_sim *s, rd_error *err)
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
-    s->can_cull = !s->bonds;
     if (build_points(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err)) return -1;
     return 0;
 }

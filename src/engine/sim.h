@@ -184,7 +184,6 @@ struct rd_sim {
     int nface_state, cap_face_state;
     int *face_nactive;     /* active points per (side, candidate face) last step */
     int bonds;             /* 1 when cohesion or tension is set */
-    int can_cull;          /* 0 when cohesion/tension bonds may act across open gaps */
     int shaking;           /* 1 once the shaking stage has started */
     int njoint, cap_joint;
     rd_joint *joint;       /* distinct joint property sets; 0 = the default */
