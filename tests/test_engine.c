@@ -8,6 +8,7 @@
 #include <cmocka.h>
 
 #include "rockdem/rockdem.h"
+#include "rockdem/validate.h"
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
@@ -421,6 +422,47 @@ static void test_bonded_joint(void **state)
     assert_true(glued < 1e-3);
 }
 
+/* ---- restitution: two measures of one free-rocking run ----------------------------------- */
+/* rd_restitution_measure reads r twice from one run: by amplitude decay, and from the speeds at
+ * equal |theta| before and after each impact carried to theta = 0 by energy. When the impact is
+ * complete within the band the two are the same energy ratio, so they must agree to the 0.5 %
+ * of the specification (issue 11, must-have 1; RD_CHECK_RTOL): strict for the rigid preset
+ * (the 0.5 x 1 m and the 1/3 x 1 m block) and the default bed. With the rigid preset at contact
+ * restitution 0.5 the new pivot rebounds and the block bounces after each impact, losing energy
+ * after the band: a known gap, printed as an expected failure. */
+static void restitution_case(const char *what, const char *size, const char *contact, double e,
+                             int mode)
+{
+    char text[512];
+    snprintf(text, sizeof text,
+             "block create brick size 2 2 0.4 position 0 0 -0.2 fixed name floor\n"
+             "block create brick size %s position 0 0 0.5 name b\n%s\n", size, contact);
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "test.dat", text, &err), 0);
+    sc.contact.restitution = e;
+    rd_refscene rs;
+    assert_int_equal(rd_refscene_map(&sc, &rs, &err), 0);
+    rd_restitution m;
+    if (rd_restitution_measure(&sc, 0.5 * rs.alpha, &m, &err)) fail_msg("%s", err.msg);
+    assert_int_equal(m.n, 3);
+    rd_check_rel(what, m.r_speed, m.r, RD_CHECK_RTOL, mode);
+    rd_scenario_free(&sc);
+}
+
+static void test_restitution_two_measures(void **state)
+{
+    (void)state;
+    restitution_case("restitution: speeds vs amplitude decay, rigid preset 0.5 x 1 m", "0.5 0.5 1.0",
+                     "contact preset rigid", 0, RD_STRICT);
+    restitution_case("restitution: speeds vs amplitude decay, rigid preset 1/3 x 1 m",
+                     "0.3333333 0.3333333 1.0", "contact preset rigid", 0, RD_STRICT);
+    restitution_case("restitution: speeds vs amplitude decay, default bed 0.5 x 1 m", "0.5 0.5 1.0",
+                     "", 0, RD_STRICT);
+    restitution_case("restitution: rigid preset at contact restitution 0.5 (bounces after impact)",
+                     "0.5 0.5 1.0", "contact preset rigid", 0.5, RD_XFAIL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -435,6 +477,7 @@ int main(void)
         cmocka_unit_test(test_spin_reports_twist),
         cmocka_unit_test(test_precariousness),
         cmocka_unit_test(test_bonded_joint),
+        cmocka_unit_test(test_restitution_two_measures),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }
