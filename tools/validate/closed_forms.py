@@ -97,3 +97,32 @@ def winkler_inset_first_impact(b, h, depth, mass, kn, theta0, g):
         return float(s.t_events[0][0])
     wedge = lambda th: min(math.sqrt(2 * mass * g / (kn * depth * th)) / 3, b)
     return t1(wedge), t1(lambda th: 0.0)
+
+
+def stack_rocking_omega(blocks, kn, density, g=G0):
+    """Lowest angular frequency (rad/s) of an elastic two-block stack rocking before uplift:
+    blocks = [(b1, h1), (b2, h2)] half-widths and half-heights (m) of square-based bricks, lower
+    first; each joint a Winkler bed of stiffness kn (Pa/m) over the smaller face, rotational
+    stiffness K = kn A b^2 (A = (2b)^2, b the smaller half-width). Small rotations theta_i of
+    each block about its own base centre (shear held: KS >> KN), gravity's overturning moment
+    included. Solves K v = omega^2 M v for the 2x2 system."""
+    (b1, h1), (b2, h2) = blocks
+    m1, m2 = (density * (2 * b) ** 2 * 2 * h for b, h in blocks)
+    i1, i2 = m1 * (b1 ** 2 + h1 ** 2) / 3, m2 * (b2 ** 2 + h2 ** 2) / 3   # about the centroids
+    bi = min(b1, b2)
+    k1, k2 = kn * (2 * b1) ** 2 * b1 ** 2, kn * (2 * bi) ** 2 * bi ** 2
+    M = np.array([[i1 + m1 * h1 ** 2 + m2 * 4 * h1 ** 2, m2 * 2 * h1 * h2],
+                  [m2 * 2 * h1 * h2, i2 + m2 * h2 ** 2]])
+    K = np.array([[k1 + k2 - (m1 + 2 * m2) * g * h1, -k2],
+                  [-k2, k2 - m2 * g * h2]])
+    w2 = np.linalg.eigvals(np.linalg.solve(M, K)).real
+    return math.sqrt(w2.min())
+
+
+def pulse_onset_lag(omega, freq, t):
+    """Largest time (s) by which an undamped oscillator of angular frequency omega, at rest when
+    a one-sine ground pulse a(t) = A sin(2 pi freq t) starts, lags or leads its quasi-static
+    response at time t: the onset's jerk A 2 pi freq leaves a free vibration of amplitude
+    (jerk / omega) in acceleration units, which the forcing's current slope A 2 pi freq
+    cos(2 pi freq t) converts into time: 1 / (omega cos(2 pi freq t))."""
+    return 1.0 / (omega * math.cos(2 * math.pi * freq * t))
