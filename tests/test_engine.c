@@ -37,12 +37,18 @@ static rd_sim *run_scene(const char *text, const char *const *sets, rd_scenario 
     return sim;
 }
 
-static void run_summary(const char *text, const char *const *sets, rd_summary *sum)
+/* Run a one-block scene; the summary's body array then points at *body, which outlives the
+ * simulation (rd_summary.body is borrowed from it). */
+static void run_summary(const char *text, const char *const *sets, rd_summary *sum,
+                        rd_body_summary *body)
 {
     rd_scenario sc;
     rd_status st;
     rd_sim *sim = run_scene(text, sets, &sc, &st);
     rd_sim_summary(sim, sum);
+    assert_int_equal(sum->nbodies, 1);
+    *body = sum->body[0];
+    sum->body = body;
     assert_true(st == RD_STATUS_DONE || st == RD_STATUS_OVERTURNED);
     rd_sim_free(sim);
     rd_scenario_free(&sc);
@@ -70,7 +76,8 @@ static double tip_tilt(double factor)
     snprintf(amp, sizeof amp, "motion.amplitude=%.17g", factor * 9.81 * 0.25);
     const char *sets[] = {amp, NULL};
     rd_summary sum;
-    run_summary(text, sets, &sum);
+    rd_body_summary b0;
+    run_summary(text, sets, &sum, &b0);
     return sum.body[0].max_tilt;
 }
 
@@ -106,7 +113,8 @@ static double slide_at(double factor)
     snprintf(amp, sizeof amp, "motion.amplitude=%.17g", factor * 9.81 * tan(20 * M_PI / 180));
     const char *sets[] = {amp, NULL};
     rd_summary sum;
-    run_summary(text, sets, &sum);
+    rd_body_summary b0;
+    run_summary(text, sets, &sum, &b0);
     return sum.body[0].max_slide;
 }
 
@@ -211,11 +219,12 @@ static void test_energy_balance_frictionless(void **state)
              "block initial name b tilt 7 direction 30\nmodel solve time 1.5\n");
     const char *sets[] = {"contact.friction=0", NULL, NULL};
     rd_summary sum, half;
-    run_summary(text, sets, &sum);
+    rd_body_summary b0, b1;
+    run_summary(text, sets, &sum, &b0);
     char dt[64];
     snprintf(dt, sizeof dt, "model.timestep=%.17g", 0.5 * sum.dt);
     sets[1] = dt;
-    run_summary(text, sets, &half);
+    run_summary(text, sets, &half, &b1);
     print_message("frictionless energy residual %.3e at dt %.3g s, %.3e at dt/2\n", sum.energy_residual_max,
                   sum.dt, half.energy_residual_max);
     rd_check_abs("energy residual (relative to the largest term)", sum.energy_residual_max, 0,
@@ -332,11 +341,12 @@ static void test_overturn_strong_not_weak(void **state)
              "ground-motion pulse one-sine amplitude 0.2g frequency 2\nmodel damping viscous 0.2\n"
              "model solve time 4\n");
     rd_summary sum;
-    run_summary(text, NULL, &sum);
+    rd_body_summary b0;
+    run_summary(text, NULL, &sum, &b0);
     assert_false(sum.body[0].overturned);
     assert_true(sum.body[0].max_tilt < 1e-3);
     const char *strong[] = {"motion.amplitude=3g", NULL};
-    run_summary(text, strong, &sum);
+    run_summary(text, strong, &sum, &b0);
     assert_true(sum.body[0].overturned);
     assert_true(sum.body[0].overturn_time > 0);
 }
@@ -357,7 +367,8 @@ static void test_spin_reports_twist(void **state)
         "block initial name b angular-velocity 0 0 3\n"
         "model solve time 0.5\noutput hdf5 'x.h5' interval 0.005\n";
     rd_summary sum;
-    run_summary(text, NULL, &sum);
+    rd_body_summary b0;
+    run_summary(text, NULL, &sum, &b0);
     double a = 0.5, mu = tan(40 * M_PI / 180), rmean = a * (sqrt(2) + log(1 + sqrt(2))) / 6;
     double expect = 9.0 / (2 * mu * 9.81 * rmean * 6 / (a * a));
     print_message("spin: twist %.5f rad (Coulomb %.5f), rocking %.2e / %.2e rad\n",
@@ -380,7 +391,8 @@ static void test_precariousness(void **state)
         "block create brick size 0.4 0.6 1.6 position 0 0 0.8 rotation 0 0 30 name b\n"
         "model solve time 0.01\noutput hdf5 'x.h5' interval 0.005\n";
     rd_summary sum;
-    run_summary(text, NULL, &sum);
+    rd_body_summary b0;
+    run_summary(text, NULL, &sum, &b0);
     const rd_body_summary *b = &sum.body[0];
     double dir = fmod(b->alpha_min_direction * 180 / M_PI, 180.0);
     print_message("alpha_min %.9f rad towards %.1f deg, a_tip %.6f m/s^2\n", b->alpha_min,
@@ -409,7 +421,8 @@ static double glued_tilt(const char *tension)
     snprintf(set, sizeof set, "contact.tension=%s", tension);
     const char *sets[] = {set, "contact.cohesion=5e5", NULL};
     rd_summary sum;
-    run_summary(text, sets, &sum);
+    rd_body_summary b0;
+    run_summary(text, sets, &sum, &b0);
     return sum.body[0].max_tilt;
 }
 

@@ -28,8 +28,10 @@
 
 static char outfile[64];
 
-/* Run text with overrides (NULL-terminated); returns the status, fills the summary. */
-static rd_status run(const char *text, const char *const *sets, rd_summary *sum, char *msg, size_t nmsg)
+/* Run text with overrides (NULL-terminated); returns the status, fills the summary, whose
+ * body array then points at *body (the first free body's, kept past rd_sim_free). */
+static rd_status run(const char *text, const char *const *sets, rd_summary *sum,
+                     rd_body_summary *body, char *msg, size_t nmsg)
 {
     rd_scenario sc;
     rd_error err;
@@ -42,6 +44,8 @@ static rd_status run(const char *text, const char *const *sets, rd_summary *sum,
     if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) fail_msg("%s", err.msg);
     rd_status st = rd_sim_run(sim);
     rd_sim_summary(sim, sum);
+    *body = sum->body[0];
+    sum->body = body;
     if (msg) snprintf(msg, nmsg, "%s", rd_sim_error(sim));
     rd_sim_free(sim);
     rd_scenario_free(&sc);
@@ -51,8 +55,9 @@ static rd_status run(const char *text, const char *const *sets, rd_summary *sum,
 static void check_case(const char *label, const char *text, const char *const *sets)
 {
     rd_summary s;
+    rd_body_summary b0;
     char msg[512];
-    rd_status st = run(text, sets, &s, msg, sizeof msg);
+    rd_status st = run(text, sets, &s, &b0, msg, sizeof msg);
     print_message("%-34s status %d, dt %.3g s (limit %.3g), %ld steps, residual %.2e, max tilt/alpha %.3g%s\n",
                   label, st, s.dt, s.dt_critical, s.steps, s.energy_residual_max,
                   s.body[0].max_tilt_ratio, s.any_overturned ? " (overturned)" : "");
@@ -165,8 +170,9 @@ static void test_blow_up_reported(void **state)
         "ground-motion pulse rectangular amplitude 2e5 duration 1\nmodel solve time 1\n"
         "output hdf5 'x.h5' interval 0.001\n";
     rd_summary s;
+    rd_body_summary b0;
     char msg[512];
-    rd_status st = run(text, NULL, &s, msg, sizeof msg);
+    rd_status st = run(text, NULL, &s, &b0, msg, sizeof msg);
     print_message("blow-up: status %d at t = %.5f s: %s\n", st, s.end_time, msg);
     assert_int_equal(st, RD_STATUS_UNSTABLE);
     assert_non_null(strstr(msg, "step"));

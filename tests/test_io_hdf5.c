@@ -77,14 +77,17 @@ static void append_range(rd_h5 *h, int from, int to)
     }
 }
 
-static rd_summary make_summary(double scale)
+/* A summary whose bodies are stored in body[] (the caller's). */
+static rd_summary make_summary(double scale, rd_body_summary body[NB])
 {
     rd_summary s;
     memset(&s, 0, sizeof s);
+    memset(body, 0, NB * sizeof *body);
     s.nbodies = NB;
+    s.body = body;
     /* listed in the opposite order to /bodies/names: the writer must reorder by name */
     for (int b = 0; b < NB; b++) {
-        rd_body_summary *bs = &s.body[NB - 1 - b];
+        rd_body_summary *bs = &body[NB - 1 - b];
         snprintf(bs->name, sizeof bs->name, "%s", b == 0 ? "left" : "right");
         bs->overturned = b;
         bs->overturn_time = b ? 12.5 * scale : -1;
@@ -278,7 +281,8 @@ static void check_enum_attr(hid_t f, const char *obj, const char *name, const ch
 
 static void check_summary(hid_t f, double scale)
 {
-    rd_summary want = make_summary(scale);
+    rd_body_summary wb[NB];
+    rd_summary want = make_summary(scale, wb);
     check_enum_attr(f, "/summary", "status", scale > 1 ? "interrupted" : "overturned");
     check_str_attr(f, "/summary", "max_slide_units", "m");
     int i = 0;
@@ -468,7 +472,8 @@ static void test_roundtrip(void **state)
     assert_int_equal(rd_h5_event(h, 3.0, -1, "unsettled", -2.0, &err), 0);
     assert_int_equal(rd_h5_event(h, 3.0, -1, "no-such-event", -2.0, &err), -1);
     assert_non_null(strstr(err.msg, "unknown event type 'no-such-event'"));
-    rd_summary s = make_summary(1);
+    rd_body_summary sb[NB];
+    rd_summary s = make_summary(1, sb);
     assert_int_equal(rd_h5_summary(h, &s, &err), 0);
     rd_h5_close(h);
 
@@ -560,7 +565,8 @@ static void test_summary_twice_keeps_last(void **state)
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
     append_range(h, 0, 5);
-    rd_summary s1 = make_summary(1), s2 = make_summary(2);
+    rd_body_summary b1[NB], b2[NB];
+    rd_summary s1 = make_summary(1, b1), s2 = make_summary(2, b2);
     assert_int_equal(rd_h5_summary(h, &s1, &err), 0);
     assert_int_equal(rd_h5_summary(h, &s2, &err), 0);
     rd_h5_close(h);
@@ -577,8 +583,9 @@ static void test_summary_unknown_body(void **state)
     rd_error err = {{0}};
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
-    rd_summary s = make_summary(1);
-    snprintf(s.body[0].name, sizeof s.body[0].name, "ghost"); /* was "right" */
+    rd_body_summary sb[NB];
+    rd_summary s = make_summary(1, sb);
+    snprintf(sb[0].name, sizeof sb[0].name, "ghost"); /* was "right" */
     assert_int_equal(rd_h5_summary(h, &s, &err), -1);
     assert_non_null(strstr(err.msg, fx->path));
     assert_non_null(strstr(err.msg, "right"));

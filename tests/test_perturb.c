@@ -52,8 +52,9 @@ static double tip_accel(const char *spacing, const char *perturb)
     rd_summary sum;
     rd_sim_run(s);
     rd_sim_summary(s, &sum);
+    double a = sum.body[0].tip_accel_min;
     rd_sim_free(s);
-    return sum.body[0].tip_accel_min;
+    return a;
 }
 
 static void test_corners_threshold(void **state)

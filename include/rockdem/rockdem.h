@@ -87,13 +87,12 @@ typedef struct rd_joint_summary {
     double final_slip;    /* slip at the end, m */
 } rd_joint_summary;
 
-/* Free bodies listed in rd_summary (a by-value struct): the first RD_SUMMARY_BODIES in output
- * order; rd_sim_body_summary gives any body of a larger scene. */
-#define RD_SUMMARY_BODIES 256
-
+/* What a run found. body[] is borrowed, as rd_sim_events' array is: it points into the
+ * simulation that filled the summary and is valid until rd_sim_free (copy what must outlive it;
+ * rd_sim_body_summary copies one body). */
 typedef struct rd_summary {
-    int nbodies;                 /* free bodies listed in body[] (at most RD_SUMMARY_BODIES) */
-    rd_body_summary body[RD_SUMMARY_BODIES];
+    int nbodies;                 /* free bodies, all of them (output order) */
+    const rd_body_summary *body; /* [nbodies] */
     int any_overturned;
     double end_time;             /* simulated time reached, s */
     double dt;                   /* time step used, s */
@@ -142,7 +141,7 @@ RD_API rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
 /* Settle (if asked), then shake for the scenario's duration. Writes the HDF5 file as it goes. */
 RD_API rd_status rd_sim_run(rd_sim *sim);
 
-/* Fill the summary (valid after rd_sim_run, also after an early stop). */
+/* Fill the summary (valid after rd_sim_run, also after an early stop; out->body borrowed). */
 RD_API void rd_sim_summary(const rd_sim *sim, rd_summary *out);
 
 /* What the run found for free body k (0 <= k < rd_sim_body_count), any scene size. */

@@ -17,6 +17,9 @@
 #define RD_SWEEP_MAX_AXES 16
 #define RD_SWEEP_TEXT 128 /* bytes of a text column value (record names, text axis values) */
 #define RD_SWEEP_MSG 200  /* bytes of a case's error message */
+/* Free bodies a sweep tabulates per case: a case's result travels as one fixed-size record
+ * (pipe or MPI), so its per-body columns are arrays of this length (about 10 kB a result). */
+#define RD_SWEEP_BODIES 256
 
 typedef enum rd_axis_kind {
     RD_AXIS_SET = 0,    /* --axis section.key=v1,v2: rd_scenario_set("section.key=v") */
@@ -46,7 +49,7 @@ typedef struct rd_sweep_plan {
     long ncases;            /* product of the axis lengths */
     char *axes_text;        /* canonical "key=v1,v2\n" per axis, then "--set a\n" (owned) */
     int nbodies;            /* free bodies */
-    char body[RD_SUMMARY_BODIES][RD_NAME_MAX];
+    char body[RD_SWEEP_BODIES][RD_NAME_MAX];
     int pulse;              /* 1: the scenario's horizontal motion is a pulse (no records) */
     double amplitude;       /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
     int perturbed;          /* 1: the scenario's interface perturbation removes, raises or scatters */
@@ -71,9 +74,9 @@ typedef struct rd_sweep_result {
     double end_time;             /* simulated time reached, s */
     double wall_seconds;         /* wall time of the whole case (setup + run), s */
     int nbodies;
-    int b_overturned[RD_SUMMARY_BODIES];
-    double b_overturn_time[RD_SUMMARY_BODIES], b_max_tilt_ratio[RD_SUMMARY_BODIES];
-    double b_max_slide[RD_SUMMARY_BODIES], b_final_twist[RD_SUMMARY_BODIES];
+    int b_overturned[RD_SWEEP_BODIES];
+    double b_overturn_time[RD_SWEEP_BODIES], b_max_tilt_ratio[RD_SWEEP_BODIES];
+    double b_max_slide[RD_SWEEP_BODIES], b_final_twist[RD_SWEEP_BODIES];
 } rd_sweep_result;
 
 /* --- sweep.c ----------------------------------------------------------------------------- */

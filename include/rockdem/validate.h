@@ -18,11 +18,13 @@
 
 typedef enum rd_refmodel { RD_REFMODEL_HOUSNER = 1, RD_REFMODEL_KOUNADIS = 2 } rd_refmodel;
 
+#define RD_REF_BLOCKS 2 /* most blocks a reference model has (Kounadis' stack) */
+
 typedef struct rd_refscene {
     rd_refmodel model;
     rd_housner_def housner;   /* HOUSNER: the block (e from the scenario's reference restitution) */
     rd_kounadis_def kounadis; /* KOUNADIS: lower block 1, upper block 2 */
-    int nblock;               /* 1 or 2 */
+    int nblock;               /* 1 or RD_REF_BLOCKS */
     int body[2];              /* scenario body index of block 1 (lower) and block 2 (upper) */
     int out[2];               /* index of each block among the free bodies (output order) */
     double mass[2];           /* kg */
@@ -48,9 +50,11 @@ RD_API int rd_refscene_solve(const rd_scenario *sc, const rd_refscene *rs, rd_re
 
 /* Write a solution in the DEM's HDF5 layout (src/io_hdf5.h) to path: poses from the rigid
  * rotation about the active pivot, tilt, ground, events, summary; energies kinetic and
- * gravitational (the others zero). Fills sum when not NULL. */
+ * gravitational (the others zero). When sum is not NULL, fills it and body[0..nblock), the
+ * caller's storage that sum->body then points at. */
 RD_API int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
-                      const char *path, rd_summary *sum, rd_error *err);
+                      const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
+                      rd_error *err);
 
 /* ---- overturning thresholds ------------------------------------------------------------- */
 

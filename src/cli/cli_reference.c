@@ -23,8 +23,9 @@ int rd_cli_reference(int argc, char **argv)
     }
     rd_ref_result res = {0};
     rd_summary sum;
+    rd_body_summary body[RD_REF_BLOCKS];
     int rc = rd_refscene_solve(&sc, &rs, &res, &err);
-    if (rc == 0) rc = rd_refscene_write(&sc, &rs, &res, sc.output.path, &sum, &err);
+    if (rc == 0) rc = rd_refscene_write(&sc, &rs, &res, sc.output.path, &sum, body, &err);
     if (rc) {
         fprintf(stderr, "%s: %s\n", sc.file, err.msg);
     } else {

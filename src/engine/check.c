@@ -101,8 +101,8 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
             cb->rests_on = cb->below; /* placed exactly on it: a closed joint at zero force */
         if (!s->fixed[i]) {
             const rd_watch *w = &s->watch[s->free_of[i]];
-            cb->alpha_min = w->sum.alpha_min;
-            cb->alpha = w->sum.alpha;
+            cb->alpha_min = w->sum->alpha_min;
+            cb->alpha = w->sum->alpha;
         }
     }
     rep->npoints = s->npts;

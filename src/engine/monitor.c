@@ -206,7 +206,7 @@ static int penetrated(rd_sim *s, int i, int j, const char *stage)
 {
     if (s->fixed[i] || !s->convex[j] || !inside_convex(s, j, s->x[i])) return 0;
     int k = s->free_of[i];
-    if (k >= 0 && s->watch[k].sum.overturned) {
+    if (k >= 0 && s->watch[k].sum->overturned) {
         /* it had overturned (the verdict stands) and, falling, crossed the other body edge to
            edge where no subcontact point guards (a documented limit): the run ends there */
         rd_event_add(s, s->t, k, "lost", 0.0);
@@ -231,7 +231,7 @@ int rd_monitor_escape(rd_sim *s)
     for (int k = 0; k < s->nfree; k++) {
         int i = s->free_body[k];
         const double *c = s->x[i];
-        if (c[2] < s->floor_z - s->poly[i].radius && s->watch[k].sum.overturned) {
+        if (c[2] < s->floor_z - s->poly[i].radius && s->watch[k].sum->overturned) {
             if (!s->watch[k].lost) rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
             s->watch[k].lost = 1;
         } else if (c[2] < s->floor_z - s->poly[i].radius) {
@@ -266,20 +266,20 @@ static void watch_init(rd_sim *s, int k)
     rd_mat_tvec(s->R[i], d, w->base_local);
     w->rest_area = w->area;
     rd_mat_tvec(s->R[i], (double[3]){0, 0, 1}, w->zb);
-    snprintf(w->sum.name, sizeof w->sum.name, "%s", s->sc.bodies[i].name);
-    w->sum.overturn_time = -1;
+    snprintf(w->sum->name, sizeof w->sum->name, "%s", s->sc.bodies[i].name);
+    w->sum->overturn_time = -1;
     double amin = M_PI / 2;
     for (int d = 0; d < RD_NPREC; d++) {
         double psi = 2 * M_PI * d / RD_NPREC, a = alpha_toward(w, cos(psi), sin(psi));
         w->prec[d][0] = psi;
         w->prec[d][1] = a;
         w->prec[d][2] = s->sc.gravity * tan(a);
-        if (a < amin) { amin = a; w->sum.alpha_min_direction = psi; }
+        if (a < amin) { amin = a; w->sum->alpha_min_direction = psi; }
     }
     w->alpha_min = amin;
-    w->sum.alpha_min = amin;
-    w->sum.tip_accel_min = s->sc.gravity * tan(amin);
-    w->sum.alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
+    w->sum->alpha_min = amin;
+    w->sum->tip_accel_min = s->sc.gravity * tan(amin);
+    w->sum->alpha = fmin(alpha_toward(w, 1, 0), alpha_toward(w, 0, 1));
     w->key_max = 0;
     w->key_ratio_gate = 0;
     const rd_overturn_def *o = &s->sc.overturn;
@@ -324,7 +324,7 @@ void rd_monitor_start(rd_sim *s)
         w->rock_prev = -z[1] * w->rock_axis[0] + z[0] * w->rock_axis[1];
         w->rock_peak = fabs(w->rock_prev);
         w->uplifted = tilted;
-        w->sum.uplifted = tilted;
+        w->sum->uplifted = tilted;
     }
 }
 
@@ -379,7 +379,7 @@ static double key_of_angle(double a)
 static void track_extremes(rd_sim *s, int k, const double z[3])
 {
     rd_watch *w = &s->watch[k];
-    rd_body_summary *sum = &w->sum;
+    rd_body_summary *sum = w->sum;
     int i = s->free_body[k];
     double key = tilt_key(z);
     if (key > w->key_max || key > w->key_ratio_gate) {
@@ -401,7 +401,7 @@ static void track_extremes(rd_sim *s, int k, const double z[3])
 static void watch_step(rd_sim *s, int k)
 {
     rd_watch *w = &s->watch[k];
-    rd_body_summary *sum = &w->sum;
+    rd_body_summary *sum = w->sum;
     int i = s->free_body[k];
     double z[3];
     rest_vertical(s, k, z);
@@ -467,13 +467,13 @@ void rd_monitor_finish(rd_sim *s)
         double b[3];
         rd_mat_vec(s->R[i], w->base_local, b);
         rd_axpy(1.0, s->x[i], b);
-        w->sum.final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
+        w->sum->final_slide = hypot(b[0] - w->base_ref[0], b[1] - w->base_ref[1]);
         /* where it ended up: a body that never touched anything fell freely */
-        w->sum.unsupported = w->rest_area <= 0 && !w->touched;
-        rd_copy3(s->x[i], w->sum.final_position);
-        w->sum.travel = hypot(s->x[i][0] - w->x_ref[0], s->x[i][1] - w->x_ref[1]);
-        w->sum.drop = w->z_start - s->x[i][2];
-        if (!w->sum.overturned) w->sum.overturn_time = -1;
+        w->sum->unsupported = w->rest_area <= 0 && !w->touched;
+        rd_copy3(s->x[i], w->sum->final_position);
+        w->sum->travel = hypot(s->x[i][0] - w->x_ref[0], s->x[i][1] - w->x_ref[1]);
+        w->sum->drop = w->z_start - s->x[i][2];
+        if (!w->sum->overturned) w->sum->overturn_time = -1;
     }
 }
 
@@ -502,7 +502,7 @@ void rd_monitor_rotation(rd_sim *s, int k, double out[3])
     while (tw - prev < -M_PI) tw += 2 * M_PI;
     w->twist_prev = tw;
     out[2] = tw;
-    rd_body_summary *sum = &w->sum;
+    rd_body_summary *sum = w->sum;
     sum->max_rocking_in = rd_max(sum->max_rocking_in, fabs(out[0]));
     sum->max_rocking_out = rd_max(sum->max_rocking_out, fabs(out[1]));
     sum->max_twist = rd_max(sum->max_twist, fabs(tw));

@@ -150,7 +150,7 @@ void rd_sim_body_info(const rd_sim *s, int k, rd_body_info *out)
     const rd_watch *w = k < s->nfree ? &s->watch[k] : NULL;
     int rested = w && s->rested;
     *out = (rd_body_info){.name = s->sc.bodies[i].name, .fixed = s->fixed[i], .mass = s->mass[i],
-                          .alpha = rested ? w->sum.alpha : 0, .nvert = p->nv,
+                          .alpha = rested ? w->sum->alpha : 0, .nvert = p->nv,
                           .vertices = &p->v[0][0], .ntri = p->ntri, .triangles = &p->tri[0][0],
                           .nprec = rested ? RD_NPREC : 0,
                           .precariousness = w ? &w->prec[0][0] : NULL};

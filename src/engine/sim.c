@@ -316,10 +316,14 @@ rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err)
     rd_sim *s = sim_build(sc, err);
     if (!s) return NULL;
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);
+    s->body_sum = calloc((size_t)s->nfree + 1, sizeof *s->body_sum);
     s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
     s->rest_area = calloc((size_t)s->nfree + 1, sizeof *s->rest_area);
-    if (!s->watch || !s->obuf || !s->rest_area) { rd_error_set(err, "out of memory"); goto fail; }
-    for (int k = 0; k < s->nfree; k++) s->watch[k].z_start = s->x[s->free_body[k]][2];
+    if (!s->watch || !s->body_sum || !s->obuf || !s->rest_area) { rd_error_set(err, "out of memory"); goto fail; }
+    for (int k = 0; k < s->nfree; k++) {
+        s->watch[k].z_start = s->x[s->free_body[k]][2];
+        s->watch[k].sum = &s->body_sum[k];
+    }
     return s;
 fail:
     rd_sim_free(s);
@@ -394,11 +398,9 @@ rd_status rd_sim_run(rd_sim *s)
 void rd_sim_summary(const rd_sim *s, rd_summary *out)
 {
     memset(out, 0, sizeof *out);
-    out->nbodies = s->nfree < RD_SUMMARY_BODIES ? s->nfree : RD_SUMMARY_BODIES;
-    for (int k = 0; k < s->nfree; k++) {
-        if (k < out->nbodies) out->body[k] = s->watch[k].sum;
-        out->any_overturned |= s->watch[k].sum.overturned;
-    }
+    out->nbodies = s->nfree;
+    out->body = s->body_sum;
+    for (int k = 0; k < s->nfree; k++) out->any_overturned |= s->body_sum[k].overturned;
     out->end_time = s->t;
     out->dt = s->dt;
     out->dt_critical = s->dt_crit;
@@ -409,7 +411,7 @@ void rd_sim_summary(const rd_sim *s, rd_summary *out)
     out->status = s->status;
 }
 
-void rd_sim_body_summary(const rd_sim *s, int k, rd_body_summary *out) { *out = s->watch[k].sum; }
+void rd_sim_body_summary(const rd_sim *s, int k, rd_body_summary *out) { *out = s->body_sum[k]; }
 
 const char *rd_sim_error(const rd_sim *s) { return s->errmsg; }
 
@@ -479,7 +481,7 @@ void rd_sim_free(rd_sim *s)
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
                       s->pair, s->fs, s->pstate, s->pface, s->pset, s->cf_facing, s->face_nactive,
-                      s->watch, s->event, s->obuf, s->aabb, s->order, s->hkey, s->live, s->live_prev,
+                      s->watch, s->body_sum, s->event, s->obuf, s->aabb, s->order, s->hkey, s->live, s->live_prev,
                       s->joint, s->pj, s->hist_pair, s->hist_body, s->hist, s->rest_area};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) free(arrays[k]);
     free(s);

@@ -114,7 +114,7 @@ typedef struct rd_watch {
     int over;            /* currently beyond the overturn criterion */
     int touched;         /* 1 once it had contact area while shaking */
     double z_start;      /* height of the centre of mass as placed, m */
-    rd_body_summary sum; /* what the run found */
+    rd_body_summary *sum;/* what the run found: &rd_sim.body_sum[k] */
     int lost;            /* fell out of the scene after overturning (event "lost" written) */
 } rd_watch;
 
@@ -213,6 +213,8 @@ struct rd_sim {
 
     /* monitoring and output */
     rd_watch *watch;       /* [nfree] */
+    rd_body_summary *body_sum; /* [nfree] what the run found per free body, contiguous:
+                              rd_summary.body points here */
     int rested;            /* 1 once rd_monitor_rest has run: support polygons, alpha and
                               precariousness known */
     int nevent, cap_event;

@@ -245,9 +245,9 @@ static int inspect_base(rd_sweep_plan *p, rd_error *err)
     rd_scenario sc;
     int rc = base_scenario(p, &sc, err) || rd_scenario_validate(&sc, err) ? -1 : 0;
     for (int i = 0; !rc && i < sc.nbodies; i++)
-        if (!sc.bodies[i].fixed && p->nbodies == RD_SUMMARY_BODIES)
+        if (!sc.bodies[i].fixed && p->nbodies == RD_SWEEP_BODIES)
             rc = rd_error_set(err, "rockdem sweep: more than %d free blocks (the table's per-block "
-                                   "columns hold %d)", RD_SUMMARY_BODIES, RD_SUMMARY_BODIES);
+                                   "columns hold %d)", RD_SWEEP_BODIES, RD_SWEEP_BODIES);
         else if (!sc.bodies[i].fixed)
             snprintf(p->body[p->nbodies++], RD_NAME_MAX, "%s", sc.bodies[i].name);
     p->pulse = !rd_motion_has_records(&sc.motion);
@@ -363,9 +363,9 @@ static void copy_summary(const rd_summary *s, rd_sweep_result *r)
     r->overturned = s->any_overturned;
     r->energy_residual = s->energy_residual_max;
     r->end_time = s->end_time;
-    r->nbodies = s->nbodies;
+    r->nbodies = s->nbodies < RD_SWEEP_BODIES ? s->nbodies : RD_SWEEP_BODIES; /* inspect_base checked */
     r->overturn_time = -1;
-    for (int k = 0; k < s->nbodies; k++) {
+    for (int k = 0; k < r->nbodies; k++) {
         const rd_body_summary *b = &s->body[k];
         r->b_overturned[k] = b->overturned;
         r->b_overturn_time[k] = b->overturn_time;

@@ -190,7 +190,7 @@ static int create_column(rd_sweep_table *t, column *c)
 static int attach_scales(rd_sweep_table *t)
 {
     const rd_sweep_plan *p = t->plan;
-    const char *names[RD_SUMMARY_BODIES];
+    const char *names[RD_SWEEP_BODIES];
     hsize_t nb = (hsize_t)(p->nbodies > 0 ? p->nbodies : 1);
     for (int k = 0; k < (int)nb; k++) names[k] = k < p->nbodies ? p->body[k] : "";
     hid_t sp = H5Screate_simple(1, &nb, NULL);
@@ -213,7 +213,7 @@ static int attach_scales(rd_sweep_table *t)
 static int write_meta(rd_sweep_table *t)
 {
     const rd_sweep_plan *p = t->plan;
-    const char *bodies[RD_SUMMARY_BODIES];
+    const char *bodies[RD_SWEEP_BODIES];
     for (int k = 0; k < p->nbodies; k++) bodies[k] = p->body[k];
     hsize_t nb = (hsize_t)p->nbodies;
     hid_t sp = H5Screate_simple(1, &nb, NULL);
@@ -438,7 +438,7 @@ static int undo_row(rd_sweep_table *t, rd_error *err, const char *what)
 
 static int sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_error *err)
 {
-    char buf[RD_SUMMARY_BODIES * sizeof(double) + RD_SWEEP_TEXT];
+    char buf[RD_SWEEP_BODIES * sizeof(double) + RD_SWEEP_TEXT];
     size_t chunks = 0; /* bytes of one new chunk of every column, when this row starts one */
     for (int i = 0; i < t->ncols && t->rows % RD_SWEEP_CHUNK == 0; i++)
         chunks += RD_SWEEP_CHUNK * t->col[i].size * (size_t)t->col[i].width;

@@ -150,6 +150,7 @@ struct rd_h5 {
     hid_t event_type;  /* enum of event_types */
     int nb;
     char (*names)[RD_NAME_MAX]; /* [nb] free bodies in output order */
+    const char **name_list;     /* [nb] pointers to names[i], as HDF5 writes a string array */
     rd_h5_series ser[SER_COUNT];
     hid_t dims[DIM_COUNT]; /* root dimension scales */
     hid_t body_dim;        /* /body */
@@ -379,9 +380,7 @@ static int create_dims(rd_h5 *h, rd_error *err)
                                   ds->labels, ds->long_name, err);
         if (h->dims[i] < 0) return -1;
     }
-    const char *names[RD_SUMMARY_BODIES];
-    for (int i = 0; i < h->nb; i++) names[i] = h->names[i];
-    h->body_dim = scale_create(h, h->file, "body", h->str_type, (hsize_t)h->nb, names,
+    h->body_dim = scale_create(h, h->file, "body", h->str_type, (hsize_t)h->nb, h->name_list,
                                "free body, in output order", err);
     return h->body_dim < 0 ? -1 : 0;
 }
@@ -494,15 +493,14 @@ static int write_body(const rd_h5 *h, const rd_h5_body *b, rd_error *err)
     return rc;
 }
 
-/* 1..RD_SUMMARY_BODIES bodies, named as HDF5 groups can be and short enough for rd_body_summary. */
+/* At least one free body, each named as HDF5 groups can be and short enough for
+ * rd_body_summary. */
 static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
 {
-    if (m->nbodies < 1 || m->nbodies > RD_SUMMARY_BODIES)
-        return rd_error_set(err, "%s: %d free bodies (1 to %d can be written)", path,
-                            m->nbodies, RD_SUMMARY_BODIES);
-    if (m->nfixed < 0 || m->nfixed > RD_SUMMARY_BODIES)
-        return rd_error_set(err, "%s: %d fixed bodies (at most %d)", path, m->nfixed,
-                            RD_SUMMARY_BODIES);
+    if (m->nbodies < 1)
+        return rd_error_set(err, "%s: %d free bodies (at least 1 is written)", path, m->nbodies);
+    if (m->nfixed < 0)
+        return rd_error_set(err, "%s: %d fixed bodies", path, m->nfixed);
     for (int i = 0; i < m->nbodies + m->nfixed; i++) {
         const char *n = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
         if (!n || !n[0] || strlen(n) >= RD_NAME_MAX || strchr(n, '/') || !strcmp(n, ".") ||
@@ -518,13 +516,11 @@ static int write_bodies(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
         if (write_body(h, &m->bodies[i], err)) return -1;
     for (int i = 0; i < m->nfixed; i++)
         if (write_body(h, &m->fixed_bodies[i], err)) return -1;
-    const char *names[RD_SUMMARY_BODIES];
-    for (int i = 0; i < h->nb; i++) names[i] = h->names[i];
     hsize_t n = (hsize_t)h->nb;
     hid_t space = H5Screate_simple(1, &n, NULL);
     hid_t d = space >= 0 ? H5Dcreate2(h->file, "/bodies/names", h->str_type, space, H5P_DEFAULT,
                                       H5P_DEFAULT, H5P_DEFAULT) : H5I_INVALID_HID;
-    int ok = d >= 0 && H5Dwrite(d, h->str_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, names) >= 0 &&
+    int ok = d >= 0 && H5Dwrite(d, h->str_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, h->name_list) >= 0 &&
              !describe(h, d, NULL, "free bodies, in output order (fixed bodies: groups with "
                                    "fixed = 1)", err) &&
              !attach(h, d, &h->body_dim, 1, "/bodies/names", err);
@@ -655,6 +651,7 @@ static void destroy(rd_h5 *h)
     if (h->str_type >= 0) H5Tclose(h->str_type);
     if (h->file >= 0) H5Fclose(h->file);
     free(h->names);
+    free(h->name_list);
     free(h->path);
     free(h);
 }
@@ -670,11 +667,15 @@ static rd_h5 *alloc_handle(const char *path, const rd_h5_meta *m)
     h->nb = m->nbodies;
     h->path = strdup(path);
     h->names = calloc((size_t)h->nb, sizeof *h->names);
-    if (!h->path || !h->names) {
+    h->name_list = calloc((size_t)h->nb, sizeof *h->name_list);
+    if (!h->path || !h->names || !h->name_list) {
         destroy(h);
         return NULL;
     }
-    for (int i = 0; i < h->nb; i++) snprintf(h->names[i], RD_NAME_MAX, "%s", m->bodies[i].name);
+    for (int i = 0; i < h->nb; i++) {
+        snprintf(h->names[i], RD_NAME_MAX, "%s", m->bodies[i].name);
+        h->name_list[i] = h->names[i];
+    }
     return h;
 }
 
@@ -720,7 +721,12 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
         return NULL;
     }
     errno = 0;
-    h->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    /* the 1.8 file format at least: it stores an attribute over 64 KiB (the per-body /summary
+       arrays of more than 8,000 bodies) densely, where the 1.6 format refuses it */
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    if (fapl >= 0 && H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST) >= 0)
+        h->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    if (fapl >= 0) H5Pclose(fapl);
     int *fdp = NULL;
     if (h->file < 0 || H5Fget_vfd_handle(h->file, H5P_DEFAULT, (void **)&fdp) < 0 || !fdp ||
         fstat(*fdp, &h->id)) {
@@ -927,14 +933,15 @@ static int h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_err
     return rc;
 }
 
-/* order[i] = index in s->body of the body written as /bodies/names[i]. */
+/* order[i] = index in s->body of the body written as /bodies/names[i] (i itself when the
+ * orders agree, as the engine's do: no search). */
 static int summary_order(const rd_h5 *h, const rd_summary *s, int *order, rd_error *err)
 {
     if (s->nbodies != h->nb)
         return rd_error_set(err, "%s: summary has %d bodies, file has %d", h->path, s->nbodies,
                             h->nb);
     for (int i = 0; i < h->nb; i++) {
-        order[i] = -1;
+        order[i] = strncmp(s->body[i].name, h->names[i], RD_NAME_MAX) ? -1 : i;
         for (int j = 0; j < s->nbodies && order[i] < 0; j++)
             if (!strncmp(s->body[j].name, h->names[i], RD_NAME_MAX)) order[i] = j;
         if (order[i] < 0)
@@ -946,22 +953,24 @@ static int summary_order(const rd_h5 *h, const rd_summary *s, int *order, rd_err
 static int write_body_fields(const rd_h5 *h, hid_t g, const rd_summary *s, const int *order,
                              rd_error *err)
 {
-    double d[RD_SUMMARY_BODIES];
-    int n[RD_SUMMARY_BODIES];
+    double *d = malloc((size_t)h->nb * sizeof *d);
+    int *n = malloc((size_t)h->nb * sizeof *n);
     size_t nf = sizeof body_fields / sizeof body_fields[0];
-    for (size_t f = 0; f < nf; f++) {
+    int rc = d && n ? 0 : rd_error_set(err, "%s: out of memory", h->path);
+    for (size_t f = 0; f < nf && !rc; f++) {
         const rd_h5_body_field *bf = &body_fields[f];
         for (int i = 0; i < h->nb; i++) {
             const char *p = (const char *)&s->body[order[i]] + bf->offset;
             if (bf->is_int) memcpy(&n[i], p, sizeof n[i]);
             else memcpy(&d[i], p, sizeof d[i]);
         }
-        if (attr_write(h, g, bf->name, bf->is_int ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
-                       (hsize_t)h->nb, bf->is_int ? (const void *)n : (const void *)d, err) ||
-            attr_units(h, g, bf->name, bf->units, err))
-            return -1;
+        rc = attr_write(h, g, bf->name, bf->is_int ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
+                        (hsize_t)h->nb, bf->is_int ? (const void *)n : (const void *)d, err) ||
+             attr_units(h, g, bf->name, bf->units, err) ? -1 : 0;
     }
-    return 0;
+    free(d);
+    free(n);
+    return rc;
 }
 
 /* The support-polygon alpha found at rest replaces the brick estimate of /bodies/<b>/alpha. */
@@ -998,11 +1007,10 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
            attr_double(h, g, "wall_seconds", s->wall_seconds, "s", err) ? -1 : 0;
 }
 
-static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
+/* /summary: the run's attributes and the per-body arrays. 0, -1 (err set), or 1: a write
+ * failed (the caller records the fault). */
+static int summary_group(rd_h5 *h, const rd_summary *s, const int *order, rd_error *err)
 {
-    if (reserve(h, 0, err)) return -1;
-    int order[RD_SUMMARY_BODIES];
-    if (summary_order(h, s, order, err)) return -1;
     htri_t exists = H5Lexists(h->file, "/summary", H5P_DEFAULT);
     if (exists <= 0 && make_group(h, "/summary", "what the run found (per-body attributes in "
                                                  "/body order)", err))
@@ -1010,8 +1018,23 @@ static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
     hid_t g = H5Gopen2(h->file, "/summary", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '/summary'", h->path);
     int rc = write_summary_attrs(h, g, s, err) || write_body_fields(h, g, s, order, err) ||
-             update_body_alpha(h, s, order, err) ? -1 : 0;
+             update_body_alpha(h, s, order, err);
     H5Gclose(g);
+    return rc;
+}
+
+static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
+{
+    if (reserve(h, 0, err)) return -1;
+    int *order = malloc((size_t)h->nb * sizeof *order);
+    if (!order) return rd_error_set(err, "%s: out of memory", h->path);
+    if (summary_order(h, s, order, err)) {
+        free(order);
+        return -1;
+    }
+    int rc = summary_group(h, s, order, err);
+    free(order);
+    if (rc < 0) return -1;
     if (rc) return fault_h5(h, err, "cannot write /summary");
     unsigned st = (unsigned)s->status;
     if (write_status(h, rd_status_name((rd_status)st), ""))

@@ -108,7 +108,7 @@ static rd_h5 *open_file(const rd_scenario *sc, const rd_refscene *rs, const char
 }
 
 static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
-                         rd_h5 *h5, rd_summary *sum, rd_error *err)
+                         rd_h5 *h5, rd_body_summary *body, rd_error *err)
 {
     const double a[3] = {-rs->dir[1], rs->dir[0], 0};
     for (size_t i = 0; i < res->nsamples; i++) {
@@ -136,8 +136,8 @@ static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_
             out.energy[0] += 0.5 * m * v2 + 0.5 * Ic * sm->omega[k] * sm->omega[k];
             double z0 = rs->base_z + (k ? 2 * rs->h[0] : 0) + rs->h[k];
             out.energy[1] += m * sc->gravity * (ps.x[k][2] - z0);
-            if (fabs(th) > sum->body[o].max_tilt) sum->body[o].max_tilt = fabs(th);
-            sum->body[o].uplifted |= th != 0;
+            if (fabs(th) > body[o].max_tilt) body[o].max_tilt = fabs(th);
+            body[o].uplifted |= th != 0;
         }
         if (rd_h5_append(h5, &out, err)) return -1;
     }
@@ -158,15 +158,16 @@ static int write_events(const rd_refscene *rs, const rd_ref_result *res, rd_h5 *
 }
 
 static void fill_summary(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
-                         rd_summary *sum)
+                         rd_summary *sum, rd_body_summary *body)
 {
     const rd_ref_summary *r = &res->summary;
     sum->nbodies = rs->nblock;
+    sum->body = body;
     sum->end_time = r->t_stop;
     sum->status = r->overturned ? RD_STATUS_OVERTURNED : RD_STATUS_DONE;
     sum->any_overturned = r->overturned;
     for (int k = 0; k < rs->nblock; k++) {
-        rd_body_summary *b = &sum->body[rs->out[k]];
+        rd_body_summary *b = &body[rs->out[k]];
         snprintf(b->name, sizeof b->name, "%s", sc->bodies[rs->body[k]].name);
         b->alpha = atan2(rs->b[k], rs->h[k]);
         b->max_tilt_ratio = r->max_ratio[k];
@@ -177,17 +178,22 @@ static void fill_summary(const rd_scenario *sc, const rd_refscene *rs, const rd_
 }
 
 int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
-                      const char *path, rd_summary *sum, rd_error *err)
+                      const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
+                      rd_error *err)
 {
     double verts[2][8][3];
-    rd_summary s;
-    memset(&s, 0, sizeof s);
+    rd_summary s = {0};
+    rd_body_summary bs[RD_REF_BLOCKS] = {0};
     rd_h5 *h5 = open_file(sc, rs, path, verts, err);
     if (!h5) return -1;
-    fill_summary(sc, rs, res, &s);
-    int rc = write_samples(sc, rs, res, h5, &s, err) || write_events(rs, res, h5, err) ||
+    fill_summary(sc, rs, res, &s, bs);
+    int rc = write_samples(sc, rs, res, h5, bs, err) || write_events(rs, res, h5, err) ||
              rd_h5_summary(h5, &s, err) || rd_h5_flush(h5, err);
     rd_h5_close(h5);
-    if (sum) *sum = s;
+    if (sum) {
+        memcpy(body, bs, sizeof bs);
+        *sum = s;
+        sum->body = body;
+    }
     return rc ? -1 : 0;
 }

@@ -115,6 +115,7 @@ class Scenario:
                 status = lib.rd_sim_run(sim)
             summ = _lib.Summary()
             lib.rd_sim_summary(sim, ctypes.byref(summ))
+            summary = _summary_dict(summ)  # now: summ.body points into the simulation
             n = ctypes.c_int(0)
             ev = lib.rd_sim_events(sim, ctypes.byref(n))
             events = [(ev[k].time, ev[k].body, ev[k].type.decode(), ev[k].value) for k in range(n.value)]
@@ -123,7 +124,7 @@ class Scenario:
             lib.rd_sim_free(sim)
         if STATUS[status] in ("unstable", "io_error", "error", "penetrated", "lost"):
             raise RockdemError("%s: %s" % (self.source, message))
-        return Run(os.fspath(output), _summary_dict(summ), events)
+        return Run(os.fspath(output), summary, events)
 
     def __del__(self):
         h, self._h = getattr(self, "_h", None), None

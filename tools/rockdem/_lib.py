@@ -9,7 +9,6 @@ import ctypes.util
 import os
 
 RD_NAME_MAX = 64      # include/rockdem/scenario.h
-RD_SUMMARY_BODIES = 256   # include/rockdem/rockdem.h
 RD_ERROR_MAX = 512    # include/rockdem/error.h
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -52,7 +51,7 @@ class BodySummary(ctypes.Structure):  # rd_body_summary
 
 class Summary(ctypes.Structure):  # rd_summary
     _fields_ = [("nbodies", ctypes.c_int),
-                ("body", BodySummary * RD_SUMMARY_BODIES),
+                ("body", ctypes.POINTER(BodySummary)),  # [nbodies], borrowed from the sim
                 ("any_overturned", ctypes.c_int),
                 ("end_time", ctypes.c_double),
                 ("dt", ctypes.c_double),
