@@ -134,7 +134,7 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], 
     double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX;
     int best = -1, shallow = -1;
     for (int k = 0; k < c->np; k++) {
-        double depth = fmax(-plane_dist(c->pl[k], p), 0.0);
+        double depth = rd_max(-plane_dist(c->pl[k], p), 0.0);
         double approach = -rd_dot(vr, wn[k]); /* > 0: moving into plane k */
         if (approach > RD_APPROACH_FRACTION * speed && approach > 0 && depth / approach < tmin) {
             tmin = depth / approach;
@@ -229,7 +229,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     }
     for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * u[k]) * s->dt;
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
-    double lim = fmax(fn, 0.0) * j->tan_phi + cohesion;
+    double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
     double mag2 = rd_dot(fs, fs);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (mag2 > lim * lim) {
@@ -338,7 +338,7 @@ static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack, doubl
         double emin = DBL_MAX, emax = -DBL_MAX;
         for (int v = 0; v < nv; v++) {
             double e = rd_dot(s->wn[k], wv[ix[v]]) - s->wd[k];
-            emin = fmin(emin, e); emax = fmax(emax, e);
+            emin = rd_min(e, emin); emax = rd_max(e, emax); /* a NaN e is skipped, as fmin/fmax do */
         }
         if (emin > c->tol + slack + raise) { *gap = emin - raise; return 1; }
         if (emax > -c->tol - raise) c->cr[c->ncr++] = q;

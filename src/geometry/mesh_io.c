@@ -313,6 +313,20 @@ static int ply_face(ply *h, mesh *m, const ply_elem *e, const ply_prop *p, long 
     return end_face(m, (int)c, h->format == 0 ? h->line : 0, err);
 }
 
+/* A list property this reader does not use (a face's texture coordinates, ...): count, then
+ * that many values read past. */
+static int ply_skip_list(ply *h, const char *path, const ply_elem *e, const ply_prop *p, long i, rd_error *err)
+{
+    double cnt, val;
+    if (ply_value(h, p->count_type, &cnt)) return ply_short(h, path, e, i, err);
+    if (!(cnt >= 0 && cnt <= PLY_MAXLIST) || cnt != floor(cnt))
+        return rd_error_set(err, "%s: %s %ld: list '%s' has %g entries (0 to %d allowed)", path, e->name, i,
+                            p->name, cnt, PLY_MAXLIST);
+    for (long k = 0; k < (long)cnt; k++)
+        if (ply_value(h, p->type, &val)) return ply_short(h, path, e, i, err);
+    return 0;
+}
+
 /* Read one element instance: vertex x/y/z, face vertex_indices, everything else skipped. */
 static int ply_instance(ply *h, mesh *m, const ply_elem *e, long i, rd_error *err)
 {
@@ -324,14 +338,13 @@ static int ply_instance(ply *h, mesh *m, const ply_elem *e, long i, rd_error *er
             if (ply_face(h, m, e, p, i, err)) return -1;
             continue;
         }
-        double val, cnt = 1;
-        if (p->is_list && ply_value(h, p->count_type, &cnt)) return ply_short(h, m->path, e, i, err);
-        if (!(cnt >= 0 && cnt <= PLY_MAXLIST) || cnt != floor(cnt))
-            return rd_error_set(err, "%s: %s %ld: list '%s' has %g entries (0 to %d allowed)", m->path, e->name, i,
-                                p->name, cnt, PLY_MAXLIST);
-        for (long k = 0; k < (long)cnt; k++)
-            if (ply_value(h, p->type, &val)) return ply_short(h, m->path, e, i, err);
-        if (is_vertex && !p->is_list && p->name[0] >= 'x' && p->name[0] <= 'z' && !p->name[1]) {
+        if (p->is_list) {
+            if (ply_skip_list(h, m->path, e, p, i, err)) return -1;
+            continue;
+        }
+        double val;
+        if (ply_value(h, p->type, &val)) return ply_short(h, m->path, e, i, err);
+        if (is_vertex && p->name[0] >= 'x' && p->name[0] <= 'z' && !p->name[1]) {
             x[p->name[0] - 'x'] = val;
             if (p->type == T_F32) m->f32_max = fmax(m->f32_max, fabs(val));
         }
