@@ -114,7 +114,19 @@ $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_target.c $(BUILD)/librockdem-internal.a $(
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -fsanitize=fuzzer -DRD_FUZZ_TARGET='"$*"' $< $(BUILD)/librockdem-internal.a $(LDLIBS) -o $@
 
-bench: $(BIN)/rockdem
+# the reference point kernel (bench/kernel.c): built with rockdem's own flags, and with the
+# flags under which GCC vectorises its structure-of-arrays loop
+KERNEL_NATIVE := -O3 -march=native -fno-math-errno
+$(BUILD)/bench/kernel: bench/kernel.c
+	@mkdir -p $(dir $@)
+	$(CC) $(WFLAGS) $(CFLAGS) $< -lm -o $@
+$(BUILD)/bench/kernel-native: bench/kernel.c
+	@mkdir -p $(dir $@)
+	$(CC) $(WFLAGS) $(KERNEL_NATIVE) -g $< -lm -o $@
+
+# about 5-8 min on 2 cores: kernel ratios, the YADE block and multi-body scenes, drum columns
+bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenarios/pbr.obj
+	@bash bench/kernel.sh $(BIN) $(BUILD)/bench
 	@bash bench/run.sh $(BIN)
 	@bash bench/columns.sh $(BIN)
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Cost per step of drum columns of 2, 5, 10, 20 and 50 drums (issue: shapes and scenes). Each
-# column (0.8 m drums, 0.6 m tall, 16 sides, subcontact spacing 0.2 m) stands on a fixed base
-# under a gentle 2 Hz harmonic so every joint is loaded; the step is fixed so all columns do
-# the same number of steps. The cost must grow linearly: ns per step per drum stays flat.
+# column (bench/column_scene.sh: 0.8 m drums, 0.6 m tall, 16 sides, subcontact spacing 0.2 m)
+# stands on a fixed base under a gentle 2 Hz harmonic so every joint is loaded; the step is
+# fixed so all columns do the same number of steps. The cost must grow linearly: ns per step
+# per drum stays flat.
 #   bash bench/columns.sh [BINDIR]
 set -eu
 bindir=${1:-bin}
@@ -10,16 +11,7 @@ case $bindir in /*) ;; *) bindir="$PWD/$bindir" ;; esac
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 printf '%-6s %10s %12s %14s %18s\n' drums steps wall_s ns_per_step ns_per_step_drum
 for n in 2 5 10 20 50; do
-    cat > "$tmp/col.dat" <<DAT
-block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base
-block create column drums $n diameter 0.8 height 0.6 sides 16 seat-on base name c
-contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 spacing 0.2
-model timestep fixed 2e-5
-model settle off
-ground-motion pulse harmonic amplitude 0.02g frequency 2 cycles 1
-model solve time 0.1
-output hdf5 '$tmp/col.h5' interval 0.05
-DAT
+    bash "$(dirname "$0")/column_scene.sh" "$n" 0.1 "$tmp/col.h5" > "$tmp/col.dat"
     best=""
     for r in 1 2 3; do
         line=$("$bindir/rockdem" run "$tmp/col.dat" | grep -o 'perf: .*')
