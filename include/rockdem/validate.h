@@ -64,6 +64,9 @@ typedef struct rd_threshold_opts {
     double lo, hi; /* amplitude range searched, m/s^2; <= 0: defaults 0.9 and 10 times the
                       static uplift threshold g tan(alpha) (stack: the lower of item 2) */
     int nscan;     /* coarse steps from lo to hi (default 24) */
+    int jobs;      /* runs of the coarse scan at once, each in a worker process (fork); <= 0
+                      (default): the number of online cores; 1: all in the calling process.
+                      The result is the serial scan's whatever the number (runs may be more) */
     double rtol;   /* bisection stops when (hi - lo) / hi < rtol (default 0.005) */
 } rd_threshold_opts;
 
@@ -75,7 +78,8 @@ typedef struct rd_threshold_result {
     double below;       /* m/s^2, lower end (does not overturn) */
     double static_amp;  /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
     double w_over_p;    /* 2 pi f / p of block 1 (0 without a frequency) */
-    int runs;           /* simulations made */
+    int runs;           /* simulations made (a parallel scan may run up to jobs - 1 past the
+                           first bracket) */
     int lifted_off;     /* reference only: 1 when the upper end of the bracket is the onset of
                            pivot lift-off (the block jumps; the rigid model stops there), not
                            of overturning */

@@ -61,7 +61,7 @@ static const sub_help pages[] = {
                   "  -o OUT.h5         output file\n"
                   "  --set KEY=VALUE   override a setting (rockdem keys)\n"},
     {"threshold", "usage: rockdem threshold FILE [--engine dem|reference] [--lo A] [--hi A] [--rtol R]\n"
-                  "                 [--steps N] [--frequencies F1,F2,...] [--set KEY=VALUE]... [-q]\n"
+                  "                 [--steps N] [--frequencies F1,F2,...] [-j N] [--set KEY=VALUE]... [-q]\n"
                   "Minimum amplitude of the scenario's horizontal pulse that overturns the scene:\n"
                   "a coarse scan from --lo to --hi, then bisection. Prints it in m/s^2, in g and as\n"
                   "a / (g tan alpha), with w / p.\n"
@@ -72,6 +72,8 @@ static const sub_help pages[] = {
                   "  --steps N         coarse scan steps from lo to hi (default 24)\n"
                   "  --frequencies F1,F2,...  one threshold per pulse frequency (Hz): the\n"
                   "                    minimum-overturning curve a / (g tan alpha) against w / p\n"
+                  "  -j N              coarse-scan runs at once, one worker process each (default:\n"
+                  "                    the number of cores); the result does not depend on it\n"
                   "  --set KEY=VALUE   override a setting (rockdem keys)\n"
                   "  -q                no progress line\n"},
     {"restitution", "usage: rockdem restitution FILE [--target R] [--theta0 RAD] [--set KEY=VALUE]... [-q]\n"

@@ -77,12 +77,13 @@ void rd_cli_progress_start(const char *what, int runs_expected)
 void rd_cli_progress_stop(void)
 {
     rd_set_progress(NULL, NULL);
-    if (bar.drawn > 0) fprintf(stderr, "\r\033[K"); /* erase the line */
-    bar.drawn = 0;
+    /* erase the line (a bar drawn by a worker process of the threshold scan too) */
+    if (bar.what) fprintf(stderr, "\r\033[K");
+    bar = (rd_cli_progress){0};
 }
 
 void rd_cli_progress_clear(void)
 {
-    if (bar.drawn > 0) fprintf(stderr, "\r\033[K");
+    if (bar.what) fprintf(stderr, "\r\033[K");
     fflush(stderr);
 }

@@ -1,8 +1,9 @@
 /* rockdem — `rockdem threshold SCENARIO --engine dem|reference [--lo A] [--hi A] [--rtol r]
- * [--steps n] [--frequencies f1,f2,...] [--set k=v]...`: minimum overturning amplitude of the
- * scenario's horizontal pulse (src/threshold.c), printed in m/s^2, g and a / (g tan alpha),
- * with w / p; with --frequencies, one row per pulse frequency: the minimum-overturning curve
- * a / (g tan alpha) against w / p.
+ * [--steps n] [--frequencies f1,f2,...] [-j N] [--set k=v]...`: minimum overturning amplitude
+ * of the scenario's horizontal pulse (src/ensembles/threshold.c), printed in m/s^2, g and
+ * a / (g tan alpha), with w / p; with --frequencies, one row per pulse frequency: the
+ * minimum-overturning curve a / (g tan alpha) against w / p. -j: coarse-scan runs at once
+ * (default: the number of online cores).
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
@@ -14,6 +15,7 @@
 #include <string.h>
 
 #define RD_MAX_FREQS 64
+#define RD_MAX_JOBS 256 /* -j: the scan's own cap (src/ensembles/threshold.c) */
 
 typedef struct threshold_args {
     rd_engine engine;
@@ -60,6 +62,14 @@ static int threshold_option(void *ctx, int argc, char **argv, int *i)
     } else if (!strcmp(o, "--steps")) {
         if (rd_cli_number(o, v, 0, &x)) return -1;
         a->opts.nscan = (int)x;
+    } else if (!strcmp(o, "-j")) {
+        if (rd_cli_number(o, v, 0, &x)) return -1;
+        if (!(x >= 1 && x <= RD_MAX_JOBS) || x != floor(x)) {
+            fprintf(stderr, "rockdem: -j expects a number of worker processes (1 to %d), got '%s'\n",
+                    RD_MAX_JOBS, v);
+            return -1;
+        }
+        a->opts.jobs = (int)x;
     } else {
         return 1;
     }

@@ -1,18 +1,25 @@
 /* rockdem — minimum overturning amplitude of a scenario's horizontal pulse, with the DEM or the
- * rigid reference (include/rockdem/validate.h explains what the search finds).
+ * rigid reference (include/rockdem/validate.h explains what the search finds). The coarse scan
+ * runs its amplitudes in batches of opts->jobs worker processes (fork, one pipe each); the
+ * outcomes are read in scan order, so the bracket is the serial scan's.
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/validate.h"
 
+#include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 rd_threshold_opts rd_threshold_opts_default(void)
 {
-    return (rd_threshold_opts){.lo = 0, .hi = 0, .nscan = 24, .rtol = 0.005};
+    return (rd_threshold_opts){.lo = 0, .hi = 0, .nscan = 24, .jobs = 0, .rtol = 0.005};
 }
 
 /* DEM run (no file: only the summary is needed); *over = any free body overturned. */
@@ -67,6 +74,122 @@ int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int 
                                    : ref_overturns(sc, amplitude, over, err);
 }
 
+/* ---- the coarse scan on several cores ------------------------------------------------------ */
+
+/* One scan run's outcome, from its worker process to the scan (one write on a pipe). */
+typedef struct scan_outcome {
+    int rc, over;
+    char msg[RD_ERROR_MAX];
+} scan_outcome;
+
+#define RD_SCAN_MAX_JOBS 256 /* worker processes at once, at most (each batch's state is on the stack) */
+
+/* Worker processes for the scan: opts->jobs, or every online core when it is <= 0. */
+static int scan_jobs(const rd_threshold_opts *opts)
+{
+    long n = opts->jobs > 0 ? opts->jobs : sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > RD_SCAN_MAX_JOBS ? RD_SCAN_MAX_JOBS : (int)n;
+}
+
+static int read_full(int fd, void *buf, size_t n)
+{
+    char *p = buf;
+    while (n > 0) {
+        ssize_t r = read(fd, p, n);
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) return -1;
+        p += r;
+        n -= (size_t)r;
+    }
+    return 0;
+}
+
+/* The worker: one run, its outcome on fd, never returns. Only the first worker of a batch
+   reports progress (one bar, not several drawn over each other). */
+static void scan_worker(const rd_scenario *sc, rd_engine engine, double amplitude, int slot, int fd)
+{
+    scan_outcome o = {0};
+    rd_error err = {{0}};
+    if (slot > 0) rd_set_progress(NULL, NULL);
+    o.rc = rd_overturns(sc, engine, amplitude, &o.over, &err);
+    memcpy(o.msg, err.msg, sizeof o.msg);
+    const char *p = (const char *)&o;
+    size_t n = sizeof o;
+    while (n > 0) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) _exit(3);
+        p += w;
+        n -= (size_t)w;
+    }
+    _exit(0);
+}
+
+/* Runs amplitudes a[0..n) at once, one worker process each; out[k] their outcomes (a worker
+   that dies leaves rc -1 and says so). -1 only when no worker could be started. */
+static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, int n,
+                      scan_outcome *out, rd_error *err)
+{
+    pid_t pid[n];
+    int fd[n], started = 0;
+    pid_t parent = getpid();
+    fflush(NULL); /* nothing buffered is written twice */
+    for (; started < n; started++) {
+        int p[2];
+        if (pipe(p)) break;
+        pid[started] = fork();
+        if (pid[started] < 0) { close(p[0]); close(p[1]); break; }
+        if (pid[started] == 0) {
+            /* the worker dies with the scan; the check closes the race with a parent gone first */
+            if (prctl(PR_SET_PDEATHSIG, SIGKILL) || getppid() != parent) _exit(3);
+            for (int k = 0; k < started; k++) close(fd[k]);
+            close(p[0]);
+            scan_worker(sc, engine, a[started], started, p[1]);
+        }
+        close(p[1]);
+        fd[started] = p[0];
+    }
+    for (int k = 0; k < started; k++) {
+        if (read_full(fd[k], &out[k], sizeof out[k])) {
+            out[k] = (scan_outcome){.rc = -1};
+            snprintf(out[k].msg, sizeof out[k].msg, "threshold: the worker for %.4g m/s^2 died", a[k]);
+        }
+        close(fd[k]);
+        waitpid(pid[k], NULL, 0);
+    }
+    if (started == n) return 0;
+    return rd_error_set(err, "threshold: cannot start %d worker processes: %s", n, strerror(errno));
+}
+
+/* The coarse scan up from lo in n steps: the first amplitude that overturns closes the first
+   bracket (*above < 0: none did; *below: the last one below it). jobs runs at a time; the
+   outcomes are taken in scan order, so the bracket is the serial scan's. */
+static int coarse_scan(const rd_scenario *sc, rd_engine engine, double lo, double hi, int n,
+                       int jobs, double *below, double *above, rd_threshold_result *out, rd_error *err)
+{
+    *below = lo;
+    *above = -1;
+    for (int k0 = 0; k0 <= n && *above < 0; k0 += jobs) {
+        int m = n + 1 - k0 < jobs ? n + 1 - k0 : jobs;
+        double a[m];
+        scan_outcome o[m];
+        for (int i = 0; i < m; i++) a[i] = lo + (hi - lo) * (k0 + i) / n;
+        if (m == 1) { /* one run: in this process */
+            o[0].rc = rd_overturns(sc, engine, a[0], &o[0].over, err);
+            if (o[0].rc) return -1;
+        } else if (scan_batch(sc, engine, a, m, o, err)) {
+            return -1;
+        }
+        out->runs += m;
+        for (int i = 0; i < m && *above < 0; i++) {
+            if (o[i].rc) return rd_error_set(err, "%s", o[i].msg);
+            if (o[i].over) { *above = a[i]; out->lifted_off = o[i].over == RD_LIFTS_OFF; }
+            else *below = a[i];
+        }
+    }
+    return 0;
+}
+
 /* Static uplift threshold (m/s^2) and w/p of the scene's lower block. */
 static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_error *err)
 {
@@ -97,20 +220,13 @@ int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opt
     double lo = opts->lo > 0 ? opts->lo : 0.9 * out->static_amp;
     double hi = opts->hi > 0 ? opts->hi : 10 * out->static_amp;
     int n = opts->nscan > 0 ? opts->nscan : 24, over = 0;
+    double below, above;
     if (!(hi > lo) || !(opts->rtol > 0))
         return rd_error_set(err, "threshold: need 0 < lo < hi and rtol > 0 (got lo %g, hi %g, "
                                  "rtol %g)", lo, hi, opts->rtol);
-    /* coarse scan up from lo: the first amplitude that overturns closes the first bracket */
-    double below = lo, above = -1;
     /* (a reference run that lifts off ends the search like an overturning one: the bracket then
        closes on the onset of jumping, reported as such) */
-    for (int k = 0; k <= n && above < 0; k++) {
-        double a = lo + (hi - lo) * k / n;
-        if (rd_overturns(sc, engine, a, &over, err)) return -1;
-        out->runs++;
-        if (over) { above = a; out->lifted_off = over == RD_LIFTS_OFF; }
-        else below = a;
-    }
+    if (coarse_scan(sc, engine, lo, hi, n, scan_jobs(opts), &below, &above, out, err)) return -1;
     if (above < 0) return 0;
     if (above == lo) { out->found = 1; out->amplitude = out->below = lo; return 0; }
     while ((above - below) / above > opts->rtol) {

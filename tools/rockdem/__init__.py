@@ -206,17 +206,18 @@ class _Bar:
 
 
 def threshold(scenario, engine="dem", lo=None, hi=None, rtol=None, steps=None,
-              frequencies=None):
+              frequencies=None, jobs=None):
     """Minimum overturning amplitude of the scenario's horizontal pulse (rd_threshold, the code
     of `rockdem threshold`). Returns a dict: found, amplitude and below (m/s^2, the final
     bracket), static (g tan alpha, m/s^2), ratio (amplitude / static), w_over_p, runs. With
     frequencies (Hz), a list of such dicts, one per pulse frequency (the minimum-overturning
-    curve)."""
+    curve). jobs: coarse-scan runs at once, each in a forked worker process (default: the
+    number of cores; 1: all in this process); the result does not depend on it."""
     if frequencies is not None:
         out = []
         for f in frequencies:
             scenario.set("motion.frequency", repr(float(f)))
-            r = threshold(scenario, engine, lo, hi, rtol, steps)
+            r = threshold(scenario, engine, lo, hi, rtol, steps, jobs=jobs)
             r["frequency"] = float(f)
             out.append(r)
         return out
@@ -226,6 +227,7 @@ def threshold(scenario, engine="dem", lo=None, hi=None, rtol=None, steps=None,
     if hi is not None: opts.hi = float(hi)
     if rtol is not None: opts.rtol = float(rtol)
     if steps is not None: opts.nscan = int(steps)
+    if jobs is not None: opts.jobs = int(jobs)
     res, err = _lib.ThresholdResult(), _lib.Error()
     scenario.validate()
     eng = {"dem": 0, "reference": 1}[engine]

@@ -70,7 +70,7 @@ class Event(ctypes.Structure):  # rd_event
 
 class ThresholdOpts(ctypes.Structure):  # rd_threshold_opts
     _fields_ = [("lo", ctypes.c_double), ("hi", ctypes.c_double), ("nscan", ctypes.c_int),
-                ("rtol", ctypes.c_double)]
+                ("jobs", ctypes.c_int), ("rtol", ctypes.c_double)]
 
 
 class ThresholdResult(ctypes.Structure):  # rd_threshold_result
