@@ -34,7 +34,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test asan fuzz fuzz-bins bench study deps clean check-yade mpi
+.PHONY: python all lib run test asan fuzz fuzz-bins bench bench-study study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -129,6 +129,11 @@ bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenari
 	@bash bench/kernel.sh $(BIN) $(BUILD)/bench
 	@bash bench/run.sh $(BIN)
 	@bash bench/columns.sh $(BIN)
+
+# a seed-002-sized PBR study (582 runs of 20 s records) timed on a 12-run sample on all cores,
+# projected to 2 cores: bench/pbr_study.sh (about 2-4 min on 2 idle cores)
+bench-study: $(BIN)/rockdem scenarios/pbr.obj
+	@bash bench/pbr_study.sh $(BIN)
 
 # regenerate the stored YADE runs in tests/data/yade/ (dt) and tests/data/yade/half/ (dt/2) and
 # compare (needs yade: `apt-get install yade`, ~1.5 GB); docs/YADE.md
