@@ -176,21 +176,14 @@ static void settle(rd_sim *s)
         if (!(s->pstate[k] & RD_PT_ACTIVE)) s->pstate[k] &= (unsigned char)~RD_PT_BONDED;
 }
 
-/* The state at rest: from a checkpoint (`model restore`, read by rd_sim_create), or by
- * settling (then `model save`),
- * or as placed. 0 when the run cannot go on (status and message set). */
-static int restore_or_settle(rd_sim *s)
+/* The state at rest: from a checkpoint (`model restore`, read by rd_sim_create in
+ * io/checkpoint.c), or by settling, or as placed. `model save` is an observer there: its begin
+ * writes this state. */
+static void restore_or_settle(rd_sim *s)
 {
-    rd_error err;
-    if (s->restored) return 1; /* rd_sim_create read the checkpoint */
+    if (s->restored) return;
     if (s->sc.settle.enabled) settle(s);
     else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
-    if (s->status == RD_STATUS_DONE && s->sc.save_path[0] && rd_checkpoint_save(s, s->sc.save_path, &err)) {
-        snprintf(s->errmsg, sizeof s->errmsg, "%s", err.msg);
-        s->status = RD_STATUS_IO_ERROR;
-        return 0;
-    }
-    return 1;
 }
 
 /* Rotate body k about the edge of its support on the side it leans to. */
@@ -343,16 +336,6 @@ static void judge_energy(rd_sim *s)
     s->status = RD_STATUS_UNTRUSTED;
 }
 
-rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
-{
-    rd_sim *s = rd_sim_build(sc, err);
-    if (s && s->sc.restore_path[0] && rd_checkpoint_restore(s, s->sc.restore_path, err)) {
-        rd_sim_free(s);
-        return NULL;
-    }
-    return s;
-}
-
 double rd_sim_trial_steps(rd_sim *s, int n)
 {
     s->settling = 1;
@@ -366,7 +349,7 @@ rd_status rd_sim_run(rd_sim *s)
 {
     stop_requested = 0;
     s->status = RD_STATUS_DONE;
-    if (!restore_or_settle(s)) return s->status;
+    restore_or_settle(s);
     rd_bodies_refresh(s);
     rd_monitor_rest(s);
     s->rested = 1;

@@ -9,6 +9,7 @@
 
 #include "rockdem/observer.h"
 #include "rockdem/rockdem.h"
+#include "engine/state.h"
 #include "geometry/geom.h"
 
 #include <signal.h>
@@ -238,7 +239,7 @@ struct rd_sim {
     long nhist_rows, cap_hist_rows;
     double next_hist;      /* time of the next history sample, s */
     int restored;          /* 1: the state came from `model restore` (no settling) */
-    double *rest_area;     /* [nfree] checkpoint staging: each free body's contact area, m^2 */
+    double *rest_area;     /* [nfree] state image (state.c) staging: each free body's contact area, m^2 */
     rd_status status;
     atomic_int stop;       /* rd_sim_stop: 1 = stop at the next step */
     char errmsg[RD_ERROR_MAX];
@@ -246,9 +247,8 @@ struct rd_sim {
     long nsteps_all;       /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
 };
 
-/* sim.c: a simulation without output (for `rockdem check`), and n settle-mode steps from its
- * current state (returns the wall seconds they took) */
-rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err);
+/* sim.c: n settle-mode steps from the current state (returns the wall seconds they took);
+ * rd_sim_build (the simulation without a checkpoint) is in engine/state.h */
 double rd_sim_trial_steps(rd_sim *s, int n);
 
 /* joint.c */
@@ -263,10 +263,6 @@ int rd_pair_find(const rd_sim *s, int a, int b);
 /* history.c */
 int rd_history_init(rd_sim *s, rd_error *err);
 void rd_history_step(rd_sim *s);
-
-/* checkpoint.c: `model save` / `model restore` */
-int rd_checkpoint_save(const rd_sim *s, const char *path, rd_error *err);
-int rd_checkpoint_restore(rd_sim *s, const char *path, rd_error *err);
 
 /* pairs.c */
 int rd_pairs_init(rd_sim *s, rd_error *err);

@@ -1,0 +1,122 @@
+/* rockdem — the engine's state image (engine/state.h): everything the shaking stage reads that
+ * settling produced, for `model save 'state.h5'` / `model restore 'state.h5'` (io/checkpoint.c
+ * writes and reads the file).
+ *
+ * The image holds every body's pose and momenta (also the previous half step's), the broad
+ * phase (boxes, sweep order, step stamp, pair hash map, the pairs live at the last step), every
+ * contact pair with its per-subcontact history (shear forces, state bits, normal force and gap)
+ * and the joint table, the settle stage's figures and events, and each free body's contact area
+ * at rest (the monitor's reference for uplift). Arrays are listed as they are in memory
+ * (doubles bit for bit, pairs and joints as raw records whose sizes the header carries), so a
+ * restored run continues exactly as the uninterrupted one would: tests/cli/checkpoint.sh
+ * compares the final states of both for equality.
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
+ */
+#include "engine/state.h"
+#include "engine/sim.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void rd_state_capture(rd_sim *s, long h[RD_STATE_HEADER], double settle[2])
+{
+    const long v[RD_STATE_HEADER] = {RD_STATE_VERSION, s->nb, s->npts, s->npair, s->njoint, s->nstate,
+                                     s->nface_state, s->hcap, s->nlive_prev, s->nevent, s->stamp,
+                                     s->sweep_axis, (long)sizeof(rd_pair), (long)sizeof(rd_joint),
+                                     (long)sizeof(rd_event)};
+    memcpy(h, v, sizeof v);
+    settle[0] = s->settle_time;
+    settle[1] = s->settle_ratio;
+    for (int k = 0; k < s->nfree; k++) s->rest_area[k] = s->watch[k].area;
+}
+
+int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS])
+{
+    int n = 0, nb = s->nb;
+    a[n++] = (rd_state_array){"bodies/position", RD_STATE_DOUBLE, s->x, 3L * nb};
+    a[n++] = (rd_state_array){"bodies/quaternion", RD_STATE_DOUBLE, s->q, 4L * nb};
+    a[n++] = (rd_state_array){"bodies/velocity", RD_STATE_DOUBLE, s->v, 3L * nb};
+    a[n++] = (rd_state_array){"bodies/angular_momentum", RD_STATE_DOUBLE, s->L, 3L * nb};
+    a[n++] = (rd_state_array){"state/angular_velocity", RD_STATE_DOUBLE, s->w, 3L * nb};
+    a[n++] = (rd_state_array){"state/velocity_old", RD_STATE_DOUBLE, s->v_old, 3L * nb};
+    a[n++] = (rd_state_array){"state/angular_momentum_old", RD_STATE_DOUBLE, s->L_old, 3L * nb};
+    a[n++] = (rd_state_array){"state/aabb", RD_STATE_DOUBLE, s->aabb, 6L * nb};
+    a[n++] = (rd_state_array){"state/order", RD_STATE_INT, s->order, nb};
+    a[n++] = (rd_state_array){"state/hash", RD_STATE_INT, s->hkey, s->hcap};
+    a[n++] = (rd_state_array){"state/live", RD_STATE_INT, s->live_prev, s->nlive_prev};
+    a[n++] = (rd_state_array){"state/pairs", RD_STATE_BYTE, s->pair, (long)(s->npair * sizeof *s->pair)};
+    a[n++] = (rd_state_array){"state/joints", RD_STATE_BYTE, s->joint, (long)(s->njoint * sizeof *s->joint)};
+    a[n++] = (rd_state_array){"state/shear_force", RD_STATE_DOUBLE, s->fs, 3L * s->nstate};
+    a[n++] = (rd_state_array){"state/point_state", RD_STATE_BYTE, s->pstate, s->nstate};
+    a[n++] = (rd_state_array){"state/point_force_gap", RD_STATE_DOUBLE, s->pj, 2L * s->nstate};
+    a[n++] = (rd_state_array){"state/entrance_face", RD_STATE_BYTE, s->pface,
+                              (long)(s->nstate * sizeof *s->pface)};
+    a[n++] = (rd_state_array){"state/permanent_set", RD_STATE_DOUBLE, s->pset, s->nstate};
+    a[n++] = (rd_state_array){"state/face_active", RD_STATE_INT, s->face_nactive, s->nface_state};
+    a[n++] = (rd_state_array){"state/events", RD_STATE_BYTE, s->event, (long)(s->nevent * sizeof *s->event)};
+    a[n++] = (rd_state_array){"state/rest_area", RD_STATE_DOUBLE, s->rest_area, s->nfree};
+    return n;
+}
+
+const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], const char *const *names,
+                              char *buf, size_t n)
+{
+    if (h[RD_STATE_H_VERSION] != RD_STATE_VERSION || h[RD_STATE_H_PAIR_SIZE] != (long)sizeof(rd_pair) ||
+        h[RD_STATE_H_JOINT_SIZE] != (long)sizeof(rd_joint) || h[RD_STATE_H_EVENT_SIZE] != (long)sizeof(rd_event))
+        return "written by another rockdem build (checkpoint layout differs)";
+    if (h[RD_STATE_H_NB] != s->nb || !names) {
+        snprintf(buf, n, "it holds %ld blocks, this scenario %d", h[RD_STATE_H_NB], s->nb);
+        return buf;
+    }
+    for (int i = 0; i < s->nb; i++)
+        if (strcmp(names[i], s->sc.bodies[i].name)) {
+            snprintf(buf, n, "block %d is '%s' there, '%s' here", i + 1, names[i], s->sc.bodies[i].name);
+            return buf;
+        }
+    if (h[RD_STATE_H_NPTS] != s->npts) {
+        snprintf(buf, n, "it has %ld subcontacts, this scenario %d (other shapes or spacing)",
+                 h[RD_STATE_H_NPTS], s->npts);
+        return buf;
+    }
+    return NULL;
+}
+
+int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
+{
+    long nstate = h[RD_STATE_H_NSTATE];
+    void **p[] = {(void **)&s->hkey, (void **)&s->live_prev, (void **)&s->pair, (void **)&s->joint,
+                  (void **)&s->fs, (void **)&s->pstate, (void **)&s->pj, (void **)&s->face_nactive,
+                  (void **)&s->event, (void **)&s->pface, (void **)&s->pset};
+    size_t sz[] = {sizeof *s->hkey * (size_t)h[RD_STATE_H_HCAP], sizeof *s->live_prev * (size_t)h[RD_STATE_H_NLIVE],
+                   sizeof *s->pair * (size_t)h[RD_STATE_H_NPAIR], sizeof *s->joint * (size_t)h[RD_STATE_H_NJOINT],
+                   sizeof *s->fs * (size_t)nstate, sizeof *s->pstate * (size_t)nstate,
+                   sizeof *s->pj * (size_t)nstate, sizeof *s->face_nactive * (size_t)h[RD_STATE_H_NFACE],
+                   sizeof *s->event * (size_t)h[RD_STATE_H_NEVENT], sizeof *s->pface * (size_t)nstate,
+                   sizeof *s->pset * (size_t)nstate};
+    for (size_t k = 0; k < sizeof sz / sizeof sz[0]; k++) {
+        void *t = realloc(*p[k], sz[k] ? sz[k] : 1);
+        if (!t) return -1;
+        *p[k] = t;
+    }
+    s->hcap = (int)h[RD_STATE_H_HCAP];
+    s->nlive_prev = s->cap_live_prev = (int)h[RD_STATE_H_NLIVE];
+    s->npair = s->cap_pair = (int)h[RD_STATE_H_NPAIR];
+    s->njoint = s->cap_joint = (int)h[RD_STATE_H_NJOINT];
+    s->nstate = s->cap_state = s->cap_state_flags = s->cap_state_joint = (int)nstate;
+    s->cap_pface = s->cap_pset = (int)nstate;
+    s->nface_state = s->cap_face_state = (int)h[RD_STATE_H_NFACE];
+    s->nevent = s->cap_event = (int)h[RD_STATE_H_NEVENT];
+    s->stamp = h[RD_STATE_H_STAMP];
+    s->sweep_axis = (int)h[RD_STATE_H_AXIS];
+    return 0;
+}
+
+void rd_state_restored(rd_sim *s, const double settle[2])
+{
+    for (int k = 0; k < s->nfree; k++) s->watch[k].area = s->rest_area[k]; /* contact area at rest */
+    s->settle_time = settle[0];
+    s->settle_ratio = settle[1];
+    s->restored = 1;
+}
