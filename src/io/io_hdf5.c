@@ -865,31 +865,27 @@ static int h5_flush(rd_h5 *h, rd_error *err)
 
 /* ---- summary ---- */
 
+/* The per-body /summary attributes: rd_body_summary's members, grouped by kind. */
 typedef struct rd_h5_body_field {
-    const char *name;
-    size_t offset; /* in rd_body_summary */
-    int is_int;
-    const char *units; /* NULL for a flag */
+    const char *name;  /* attribute */
+    size_t offset;     /* of the member in rd_body_summary */
+    const char *units; /* NULL: a 0/1 flag (an int member); else a double in these units */
 } rd_h5_body_field;
 
+#define RD_FIELD(attr, member, units) {attr, offsetof(rd_body_summary, member), units}
 static const rd_h5_body_field body_fields[] = {
-    {"overturned", offsetof(rd_body_summary, overturned), 1, NULL},
-    {"overturn_time", offsetof(rd_body_summary, overturn_time), 0, "s"},
-    {"max_tilt", offsetof(rd_body_summary, max_tilt), 0, "rad"},
-    {"alpha", offsetof(rd_body_summary, alpha), 0, "rad"},
-    {"max_tilt_ratio", offsetof(rd_body_summary, max_tilt_ratio), 0, "1"},
-    {"max_slide", offsetof(rd_body_summary, max_slide), 0, "m"},
-    {"final_slide", offsetof(rd_body_summary, final_slide), 0, "m"},
-    {"uplifted", offsetof(rd_body_summary, uplifted), 1, NULL},
-    {"slid", offsetof(rd_body_summary, slid), 1, NULL},
-    {"max_rocking_in_plane", offsetof(rd_body_summary, max_rocking_in), 0, "rad"},
-    {"max_rocking_out_of_plane", offsetof(rd_body_summary, max_rocking_out), 0, "rad"},
-    {"max_twist", offsetof(rd_body_summary, max_twist), 0, "rad"},
-    {"final_twist", offsetof(rd_body_summary, final_twist), 0, "rad"},
-    {"alpha_min", offsetof(rd_body_summary, alpha_min), 0, "rad"},
-    {"alpha_min_direction", offsetof(rd_body_summary, alpha_min_direction), 0, "rad"},
-    {"tip_accel_min", offsetof(rd_body_summary, tip_accel_min), 0, "m/s^2"},
+    RD_FIELD("overturned", overturned, NULL), RD_FIELD("uplifted", uplifted, NULL),
+    RD_FIELD("slid", slid, NULL),
+    RD_FIELD("overturn_time", overturn_time, "s"), RD_FIELD("max_tilt_ratio", max_tilt_ratio, "1"),
+    RD_FIELD("tip_accel_min", tip_accel_min, "m/s^2"),
+    RD_FIELD("max_slide", max_slide, "m"), RD_FIELD("final_slide", final_slide, "m"),
+    RD_FIELD("max_tilt", max_tilt, "rad"), RD_FIELD("alpha", alpha, "rad"),
+    RD_FIELD("max_rocking_in_plane", max_rocking_in, "rad"),
+    RD_FIELD("max_rocking_out_of_plane", max_rocking_out, "rad"),
+    RD_FIELD("max_twist", max_twist, "rad"), RD_FIELD("final_twist", final_twist, "rad"),
+    RD_FIELD("alpha_min", alpha_min, "rad"), RD_FIELD("alpha_min_direction", alpha_min_direction, "rad"),
 };
+#undef RD_FIELD
 
 static int h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
 {
@@ -961,11 +957,11 @@ static int write_body_fields(const rd_h5 *h, hid_t g, const rd_summary *s, const
         const rd_h5_body_field *bf = &body_fields[f];
         for (int i = 0; i < h->nb; i++) {
             const char *p = (const char *)&s->body[order[i]] + bf->offset;
-            if (bf->is_int) memcpy(&n[i], p, sizeof n[i]);
+            if (!bf->units) memcpy(&n[i], p, sizeof n[i]);
             else memcpy(&d[i], p, sizeof d[i]);
         }
-        rc = attr_write(h, g, bf->name, bf->is_int ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
-                        (hsize_t)h->nb, bf->is_int ? (const void *)n : (const void *)d, err) ||
+        rc = attr_write(h, g, bf->name, bf->units ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT,
+                        (hsize_t)h->nb, bf->units ? (const void *)d : (const void *)n, err) ||
              attr_units(h, g, bf->name, bf->units, err) ? -1 : 0;
     }
     free(d);

@@ -288,25 +288,27 @@ static int eval_at(const stack *m, int s1, int s2, double t, const double *y,
     return rd_kounadis_eval_mode(&m->d, s1, s2, y, y + 2, ug, vg, ev, m->err);
 }
 
-/* The state y normalised into yn and the current mode evaluated there (CVODE callbacks). */
-static int eval_state(stack *m, double t, const double *y, double yn[4], rd_kounadis_eval *ev)
+/* What the CVODE callbacks see at (t, y): the state normalised and the current mode there. */
+typedef struct state_at {
+    double yn[4];
+    rd_kounadis_eval ev;
+} state_at;
+
+static int eval_state(stack *m, double t, const double *y, state_at *a)
 {
-    for (int i = 0; i < 4; i++) yn[i] = y[i];
-    normalize(m, yn);
-    return eval_at(m, m->s1, m->s2, t, yn, ev);
+    for (int i = 0; i < 4; i++) a->yn[i] = y[i];
+    normalize(m, a->yn);
+    return eval_at(m, m->s1, m->s2, t, a->yn, &a->ev);
 }
 
 static int k_rhs(void *sys, double t, const double *y, double *ydot)
 {
-    stack *m = sys;
-    double yn[4];
-    rd_kounadis_eval ev;
-    if (eval_state(m, t, y, yn, &ev))
-        return -1;
-    ydot[0] = yn[2];
-    ydot[1] = yn[3];
-    ydot[2] = ev.acc[0];
-    ydot[3] = ev.acc[1];
+    state_at a;
+    if (eval_state(sys, t, y, &a)) return -1;
+    ydot[0] = a.yn[2];
+    ydot[1] = a.yn[3];
+    ydot[2] = a.ev.acc[0];
+    ydot[3] = a.ev.acc[1];
     return 0;
 }
 
@@ -374,12 +376,9 @@ static double root_value(const stack *m, int kind, const double *y, const rd_kou
 static int k_roots(void *sys, double t, const double *y, double *g)
 {
     stack *m = sys;
-    double yn[4];
-    rd_kounadis_eval ev;
-    if (eval_state(m, t, y, yn, &ev))
-        return -1;
-    for (int i = 0; i < m->nroots; i++)
-        g[i] = root_value(m, m->kind[i], yn, &ev);
+    state_at a;
+    if (eval_state(m, t, y, &a)) return -1;
+    for (int i = 0; i < m->nroots; i++) g[i] = root_value(m, m->kind[i], a.yn, &a.ev);
     return 0;
 }
 

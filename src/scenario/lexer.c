@@ -147,6 +147,12 @@ int missing_keyword(parser *P, const char *const *names)
     return perr(P, verb_token(P), "missing keyword after '%s' (expected %s)", P->ctx, list);
 }
 
+int keywords_end(parser *P, int k, int found, const char *const *names)
+{
+    if (k == KW_ERR) return -1;
+    return found ? 0 : missing_keyword(P, names);
+}
+
 /* Keywords that exclude each other: remembers the first in *prev, refuses a second. */
 int exclusive(parser *P, const token **prev, const token *kw)
 {
@@ -155,6 +161,18 @@ int exclusive(parser *P, const token **prev, const token *kw)
                     (*prev)->s);
     *prev = kw;
     return 0;
+}
+
+int one_keyword(parser *P, const char *const *names)
+{
+    const token *kw, *prev = NULL;
+    unsigned seen = 0;
+    int k, found = -1;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (exclusive(P, &prev, kw)) return -1;
+        found = k;
+    }
+    return keywords_end(P, k, prev != NULL, names) ? -1 : found;
 }
 
 int expect_end(parser *P)

@@ -106,7 +106,13 @@ void join(char *buf, size_t size, const char *const *names);
  * token, or KW_ERR for an unknown or repeated keyword. *seen collects the indices. */
 int next_keyword(parser *P, const char *const *names, unsigned *seen, const token **kw);
 int missing_keyword(parser *P, const char *const *names);
+/* The end of a keyword loop that stopped at k: -1 after an error (KW_ERR), else 0 when a
+ * keyword was found, else the missing-keyword error. */
+int keywords_end(parser *P, int k, int found, const char *const *names);
 int exclusive(parser *P, const token **prev, const token *kw);
+/* A command of exactly one of names (NULL-terminated) and nothing after it: its index, or -1
+ * (err set: missing, unknown or a second keyword). */
+int one_keyword(parser *P, const char *const *names);
 int expect_end(parser *P);
 int read_values(parser *P, const token *kw, int n, range r, unit u, double *v);
 int read_value(parser *P, const token *kw, range r, unit u, double *v);

@@ -48,9 +48,7 @@ int model_damping(parser *P)
         if (k > 0 && read_value(P, kw, ranges[k], U_PLAIN, &d->value))
             return -1;
     }
-    if (k == KW_ERR)
-        return -1;
-    return prev ? 0 : missing_keyword(P, names);
+    return keywords_end(P, k, prev != NULL, names);
 }
 
 int model_timestep(parser *P)
@@ -100,9 +98,7 @@ int model_settle(parser *P)
         if (rc)
             return -1;
     }
-    if (k == KW_ERR)
-        return -1;
-    return seen ? 0 : missing_keyword(P, names);
+    return keywords_end(P, k, seen != 0, names);
 }
 
 int model_solve(parser *P)
@@ -116,9 +112,7 @@ int model_solve(parser *P)
         if (k == 2 ? read_switch(P, kw, &P->sc->force)
                    : read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail))
             return -1;
-    if (k == KW_ERR)
-        return -1;
-    return seen ? 0 : missing_keyword(P, names);
+    return keywords_end(P, k, seen != 0, names);
 }
 
 int model_overturn(parser *P)
@@ -140,9 +134,7 @@ int model_overturn(parser *P)
             return -1;
         ov->kind = (rd_overturn_kind)k;
     }
-    if (k == KW_ERR)
-        return -1;
-    return seen ? 0 : missing_keyword(P, names);
+    return keywords_end(P, k, seen != 0, names);
 }
 
 /* `model reference restitution e`: the rigid reference solvers' impact restitution. */
@@ -155,9 +147,7 @@ int model_reference(parser *P)
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
         if (read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
             return -1;
-    if (k == KW_ERR)
-        return -1;
-    return seen ? 0 : missing_keyword(P, names);
+    return keywords_end(P, k, seen != 0, names);
 }
 
 /* ---- contact ---- */
@@ -212,17 +202,10 @@ int contact_property(parser *P)
 int contact_preset(parser *P)
 {
     static const char *const names[] = {"rigid", "3dec", "default", NULL};
-    const token *kw, *prev = NULL;
-    unsigned seen = 0;
-    int k;
-    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
-        if (exclusive(P, &prev, kw))
-            return -1;
-        rd_contact_preset(&P->sc->contact, &P->sc->damping, names[k]);
-    }
-    if (k == KW_ERR)
-        return -1;
-    return prev ? 0 : missing_keyword(P, names);
+    int k = one_keyword(P, names);
+    if (k < 0) return -1;
+    rd_contact_preset(&P->sc->contact, &P->sc->damping, names[k]);
+    return 0;
 }
 
 /* Largest seed a generator takes (gsl_rng seeds are unsigned long; 32 bits everywhere). */
