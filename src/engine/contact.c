@@ -214,7 +214,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         }
         fn = bonded ? fmax(fn, -j->tension * A) : 0.0;
     }
-    s->e_damp -= (fn - fel) * vn * s->dt * (fn != fel);
+    if (fn != fel) s->e_damp -= (fn - fel) * vn * s->dt; /* dashpot or tension-cap work */
     c->k_active += kA;
 
     /* shear: keep last step's force in the plane of the entrance face (turned with it, its
@@ -239,10 +239,8 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         double mag = sqrt(mag2), r = lim / mag;
         s->e_fric += (mag - lim) * (lim + fmin(sqrt(prev2), mag)) / (2.0 * sA);
         fs[0] *= r; fs[1] *= r; fs[2] *= r;
-        mag2 = lim * lim;
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     }
-    s->e_elastic += 0.5 * (kA * stretch * stretch + mag2 / sA);
     s->pj[st][0] = fn;
     for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];
 
@@ -396,7 +394,6 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
  * of memory growing the pair cache. */
 int rd_contact_step(rd_sim *s)
 {
-    s->e_elastic = 0;
     if (rd_pairs_update(s)) return -1;
     reset_departed(s);
     for (int k = 0; k < s->nlive; k++) {
@@ -411,4 +408,27 @@ int rd_contact_step(rd_sim *s)
     int c = s->cap_live_prev; s->cap_live_prev = s->cap_live; s->cap_live = c;
     s->nlive_prev = s->nlive;
     return 0;
+}
+
+/* Spring energy of the subcontacts that bore force at the last contact step, J: over its live
+ * pairs (rd_contact_step leaves them in live_prev), Fel^2 / (2 KN A') + |Fs|^2 / (2 KS A') with
+ * Fel = KN A' (depth - set). Evaluated from the stored spring state only when an energy sample
+ * is taken, so the contact loop carries no division. */
+double rd_contact_elastic_energy(const rd_sim *s)
+{
+    double e = 0;
+    for (int k = 0; k < s->nlive_prev; k++) {
+        const rd_pair *pr = &s->pair[s->live_prev[k]];
+        const rd_joint *j = &s->joint[pr->joint];
+        for (int q = 0; q < pr->nside; q++) {
+            const rd_side *sd = &pr->side[q];
+            for (int pt = s->pt0[sd->owner], st = sd->state0; pt < s->pt0[sd->owner + 1]; pt++, st++) {
+                if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
+                double A = sd->weight * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
+                double stretch = -s->pj[st][1] - s->pset[st]; /* pj[1]: minus the depth */
+                e += 0.5 * (kA * stretch * stretch + rd_dot(s->fs[st], s->fs[st]) / sA);
+            }
+        }
+    }
+    return e;
 }

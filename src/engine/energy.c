@@ -3,7 +3,8 @@
  * Velocities live at half steps, so v(n) = (v(n-1/2) + v(n+1/2)) / 2 (and L likewise).
  *   kinetic       sum 1/2 m v.v + 1/2 w.L                     (ground frame)
  *   gravitational sum m g (z - z_rest)
- *   elastic       sum over active subcontacts of Fn^2/(2 KN A) + |Fs|^2/(2 KS A)
+ *   elastic       sum over active subcontacts of Fel^2/(2 KN A) + |Fs|^2/(2 KS A), from the
+ *                 stored spring state, at samples only (contact.c)
  *   friction      accumulated slip work Fs . dUs_plastic      (contact.c)
  *   damping       accumulated dashpot and local-damping work   (contact.c, sim.c)
  *   ground_work   accumulated work of the pseudo-force -m a_g, i.e. the energy the shaking
@@ -48,10 +49,10 @@ void rd_energy_sample(rd_sim *s)
         ke += 0.5 * s->mass[i] * rd_dot(v, v) + 0.5 * rd_dot(w, L);
         pe += s->mass[i] * s->sc.gravity * (s->x[i][2] - s->watch[k].x_ref[2]);
     }
-    double *e = s->energy;
-    e[0] = ke; e[1] = pe; e[2] = s->e_elastic; e[3] = s->e_fric; e[4] = s->e_damp;
+    double *e = s->energy, el = rd_contact_elastic_energy(s);
+    e[0] = ke; e[1] = pe; e[2] = el; e[3] = s->e_fric; e[4] = s->e_damp;
     e[5] = s->e_work;
-    double total = ke + pe + s->e_elastic;
+    double total = ke + pe + el;
     if (s->step == 0) s->e0 = total;
     e[6] = total + s->e_fric + s->e_damp - s->e_work - s->e0;
     for (int j = 0; j < 6; j++) s->e_scale = fmax(s->e_scale, fabs(e[j]));

@@ -206,7 +206,6 @@ struct rd_sim {
 
     /* energy bookkeeping, J */
     double e_fric, e_damp, e_work; /* accumulated friction, damping dissipation, ground work */
-    double e_elastic;               /* spring energy at the current step */
     double e0;                      /* total mechanical energy at the start of shaking */
     double e_scale;                 /* largest energy term seen (to normalise the residual) */
     double resid_max;               /* max |residual| / e_scale */
@@ -272,6 +271,7 @@ int rd_pairs_update(rd_sim *s);
 int rd_contact_step(rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
 void rd_contact_seat(rd_sim *s);
+double rd_contact_elastic_energy(const rd_sim *s);
 
 /* integrate.c */
 void rd_body_refresh(rd_sim *s, int i);
