@@ -616,34 +616,63 @@ static void test_kounadis_light_top(void **state)
     }
 }
 
-/* Two 2b x 2h blocks of equal density, locked, rock exactly like one 2b x 4h block with
- * Housner's r of the tall block: same samples (1e-7 rad, solver accuracy) and impact times. */
+/* Two 2b x 2h blocks of equal density, locked, rock exactly like one 2b x 4h block: with
+ * plastic impacts the tall block's Housner r, with restitution r (the lower block's Housner e)
+ * every post-impact rate is r / r_H1 times the plastic one, so the tall block's e is
+ * r_H(tall) r / r_H1 (less and more loss than plastic). Same samples (1e-7 rad, solver accuracy)
+ * and impact times. */
 static void test_kounadis_locked_is_one_block(void **state)
 {
     (void)state;
-    rd_kounadis_def d = {.b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.25, .h2 = 0.5, .m2 = 1.0,
-                         .g = G};
-    rd_housner_def h = {.b = 0.25, .h = 1.0, .g = G, .e = -1.0};
-    rd_ref_opts o = rd_ref_opts_default();
-    o.theta0[0] = o.theta0[1] = 0.04;
-    o.t_end = 2.0;
-    o.dt_out = 0.01;
-    rd_ref_result rs = run_stack(&d, NULL, &o);
-    rd_ref_result rh = run_housner(&h, NULL, &o);
-    assert_null(first_event(&rs, RD_REF_UPLIFT));
-    assert_int_equal(rs.nsamples, rh.nsamples);
-    for (size_t i = 0; i < rs.nsamples; i++) {
-        assert_true(fabs(rs.samples[i].theta[0] - rh.samples[i].theta[0]) < 1e-7);
-        assert_true(rs.samples[i].theta[1] == rs.samples[i].theta[0]);
+    const double alpha1 = rd_housner_alpha(0.25, 0.5), alpha_t = rd_housner_alpha(0.25, 1.0);
+    const double rs_[3] = {0.0, 0.6, 0.75};
+    for (int k = 0; k < 3; k++) {
+        rd_kounadis_def d = {.b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.25, .h2 = 0.5, .m2 = 1.0,
+                             .g = G, .r = rs_[k]};
+        double e = k ? rd_housner_r(alpha_t) * rs_[k] / rd_housner_r(alpha1) : -1.0;
+        rd_housner_def h = {.b = 0.25, .h = 1.0, .g = G, .e = e};
+        rd_ref_opts o = rd_ref_opts_default();
+        o.theta0[0] = o.theta0[1] = 0.04;
+        o.t_end = 1.5; /* before r = 0.6's rates fall to the rest threshold (Zeno end) */
+        o.dt_out = 0.01;
+        rd_ref_result rs = run_stack(&d, NULL, &o);
+        rd_ref_result rh = run_housner(&h, NULL, &o);
+        assert_null(first_event(&rs, RD_REF_UPLIFT));
+        assert_int_equal(rs.nsamples, rh.nsamples);
+        for (size_t i = 0; i < rs.nsamples; i++) {
+            assert_true(fabs(rs.samples[i].theta[0] - rh.samples[i].theta[0]) < 1e-7);
+            assert_true(rs.samples[i].theta[1] == rs.samples[i].theta[0]);
+        }
+        double ts[6], th[6];
+        size_t n = impact_times(&rh, 0, th, 6);
+        assert_true(n >= 3);
+        assert_int_equal(impact_times(&rs, 0, ts, 6), n);
+        for (size_t i = 0; i < n; i++)
+            assert_true(fabs(ts[i] - th[i]) < 1e-8 * th[i]);
+        rd_ref_result_free(&rs);
+        rd_ref_result_free(&rh);
     }
-    double ts[6], th[6];
-    size_t n = impact_times(&rh, 0, th, 6);
-    assert_true(n >= 3);
-    assert_int_equal(impact_times(&rs, 0, ts, 6), n);
-    for (size_t i = 0; i < n; i++)
-        assert_true(fabs(ts[i] - th[i]) < 1e-8 * th[i]);
-    rd_ref_result_free(&rs);
-    rd_ref_result_free(&rh);
+}
+
+/* A restitution that would gain energy at an impact is refused with a message, not integrated:
+ * r = 1 for the lower block (kappa = 1 / 0.7) on a locked stack of Housner r 0.44 is no gain,
+ * but the upper block alone rocking on a resting lower block keeps more than it had when its
+ * own r_H is above r_H1 (a squat top: r_H2 0.9). */
+static void test_kounadis_restitution_gain(void **state)
+{
+    (void)state;
+    rd_kounadis_def d = {.b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.1, .h2 = 0.4, .m2 = 0.01,
+                         .g = G, .r = 1.0};
+    rd_ref_opts o = rd_ref_opts_default();
+    o.theta0[0] = 0.0;
+    o.theta0[1] = 0.1;
+    o.t_end = 2.0;
+    rd_ref_result r;
+    rd_error err = {""};
+    int rc = rd_kounadis_solve(&d, NULL, &o, &r, &err);
+    assert_int_equal(rc, -1);
+    assert_non_null(strstr(err.msg, "gains energy"));
+    rd_ref_result_free(&r);
 }
 
 /* Reversing ug'' mirrors theta1, theta2 (the equations are odd under theta -> -theta,
@@ -691,6 +720,7 @@ int main(void)
         cmocka_unit_test(test_kounadis_light_top),
         cmocka_unit_test(test_kounadis_locked_is_one_block),
         cmocka_unit_test(test_kounadis_mirror),
+        cmocka_unit_test(test_kounadis_restitution_gain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -131,6 +131,11 @@ typedef struct rd_kounadis_def {
     double b1, h1, m1; /* lower block half-width, half-height (m), mass (kg); default 0.25 0.5 1 */
     double b2, h2, m2; /* upper block, centred, b2 <= b1; default 0.25 0.5 1 */
     double g;          /* gravity, m/s^2; default 9.81 */
+    double r;          /* impact restitution as the lower block alone would have it (Housner's e:
+                          post- over pre-impact rate); every impact keeps r / r_H1 times the
+                          plastic law's post-impact rates (r_H1 the lower block's Housner r);
+                          <= 0: the plastic law (default). An impact that would gain energy is
+                          an error. */
 } rd_kounadis_def;
 
 RD_API rd_kounadis_def rd_kounadis_def_default(void);

@@ -52,7 +52,7 @@ static const key_doc keys[] = {
     {"motion.seed", "1", "1", "records: seed of the stochastic h1 generator"},
     {"output.file", "path", "rockdem.h5", "HDF5 run file (also -o)"},
     {"output.interval", "s", "0.005", "time between samples"},
-    {"reference.restitution", "1", "Housner's r", "rigid reference solvers: impact restitution e, (0, 1]"},
+    {"reference.restitution", "1", "Housner's r", "rigid reference solvers: impact restitution e, (0, 1]; a stack's impacts keep e / r_H1 x the plastic rates"},
     {"block.<name>.density", "kg/m^3", "model.density", "density of the named block"},
     {"block.<name>.mass", "kg", "from density", "mass of the named block (overrides density)"},
     {"block.<name>.tilt", "degree", "0", "initial tilt about its base edge"},

@@ -5,7 +5,8 @@
  * block flat on the lower one). Both open: M theta'' + rest = 0 as written in the doc; locked
  * (s1, 0): the composite block about O; lower at rest (0, s2): the upper block about P; (0, 0)
  * rest. Contact forces come from Newton–Euler of each body with the mode's accelerations.
- * Impacts are perfectly plastic with angular momentum conserved about the post-impact pivots.
+ * Impacts are perfectly plastic with angular momentum conserved about the post-impact pivots,
+ * optionally scaled by a restitution factor (rd_kounadis_def.r).
  * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
  * base/, records/, io/ and the public API.
  */
@@ -258,6 +259,7 @@ typedef struct stack {
     double alpha_c, p_c;   /* saddle angle and frequency of the locked stack about O */
     double alpha2, p2;     /* the same for the upper block alone */
     double rest_omega;     /* rad/s, joints close below this post-impact rate */
+    double kappa;          /* post-impact rates over the plastic law's (1: plastic) */
     double tol_acc, tol_f; /* rad/s^2, N: round-off allowances in admissibility tests */
     const rd_ground *gm;
     rd_ref_result *res;
@@ -521,6 +523,15 @@ static int k_settle(void *sys, double t, double *y)
     return RD_HYB_GO;
 }
 
+/* Kinetic energy (J) of pattern (s1, s2) at rates om: 0.5 om.M.om, M of the pattern's pivots
+ * (a closed joint moves rigidly, so either corner serves as its pivot). */
+static double kinetic(const rd_kounadis_def *d, int s1, int s2, const double *y, const double om[2])
+{
+    double mm[2][2], rest[2], th[2] = {y[0], y[1]};
+    rd_kounadis_matrix(d, s1 ? s1 : 1, s2 ? s2 : 1, th, om, 0.0, 0.0, mm, rest);
+    return 0.5 * (mm[0][0] * om[0] * om[0] + 2.0 * mm[0][1] * om[0] * om[1] + mm[1][1] * om[1] * om[1]);
+}
+
 /* Candidate post-impact pattern (s1, s2) fits the velocities: an open joint at zero angle must
  * open faster than the rest threshold; a closed joint needs zero angle. */
 static int post_fits(const stack *m, int s1, int s2, const double *y, const double om[2])
@@ -552,8 +563,14 @@ static int impact(stack *m, double t, double *y, int j)
     for (int i = 0; i < 6; i++) {
         double post[2];
         plastic_impact(&m->d, m->s1, m->s2, cand[i][0], cand[i][1], y, pre, post);
+        post[0] *= m->kappa;
+        post[1] *= m->kappa;
         if (!post_fits(m, cand[i][0], cand[i][1], y, post))
             continue;
+        if (m->kappa > 1.0
+            && kinetic(&m->d, cand[i][0], cand[i][1], y, post) > kinetic(&m->d, m->s1, m->s2, y, pre))
+            return rd_error_set(m->err, "kounadis: restitution %g gains energy at the impact at t = %.9g s",
+                                m->d.r, t);
         int o1 = m->s1, o2 = m->s2;
         m->s1 = cand[i][0];
         m->s2 = cand[i][1];
@@ -616,11 +633,12 @@ static int stack_init(stack *m, const rd_kounadis_def *d, const rd_ground *gm,
                       const rd_ref_opts *o, rd_ref_result *res, rd_error *err)
 {
     if (!(d->b1 > 0.0 && d->h1 > 0.0 && d->m1 > 0.0 && d->b2 > 0.0 && d->h2 > 0.0
-          && d->m2 > 0.0 && d->g > 0.0 && d->b2 <= d->b1))
-        return rd_error_set(err, "kounadis: need positive sizes, masses, g and b2 <= b1");
+          && d->m2 > 0.0 && d->g > 0.0 && d->b2 <= d->b1 && d->r <= 1.0))
+        return rd_error_set(err, "kounadis: need positive sizes, masses, g, b2 <= b1 and r <= 1");
     memset(m, 0, sizeof *m);
     m->d = *d;
     m->alpha[0] = rd_housner_alpha(d->b1, d->h1);
+    m->kappa = d->r > 0.0 ? d->r / rd_housner_r(m->alpha[0]) : 1.0;
     m->alpha[1] = rd_housner_alpha(d->b2, d->h2);
     m->p1 = rd_housner_p(d->b1, d->h1, d->g);
     double mt = d->m1 + d->m2;

@@ -92,11 +92,15 @@ static rd_h5 *open_file(const rd_scenario *sc, const rd_refscene *rs, const char
             .size = {s[0], s[1], s[2]}, .alpha = atan2(rs->b[k], rs->h[k]), .nvert = 8,
             .vertices = &verts[k][0][0], .ntri = 12, .triangles = &box_tri[0][0]};
     }
-    char damping[96];
+    char damping[160];
     if (rs->model == RD_REFMODEL_HOUSNER)
         snprintf(damping, sizeof damping, "rigid reference (Housner), impact restitution e = %.4g%s",
                  rs->housner.e >= 0 ? rs->housner.e : rd_housner_r(rs->alpha),
                  rs->housner.e >= 0 ? "" : " (Housner's r)");
+    else if (rs->kounadis.r > 0.0)
+        snprintf(damping, sizeof damping, "rigid reference (Kounadis), impacts keep %.4g x the plastic "
+                                          "rates (lower block's e = %.4g)",
+                 rs->kounadis.r / rd_housner_r(rs->alpha), rs->kounadis.r);
     else
         snprintf(damping, sizeof damping, "rigid reference (Kounadis), plastic impacts "
                                           "(angular momentum conserved)");

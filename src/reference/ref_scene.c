@@ -166,7 +166,7 @@ int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err)
         rs->model = RD_REFMODEL_KOUNADIS;
         rs->kounadis = (rd_kounadis_def){.b1 = rs->b[0], .h1 = rs->h[0], .m1 = rs->mass[0],
                                          .b2 = rs->b[1], .h2 = rs->h[1], .m2 = rs->mass[1],
-                                         .g = sc->gravity};
+                                         .g = sc->gravity, .r = sc->ref_restitution};
     }
     size_t nb = 0;
     const rd_pulse_def *p[2] = {&sc->motion.horizontal, &sc->motion.vertical};
