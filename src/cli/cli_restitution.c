@@ -103,8 +103,11 @@ int rd_cli_restitution(int argc, char **argv)
         const char *why = e == 0 ? "perfectly plastic point impacts (restitution 0) already give "
                                    "less loss than asked: a lower r needs sliding at the pivot or "
                                    "contact dashpots (model damping viscous)"
-                                 : "the elastic contact (restitution 1) loses more than asked "
-                                   "(hops and slip at the impacting edge: raise KS or friction)";
+                                 : "even the elastic contact (restitution 1) loses more than asked: "
+                                   "a point that rebounds makes the block bounce on its new edge, "
+                                   "and a corner impact without bouncing keeps at most Housner's r; "
+                                   "more needs the impact shared with the base's interior (spacing, "
+                                   "docs/CONTACT.md section 2)";
         printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at "
                "restitution %g: %s\n", target, reached, e, why);
     }

@@ -292,6 +292,28 @@ def case_block_threshold(L):
                        ["reference.restitution=%.6f" % R_HOUSNER], "CVODE Housner, e = 0.70 (closed form r)")
 
 
+# w/p 5 and 6: the 0.5 x 1.0 m block's rigid reference lifts off there (its pivot's reaction
+# turns negative before it overturns: a / a_uplift 7.4 and 8.5), and a larger block of the same
+# alpha does the same (the threshold in units of g tan(alpha) depends on w/p and alpha only). A
+# slender block, 0.25 x 0.25 x 1.0 m (h/b = 4, alpha 0.2450 rad, p = 3.778 1/s, Housner's r
+# 0.912), overturns at 2.9 and 4.6 g tan(alpha) there, rocking without lift-off.
+SLENDER = SCENE.format(blocks="block create brick size 0.25 0.25 1.0 position 0 0 0.5 name b")
+SLENDER_ALPHA = math.atan(0.25)
+SLENDER_P = math.sqrt(3 * cf.G0 / (4 * math.hypot(0.125, 0.5)))
+
+
+def slender_scene(L, name, kf=1.0, damping="", motion="", T=4):
+    return L.scene(name, SLENDER.format(kn=KN0 * kf, ks=10 * KN0 * kf, damping=damping, motion=motion, T=T))
+
+
+def case_slender_threshold(L):
+    r = cf.housner_r(SLENDER_ALPHA)
+    for wp in ((6.0,) if L.depth == "fast" else (5.0, 6.0)):
+        f = wp * SLENDER_P / (2 * math.pi)
+        threshold_case(L, "slender-threshold/w-p-%g" % wp, slender_scene, f, "",
+                       ["reference.restitution=%.6f" % r], "CVODE Housner, e = %.4f (closed form r), h/b = 4" % r)
+
+
 # ==== rung 3: two-block stack vs CVODE Kounadis ==================================================
 # Damped: normal dashpots at 20 % of critical at every subcontact (the README's example), on top
 # of the plastic point impacts. They leave the block's impact restitution within 0.5 % of
@@ -698,6 +720,7 @@ CASES = [
     # (group, function, in the fast subset)
     ("block", case_block_free, True),
     ("block", case_block_threshold, True),
+    ("block", case_slender_threshold, True),
     ("stack", case_stack_history, True),
     ("stack", case_stack_threshold, True),
     ("slide", case_slide, True),
