@@ -135,11 +135,12 @@ RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_resti
                            rd_error *err);
 
 /* The contact restitution (`contact property restitution e`, the impact loss of contact.c)
- * that gives the block restitution `target` in free rocking, by bisection on e in [0, 1]
- * (r grows with e) to |r - target| < RD_CAL_RTOL. Returns 0 with *e set when reachable; 1
- * when not: *e is then the nearest end and *reached its r (below r(e = 0) the impacts are
- * already perfectly plastic: less needs sliding or dashpots; above r(e = 1) the contact is
- * elastic). */
+ * that gives the block restitution `target` in free rocking to |r - target| < RD_CAL_RTOL:
+ * a scan of e = 0, 0.25, ..., 1 finds the first interval where r crosses the target (r need
+ * not grow with e at a multi-point base), then secant steps inside it. Returns 0 with *e set
+ * when reached; 1 when not: *e is then the scanned e closest to the target and *reached its r
+ * (below r(e = 0) at corners the impacts are already perfectly plastic: less needs sliding or
+ * dashpots; above r(e = 1) the contact is elastic). */
 RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                              double *reached, rd_error *err);
 

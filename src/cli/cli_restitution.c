@@ -86,8 +86,8 @@ int rd_cli_restitution(int argc, char **argv)
     }
     double theta0 = a.theta0 > 0 ? a.theta0 : 0.5 * rs.alpha;
     double target = a.target > 0 ? a.target : rd_housner_r(rs.alpha);
-    /* 4 x 5 table runs, up to RD_CAL_ITER + 2 calibration runs (restitution.c), one check */
-    rd_cli_progress_start("restitution", 36);
+    /* 4 x 5 table runs, up to RD_CAL_ITER + 5 calibration runs (restitution.c), one check */
+    rd_cli_progress_start("restitution", 39);
     print_table(&sc, theta0);
     double e, reached;
     int rc = rd_restitution_calibrate(&sc, theta0, target, &e, &reached, &err);
@@ -100,14 +100,15 @@ int rd_cli_restitution(int argc, char **argv)
                a.target > 0 ? "" : ", Housner's r", RD_CAL_RTOL, sc.contact.kn);
         if (print_check(&sc, theta0, e, &err)) { fprintf(stderr, "%s\n", err.msg); rc = -1; }
     } else {
-        const char *why = e == 0 ? "perfectly plastic point impacts (restitution 0) already give "
-                                   "less loss than asked: a lower r needs sliding at the pivot or "
-                                   "contact dashpots (model damping viscous)"
-                                 : "even the elastic contact (restitution 1) loses more than asked: "
-                                   "a point that rebounds makes the block bounce on its new edge, "
-                                   "and a corner impact without bouncing keeps at most Housner's r; "
-                                   "more needs the impact shared with the base's interior (spacing, "
-                                   "docs/CONTACT.md section 2)";
+        const char *why = reached > target
+                              ? "no restitution in [0, 1] loses enough: perfectly plastic point "
+                                "impacts already keep more than asked; a lower r needs sliding "
+                                "at the pivot or contact dashpots (model damping viscous)"
+                              : "no restitution in [0, 1] keeps enough: a point that rebounds "
+                                "makes the block bounce on its new edge, and a corner impact "
+                                "without bouncing keeps at most Housner's r; more needs the "
+                                "impact shared with the base's interior (spacing, "
+                                "docs/CONTACT.md section 2)";
         printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at "
                "restitution %g: %s\n", target, reached, e, why);
     }

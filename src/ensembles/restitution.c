@@ -15,7 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_CAL_ITER 12 /* secant steps on e in [0, 1] */
+#define RD_CAL_ITER 12 /* secant steps on e inside one bracket */
+#define RD_CAL_GRID 4  /* intervals of the first scan over e in [0, 1] */
 /* The speeds either side of impact k are averaged over the band of |theta| from RD_BAND_LO to
  * RD_BAND_HI times the smaller of the two amplitudes around it, the same band on both sides:
  * outside the impact (the compliant impact turns the block through about 1e-5 rad at KN
@@ -225,25 +226,16 @@ static int r_at(const rd_scenario *base, double theta0, double e, double *r, rd_
     return rc;
 }
 
-int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
-                             double *reached, rd_error *err)
+/* Regula falsi (Illinois variant) for r(e) = target inside a bracket [lo, hi] where r - target
+ * changes sign (flo, fhi); bisection when a step leaves it. Returns 0 once within
+ * RD_CAL_RTOL, 1 when RD_CAL_ITER steps do not get there, -1 on error. */
+static int refine(const rd_scenario *sc, double theta0, double target, double lo, double hi,
+                  double flo, double fhi, double *e, double *reached, rd_error *err)
 {
-    double r0, r1;
-    if (r_at(sc, theta0, 0.0, &r0, err)) return -1;
-    if (r_at(sc, theta0, 1.0, &r1, err)) return -1;
-    if (target <= r0 + RD_CAL_RTOL || target >= r1 - RD_CAL_RTOL) {
-        int low = target <= r0 + RD_CAL_RTOL;
-        *e = low ? 0.0 : 1.0;
-        *reached = low ? r0 : r1;
-        return fabs(target - *reached) < RD_CAL_RTOL ? 0 : 1;
-    }
-    /* r(e) is smooth and monotonic: secant steps kept inside the bracket (regula falsi,
-       Illinois variant), then bisection if it stalls */
-    double lo = 0, hi = 1, flo = r0 - target, fhi = r1 - target;
     for (int it = 0; it < RD_CAL_ITER; it++) {
         double mid = (lo * fhi - hi * flo) / (fhi - flo);
         if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
-        double r;
+        double r = 0;
         if (r_at(sc, theta0, mid, &r, err)) return -1;
         *e = mid;
         *reached = r;
@@ -251,5 +243,30 @@ int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target
         if ((r - target) * flo > 0) { lo = mid; flo = r - target; fhi *= 0.5; }
         else { hi = mid; fhi = r - target; flo *= 0.5; }
     }
+    return 1;
+}
+
+int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
+                             double *reached, rd_error *err)
+{
+    /* r(e) grows with e at corner subcontacts but need not at a multi-point base (the
+       mid-line layout of docs/CONTACT.md section 2 goes down and up again): the grid
+       e = 0, 1/RD_CAL_GRID, ..., 1 is scanned for the first interval where r crosses the
+       target, which is then refined; with none, the grid point closest to it is returned */
+    double eg[RD_CAL_GRID + 1], fg[RD_CAL_GRID + 1];
+    int best = 0;
+    for (int k = 0; k <= RD_CAL_GRID; k++) {
+        double r = 0;
+        eg[k] = (double)k / RD_CAL_GRID;
+        if (r_at(sc, theta0, eg[k], &r, err)) return -1;
+        fg[k] = r - target;
+        if (fabs(fg[k]) < fabs(fg[best])) best = k;
+        if (fabs(fg[k]) < RD_CAL_RTOL) { *e = eg[k]; *reached = r; return 0; }
+    }
+    *e = eg[best];
+    *reached = fg[best] + target;
+    for (int k = 0; k < RD_CAL_GRID; k++)
+        if (fg[k] * fg[k + 1] < 0)
+            return refine(sc, theta0, target, eg[k], eg[k + 1], fg[k], fg[k + 1], e, reached, err);
     return 1;
 }
