@@ -45,6 +45,32 @@ void rd_bodies_refresh(rd_sim *s)
         if (!s->fixed[i]) rd_body_refresh(s, i);
 }
 
+/* What a step needs of non-convex body i: its rotation, step vertices and candidate faces (a
+ * scanned rock: a few hundred of its thousands of faces; it is never a contact target, so its
+ * other face planes are not needed). */
+static void body_refresh_contact(rd_sim *s, int i)
+{
+    rd_quat_to_mat(s->q[i], s->R[i]);
+    const rd_poly *p = &s->poly[i];
+    for (int k = s->sv0[i]; k < s->sv0[i + 1]; k++) {
+        int v = s->sv[k];
+        rd_mat_vec(s->R[i], p->v[v - s->vert0[i]], s->wv[v]);
+        rd_axpy(1.0, s->x[i], s->wv[v]);
+    }
+    for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
+        int f = s->cf_face[cf], j = s->face0[i] + f;
+        rd_mat_vec(s->R[i], p->fn[f], s->wn[j]);
+        s->wd[j] = p->fd[f] + rd_dot(s->wn[j], s->x[i]);
+    }
+}
+
+/* World geometry of every free body for one step. */
+void rd_bodies_refresh_step(rd_sim *s)
+{
+    for (int i = 0; i < s->nb; i++)
+        if (!s->fixed[i]) s->convex[i] ? rd_body_refresh(s, i) : body_refresh_contact(s, i);
+}
+
 void rd_integrate_kick(rd_sim *s)
 {
     for (int i = 0; i < s->nb; i++) {

@@ -356,9 +356,41 @@ static int build_points(rd_sim *s, rd_error *err)
     return rc;
 }
 
+/* Step vertices of every body (rd_sim.sv): all of a convex body's; of a non-convex one, its
+ * hull vertices (its bounding box in any pose) and its candidate faces' vertices (contact).
+ * A hull that qhull cannot make keeps every vertex. */
+static int build_step_vertices(rd_sim *s, rd_error *err)
+{
+    char *use = calloc((size_t)s->vert0[s->nb] + 1, 1);
+    if (!use || !ALLOC(s->sv0, s->nb + 1)) { free(use); return rd_error_set(err, "out of memory"); }
+    int n = 0;
+    for (int i = 0; i < s->nb; i++) {
+        const rd_poly *p = &s->poly[i];
+        char *u = use + s->vert0[i];
+        rd_error e;
+        if (s->convex[i] || rd_poly_hull_marks(p, u, &e)) memset(u, 1, (size_t)p->nv);
+        for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
+            int f = s->cf_face[cf];
+            for (int k = 0; k < p->flen[f]; k++) u[p->fidx[p->fstart[f] + k]] = 1;
+        }
+        for (int v = 0; v < p->nv; v++) n += u[v];
+    }
+    if (!ALLOC(s->sv, n)) { free(use); return rd_error_set(err, "out of memory"); }
+    n = 0;
+    for (int i = 0; i < s->nb; i++) {
+        s->sv0[i] = n;
+        for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
+            if (use[v]) s->sv[n++] = v;
+    }
+    s->sv0[s->nb] = n;
+    free(use);
+    return 0;
+}
+
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
-    if (build_points(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err)) return -1;
+    if (build_points(s, err) || build_step_vertices(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err))
+        return -1;
     return 0;
 }

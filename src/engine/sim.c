@@ -118,7 +118,7 @@ static int healthy(rd_sim *s)
 static void step_once(rd_sim *s)
 {
     if (!s->settling) rd_motion_eval(&s->sc.motion, s->t, s->ag, s->vg, s->dg);
-    rd_bodies_refresh(s);
+    rd_bodies_refresh_step(s);
     forces_external(s);
     if (rd_contact_step(s)) {
         snprintf(s->errmsg, sizeof s->errmsg, "out of memory growing the contact-pair cache at t = %g s", s->t);
@@ -462,7 +462,7 @@ void rd_sim_free(rd_sim *s)
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,
                       s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
-                      s->wv, s->wn, s->wd, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
+                      s->wv, s->wn, s->wd, s->sv0, s->sv, s->pl, s->pa, s->pt0, s->cf0, s->cf_face, s->cf_pt0,
                       s->pair, s->fs, s->pstate, s->pface, s->pset, s->cf_facing, s->face_nactive,
                       s->watch, s->body_sum, s->event, s->obuf, s->aabb, s->order, s->hkey, s->live, s->live_prev,
                       s->joint, s->pj, s->hist_pair, s->hist_body, s->hist, s->rest_area};

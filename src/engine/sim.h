@@ -149,6 +149,12 @@ struct rd_sim {
     int *face0;            /* [nb+1] first world face of each body */
     double (*wn)[3];       /* world face normals */
     double *wd;            /* world face offsets, m */
+    int *sv0;              /* [nb+1] first entry of each body's step vertices in sv */
+    int *sv;               /* step vertices (world index): the vertices a step needs, refreshed
+                              every step (rd_bodies_refresh_step): all of a convex body's; a
+                              non-convex body's hull (its box) and candidate-face vertices.
+                              A non-convex body's other vertices and non-candidate faces are
+                              refreshed only by rd_bodies_refresh (setup, start of shaking) */
 
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
@@ -276,6 +282,7 @@ double rd_contact_elastic_energy(const rd_sim *s);
 /* integrate.c */
 void rd_body_refresh(rd_sim *s, int i);
 void rd_bodies_refresh(rd_sim *s);
+void rd_bodies_refresh_step(rd_sim *s);
 void rd_integrate_kick(rd_sim *s);
 void rd_integrate_drift(rd_sim *s);
 void rd_body_set_angular_velocity(rd_sim *s, int i, const double w[3]);

@@ -80,6 +80,10 @@ int rd_poly_prism(rd_poly *p, int nsides, double radius_bottom, double radius_to
  * polygonal face; only hull vertices are kept. Fails on fewer than 4 or coplanar points. */
 int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err);
 
+/* Mark (on_hull[v] = 1) the vertices of p that are vertices of its convex hull (qhull; points
+ * on a hull face are not). 0 or -1. */
+int rd_poly_hull_marks(const rd_poly *p, char *on_hull, rd_error *err);
+
 /* Polyhedron from explicit faces: face f uses idx[face_start[f] .. + face_len[f] - 1], counter-
  * clockwise seen from outside. Checked by rd_poly_check (named "faces"). 0 or -1. */
 int rd_poly_from_faces(rd_poly *p, const double (*v)[3], int nv, const int *face_start,

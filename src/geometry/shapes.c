@@ -95,7 +95,9 @@ done:
     return rc;
 }
 
-int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err)
+/* qhull's hull of n >= 4 points; then p (if not NULL) receives the hull as a polyhedron and
+ * on_hull (if not NULL) marks the points that are hull vertices. 0 or -1. */
+static int hull_run(const double (*pts)[3], int n, rd_poly *p, char *on_hull, rd_error *err)
 {
     if (n < 4) return rd_error_set(err, "convex hull needs at least 4 points, got %d", n);
     double lo[3], hi[3], centre[3];
@@ -119,8 +121,14 @@ int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err)
     qh_zero(qh, log);
     /* default 3-d options merge coplanar facets (C-0, Qx) into convex polygons */
     int rc = qh_new_qhull(qh, 3, n, xyz, False, (char *)"qhull", NULL, log);
-    if (rc == 0) rc = hull_extract(qh, p, pts, n, err);
-    else {
+    if (rc == 0) {
+        if (on_hull) {
+            vertexT *vertex;
+            memset(on_hull, 0, (size_t)n);
+            FORALLvertices on_hull[qh_pointid(qh, vertex->point)] = 1;
+        }
+        if (p) rc = hull_extract(qh, p, pts, n, err);
+    } else {
         fflush(log);
         char *line = msg ? strstr(msg, "QH") : NULL;
         size_t len = line ? strcspn(line, "\n") : 0;
@@ -135,6 +143,16 @@ int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err)
     free(msg);
     free(xyz);
     return rc;
+}
+
+int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err)
+{
+    return hull_run(pts, n, p, NULL, err);
+}
+
+int rd_poly_hull_marks(const rd_poly *p, char *on_hull, rd_error *err)
+{
+    return hull_run((const double (*)[3])p->v, p->nv, NULL, on_hull, err);
 }
 
 /* ---- explicit faces and the closed-mesh check ---- */
