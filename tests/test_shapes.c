@@ -231,6 +231,20 @@ static void test_from_faces_l_prism(void **state)
     assert_non_null(strstr(err.msg, "faces: face 1 folds over when fanned from its first vertex"));
 }
 
+/* Hull vertices of the L prism: all but the two at its reflex corner (1, 1) (the broad phase
+ * boxes a mesh by its hull vertices alone). */
+static void test_hull_marks_l_prism(void **state)
+{
+    (void)state;
+    rd_poly p;
+    rd_error err;
+    char on[12];
+    assert_int_equal(l_prism(&p, 0.75, 0, 0, &err), 0);
+    assert_int_equal(rd_poly_hull_marks(&p, on, &err), 0);
+    for (int v = 0; v < 12; v++) assert_int_equal(on[v], !(p.v[v][0] == 1 && p.v[v][1] == 1));
+    rd_poly_free(&p);
+}
+
 /* Unit cube faces, outward; edits of them exercise each failure of rd_poly_check. */
 static const double cube_v[9][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
                                     {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}, {2, 2, 2}};
@@ -295,6 +309,7 @@ int main(void)
         cmocka_unit_test(test_hull_random),
         cmocka_unit_test(test_hull_errors),
         cmocka_unit_test(test_from_faces_l_prism),
+        cmocka_unit_test(test_hull_marks_l_prism),
         cmocka_unit_test(test_from_faces_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
