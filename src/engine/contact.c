@@ -66,6 +66,8 @@ typedef struct side_ctx {
                                    inside, m */
     int np;                     /* planes of the other body */
     double pl[RD_MAX_PLANES][4];/* n (3), d: plane k, owner frame */
+    const double *dist;         /* the owner's candidate-face vertices' signed distances to the
+                                   planes (rd_sim.cv_dist, [cv slot][plane], m), or NULL */
     int ncr;                    /* planes some point of the current face may cross */
     int cr[RD_MAX_PLANES];
     const double *m;            /* outward normal of the current owner face, ground frame */
@@ -319,6 +321,20 @@ static void side_planes(const rd_sim *s, side_ctx *c)
     }
 }
 
+/* Signed distances of the owner's candidate-face vertices (rd_sim.cv) to the other body's
+ * planes, each once (a mesh's faces share their vertices), as face_planes would find them. */
+static const double *vertex_distances(const rd_sim *s, const side_ctx *c)
+{
+    double *d = s->cv_dist;
+    const double (*wn)[3] = s->wn + s->face0[c->t];
+    const double *wd = s->wd + s->face0[c->t];
+    for (int k = s->cv0[c->o]; k < s->cv0[c->o + 1]; k++, d += c->np) {
+        const double *x = s->wv[s->cv[k]];
+        for (int q = 0; q < c->np; q++) d[q] = rd_dot(wn[q], x) - wd[q];
+    }
+    return s->cv_dist;
+}
+
 /* Planes that some point of candidate face cf may cross (its vertices are not all inside by a
  * margin); 0, or 1 when the whole face lies outside one plane (no point can touch), with *gap
  * the face's clearance from that plane, m. */
@@ -332,10 +348,11 @@ static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack, doubl
     c->ncr = 0;
     c->m = s->wn[s->face0[c->o] + f];
     c->facing = s->cf_facing[cf];
+    const int *slot = s->cv_slot + s->vert0[c->o];
     for (int k = s->face0[c->t], q = 0; k < s->face0[c->t + 1]; k++, q++) {
         double emin = DBL_MAX, emax = -DBL_MAX;
         for (int v = 0; v < nv; v++) {
-            double e = rd_dot(s->wn[k], wv[ix[v]]) - s->wd[k];
+            double e = c->dist ? c->dist[slot[ix[v]] * c->np + q] : rd_dot(s->wn[k], wv[ix[v]]) - s->wd[k];
             emin = rd_min(e, emin); emax = rd_max(e, emax); /* a NaN e is skipped, as fmin/fmax do */
         }
         if (emin > c->tol + slack + raise) { *gap = emin - raise; return 1; }
@@ -364,6 +381,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     }
     double slack = s->bonds ? j->tension / j->kn : 0.0;
     side_planes(s, &c);
+    c.dist = s->convex[c.o] ? NULL : vertex_distances(s, &c);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, &c, cf, slack, &gap)) {

@@ -356,35 +356,63 @@ static int build_points(rd_sim *s, rd_error *err)
     return rc;
 }
 
-/* Step vertices of every body (rd_sim.sv): all of a convex body's; of a non-convex one, its
- * hull vertices (its bounding box in any pose) and its candidate faces' vertices (contact).
- * A hull that qhull cannot make keeps every vertex. */
-static int build_step_vertices(rd_sim *s, rd_error *err)
+/* Mark (use[v] = 1) the vertices of body i's candidate faces. */
+static void mark_candidate_vertices(const rd_sim *s, int i, char *use)
 {
-    char *use = calloc((size_t)s->vert0[s->nb] + 1, 1);
-    if (!use || !ALLOC(s->sv0, s->nb + 1)) { free(use); return rd_error_set(err, "out of memory"); }
-    int n = 0;
-    for (int i = 0; i < s->nb; i++) {
-        const rd_poly *p = &s->poly[i];
-        char *u = use + s->vert0[i];
-        rd_error e;
-        if (s->convex[i] || rd_poly_hull_marks(p, u, &e)) memset(u, 1, (size_t)p->nv);
-        for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
-            int f = s->cf_face[cf];
-            for (int k = 0; k < p->flen[f]; k++) u[p->fidx[p->fstart[f] + k]] = 1;
-        }
-        for (int v = 0; v < p->nv; v++) n += u[v];
+    const rd_poly *p = &s->poly[i];
+    for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
+        int f = s->cf_face[cf];
+        for (int k = 0; k < p->flen[f]; k++) use[p->fidx[p->fstart[f] + k]] = 1;
     }
-    if (!ALLOC(s->sv, n)) { free(use); return rd_error_set(err, "out of memory"); }
+}
+
+/* The listed vertices (use[v] = 1) of every body, in order, into list with offsets first[nb+1]
+ * (allocated here). 0 or -1. */
+static int list_vertices(const rd_sim *s, const char *use, int **first, int **list)
+{
+    int n = 0;
+    for (int v = 0; v < s->vert0[s->nb]; v++) n += use[v];
+    if (!ALLOC(*first, s->nb + 1) || !ALLOC(*list, n)) return -1;
     n = 0;
     for (int i = 0; i < s->nb; i++) {
-        s->sv0[i] = n;
+        (*first)[i] = n;
         for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
-            if (use[v]) s->sv[n++] = v;
+            if (use[v]) (*list)[n++] = v;
     }
-    s->sv0[s->nb] = n;
-    free(use);
+    (*first)[s->nb] = n;
     return 0;
+}
+
+/* Step vertices of every body (rd_sim.sv): all of a convex body's; of a non-convex one, its
+ * hull vertices (its bounding box in any pose) and its candidate faces' vertices (contact).
+ * A hull that qhull cannot make keeps every vertex. Then the candidate-face vertices of the
+ * non-convex bodies (rd_sim.cv) and the scratch of their plane distances. */
+static int build_step_vertices(rd_sim *s, rd_error *err)
+{
+    int nv = s->vert0[s->nb], ncv_max = 0, np_max = 0;
+    char *use = calloc((size_t)nv + 1, 1);
+    int rc = !use;
+    for (int i = 0; i < s->nb && !rc; i++) {
+        char *u = use + s->vert0[i];
+        rd_error e;
+        if (s->convex[i] || rd_poly_hull_marks(&s->poly[i], u, &e)) memset(u, 1, (size_t)s->poly[i].nv);
+        mark_candidate_vertices(s, i, u);
+    }
+    rc = rc || list_vertices(s, use, &s->sv0, &s->sv);
+    if (!rc) memset(use, 0, (size_t)nv);
+    for (int i = 0; i < s->nb && !rc; i++) {
+        if (s->convex[i]) np_max = s->poly[i].nf > np_max ? s->poly[i].nf : np_max;
+        else mark_candidate_vertices(s, i, use + s->vert0[i]);
+    }
+    rc = rc || list_vertices(s, use, &s->cv0, &s->cv) || !ALLOC(s->cv_slot, nv);
+    for (int i = 0; i < s->nb && !rc; i++) {
+        for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) s->cv_slot[v] = -1;
+        for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) s->cv_slot[s->cv[k]] = k - s->cv0[i];
+        ncv_max = s->cv0[i + 1] - s->cv0[i] > ncv_max ? s->cv0[i + 1] - s->cv0[i] : ncv_max;
+    }
+    rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max);
+    free(use);
+    return rc ? rd_error_set(err, "out of memory") : 0;
 }
 
 int rd_setup_contacts(rd_sim *s, rd_error *err)

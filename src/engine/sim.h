@@ -155,6 +155,13 @@ struct rd_sim {
                               non-convex body's hull (its box) and candidate-face vertices.
                               A non-convex body's other vertices and non-candidate faces are
                               refreshed only by rd_bodies_refresh (setup, start of shaking) */
+    int *cv0;              /* [nb+1] first entry of each body's candidate-face vertices in cv
+                              (non-convex bodies only: their faces share vertices, so contact.c
+                              finds each vertex's plane distances once per side and step) */
+    int *cv;               /* world vertex indices */
+    int *cv_slot;          /* [vertices] position of a vertex in its body's cv list, -1 if absent */
+    double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
+                              distances, m */
 
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
