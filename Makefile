@@ -34,7 +34,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test asan fuzz fuzz-bins bench bench-study study deps clean check-yade mpi
+.PHONY: python all lib run test asan fuzz fuzz-bins bench bench-study bench-peers study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -134,6 +134,11 @@ bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenari
 # projected to 2 cores: bench/pbr_study.sh (about 2-4 min on 2 idle cores)
 bench-study: $(BIN)/rockdem scenarios/pbr.obj
 	@bash bench/pbr_study.sh $(BIN)
+
+# time to solution at equal accuracy against PyBullet and MuJoCo (pip, into $(BUILD)/peers-venv;
+# skipped with the reason when offline) and YADE (Debian): bench/peers.sh, about 10-20 min
+bench-peers: $(BIN)/rockdem
+	@bash bench/peers.sh $(BIN) $(BUILD)
 
 # regenerate the stored YADE runs in tests/data/yade/ (dt) and tests/data/yade/half/ (dt/2) and
 # compare (needs yade: `apt-get install yade`, ~1.5 GB); docs/YADE.md
