@@ -6,6 +6,7 @@
 # engine < io < reference < ensembles, so the allowed graph has none). The CLI is checked by
 # the link itself: it links the static library, whose internal symbols are local.
 set -eu
+export LC_ALL=C   # sort and join must agree on the order of symbol names
 OBJ=${RD_BUILD:-build}/obj
 [ -d "$OBJ/engine" ] || { echo "FAIL: no objects in $OBJ (build first)"; exit 1; }
 declare -A allowed=(
