@@ -144,32 +144,120 @@ static int resting_on(const rd_sim *s, int i)
     return best;
 }
 
+/* The highest point of body j, m. */
+static double top_of(const rd_sim *s, int j)
+{
+    double z = -INFINITY;
+    for (int v = s->vert0[j]; v < s->vert0[j + 1]; v++) z = fmax(z, s->wv[v][2]);
+    return z;
+}
+
+/* Ground-frame xy hull of body j's vertices (its plan shadow, counter-clockwise), malloc'ed
+ * into *out; returns its size, or -1 without memory. */
+static int shadow(const rd_sim *s, int j, double (**out)[2])
+{
+    int n = s->vert0[j + 1] - s->vert0[j];
+    double (*p)[2] = malloc((size_t)(n > 0 ? n : 1) * sizeof *p);
+    if (!p) return -1;
+    for (int v = 0; v < n; v++) { p[v][0] = s->wv[s->vert0[j] + v][0]; p[v][1] = s->wv[s->vert0[j] + v][1]; }
+    n = hull2d(p, n);
+    if (n < 0) { free(p); return -1; }
+    *out = p;
+    return n;
+}
+
+static double cross_at(const double *a, const double *b, const double *p)
+{
+    return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+}
+
+/* Clip polygon p (n points) by the convex counter-clockwise polygon c (m >= 3 points)
+ * (Sutherland-Hodgman): the part of p inside c, into out (room for n + m points at each
+ * stage, scratch tmp the same size); returns its size. */
+static int clip_convex(const double (*p)[2], int n, const double (*c)[2], int m, double (*out)[2], double (*tmp)[2])
+{
+    memcpy(out, p, (size_t)n * sizeof *out);
+    for (int e = 0; e < m && n > 0; e++) {
+        const double *a = c[e], *b = c[(e + 1) % m];
+        memcpy(tmp, out, (size_t)n * sizeof *tmp);
+        int k = 0;
+        for (int i = 0; i < n; i++) {
+            const double *u = tmp[i], *v = tmp[(i + 1) % n];
+            double du = cross_at(a, b, u), dv = cross_at(a, b, v);
+            if (du >= 0) { out[k][0] = u[0]; out[k][1] = u[1]; k++; }
+            if ((du >= 0) != (dv >= 0)) {
+                double t = du / (du - dv);
+                out[k][0] = u[0] + t * (v[0] - u[0]); out[k][1] = u[1] + t * (v[1] - u[1]); k++;
+            }
+        }
+        n = k;
+    }
+    return n;
+}
+
+/* Does body j hold body i up at rest: a contact partner whose highest point is level with
+ * i's base (within RD_SUPPORT_BAND of i's lowest point zmin)? */
+static int supports(const rd_sim *s, int j, double zmin)
+{
+    return fabs(top_of(s, j) - zmin) <= RD_SUPPORT_BAND;
+}
+
+/* Append to pts (n used) the base polygon clipped by the plan shadow of supporting body j,
+ * and, after settling, the points pressed against j. Returns the new count (-1 without memory). */
+static int add_support(rd_sim *s, int i, int j, const double (*base)[2], int nb, double (**pts)[2], int n)
+{
+    double (*c)[2] = NULL, (*q)[2] = NULL;
+    int m = shadow(s, j, &c);
+    if (m < 0) return -1;
+    int cap = n + 2 * (nb + m) + 1;
+    double (*all)[2] = realloc(*pts, (size_t)cap * sizeof *all);
+    if (!all || !(q = malloc((size_t)(nb + m + 1) * sizeof *q))) { free(c); if (all) *pts = all; return -1; }
+    *pts = all;
+    if (m >= 3) n += clip_convex(base, nb, (const double (*)[2])c, m, all + n, q);
+    free(c); free(q);
+    if (!(s->sc.settle.enabled || s->restored)) return n;
+    double (*pr)[2] = NULL;
+    int np = contact_points(s, i, j, &pr);
+    if (np < 0) return -1;
+    all = realloc(*pts, (size_t)(n + np + 1) * sizeof *all);
+    if (!all) { free(pr); return -1; }
+    *pts = all;
+    memcpy(all + n, pr, (size_t)np * sizeof *pr);
+    free(pr);
+    return n + np;
+}
+
 /* Support polygon at rest: a property of the body's geometry and pose, not of the contact
- * stiffness. It is the hull of the body's vertices within RD_SUPPORT_BAND of its lowest point
- * (its base as it stands, over the body underneath when there is one: vertices beyond that
- * body's plan are not supported), together with the points pressed against the body
- * underneath after settling (which carry an inclined seat). The pressed points alone depended
- * on KN: a stiff contact presses only the few asperity points of a scanned base (a 20 degree
- * rock read 3 degrees at KN 1e11). */
+ * stiffness. Its base is the hull of the body's vertices within RD_SUPPORT_BAND of its lowest
+ * point; the support is the union, over the bodies that hold it up (their tops level with
+ * that base: a brick in running bond rests on two), of the base clipped to each one's plan
+ * (an overhanging block is supported only where the body below is), together with the points
+ * pressed against them after settling (which carry an inclined seat). With no body level with
+ * the base, the body it rests on (the lowest partner) holds it. The pressed points alone
+ * depended on KN: a stiff contact presses only the few asperity points of a scanned base (a 20
+ * degree rock read 3 degrees at KN 1e11). */
 static void support_polygon(rd_sim *s, int k, double zmin)
 {
-    int i = s->free_body[k];
+    int i = s->free_body[k], nv = s->vert0[i + 1] - s->vert0[i], n = 0, nbase = 0, nsup = 0;
     rd_watch *w = &s->watch[k];
-    double (*pts)[2] = NULL;
-    int n = (s->sc.settle.enabled || s->restored) && w->rests_on >= 0 ? contact_points(s, i, w->rests_on, &pts) : 0;
-    if (n < 0) n = 0;
-    double (*all)[2] = realloc(pts, (size_t)(n + s->poly[i].nv) * sizeof *pts);
-    if (!all) { free(pts); pts = NULL; n = 0; }
-    else pts = all;
-    const double *box = w->rests_on >= 0 ? s->aabb[w->rests_on] : NULL; /* min xyz, max xyz */
-    for (int v = s->vert0[i]; pts && v < s->vert0[i + 1]; v++) {
-        const double *x = s->wv[v];
-        if (x[2] > zmin + RD_SUPPORT_BAND) continue;
-        if (box && (x[0] < box[0] || x[0] > box[3] || x[1] < box[1] || x[1] > box[4])) continue;
-        pts[n][0] = x[0]; pts[n][1] = x[1]; n++;
+    double (*pts)[2] = NULL, (*base)[2] = malloc((size_t)(nv > 0 ? nv : 1) * sizeof *base);
+    for (int v = s->vert0[i]; base && v < s->vert0[i + 1]; v++)
+        if (s->wv[v][2] <= zmin + RD_SUPPORT_BAND) { base[nbase][0] = s->wv[v][0]; base[nbase][1] = s->wv[v][1]; nbase++; }
+    if (base) nbase = hull2d(base, nbase);
+    for (int l = 0; base && nbase > 0 && n >= 0 && l < s->nlive_prev; l++) {
+        const rd_pair *pr = &s->pair[s->live_prev[l]];
+        int j = pr->a == i ? pr->b : pr->b == i ? pr->a : -1;
+        if (j >= 0 && supports(s, j, zmin)) { n = add_support(s, i, j, (const double (*)[2])base, nbase, &pts, n); nsup++; }
     }
+    if (base && nbase > 0 && n >= 0 && !nsup && w->rests_on >= 0)
+        n = add_support(s, i, w->rests_on, (const double (*)[2])base, nbase, &pts, n);
+    else if (base && nbase > 0 && n >= 0 && !nsup) {
+        pts = realloc(pts, (size_t)nbase * sizeof *pts);
+        if (pts) { memcpy(pts, base, (size_t)nbase * sizeof *pts); n = nbase; }
+    }
+    free(base);
     free(w->support);
-    w->nsupport = pts ? hull2d(pts, n) : 0;
+    w->nsupport = pts && n > 0 ? hull2d(pts, n) : 0;
     if (w->nsupport < 0) w->nsupport = 0;
     w->support = pts;
 }

@@ -100,8 +100,8 @@ typedef struct rd_watch {
     int down;            /* tilted past 85 degrees: lying down */
     int rests_on;        /* body it rested on at rest (off-pedestal criterion), -1 none */
     double twist_prev;   /* unwrapped twist at the last sample, rad */
-    int nsupport;        /* support polygon at rest: hull of the contact points (ground xy,
-                            counter-clockwise), for alpha */
+    int nsupport;        /* support polygon at rest (ground xy, counter-clockwise), for alpha: the
+                            base over the bodies that hold it up (monitor.c: support_polygon) */
     double (*support)[2];
     double prec[RD_NPREC][3]; /* precariousness: lean direction (rad), alpha (rad), g tan(alpha) */
     double rest_area;    /* contact area at rest, m^2 */
