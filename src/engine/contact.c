@@ -48,9 +48,6 @@
 /* A subcontact acts only while its face and the entrance face are within 45 deg of facing each
  * other (cos 135 deg = -RD_FACING_COS). */
 #define RD_FACING_COS 0.70710678118654752
-/* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
- * its gap is below a tolerance of the order of 0.1 % of the model's dimension). */
-#define RD_CONTACT_BAND 1e-3
 /* A plane counts as approached when the point moves into it faster than this fraction of its
  * relative speed (below, the motion is tangential: round-off must not pick a side face). */
 #define RD_APPROACH_FRACTION 1e-3

@@ -13,7 +13,9 @@
  *                  points)
  *   centre of pressure   normal-force weighted mean of their positions, m
  *   opening        the largest gap among the subcontacts evaluated this step on the faces
- *                  turned towards the other body, m
+ *                  turned towards the other body and lying over the other body's face (within
+ *                  its side walls, to the contact band: a brick's overhang beside the brick
+ *                  below is not an opening of their joint), m
  *   slip           tangential displacement of the second body against the first, summed
  *                  measure to measure while the joint carries load, of the material points
  *                  at the centre of pressure of the previous measure, minus the elastic shear
@@ -165,6 +167,15 @@ static void point_world(const rd_sim *s, int o, int j, double out[3])
     rd_axpy(1.0, s->x[o], out);
 }
 
+/* Does point p lie over the face of convex body t that meets the joint (normal n): inside every
+ * side wall of t (a face within 60 deg of perpendicular to n), to the contact band tol (m)? */
+static int over_face(const rd_sim *s, int t, const double n[3], const double p[3], double tol)
+{
+    for (int f = s->face0[t]; f < s->face0[t + 1]; f++)
+        if (fabs(rd_dot(s->wn[f], n)) < 0.5 && rd_dot(s->wn[f], p) - s->wd[f] > tol) return 0;
+    return 1;
+}
+
 void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
 {
     memset(m, 0, sizeof *m);
@@ -177,15 +188,19 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
         double sign = o == pr->b ? 1.0 : -1.0; /* stored forces act on the owner */
         double to_other = o == pr->a ? 1.0 : -1.0; /* pr->n points from a towards b */
         int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
+        int t = o == pr->a ? pr->b : pr->a;
+        double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius);
         for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
             /* only faces turned towards the other body measure the joint's opening */
             int facing = normal && to_other * rd_dot(s->wn[s->face0[o] + s->cf_face[cf]], pr->n) > 0.5;
             for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
                 int st = sd->state0 + (j - s->pt0[o]);
-                if (facing && s->pj[st][1] < 1e300) open = fmax(open, s->pj[st][1]);
-                if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
-                double p[3], fn = s->pj[st][0], a = sd->weight * s->pa[j];
+                double p[3];
                 point_world(s, o, j, p);
+                if (facing && s->pj[st][1] < 1e300 && s->pj[st][1] > open && (!s->convex[t] || over_face(s, t, pr->n, p, tol)))
+                    open = s->pj[st][1];
+                if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
+                double fn = s->pj[st][0], a = sd->weight * s->pa[j];
                 m->fn += fn;
                 m->area += a;
                 fsum += fabs(fn);

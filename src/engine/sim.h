@@ -18,6 +18,9 @@
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
 #define RD_SUPPORT_BAND 1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
+/* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
+ * its gap is below a tolerance of the order of 0.1 % of the model's dimension) (contact.c, joint.c). */
+#define RD_CONTACT_BAND 1e-3
 #define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left (power of 2) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
