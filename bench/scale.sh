@@ -22,6 +22,6 @@ out="$here/scale.txt"
         line=$("$build/embed" "$tmp/wall.dat" | grep '^cost:')
         steps=$(sed -E 's/.*CPU for ([0-9]+) settling.*/\1/' <<< "$line")
         us=$(sed -E 's/.* ([0-9.e+]+) us per step$/\1/' <<< "$line")
-        printf '%8d %12d %14.1f %18.3f\n' "$n" "$steps" "$us" "$(echo "$us / $n" | bc -l)"
+        printf '%8d %12d %14.1f %18.3f\n' "$n" "$steps" "$us" "$(awk -v u="$us" -v n="$n" 'BEGIN { print u / n }')"
     done
 } | tee "$out"
