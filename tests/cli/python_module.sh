@@ -10,6 +10,12 @@ BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/py; mkdir -p "$T"
 LIB=${RD_BUILD:-build}/librockdem.so
 [ -f "$LIB" ] || { echo "no $LIB (make python builds it)"; exit 1; }
 export ROCKDEM_LIB=$(cd "$(dirname "$LIB")" && pwd)/librockdem.so ROCKDEM_BIN=$BIN
+# a sanitizer build (make asan): Python itself is not instrumented, so the sanitizer runtime
+# must be loaded first; Python's own allocations are not ours to leak-check
+if nm -D "$LIB" 2>/dev/null | grep -q __asan_init; then
+    export LD_PRELOAD="$(${CC:-cc} -print-file-name=libasan.so) $(${CC:-cc} -print-file-name=libubsan.so)"
+    export ASAN_OPTIONS=detect_leaks=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}
+fi
 cat > "$T/block.dat" <<'DAT'
 model title 'python test: a slender block on a pad'
 block create brick size 4 4 0.5 position 0 0 -0.25 fixed name pad
