@@ -532,6 +532,18 @@ def mid_free(L, case, kf, th0, T):
     return impacts_and_amps(L.run(path, os.path.basename(path)[:-4] + ".h5"), n=3)
 
 
+def calibration_check(L, rid, layout, scene, *patterns):
+    """`rockdem restitution --target 0.9` on scene: the r it reached (or, exit status 4, the
+    closest it gets), read by the first of patterns that matches, against the target."""
+    out = L.rockdem("restitution", scene, "--target", "0.9", "-q", ok=(0, 4))
+    m = next((m for m in (re.search(p, out) for p in patterns) if m), None)
+    if not m:
+        raise RuntimeError("restitution: no answer in\n" + out)
+    got = float(m.group(1))
+    L.check(rid, "restitution calibrated to r = 0.9, %s (abs error)" % layout, 0.9,
+            "target", got, abs(got - 0.9), 0.002, "the calibration's target accuracy (issue 11, must-have 1)")
+
+
 def case_other_restitution(L):
     """Each mid-line layout against CVODE Housner run at the layout's own r, measured by the
     amplitude decay of impacts 1-3 of a release at alpha / 2 (never handed in): the amplitudes
@@ -575,21 +587,11 @@ def case_other_restitution(L):
                     "two-KN study (1e11, 1e12) + both bisection brackets (rtol 0.005)")
         if rid == "other-r09":
             # the calibrator on this layout, whose r(e) is not monotonic: it must find a crossing
-            out = L.rockdem("restitution", mid_scene(L, case, 10.0, "cal", ""), "--target", "0.9", "-q", ok=(0, 4))
-            m = re.search(r"gives r = ([0-9.]+)", out) or re.search(r"gets is r = ([0-9.]+)", out)
-            if not m:
-                raise RuntimeError("restitution: no answer in\n" + out)
-            got = float(m.group(1))
-            L.check("other-r09/calibrate-0.9", "restitution calibrated to r = 0.9, mid-line layout (abs error)", 0.9,
-                    "target", got, abs(got - 0.9), 0.002, "the calibration's target accuracy (issue 11, must-have 1)")
+            calibration_check(L, "other-r09/calibrate-0.9", "mid-line layout", mid_scene(L, case, 10.0, "cal", ""),
+                              r"gives r = ([0-9.]+)", r"gets is r = ([0-9.]+)")
     # r = 0.9 with the rigid preset: the calibrator says how close it gets (exit status 4)
-    out = L.rockdem("restitution", block_scene(L, "r09", 10.0), "--target", "0.9", "-q", ok=(0, 4))
-    m = re.search(r"r = ([0-9.]+) at restitution", out) or re.search(r"reached r = ([0-9.]+)", out)
-    if not m:
-        raise RuntimeError("restitution: no answer in\n" + out)
-    got = float(m.group(1))
-    L.check("other-r/rigid-0.9", "restitution calibrated to r = 0.9, rigid preset (abs error)", 0.9,
-            "target", got, abs(got - 0.9), 0.002, "the calibration's target accuracy (issue 11, must-have 1)")
+    calibration_check(L, "other-r/rigid-0.9", "rigid preset", block_scene(L, "r09", 10.0),
+                      r"r = ([0-9.]+) at restitution", r"reached r = ([0-9.]+)")
 
 
 # ==== rung 7: YADE stored runs ==================================================================
