@@ -108,11 +108,11 @@ static void test_defaults(void **state)
     assert_float_equal(sc->gravity, 9.81, EPS);
     assert_float_equal(sc->density, 2700.0, EPS);
     assert_float_equal(sc->contact.kn, 1e10, 1.0);
-    assert_float_equal(sc->contact.ks, 1e9, 1.0);
+    assert_float_equal(sc->contact.ks, 1e11, 1.0);
     assert_float_equal(sc->contact.friction, 40.0 * DEG, EPS);
     assert_float_equal(sc->contact.cohesion, 0.0, EPS);
     assert_float_equal(sc->contact.tension, 0.0, EPS);
-    assert_float_equal(sc->contact.spacing, -1.0, EPS);
+    assert_float_equal(sc->contact.spacing, 0.0, EPS);
     assert_int_equal(sc->damping.kind, RD_DAMPING_NONE);
     assert_int_equal(sc->timestep.kind, RD_TIMESTEP_AUTO);
     assert_float_equal(sc->timestep.safety, 0.2, EPS);

@@ -309,14 +309,18 @@ static void test_pbr_mesh(void **state)
  *    before that the block is supported) and before its trailing edge leaves the pedestal
  *    (0.3 + 0.25 m: after that nothing can touch it). Both bounds are statics and kinematics;
  *    where in between the engine notices the lost contact is its own detection choice, not a
- *    physical quantity, so it is not pinned. */
+ *    physical quantity, so it is not pinned.
+ * The block's base is a bed (spacing auto): a fixed pedestal carries no subcontacts, so once
+ * the block's leading corners pass the pedestal's edge only a bed's interior points hold the
+ * overhang; with the default corners the block tips over the edge (0.48 rad at 0.4 s, where
+ * the rigid block stays flat: docs/CONTACT.md section 4, a known gap of the defaults). */
 static rd_sim *off_pedestal_sim(double duration, double kn_factor, rd_status *st)
 {
     char text[1024];
     snprintf(text, sizeof text,
              "block create brick size 0.6 0.6 0.5 position 0 0 -0.25 fixed name pedestal\n"
              "block create brick size 0.5 0.5 0.3 position 0 0 0.15 name b\n"
-             "contact property stiffness-normal %g stiffness-shear %g friction 15\n"
+             "contact property stiffness-normal %g stiffness-shear %g friction 15 spacing auto\n"
              "ground-motion pulse rectangular amplitude 0.5g duration 1.5\n"
              "model settle on\nmodel overturn off-pedestal 0\nmodel solve time %g\noutput hdf5 '%s/off.h5' interval 0.01\n",
              1e10 * kn_factor, 1e9 * kn_factor, duration, tmpdir);

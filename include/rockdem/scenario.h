@@ -63,7 +63,7 @@ typedef struct rd_perturb_def {
 /* Contact law: 3DEC Coulomb-slip joint (seed 002 eqs. 1-2), one property set for all pairs. */
 typedef struct rd_contact_def {
     double kn;        /* normal stiffness per unit area, Pa/m (default 1e10) */
-    double ks;        /* shear stiffness per unit area, Pa/m (default 1e9) */
+    double ks;        /* shear stiffness per unit area, Pa/m (default 1e11 = 10 KN) */
     double friction;  /* friction angle, rad (default 40 deg) */
     double cohesion;  /* peak cohesion, Pa (default 0); drops to 0 at the first slip */
     double tension;   /* peak tensile strength, Pa (default 0); drops to 0 at the first opening */
@@ -71,9 +71,9 @@ typedef struct rd_contact_def {
                            stretch when it first unloads (a point mass rebounds with this
                            ratio of speeds); 0 = perfectly plastic impacts (rigid rocking
                            theory), 1 = elastic, no loss (3DEC's joint); in [0, 1] */
-    double spacing;   /* subcontact spacing on contact faces, m; 0 = face vertices only
-                         (3DEC's fewest-triangle default); < 0 (default) = automatic per body:
-                         a tenth of its narrowest contact face (a mesh: its own vertices) */
+    double spacing;   /* subcontact spacing on contact faces, m; 0 (default) = face vertices
+                         only (3DEC's fewest-triangle layout); < 0 = automatic per body: a
+                         tenth of its narrowest contact face (a mesh: its own vertices) */
     rd_perturb_def perturb; /* interface perturbation (default: off) */
 } rd_contact_def;
 
@@ -300,7 +300,7 @@ RD_API void rd_scenario_defaults(rd_scenario *sc);
 
 /* Set a named contact preset (`contact preset NAME`): "rigid" (rigid rocking theory: corners,
  * KN 1e11, KS 1e12, 80 deg, restitution 0), "3dec" (seed 002's 3DEC practice: corners,
- * KN 1e10, KS 1e9, 40 deg, elastic, undamped) or "default" (automatic bed, KN 1e10, KS 1e9,
+ * KN 1e10, KS 1e9, 40 deg, elastic, undamped) or "default" (corners, KN 1e10, KS 1e11,
  * 40 deg, restitution 0); damping is switched off, the interface perturbation kept.
  * 0, or -1 for an unknown name (nothing changed). */
 RD_API int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name);

@@ -73,17 +73,43 @@ static void touching(const rd_sim *s, int i, rd_check_body *cb)
     }
 }
 
+/* The scene as placed, its contacts found once (NULL with err). */
+static rd_sim *placed(const rd_scenario *sc, rd_error *err)
+{
+    rd_sim *s = rd_sim_build(sc, err);
+    if (!s) return NULL;
+    s->settling = 1;
+    if (rd_contact_step(s)) { rd_sim_free(s); rd_error_set(err, "out of memory"); return NULL; }
+    s->settling = 0;
+    return s;
+}
+
+/* The scene whose points tell what touches what as placed. Corner points (spacing 0, the
+ * default) of a block placed into an aligned one below lie on that block's side faces, at
+ * zero distance from them, so they show no penetration: the automatic bed's points, inside
+ * the face, are used instead. Returns s itself when its own points serve, NULL with err. */
+static rd_sim *touch_probe(const rd_scenario *sc, rd_sim *s, rd_error *err)
+{
+    if (sc->contact.spacing != 0) return s;
+    rd_scenario bed = *sc; /* shallow: rd_sim_build copies what it keeps */
+    bed.contact.spacing = -1;
+    return placed(&bed, err);
+}
+
 int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
 {
     memset(rep, 0, sizeof *rep);
-    rd_sim *s = rd_sim_build(sc, err);
+    rd_sim *s = placed(sc, err);
     if (!s) return -1;
+    rd_sim *probe = touch_probe(sc, s, err);
+    if (!probe) { rd_sim_free(s); return -1; }
     rep->nbodies = s->nb;
     rep->body = calloc((size_t)s->nb, sizeof *rep->body);
-    if (!rep->body) { rd_sim_free(s); return rd_error_set(err, "out of memory"); }
-    s->settling = 1;
-    if (rd_contact_step(s)) { rd_sim_free(s); rd_check_free(rep); return rd_error_set(err, "out of memory"); }
-    s->settling = 0;
+    if (!rep->body) {
+        if (probe != s) rd_sim_free(probe);
+        rd_sim_free(s);
+        return rd_error_set(err, "out of memory");
+    }
     s->sc.settle.enabled = 0; /* as placed: support polygons from the lowest vertices */
     rd_monitor_rest(s);
     for (int i = 0; i < s->nb; i++) {
@@ -95,7 +121,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
         cb->mass = s->mass[i];
         cb->volume = body_volume(s, i);
         cb->npoints = s->pt0[i + 1] - s->pt0[i];
-        touching(s, i, cb);
+        touching(probe, i, cb);
         cb->below = s->fixed[i] ? -1 : below(s, i, &cb->gap);
         if (cb->rests_on < 0 && cb->below >= 0 && fabs(cb->gap) <= 1e-9 * (1.0 + s->poly[i].radius))
             cb->rests_on = cb->below; /* placed exactly on it: a closed joint at zero force */
@@ -105,6 +131,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
             cb->alpha = w->sum->alpha;
         }
     }
+    if (probe != s) rd_sim_free(probe);
     rep->npoints = s->npts;
     rep->njoints = s->njoint;
     rep->dt = s->dt;

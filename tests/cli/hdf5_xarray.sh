@@ -56,8 +56,8 @@ with h5py.File(run, "r") as f:
     assert h5py.check_string_dtype(f["bodies/names"].dtype).length is None  # variable length
     assert h5py.check_string_dtype(f["bodies/names"].dtype).encoding == "utf-8"
     sr = h5py.check_enum_dtype(f.attrs.get_id("spacing_rule").dtype)
-    assert {v: k for k, v in sr.items()}[int(f.attrs["spacing_rule"])] == "auto"
-    assert "spacing" not in f.attrs  # no -1 standing for "auto"
+    assert {v: k for k, v in sr.items()}[int(f.attrs["spacing_rule"])] == "vertices"  # the default
+    assert "spacing" not in f.attrs  # no 0 standing for "vertices"
     assert int(f["bodies/pad"].attrs["fixed"]) == 1 and f["bodies/pad/vertices"].shape[1] == 3
 sw = check(sweep, "sweep")
 assert sw["pga"].dims == ("case",) and sw["pga"].attrs["units"] == "m/s^2"

@@ -54,9 +54,10 @@ class Scene:
             s += " density %s" % _num(density)
         return self.line(s + " name %s" % name)
 
-    def contact(self, kn=1e10, ks=1e9, friction=40, spacing=None):
-        """Coulomb-slip joint: KN, KS (Pa/m), friction angle (degrees), subcontact spacing (m
-        or 'vertices'; default automatic)."""
+    def contact(self, kn=1e10, ks=1e11, friction=40, spacing=None):
+        """Coulomb-slip joint: KN, KS (Pa/m; rockdem's defaults 1e10 and 1e11 = 10 KN),
+        friction angle (degrees), subcontact spacing (m, 'vertices' or 'auto'; default
+        rockdem's: the faces' vertices)."""
         s = "contact property stiffness-normal %s stiffness-shear %s friction %s" % (
             _num(kn), _num(ks), _num(friction))
         if spacing is not None:
