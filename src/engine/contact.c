@@ -64,7 +64,17 @@ typedef struct side_ctx {
     int np;                     /* planes of the other body */
     double pl[RD_MAX_PLANES][4];/* n (3), d: plane k, owner frame */
     const double *dist;         /* the owner's candidate-face vertices' signed distances to the
-                                   planes (rd_sim.cv_dist, [cv slot][plane], m), or NULL */
+                                   planes (rd_sim.cv_dist, [cv slot][plane], m) */
+    const uint64_t *mask;       /* per vertex (rd_sim.cv_mask, [cv slot][2][RD_MASK_WORDS]): bit q
+                                   of word set 0 when the vertex lies beyond plane q by more than
+                                   out_band (or its distance is NaN), of set 1 when it lies above
+                                   -in_band */
+    int nw;                     /* mask words in use, (np + 63) / 64 */
+    double out_band;            /* tol + bond slack + raise: a face wholly this far beyond one
+                                   plane cannot touch, m */
+    double in_band;             /* tol + raise: a vertex deeper than this behind a plane cannot
+                                   cross it, m */
+    double raise;               /* a raised point lies up to this far inside its face, m */
     int ncr;                    /* planes some point of the current face may cross */
     int cr[RD_MAX_PLANES];
     const double *m;            /* outward normal of the current owner face, ground frame */
@@ -324,41 +334,57 @@ static void side_planes(const rd_sim *s, side_ctx *c)
 }
 
 /* Signed distances of the owner's candidate-face vertices (rd_sim.cv) to the other body's
- * planes, each once (a mesh's faces share their vertices), as face_planes would find them. */
-static const double *vertex_distances(const rd_sim *s, const side_ctx *c)
+ * planes, each once per side and step (faces share their vertices), and each vertex's plane
+ * masks (side_ctx.mask), so that face_planes needs one AND and one OR per vertex and word. */
+static void vertex_distances(const rd_sim *s, side_ctx *c)
 {
     double *d = s->cv_dist;
+    uint64_t *mk = s->cv_mask;
     const double (*wn)[3] = s->wn + s->face0[c->t];
     const double *wd = s->wd + s->face0[c->t];
-    for (int k = s->cv0[c->o]; k < s->cv0[c->o + 1]; k++, d += c->np) {
+    c->nw = (c->np + 63) / 64;
+    for (int k = s->cv0[c->o]; k < s->cv0[c->o + 1]; k++, d += c->np, mk += 2 * RD_MASK_WORDS) {
         const double *x = s->wv[s->cv[k]];
-        for (int q = 0; q < c->np; q++) d[q] = rd_dot(wn[q], x) - wd[q];
+        for (int w = 0; w < 2 * RD_MASK_WORDS; w++) mk[w] = 0;
+        for (int q = 0; q < c->np; q++) {
+            d[q] = rd_dot(wn[q], x) - wd[q];
+            uint64_t bit = (uint64_t)1 << (q & 63);
+            if (!(d[q] <= c->out_band)) mk[q >> 6] |= bit;       /* NaN too: min skips it */
+            if (d[q] > -c->in_band) mk[RD_MASK_WORDS + (q >> 6)] |= bit; /* NaN not: max skips it */
+        }
     }
-    return s->cv_dist;
+    c->dist = s->cv_dist;
+    c->mask = s->cv_mask;
 }
 
 /* Planes that some point of candidate face cf may cross (its vertices are not all inside by a
  * margin); 0, or 1 when the whole face lies outside one plane (no point can touch), with *gap
- * the face's clearance from that plane, m. */
-static int face_planes(const rd_sim *s, side_ctx *c, int cf, double slack, double *gap)
+ * the face's clearance from the first such plane, m. As a loop over planes of the least and
+ * largest vertex distance (NaN skipped) against the bands, from the vertices' plane masks. */
+static int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap)
 {
     const rd_poly *po = &s->poly[c->o];
     int f = s->cf_face[cf], nv = po->flen[f];
     const int *ix = po->fidx + po->fstart[f];
-    const double (*wv)[3] = s->wv + s->vert0[c->o];
-    double raise = s->sc.contact.perturb.raise; /* a raised point lies up to this far inside */
+    const int *slot = s->cv_slot + s->vert0[c->o];
     c->ncr = 0;
     c->m = s->wn[s->face0[c->o] + f];
     c->facing = s->cf_facing[cf];
-    const int *slot = s->cv_slot + s->vert0[c->o];
-    for (int k = s->face0[c->t], q = 0; k < s->face0[c->t + 1]; k++, q++) {
-        double emin = DBL_MAX, emax = -DBL_MAX;
+    for (int w = 0; w < c->nw; w++) {
+        uint64_t out = ~(uint64_t)0, cross = 0;
         for (int v = 0; v < nv; v++) {
-            double e = c->dist ? c->dist[slot[ix[v]] * c->np + q] : rd_dot(s->wn[k], wv[ix[v]]) - s->wd[k];
-            emin = rd_min(e, emin); emax = rd_max(e, emax); /* a NaN e is skipped, as fmin/fmax do */
+            const uint64_t *mk = c->mask + (size_t)slot[ix[v]] * 2 * RD_MASK_WORDS;
+            out &= mk[w];
+            cross |= mk[RD_MASK_WORDS + w];
         }
-        if (emin > c->tol + slack + raise) { *gap = emin - raise; return 1; }
-        if (emax > -c->tol - raise) c->cr[c->ncr++] = q;
+        if (out) { /* every vertex beyond plane q */
+            int q = 64 * w + __builtin_ctzll(out);
+            double emin = DBL_MAX;
+            for (int v = 0; v < nv; v++) emin = rd_min(c->dist[slot[ix[v]] * c->np + q], emin);
+            *gap = emin - c->raise;
+            return 1;
+        }
+        for (; cross; cross &= cross - 1) c->cr[c->ncr++] = 64 * w + __builtin_ctzll(cross);
     }
     return 0;
 }
@@ -382,11 +408,14 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
         c.damp_coef = 2.0 * j->damping * sqrt(pr->m_eff / K);
     }
     double slack = s->bonds ? j->tension / j->kn : 0.0;
+    c.raise = s->sc.contact.perturb.raise;
+    c.out_band = c.tol + slack + c.raise;
+    c.in_band = c.tol + c.raise;
     side_planes(s, &c);
-    c.dist = s->convex[c.o] ? NULL : vertex_distances(s, &c);
+    vertex_distances(s, &c);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double gap;
-        if (face_planes(s, &c, cf, slack, &gap)) {
+        if (face_planes(s, &c, cf, &gap)) {
             clear_face(s, sd, j, cf, k);
             rd_joint_face_open(s, sd, cf, gap);
             continue;

@@ -385,8 +385,8 @@ static int list_vertices(const rd_sim *s, const char *use, int **first, int **li
 
 /* Step vertices of every body (rd_sim.sv): all of a convex body's; of a non-convex one, its
  * hull vertices (its bounding box in any pose) and its candidate faces' vertices (contact).
- * A hull that qhull cannot make keeps every vertex. Then the candidate-face vertices of the
- * non-convex bodies (rd_sim.cv) and the scratch of their plane distances. */
+ * A hull that qhull cannot make keeps every vertex. Then every body's candidate-face vertices
+ * (rd_sim.cv) and the scratch of their plane distances and masks. */
 static int build_step_vertices(rd_sim *s, rd_error *err)
 {
     int nv = s->vert0[s->nb], ncv_max = 0, np_max = 0;
@@ -402,7 +402,7 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     if (!rc) memset(use, 0, (size_t)nv);
     for (int i = 0; i < s->nb && !rc; i++) {
         if (s->convex[i]) np_max = s->poly[i].nf > np_max ? s->poly[i].nf : np_max;
-        else mark_candidate_vertices(s, i, use + s->vert0[i]);
+        mark_candidate_vertices(s, i, use + s->vert0[i]);
     }
     rc = rc || list_vertices(s, use, &s->cv0, &s->cv) || !ALLOC(s->cv_slot, nv);
     for (int i = 0; i < s->nb && !rc; i++) {
@@ -410,7 +410,8 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) s->cv_slot[s->cv[k]] = k - s->cv0[i];
         ncv_max = s->cv0[i + 1] - s->cv0[i] > ncv_max ? s->cv0[i + 1] - s->cv0[i] : ncv_max;
     }
-    rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max);
+    rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max) ||
+         !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS);
     free(use);
     return rc ? rd_error_set(err, "out of memory") : 0;
 }

@@ -14,8 +14,10 @@
 
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdint.h>
 
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
+#define RD_MASK_WORDS ((RD_MAX_PLANES + 63) / 64) /* 64-bit words of a one-bit-per-plane mask */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
 #define RD_SUPPORT_BAND 1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
 /* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
@@ -159,12 +161,14 @@ struct rd_sim {
                               A non-convex body's other vertices and non-candidate faces are
                               refreshed only by rd_bodies_refresh (setup, start of shaking) */
     int *cv0;              /* [nb+1] first entry of each body's candidate-face vertices in cv
-                              (non-convex bodies only: their faces share vertices, so contact.c
-                              finds each vertex's plane distances once per side and step) */
+                              (faces share vertices, so contact.c finds each vertex's plane
+                              distances once per side and step) */
     int *cv;               /* world vertex indices */
     int *cv_slot;          /* [vertices] position of a vertex in its body's cv list, -1 if absent */
     double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
+    uint64_t *cv_mask;     /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
+                              (contact.c: vertex_distances) */
 
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
