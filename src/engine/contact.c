@@ -80,6 +80,11 @@ typedef struct side_ctx {
     const double *m;            /* outward normal of the current owner face, ground frame */
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
     double nsum[3];             /* sum of fn times the normal from body a towards b, N */
+    double f_o[3], tq_o[3];     /* the owner's force (N) and torque (N m) accumulators, and */
+    double f_t[3], tq_t[3];     /* the other's (a free one): rd_sim.f and .tq carried through the
+                                   side in locals (the same sums in the same order, but no
+                                   pointer aliasing keeps them out of registers) */
+    int t_free;                 /* the other body is free (a fixed one takes no force) */
     double to_b;                /* +1 when the owner is the pair's body b, -1 when it is a */
 } side_ctx;
 
@@ -159,7 +164,7 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], 
 /* Force of one subcontact on the owner; returns 1 if it carries force. */
 static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
-    const int o = c->o, t = c->t;
+    const int o = c->o;
     unsigned char *fl = &s->pstate[st];
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
@@ -184,7 +189,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         s->pset[st] = 0;
     }
     int e = s->pface[st];
-    const double *u = s->wn[s->face0[t] + e]; /* outward normal of the entrance face */
+    const double *u = s->wn[s->face0[c->t] + e]; /* outward normal of the entrance face */
     double depth = -plane_dist(c->pl[e], p), vn = rd_dot(vr, u);
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
@@ -259,13 +264,13 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];
 
     double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};
-    rd_axpy(1.0, F, s->f[o]);
+    rd_axpy(1.0, F, c->f_o);
     rd_cross(ro, F, tmp);
-    rd_axpy(1.0, tmp, s->tq[o]);
-    if (!s->fixed[t]) {
-        rd_axpy(-1.0, F, s->f[t]);
+    rd_axpy(1.0, tmp, c->tq_o);
+    if (c->t_free) {
+        rd_axpy(-1.0, F, c->f_t);
         rd_cross(rt, F, tmp);
-        rd_axpy(-1.0, tmp, s->tq[t]);
+        rd_axpy(-1.0, tmp, c->tq_t);
     }
     return 1;
 }
@@ -411,6 +416,9 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.raise = s->sc.contact.perturb.raise;
     c.out_band = c.tol + slack + c.raise;
     c.in_band = c.tol + c.raise;
+    c.t_free = !s->fixed[c.t];
+    rd_copy3(s->f[c.o], c.f_o); rd_copy3(s->tq[c.o], c.tq_o);
+    rd_copy3(s->f[c.t], c.f_t); rd_copy3(s->tq[c.t], c.tq_t);
     side_planes(s, &c);
     vertex_distances(s, &c);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
@@ -435,6 +443,8 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
         if (!s->settling) s->active_point_steps += na;
         rd_monitor_contact(s, c.o, c.t, area, na, nslip);
     }
+    rd_copy3(c.f_o, s->f[c.o]); rd_copy3(c.tq_o, s->tq[c.o]);
+    if (c.t_free) { rd_copy3(c.f_t, s->f[c.t]); rd_copy3(c.tq_t, s->tq[c.t]); }
     *k_active += c.k_active;
     rd_axpy(1.0, c.nsum, nsum);
 }
