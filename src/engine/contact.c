@@ -141,6 +141,20 @@ static void relative_velocity(const rd_sim *s, const side_ctx *c, const double r
     }
 }
 
+/* Point pt's offsets from the owner's and the other's centre and its relative velocity (ro, rt,
+ * vr: 9 values), found once per side step for the points that share its place (rd_sim.pkin). */
+static const double *point_kinematics(rd_sim *s, const side_ctx *c, int pt)
+{
+    int q = s->pkin[pt];
+    double *k = s->kin[q];
+    if (s->kin_stamp[q] != s->kin_epoch) {
+        rd_mat_vec(s->R[c->o], s->pl[pt], k);
+        relative_velocity(s, c, k, k + 3, k + 6);
+        s->kin_stamp[q] = s->kin_epoch;
+    }
+    return k;
+}
+
 /* The entrance face of a point that has just been found inside (see the header). */
 static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], const double vr[3])
 {
@@ -164,7 +178,6 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], 
 /* Force of one subcontact on the owner; returns 1 if it carries force. */
 static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
-    const int o = c->o;
     unsigned char *fl = &s->pstate[st];
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
@@ -180,9 +193,8 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         }
     }
 
-    double ro[3], rt[3], vr[3], tmp[3];
-    rd_mat_vec(s->R[o], p, ro);
-    relative_velocity(s, c, ro, rt, vr);
+    const double *kin = point_kinematics(s, c, pt), *ro = kin, *rt = kin + 3, *vr = kin + 6;
+    double tmp[3];
     if (!(*fl & RD_PT_INSIDE)) {
         s->pface[st] = (short)entrance_face(s, c, p, vr);
         *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
@@ -421,6 +433,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     rd_copy3(s->f[c.t], c.f_t); rd_copy3(s->tq[c.t], c.tq_t);
     side_planes(s, &c);
     vertex_distances(s, &c);
+    s->kin_epoch++;
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, &c, cf, &gap)) {

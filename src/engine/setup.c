@@ -416,10 +416,44 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     return rc ? rd_error_set(err, "out of memory") : 0;
 }
 
+/* qsort order of point indices by their coordinates (bitwise: equal only when identical). */
+static const double (*sort_pl)[3];
+static int by_place(const void *a, const void *b)
+{
+    int i = *(const int *)a, j = *(const int *)b;
+    int c = memcmp(sort_pl[i], sort_pl[j], sizeof sort_pl[i]);
+    return c ? c : (i > j) - (i < j);
+}
+
+/* Each point's kinematics slot (rd_sim.pkin): points at the same place on a body share one, the
+ * first such point's, so the contact finds their motion once. Then the slots' scratch. */
+static int share_points(rd_sim *s, rd_error *err)
+{
+    int nmax = 1;
+    for (int i = 0; i < s->nb; i++) if (s->pt0[i + 1] - s->pt0[i] > nmax) nmax = s->pt0[i + 1] - s->pt0[i];
+    int *idx = malloc((size_t)nmax * sizeof *idx);
+    if (!idx || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax)) {
+        free(idx);
+        return rd_error_set(err, "out of memory");
+    }
+    sort_pl = (const double (*)[3])s->pl;
+    for (int i = 0; i < s->nb; i++) {
+        int p0 = s->pt0[i], n = s->pt0[i + 1] - p0;
+        for (int k = 0; k < n; k++) idx[k] = p0 + k;
+        qsort(idx, (size_t)n, sizeof *idx, by_place);
+        for (int k = 0; k < n; k++) /* sorted by place, then index: a run's first is its least */
+            s->pkin[idx[k]] = k > 0 && !memcmp(s->pl[idx[k]], s->pl[idx[k - 1]], sizeof s->pl[0])
+                                  ? s->pkin[idx[k - 1]] : idx[k] - p0;
+    }
+    free(idx);
+    return 0;
+}
+
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
-    if (build_points(s, err) || build_step_vertices(s, err) || rd_perturb_points(s, err) || rd_pairs_init(s, err))
+    if (build_points(s, err) || build_step_vertices(s, err) || rd_perturb_points(s, err) ||
+        share_points(s, err) || rd_pairs_init(s, err))
         return -1;
     return 0;
 }

@@ -174,6 +174,14 @@ struct rd_sim {
     int npts;
     double (*pl)[3];       /* point in the body frame, m */
     double *pa;            /* tributary area, m^2 */
+    int *pkin;             /* [npts] the point's kinematics slot on its body: the index (from the
+                              body's first point) of the first point at the same place. A mesh
+                              face carries its vertices, so a vertex is a point of every face
+                              around it (5 on average); contact.c finds its motion once */
+    double (*kin)[9];      /* scratch: [most points of a body] one side's ro, rt, vr per slot
+                              (contact.c: point_kinematics) */
+    long *kin_stamp;       /* scratch: [most points of a body] the side step that filled kin */
+    long kin_epoch;        /* side steps taken (stamps kin) */
     int *pt0;              /* [nb+1] first point of each body */
     int ncf;               /* candidate faces (faces that carry points), all bodies */
     int *cf0;              /* [nb+1] first candidate face of each body */
