@@ -250,7 +250,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 
     /* shear: keep last step's force in the plane of the entrance face (turned with it, its
        magnitude kept), then add the elastic increment of the tangential displacement */
-    double *fs = s->fs[st];
+    double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]}; /* in registers: stored once */
     double fu = rd_dot(fs, u), prev2 = rd_dot(fs, fs);
     if (fu != 0) {
         for (int k = 0; k < 3; k++) fs[k] -= fu * u[k];
@@ -272,6 +272,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         fs[0] *= r; fs[1] *= r; fs[2] *= r;
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     }
+    rd_copy3(fs, s->fs[st]);
     s->pj[st][0] = fn;
     for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];
 
