@@ -144,6 +144,16 @@ RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_resti
 RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                              double *reached, rd_error *err);
 
+/* Intervals of the calibration's first scan over e in [0, 1]. */
+#define RD_CAL_GRID 4
+/* rd_restitution_calibrate with the scan's runs already made: grid[k] (k = 0 .. RD_CAL_GRID) is
+ * the measurement of the scenario at contact restitution k / RD_CAL_GRID (a row of `rockdem
+ * restitution`'s table), or NULL to run them. *at (may be NULL) receives the measurement at the
+ * returned e, so a caller reads its speed check without running it again. */
+RD_API int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double target,
+                                         const rd_restitution *grid, double *e, double *reached,
+                                         rd_restitution *at, rd_error *err);
+
 /* |r - target| at which the calibration stops (the specification, issue 11). */
 #define RD_CAL_RTOL 0.002
 /* Relative difference up to which the amplitude-decay and speed measures of one run agree when

@@ -29,46 +29,49 @@ static int restitution_option(void *ctx, int argc, char **argv, int *i)
 }
 
 /* r by amplitude decay (and, in brackets, from the speeds at equal |theta|) for KN
- * 1e8 .. 1e11 Pa/m (KS scaled with it) and contact restitution e = 0 .. 1. */
-static void print_table(rd_scenario *sc, double theta0)
+ * 1e8 .. 1e11 Pa/m (KS scaled with it) and contact restitution e = k / RD_CAL_GRID, the
+ * calibration's scan. Returns 1 with grid[] filled when the scenario's own KN is a row (the
+ * calibration then reuses it), else 0. */
+static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CAL_GRID + 1])
 {
-    static const double kn[] = {1e8, 1e9, 1e10, 1e11}, e[] = {0, 0.25, 0.5, 0.75, 1.0};
+    static const double kn[] = {1e8, 1e9, 1e10, 1e11};
     rd_scenario copy = *sc;
+    int have = 0;
     printf("block restitution r (free rocking from %.4g rad, mean of the first 3 impacts; amplitude "
            "decay [speeds at equal |theta| either side])\n%-10s", theta0, "KN \\ e");
-    for (size_t j = 0; j < sizeof e / sizeof *e; j++) printf(" %15.2f", e[j]);
+    for (int j = 0; j <= RD_CAL_GRID; j++) printf(" %15.2f", (double)j / RD_CAL_GRID);
     printf("\n");
     for (size_t i = 0; i < sizeof kn / sizeof *kn; i++) {
+        int own = kn[i] == sc->contact.kn;
         printf("%-10.0e", kn[i]);
-        for (size_t j = 0; j < sizeof e / sizeof *e; j++) {
+        for (int j = 0; j <= RD_CAL_GRID; j++) {
             copy.contact.kn = kn[i];
-            copy.contact.ks = kn[i] * sc->contact.ks / sc->contact.kn;
-            copy.contact.restitution = e[j];
+            copy.contact.ks = own ? sc->contact.ks : kn[i] * sc->contact.ks / sc->contact.kn;
+            copy.contact.restitution = (double)j / RD_CAL_GRID;
             rd_restitution m;
             rd_error err;
-            if (rd_restitution_measure(&copy, theta0, &m, &err) || m.r < 0) printf(" %15s", "-");
+            int bad = rd_restitution_measure(&copy, theta0, &m, &err);
+            if (own) grid[j] = m;
+            have |= own && !bad;
+            if (bad || m.r < 0) printf(" %15s", "-");
             else printf("   %.3f [%.3f]", m.r, m.r_speed);
         }
         rd_cli_progress_clear(); /* the row replaces the progress line */
         printf("\n");
         fflush(stdout);
     }
+    return have;
 }
 
-/* The calibrated run measured by the speeds as well: agreement to RD_CHECK_RTOL says each impact
- * is complete within the band; 0, or -1 with err. */
-static int print_check(rd_scenario *sc, double theta0, double e, rd_error *err)
+/* The calibrated run (m) measured by the speeds as well: agreement to RD_CHECK_RTOL says each
+ * impact is complete within the band. */
+static void print_check(const rd_restitution *m)
 {
-    rd_scenario copy = *sc;
-    copy.contact.restitution = e;
-    rd_restitution m;
-    if (rd_restitution_measure(&copy, theta0, &m, err)) return -1;
-    double d = fabs(m.r_speed / m.r - 1);
+    double d = fabs(m->r_speed / m->r - 1);
     printf("check: the speeds either side of each impact give r = %.4f, %.2f %% from the amplitude "
-           "decay: %s\n", m.r_speed, 100 * d, d <= RD_CHECK_RTOL ? "the impacts are complete, agreed"
+           "decay: %s\n", m->r_speed, 100 * d, d <= RD_CHECK_RTOL ? "the impacts are complete, agreed"
            : "DISAGREE (over 0.5 %): the block still bounces on its new pivot after each impact, "
              "losing energy later than rigid theory's instantaneous impact");
-    return 0;
 }
 
 int rd_cli_restitution(int argc, char **argv)
@@ -86,11 +89,15 @@ int rd_cli_restitution(int argc, char **argv)
     }
     double theta0 = a.theta0 > 0 ? a.theta0 : 0.5 * rs.alpha;
     double target = a.target > 0 ? a.target : rd_housner_r(rs.alpha);
-    /* 4 x 5 table runs, up to RD_CAL_ITER + 5 calibration runs (restitution.c), one check */
-    rd_cli_progress_start("restitution", 39);
-    print_table(&sc, theta0);
+    /* 4 x 5 table runs, then up to RD_CAL_ITER calibration runs (restitution.c; its scan is
+       the table's row at the scenario's KN when there is one, else 5 more runs); the check is
+       the calibration's last run */
+    rd_cli_progress_start("restitution", 37);
+    rd_restitution grid[RD_CAL_GRID + 1], at;
+    int have = print_table(&sc, theta0, grid);
     double e, reached;
-    int rc = rd_restitution_calibrate(&sc, theta0, target, &e, &reached, &err);
+    int rc = rd_restitution_calibrate_grid(&sc, theta0, target, have ? grid : NULL, &e, &reached,
+                                           &at, &err);
     rd_cli_progress_stop();
     if (rc < 0) {
         fprintf(stderr, "%s\n", err.msg);
@@ -98,7 +105,7 @@ int rd_cli_restitution(int argc, char **argv)
         printf("calibrated: contact property restitution %.4f gives r = %.4f (target %.4f%s, "
                "|error| < %g) at KN %.3g Pa/m\n", e, reached, target,
                a.target > 0 ? "" : ", Housner's r", RD_CAL_RTOL, sc.contact.kn);
-        if (print_check(&sc, theta0, e, &err)) { fprintf(stderr, "%s\n", err.msg); rc = -1; }
+        print_check(&at);
     } else {
         const char *why = reached > target
                               ? "no restitution in [0, 1] loses enough: perfectly plastic point "

@@ -16,7 +16,6 @@
 #include <string.h>
 
 #define RD_CAL_ITER 12 /* secant steps on e inside one bracket */
-#define RD_CAL_GRID 4  /* intervals of the first scan over e in [0, 1] */
 /* The speeds either side of impact k are averaged over the band of |theta| from RD_BAND_LO to
  * RD_BAND_HI times the smaller of the two amplitudes around it, the same band on both sides:
  * outside the impact (the compliant impact turns the block through about 1e-5 rad at KN
@@ -61,7 +60,7 @@ static int speed_log_sample(void *user, rd_sim *sim, const rd_sample *s, rd_erro
     lg->w2[lg->n++] = rd_dot(s->angular_velocity, s->angular_velocity);
     int sg = th > lg->eps ? 1 : th < -lg->eps ? -1 : lg->sign;
     if (sg != lg->sign) { lg->sign = sg; lg->swings++; }
-    if (lg->swings == RD_NRATIO + 3) { lg->done = 1; rd_sim_stop(sim); }
+    if (lg->swings == RD_NRATIO + 2) { lg->done = 1; rd_sim_stop(sim); }
     return 0;
 }
 
@@ -209,34 +208,39 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     return rc;
 }
 
-/* r at contact restitution e. */
-static int r_at(const rd_scenario *base, double theta0, double e, double *r, rd_error *err)
+/* Fewer than two impacts: the block does not rock freely (an error for the calibration). */
+static int too_few(const rd_restitution *m, double e, rd_error *err)
+{
+    if (m->r >= 0) return 0;
+    return rd_error_set(err, "restitution: fewer than two impacts at contact restitution %g "
+                             "(the block does not rock freely)", e);
+}
+
+/* The measurement at contact restitution e. */
+static int measure_at(const rd_scenario *base, double theta0, double e, rd_restitution *m,
+                      rd_error *err)
 {
     rd_scenario *sc = malloc(sizeof *sc);
     if (!sc) return rd_error_set(err, "out of memory");
     *sc = *base;
     sc->contact.restitution = e;
-    rd_restitution m;
-    int rc = rd_restitution_measure(sc, theta0, &m, err);
+    int rc = rd_restitution_measure(sc, theta0, m, err);
     free(sc);
-    if (rc == 0 && m.r < 0)
-        rc = rd_error_set(err, "restitution: fewer than two impacts at contact restitution %g "
-                               "(the block does not rock freely)", e);
-    *r = m.r;
-    return rc;
+    return rc ? rc : too_few(m, e, err);
 }
 
 /* Regula falsi (Illinois variant) for r(e) = target inside a bracket [lo, hi] where r - target
  * changes sign (flo, fhi); bisection when a step leaves it. Returns 0 once within
  * RD_CAL_RTOL, 1 when RD_CAL_ITER steps do not get there, -1 on error. */
 static int refine(const rd_scenario *sc, double theta0, double target, double lo, double hi,
-                  double flo, double fhi, double *e, double *reached, rd_error *err)
+                  double flo, double fhi, double *e, double *reached, rd_restitution *at,
+                  rd_error *err)
 {
     for (int it = 0; it < RD_CAL_ITER; it++) {
         double mid = (lo * fhi - hi * flo) / (fhi - flo);
         if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
-        double r = 0;
-        if (r_at(sc, theta0, mid, &r, err)) return -1;
+        if (measure_at(sc, theta0, mid, at, err)) return -1;
+        double r = at->r;
         *e = mid;
         *reached = r;
         if (fabs(r - target) < RD_CAL_RTOL) return 0;
@@ -249,24 +253,39 @@ static int refine(const rd_scenario *sc, double theta0, double target, double lo
 int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                              double *reached, rd_error *err)
 {
+    return rd_restitution_calibrate_grid(sc, theta0, target, NULL, e, reached, NULL, err);
+}
+
+int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double target,
+                                  const rd_restitution *grid, double *e, double *reached,
+                                  rd_restitution *at, rd_error *err)
+{
     /* r(e) grows with e at corner subcontacts but need not at a multi-point base (the
        mid-line layout of docs/CONTACT.md section 2 goes down and up again): the grid
        e = 0, 1/RD_CAL_GRID, ..., 1 is scanned for the first interval where r crosses the
        target, which is then refined; with none, the grid point closest to it is returned */
     double eg[RD_CAL_GRID + 1], fg[RD_CAL_GRID + 1];
+    rd_restitution mg[RD_CAL_GRID + 1], dummy;
+    if (!at) at = &dummy;
     int best = 0;
     for (int k = 0; k <= RD_CAL_GRID; k++) {
-        double r = 0;
         eg[k] = (double)k / RD_CAL_GRID;
-        if (r_at(sc, theta0, eg[k], &r, err)) return -1;
-        fg[k] = r - target;
+        if (grid) {
+            mg[k] = grid[k];
+            if (too_few(&mg[k], eg[k], err)) return -1;
+        } else if (measure_at(sc, theta0, eg[k], &mg[k], err)) {
+            return -1;
+        }
+        fg[k] = mg[k].r - target;
         if (fabs(fg[k]) < fabs(fg[best])) best = k;
-        if (fabs(fg[k]) < RD_CAL_RTOL) { *e = eg[k]; *reached = r; return 0; }
+        if (fabs(fg[k]) < RD_CAL_RTOL) { *e = eg[k]; *reached = mg[k].r; *at = mg[k]; return 0; }
     }
     *e = eg[best];
     *reached = fg[best] + target;
+    *at = mg[best];
     for (int k = 0; k < RD_CAL_GRID; k++)
         if (fg[k] * fg[k + 1] < 0)
-            return refine(sc, theta0, target, eg[k], eg[k + 1], fg[k], fg[k + 1], e, reached, err);
+            return refine(sc, theta0, target, eg[k], eg[k + 1], fg[k], fg[k + 1], e, reached, at,
+                          err);
     return 1;
 }
