@@ -324,16 +324,18 @@ static void reset_departed(rd_sim *s)
     }
 }
 
-/* Every point of candidate face cf (k-th of its side) leaves the contact. */
-static void clear_face(rd_sim *s, const rd_side *sd, const rd_joint *j, int cf, int k)
+/* Every point of candidate face cf (k-th of its side) leaves the contact. A point can still be
+ * below its entrance face when the whole face has passed beyond another plane of the other
+ * body (a drum's rim sliding off the lower drum's edge): its normal spring is released too. */
+static void clear_face(rd_sim *s, const side_ctx *c, const rd_side *sd, const rd_joint *j, int cf, int k)
 {
     int *na = &s->face_nactive[sd->face0 + k];
     if (*na == 0) return;
     int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
-    int n = s->cf_pt0[cf + 1] - s->cf_pt0[cf];
-    for (int q = 0; q < n; q++) {
-        double A = sd->weight * s->pa[s->cf_pt0[cf] + q];
-        point_exit(s, first + q, j->kn * A, j->ks * A, 0.0);
+    for (int pt = s->cf_pt0[cf], st = first; pt < s->cf_pt0[cf + 1]; pt++, st++) {
+        double A = sd->weight * s->pa[pt];
+        double stretch = (s->pstate[st] & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], s->pl[pt]) - s->pset[st] : 0.0;
+        point_exit(s, st, j->kn * A, j->ks * A, stretch);
     }
     *na = 0;
 }
@@ -438,7 +440,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, &c, cf, &gap)) {
-            clear_face(s, sd, j, cf, k);
+            clear_face(s, &c, sd, j, cf, k);
             rd_joint_face_open(s, sd, cf, gap);
             continue;
         }

@@ -757,17 +757,25 @@ def case_column_energy(L):
     stay under the 1e-3 asked."""
     c10 = L.scene("column10", COLUMN10)
     c4 = os.path.join(YADE, "column.dat")
+    # the 4-drum column also at a quarter of its step: a residual that stops falling there is
+    # booking, not step error (a face wholly past the other body's edge dropped its points'
+    # normal springs unbooked: 8.9e-4 at both 2.5e-5 and 1.25e-5 s before that was booked)
     pairs = [("4-drum", [L.run(c4, "c4a.h5", "motion.amplitude=0.5g"),
-                         L.run(c4, "c4b.h5", "motion.amplitude=0.5g", "model.timestep=2.5e-5")], ("dt 5e-5", "dt 2.5e-5")),
+                         L.run(c4, "c4b.h5", "motion.amplitude=0.5g", "model.timestep=2.5e-5"),
+                         L.run(c4, "c4c.h5", "motion.amplitude=0.5g", "model.timestep=1.25e-5")],
+              ("dt 5e-5", "dt 2.5e-5", "dt 1.25e-5")),
              ("10-drum", [L.run(c10, "c10a.h5"), L.run(c10, "c10b.h5", "model.safety=0.1")], ("safety 0.2", "safety 0.1"))]
     for name, files, steps in pairs:
         r = [float(h5(f, "summary:energy_residual_max")) for f in files]
-        for k in range(2):
+        for k in range(len(r)):
             L.check("column-energy/%s-%s" % (name, steps[k].replace(" ", "")), "%s column energy residual (%s)" % (name, steps[k]),
                     0.0, "energy conservation", r[k], r[k], RESIDUAL_ASKED, "issue 10's bound (1e-3)")
-        L.check("column-energy/%s-order" % name, "%s column: residual at the step / at half of it" % name, 2.0,
-                "a first-order step error halves with the step", r[0] / r[1], 2.0 - min(r[0] / r[1], 2.0), 0.0,
-                "at least first order")
+        for k in range(len(r) - 1):
+            suffix = "" if k == 0 else "-%d" % (k + 1)
+            L.check("column-energy/%s-order%s" % (name, suffix),
+                    "%s column: residual at %s / at %s" % (name, steps[k], steps[k + 1]), 2.0,
+                    "a first-order step error halves with the step", r[k] / r[k + 1], 2.0 - min(r[k] / r[k + 1], 2.0), 0.0,
+                    "at least first order")
 
 
 # ==== the case list: one definition, two depths =================================================
