@@ -68,14 +68,17 @@ typedef struct side_ctx {
     const uint64_t *mask;       /* per vertex (rd_sim.cv_mask, [cv slot][2][RD_MASK_WORDS]): bit q
                                    of word set 0 when the vertex lies beyond plane q by more than
                                    out_band (or its distance is NaN), of set 1 when it lies above
-                                   -in_band */
+                                   reach */
     int nw;                     /* mask words in use, (np + 63) / 64 */
     double out_band;            /* tol + bond slack + raise: a face wholly this far beyond one
                                    plane cannot touch, m */
-    double in_band;             /* tol + raise: a vertex deeper than this behind a plane cannot
-                                   cross it, m */
+    double reach;               /* tol / 2 - raise, m: when every vertex of a face lies below this
+                                   distance from plane q, none of its points lies beyond q by more
+                                   than the band tol (points lie in the hull of their face's
+                                   vertices, raised inward by at most raise; tol / 2 is left for
+                                   round-off), so their exit test skips q */
     double raise;               /* a raised point lies up to this far inside its face, m */
-    int ncr;                    /* planes some point of the current face may cross */
+    int ncr;                    /* planes some point of the current face may lie beyond */
     int cr[RD_MAX_PLANES];
     const double *m;            /* outward normal of the current owner face, ground frame */
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
@@ -370,15 +373,15 @@ static void vertex_distances(const rd_sim *s, side_ctx *c)
             d[q] = rd_dot(wn[q], x) - wd[q];
             uint64_t bit = (uint64_t)1 << (q & 63);
             if (!(d[q] <= c->out_band)) mk[q >> 6] |= bit;       /* NaN too: min skips it */
-            if (d[q] > -c->in_band) mk[RD_MASK_WORDS + (q >> 6)] |= bit; /* NaN not: max skips it */
+            if (d[q] > c->reach) mk[RD_MASK_WORDS + (q >> 6)] |= bit; /* NaN not: max skips it */
         }
     }
     c->dist = s->cv_dist;
     c->mask = s->cv_mask;
 }
 
-/* Planes that some point of candidate face cf may cross (its vertices are not all inside by a
- * margin); 0, or 1 when the whole face lies outside one plane (no point can touch), with *gap
+/* Planes that some point of candidate face cf may lie beyond by more than the band (some vertex
+ * above reach); 0, or 1 when the whole face lies outside one plane (no point can touch), with *gap
  * the face's clearance from the first such plane, m. As a loop over planes of the least and
  * largest vertex distance (NaN skipped) against the bands, from the vertices' plane masks. */
 static int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap)
@@ -430,7 +433,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     double slack = s->bonds ? j->tension / j->kn : 0.0;
     c.raise = s->sc.contact.perturb.raise;
     c.out_band = c.tol + slack + c.raise;
-    c.in_band = c.tol + c.raise;
+    c.reach = 0.5 * c.tol - c.raise;
     c.t_free = !s->fixed[c.t];
     rd_copy3(s->f[c.o], c.f_o); rd_copy3(s->tq[c.o], c.tq_o);
     rd_copy3(s->f[c.t], c.f_t); rd_copy3(s->tq[c.t], c.tq_t);
