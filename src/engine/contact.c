@@ -440,6 +440,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     side_planes(s, &c);
     vertex_distances(s, &c);
     s->kin_epoch++;
+    rd_watch *watch = rd_monitor_contact_watch(s, c.o, c.t);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, &c, cf, &gap)) {
@@ -460,7 +461,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
         }
         s->face_nactive[sd->face0 + k] = nin;
         if (!s->settling) s->active_point_steps += na;
-        rd_monitor_contact(s, c.o, c.t, area, na, nslip);
+        rd_monitor_contact(watch, s->shaking, area, na, nslip);
     }
     rd_copy3(c.f_o, s->f[c.o]); rd_copy3(c.tq_o, s->tq[c.o]);
     if (c.t_free) { rd_copy3(c.f_t, s->f[c.t]); rd_copy3(c.tq_t, s->tq[c.t]); }

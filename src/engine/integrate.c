@@ -45,9 +45,9 @@ void rd_bodies_refresh(rd_sim *s)
         if (!s->fixed[i]) rd_body_refresh(s, i);
 }
 
-/* What a step needs of non-convex body i: its rotation, step vertices and candidate faces (a
- * scanned rock: a few hundred of its thousands of faces; it is never a contact target, so its
- * other face planes are not needed). */
+/* What a step needs of non-convex body i: its rotation, step vertices and candidate faces'
+ * normals (a scanned rock: a few hundred of its thousands of faces; it is never a contact
+ * target, so its other face planes and every face's offset are not needed). */
 static void body_refresh_contact(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
@@ -58,9 +58,8 @@ static void body_refresh_contact(rd_sim *s, int i)
         rd_axpy(1.0, s->x[i], s->wv[v]);
     }
     for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
-        int f = s->cf_face[cf], j = s->face0[i] + f;
-        rd_mat_vec(s->R[i], p->fn[f], s->wn[j]);
-        s->wd[j] = p->fd[f] + rd_dot(s->wn[j], s->x[i]);
+        int f = s->cf_face[cf];
+        rd_mat_vec(s->R[i], p->fn[f], s->wn[s->face0[i] + f]);
     }
 }
 

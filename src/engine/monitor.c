@@ -416,17 +416,17 @@ void rd_monitor_start(rd_sim *s)
     }
 }
 
-/* A joint counts for the body it supports: the one of the pair whose centre of mass is higher
- * (a stack's lower block rocks on its base joint, not on the joint under the upper block). */
-void rd_monitor_contact(rd_sim *s, int owner, int other, double area, int nactive, int nslip)
+/* The watch that books the contact of a side (owner's points against other): a joint counts
+ * for the body it supports, the one of the pair whose centre of mass is higher (a stack's lower
+ * block rocks on its base joint, not on the joint under the upper block); NULL when that body
+ * is fixed or neither is higher. */
+rd_watch *rd_monitor_contact_watch(rd_sim *s, int owner, int other)
 {
     for (int b = 0; b < 2; b++) {
         int me = b ? other : owner, below = b ? owner : other, k = s->free_of[me];
-        if (k < 0 || s->x[below][2] >= s->x[me][2]) continue;
-        rd_watch *w = &s->watch[k];
-        w->area += area; w->nactive += nactive; w->nslip += nslip;
-        if (area > 0 && s->shaking) w->touched = 1;
+        if (k >= 0 && s->x[below][2] < s->x[me][2]) return &s->watch[k];
     }
+    return NULL;
 }
 
 static int criterion_met(const rd_sim *s, int k, const double z[3])
