@@ -80,7 +80,10 @@ typedef struct side_ctx {
     double raise;               /* a raised point lies up to this far inside its face, m */
     int ncr;                    /* planes some point of the current face may lie beyond */
     int cr[RD_MAX_PLANES];
-    const double *m;            /* outward normal of the current owner face, ground frame */
+    const double *m;            /* outward normal of the current owner face, ground frame, once
+                                   found (owner_normal), else NULL */
+    int mf;                     /* the current owner face */
+    double mbuf[3];
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
     double nsum[3];             /* sum of fn times the normal from body a towards b, N */
     double f_o[3], tq_o[3];     /* the owner's force (N) and torque (N m) accumulators, and */
@@ -158,8 +161,20 @@ static const double *point_kinematics(rd_sim *s, const side_ctx *c, int pt)
     return k;
 }
 
+/* Outward normal of the current owner face, ground frame, found once per face and side step
+ * when a point needs it (rd_body_refresh's expression: a mesh body's step leaves its face
+ * normals alone). */
+static const double *owner_normal(const rd_sim *s, side_ctx *c)
+{
+    if (!c->m) {
+        rd_mat_vec(s->R[c->o], s->poly[c->o].fn[c->mf], c->mbuf);
+        c->m = c->mbuf;
+    }
+    return c->m;
+}
+
 /* The entrance face of a point that has just been found inside (see the header). */
-static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], const double vr[3])
+static int entrance_face(const rd_sim *s, side_ctx *c, const double p[3], const double vr[3])
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
     double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX;
@@ -172,7 +187,7 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, const double p[3], 
             best = k;
         }
         /* the shallowest plane; within the contact band, one the point's face looks at */
-        double rank = depth + (rd_dot(c->m, wn[k]) <= -RD_FACING_COS ? 0.0 : c->tol);
+        double rank = depth + (rd_dot(owner_normal(s, c), wn[k]) <= -RD_FACING_COS ? 0.0 : c->tol);
         if (rank < dmin) { dmin = rank; shallow = k; }
     }
     return best >= 0 ? best : shallow;
@@ -208,7 +223,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     double depth = -plane_dist(c->pl[e], p), vn = rd_dot(vr, u);
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
-    if (c->facing && rd_dot(c->m, u) > -RD_FACING_COS) {
+    if (c->facing && rd_dot(owner_normal(s, c), u) > -RD_FACING_COS) {
         point_idle(s, st, kA, sA, depth - s->pset[st]);
         return 0;
     }
@@ -391,7 +406,8 @@ static int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap)
     const int *ix = po->fidx + po->fstart[f];
     const int *slot = s->cv_slot + s->vert0[c->o];
     c->ncr = 0;
-    c->m = s->wn[s->face0[c->o] + f];
+    c->m = NULL;
+    c->mf = f;
     c->facing = s->cf_facing[cf];
     for (int w = 0; w < c->nw; w++) {
         uint64_t out = ~(uint64_t)0, cross = 0;

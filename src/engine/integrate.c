@@ -45,9 +45,10 @@ void rd_bodies_refresh(rd_sim *s)
         if (!s->fixed[i]) rd_body_refresh(s, i);
 }
 
-/* What a step needs of non-convex body i: its rotation, step vertices and candidate faces'
- * normals (a scanned rock: a few hundred of its thousands of faces; it is never a contact
- * target, so its other face planes and every face's offset are not needed). */
+/* What a step needs of non-convex body i: its rotation and step vertices (a scanned rock: a
+ * few hundred of its thousands of vertices). It is never a contact target, so its face planes
+ * are not needed; the contact finds a candidate face's normal from the rotation when a point
+ * needs it (contact.c: owner_normal). */
 static void body_refresh_contact(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
@@ -56,10 +57,6 @@ static void body_refresh_contact(rd_sim *s, int i)
         int v = s->sv[k];
         rd_mat_vec(s->R[i], p->v[v - s->vert0[i]], s->wv[v]);
         rd_axpy(1.0, s->x[i], s->wv[v]);
-    }
-    for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
-        int f = s->cf_face[cf];
-        rd_mat_vec(s->R[i], p->fn[f], s->wn[s->face0[i] + f]);
     }
 }
 

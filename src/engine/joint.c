@@ -191,8 +191,11 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
         int t = o == pr->a ? pr->b : pr->a;
         double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius);
         for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
-            /* only faces turned towards the other body measure the joint's opening */
-            int facing = normal && to_other * rd_dot(s->wn[s->face0[o] + s->cf_face[cf]], pr->n) > 0.5;
+            /* only faces turned towards the other body measure the joint's opening (the face's
+               normal from the rotation: a mesh body's step leaves its face normals alone) */
+            double fnorm[3];
+            rd_mat_vec(s->R[o], s->poly[o].fn[s->cf_face[cf]], fnorm);
+            int facing = normal && to_other * rd_dot(fnorm, pr->n) > 0.5;
             for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
                 int st = sd->state0 + (j - s->pt0[o]);
                 double p[3];
