@@ -317,6 +317,7 @@ static void reset_pair(rd_sim *s, rd_pair *pr)
         for (int j = 0; j < n; j++) s->pstate[sd->state0 + j] &= RD_PT_BONDED;
         int nf = s->cf0[sd->owner + 1] - s->cf0[sd->owner];
         memset(s->face_nactive + sd->face0, 0, (size_t)nf * sizeof(int));
+        rd_edge_reset(s, sd);
     }
     pr->k_active = 0;
 }
@@ -494,7 +495,10 @@ int rd_contact_step(rd_sim *s)
     for (int k = 0; k < s->nlive; k++) {
         rd_pair *pr = &s->pair[s->live[k]];
         double k_active = 0, nsum[3] = {0, 0, 0};
-        for (int q = 0; q < pr->nside; q++) side_step(s, pr, &pr->side[q], &k_active, nsum);
+        for (int q = 0; q < pr->nside; q++) {
+            side_step(s, pr, &pr->side[q], &k_active, nsum);
+            rd_edge_side(s, pr, &pr->side[q]);
+        }
         pr->k_active = k_active;
         double nn = rd_norm(nsum);
         if (nn > 0) for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
@@ -517,6 +521,7 @@ double rd_contact_elastic_energy(const rd_sim *s)
         const rd_joint *j = &s->joint[pr->joint];
         for (int q = 0; q < pr->nside; q++) {
             const rd_side *sd = &pr->side[q];
+            e += rd_edge_elastic_energy(s, pr, sd);
             for (int pt = s->pt0[sd->owner], st = sd->state0; pt < s->pt0[sd->owner + 1]; pt++, st++) {
                 if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
                 double A = sd->weight * s->pa[pt], kA = j->kn * A, sA = j->ks * A;

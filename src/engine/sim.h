@@ -65,6 +65,9 @@ typedef struct rd_side {
     double weight;    /* 1, or 1/2 when both bodies carry points (3DEC averaging of both sets) */
     int state0;       /* index of the owner's first point in rd_sim.fs / rd_sim.pstate */
     int face0;        /* index of the owner's first candidate face in rd_sim.face_nactive */
+    int edge0, nedge; /* the other body's edges as edge subcontacts (edge.c): first slot in
+                         rd_sim.efs / edepth / eon, count (0: none) */
+    double edge_area; /* tributary area of an edge subcontact: the owner's mean point area, m^2 */
 } rd_side;
 
 /* A pair of bodies that may touch: one or two sides, each the points of one body tested
@@ -219,6 +222,11 @@ struct rd_sim {
     double (*pj)[2];       /* per subcontact state: normal force (N, 0 when open) and last gap
                               (m; faces skipped as wholly open get their lower bound) */
     int cap_state_joint;
+    /* edge subcontacts (edge.c), grown with the pairs */
+    int nedge_state, cap_efs, cap_edepth, cap_eon;
+    double (*efs)[3];      /* shear force on the owner, ground frame, N */
+    double *edepth;        /* depth while bearing, m */
+    unsigned char *eon;    /* 1 while bearing */
 
     /* time */
     double t;              /* s, 0 at the start of shaking */
@@ -300,6 +308,12 @@ int rd_contact_step(rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
 void rd_contact_seat(rd_sim *s);
 double rd_contact_elastic_energy(const rd_sim *s);
+
+/* edge.c */
+int rd_edge_count(const rd_poly *p);
+void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd);
+void rd_edge_reset(rd_sim *s, const rd_side *sd);
+double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd);
 
 /* integrate.c */
 void rd_body_refresh(rd_sim *s, int i);

@@ -13,10 +13,10 @@
 # (3 m g) / (KN A) = 3 x 1271 N / (1e10 Pa/m x 0.03 m^2) = 13 um for the brick (three times its
 # weight on one corner's tributary area), so 1 mm is 75 times the elastic depth and far below
 # a fall-through (tens of mm).
-# Known gap (expected failures, sizes printed): with the corner layout (the default) no point
-# lies on the line where the edge meets the face, so the body falls through the edge: 56 mm
-# (brick) and 171 mm (rim). The point bed (`spacing auto`) catches the brick's edge (0 mm); the
-# drum still sinks 9 mm onto the rim as it slides off (docs/CONTACT.md section 1).
+# Before edge subcontacts (src/engine/edge.c) no point lay on the line where the edge meets the
+# face with the corner layout (the default), and the body fell through the edge: 56 mm (brick)
+# and 171 mm (rim); the point bed (`spacing auto`) held the brick but let the drum sink 9 mm.
+# Each case is strict now.
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=$(cd "$(dirname "${RD_BIN:-bin/rockdem}")" && pwd)/rockdem; T=${RD_TMP:-$(mktemp -d)}/edge_crossing; rm -rf "$T"; mkdir -p "$T"
@@ -64,7 +64,7 @@ EOF
 }
 TOL=1e-3
 rc=0
-for case in "brick default xfail" "brick auto strict" "rim default xfail" "rim auto xfail"; do
+for case in "brick default strict" "brick auto strict" "rim default strict" "rim auto strict"; do
     set -- $case
     sets=(); [ "$2" = auto ] && sets=(--set contact.spacing=auto)
     if ! (cd "$T" && "$BIN" run "$1.dat" "${sets[@]}" -o "$1-$2.h5" > "$1-$2.log" 2>&1); then
