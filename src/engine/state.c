@@ -25,7 +25,7 @@ void rd_state_capture(rd_sim *s, long h[RD_STATE_HEADER], double settle[2])
     const long v[RD_STATE_HEADER] = {RD_STATE_VERSION, s->nb, s->npts, s->npair, s->njoint, s->nstate,
                                      s->nface_state, s->hcap, s->nlive_prev, s->nevent, s->stamp,
                                      s->sweep_axis, (long)sizeof(rd_pair), (long)sizeof(rd_joint),
-                                     (long)sizeof(rd_event)};
+                                     (long)sizeof(rd_event), s->nedge_state};
     memcpy(h, v, sizeof v);
     settle[0] = s->settle_time;
     settle[1] = s->settle_ratio;
@@ -57,6 +57,9 @@ int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS])
     a[n++] = (rd_state_array){"state/face_active", RD_STATE_INT, s->face_nactive, s->nface_state};
     a[n++] = (rd_state_array){"state/events", RD_STATE_BYTE, s->event, (long)(s->nevent * sizeof *s->event)};
     a[n++] = (rd_state_array){"state/rest_area", RD_STATE_DOUBLE, s->rest_area, s->nfree};
+    a[n++] = (rd_state_array){"state/edge_shear_force", RD_STATE_DOUBLE, s->efs, 3L * s->nedge_state};
+    a[n++] = (rd_state_array){"state/edge_depth", RD_STATE_DOUBLE, s->edepth, s->nedge_state};
+    a[n++] = (rd_state_array){"state/edge_bearing", RD_STATE_BYTE, s->eon, s->nedge_state};
     return n;
 }
 
@@ -88,13 +91,15 @@ int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
     long nstate = h[RD_STATE_H_NSTATE];
     void **p[] = {(void **)&s->hkey, (void **)&s->live_prev, (void **)&s->pair, (void **)&s->joint,
                   (void **)&s->fs, (void **)&s->pstate, (void **)&s->pj, (void **)&s->face_nactive,
-                  (void **)&s->event, (void **)&s->pface, (void **)&s->pset};
+                  (void **)&s->event, (void **)&s->pface, (void **)&s->pset, (void **)&s->efs,
+                  (void **)&s->edepth, (void **)&s->eon};
     size_t sz[] = {sizeof *s->hkey * (size_t)h[RD_STATE_H_HCAP], sizeof *s->live_prev * (size_t)h[RD_STATE_H_NLIVE],
                    sizeof *s->pair * (size_t)h[RD_STATE_H_NPAIR], sizeof *s->joint * (size_t)h[RD_STATE_H_NJOINT],
                    sizeof *s->fs * (size_t)nstate, sizeof *s->pstate * (size_t)nstate,
                    sizeof *s->pj * (size_t)nstate, sizeof *s->face_nactive * (size_t)h[RD_STATE_H_NFACE],
                    sizeof *s->event * (size_t)h[RD_STATE_H_NEVENT], sizeof *s->pface * (size_t)nstate,
-                   sizeof *s->pset * (size_t)nstate};
+                   sizeof *s->pset * (size_t)nstate, sizeof *s->efs * (size_t)h[RD_STATE_H_NEDGE],
+                   sizeof *s->edepth * (size_t)h[RD_STATE_H_NEDGE], sizeof *s->eon * (size_t)h[RD_STATE_H_NEDGE]};
     for (size_t k = 0; k < sizeof sz / sizeof sz[0]; k++) {
         void *t = realloc(*p[k], sz[k] ? sz[k] : 1);
         if (!t) return -1;
@@ -108,6 +113,7 @@ int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
     s->cap_pface = s->cap_pset = (int)nstate;
     s->nface_state = s->cap_face_state = (int)h[RD_STATE_H_NFACE];
     s->nevent = s->cap_event = (int)h[RD_STATE_H_NEVENT];
+    s->nedge_state = s->cap_efs = s->cap_edepth = s->cap_eon = (int)h[RD_STATE_H_NEDGE];
     s->stamp = h[RD_STATE_H_STAMP];
     s->sweep_axis = (int)h[RD_STATE_H_AXIS];
     return 0;

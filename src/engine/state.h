@@ -12,7 +12,7 @@
 
 #include <stddef.h>
 
-#define RD_STATE_VERSION 1 /* bump when the image's arrays or their meaning change */
+#define RD_STATE_VERSION 2 /* bump when the image's arrays or their meaning change */
 #define RD_STATE_ARRAYS 32 /* room for the arrays of an image */
 
 typedef enum rd_state_type { RD_STATE_DOUBLE = 0, RD_STATE_INT = 1, RD_STATE_BYTE = 2 } rd_state_type;
@@ -27,13 +27,14 @@ typedef struct rd_state_array {
 
 /* The image's sizes and figures, in this order (stored as one array of longs): version, nb,
  * npts, npair, njoint, nstate, nface_state, hcap, nlive_prev, nevent, stamp, sweep_axis, and
- * the record sizes of rd_pair, rd_joint, rd_event (a checkpoint is tied to the build). */
+ * the record sizes of rd_pair, rd_joint, rd_event (a checkpoint is tied to the build), and the
+ * edge subcontacts' count (edge.c). */
 enum { RD_STATE_H_VERSION, RD_STATE_H_NB, RD_STATE_H_NPTS, RD_STATE_H_NPAIR, RD_STATE_H_NJOINT,
        RD_STATE_H_NSTATE, RD_STATE_H_NFACE, RD_STATE_H_HCAP, RD_STATE_H_NLIVE, RD_STATE_H_NEVENT,
        RD_STATE_H_STAMP, RD_STATE_H_AXIS, RD_STATE_H_PAIR_SIZE, RD_STATE_H_JOINT_SIZE,
-       RD_STATE_H_EVENT_SIZE, RD_STATE_HEADER };
+       RD_STATE_H_EVENT_SIZE, RD_STATE_H_NEDGE, RD_STATE_HEADER };
 #define RD_STATE_HEADER_NAMES "version,nb,npts,npair,njoint,nstate,nface_state,hcap,nlive,nevent," \
-                              "stamp,sweep_axis,pair_size,joint_size,event_size"
+                              "stamp,sweep_axis,pair_size,joint_size,event_size,nedge"
 
 /* sim.c: the simulation built from a scenario (rd_sim_create without the checkpoint) */
 rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err);
