@@ -1,6 +1,7 @@
 /* Interface perturbation (src/perturb.c): removal of all but the corners gives the corner-only
  * static tipping threshold; a random removal lowers it to the remaining points' value; the same
- * seed gives identical points; a scatter of 0 changes nothing. */
+ * seed gives identical points; a scatter of 0 changes nothing; points at one place, perturbed or
+ * not, share one kinematics slot (setup.c: share_points). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -94,6 +95,40 @@ static void test_zero_scatter_noop(void **state)
     rd_sim_free(a); rd_sim_free(b);
 }
 
+/* Points at the same place share one kinematics slot (rd_sim.pkin, the contact finds their
+ * motion once): each point's slot is the least-index point at exactly its coordinates, so the
+ * slots are as many as the distinct places (found here by brute force). Corners layout: the
+ * brick's base corners are also its side faces' corner points, so there are fewer places than
+ * points; after raised, scattered points, every place is checked again. */
+static void check_places(rd_sim *s)
+{
+    int nplaces = 0, sharing = 0;
+    for (int i = 0; i < s->nb; i++)
+        for (int pt = s->pt0[i]; pt < s->pt0[i + 1]; pt++) {
+            int first = pt;
+            for (int q = s->pt0[i]; q < pt && first == pt; q++)
+                if (!memcmp(s->pl[q], s->pl[pt], sizeof s->pl[0])) first = q;
+            assert_int_equal(s->pkin[pt], first - s->pt0[i]);
+            nplaces += first == pt;
+            sharing += first != pt;
+        }
+    assert_int_equal(nplaces + sharing, s->npts);
+}
+
+static void test_shared_places(void **state)
+{
+    (void)state;
+    rd_sim *a = make("0", ""), *b = make("0.1", "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4");
+    check_places(a);
+    check_places(b);
+    int shared = 0;
+    for (int i = 0; i < a->nb; i++)
+        for (int pt = a->pt0[i]; pt < a->pt0[i + 1]; pt++) shared += a->pkin[pt] != pt - a->pt0[i];
+    assert_true(shared > 0); /* a base corner is a side face's corner too */
+    rd_sim_free(a);
+    rd_sim_free(b);
+}
+
 static void test_bad_settings(void **state)
 {
     (void)state;
@@ -111,6 +146,7 @@ int main(void)
         cmocka_unit_test(test_corners_threshold),
         cmocka_unit_test(test_same_seed_same_points),
         cmocka_unit_test(test_zero_scatter_noop),
+        cmocka_unit_test(test_shared_places),
         cmocka_unit_test(test_bad_settings),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);

@@ -416,13 +416,14 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     return rc ? rd_error_set(err, "out of memory") : 0;
 }
 
-/* qsort order of point indices by their coordinates (bitwise: equal only when identical). */
-static const double (*sort_pl)[3];
+/* A point's place (its coordinates) and index, sorted by place (bitwise: equal only when
+ * identical), then index. No shared qsort context: builds may run in threads. */
+typedef struct place_key { double x[3]; int idx; } place_key;
 static int by_place(const void *a, const void *b)
 {
-    int i = *(const int *)a, j = *(const int *)b;
-    int c = memcmp(sort_pl[i], sort_pl[j], sizeof sort_pl[i]);
-    return c ? c : (i > j) - (i < j);
+    const place_key *p = a, *q = b;
+    int c = memcmp(p->x, q->x, sizeof p->x);
+    return c ? c : (p->idx > q->idx) - (p->idx < q->idx);
 }
 
 /* Each point's kinematics slot (rd_sim.pkin): points at the same place on a body share one, the
@@ -431,21 +432,23 @@ static int share_points(rd_sim *s, rd_error *err)
 {
     int nmax = 1;
     for (int i = 0; i < s->nb; i++) if (s->pt0[i + 1] - s->pt0[i] > nmax) nmax = s->pt0[i + 1] - s->pt0[i];
-    int *idx = malloc((size_t)nmax * sizeof *idx);
-    if (!idx || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax)) {
-        free(idx);
+    place_key *key = malloc((size_t)nmax * sizeof *key);
+    if (!key || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax)) {
+        free(key);
         return rd_error_set(err, "out of memory");
     }
-    sort_pl = (const double (*)[3])s->pl;
     for (int i = 0; i < s->nb; i++) {
         int p0 = s->pt0[i], n = s->pt0[i + 1] - p0;
-        for (int k = 0; k < n; k++) idx[k] = p0 + k;
-        qsort(idx, (size_t)n, sizeof *idx, by_place);
+        for (int k = 0; k < n; k++) {
+            memcpy(key[k].x, s->pl[p0 + k], sizeof key[k].x);
+            key[k].idx = p0 + k;
+        }
+        qsort(key, (size_t)n, sizeof *key, by_place);
         for (int k = 0; k < n; k++) /* sorted by place, then index: a run's first is its least */
-            s->pkin[idx[k]] = k > 0 && !memcmp(s->pl[idx[k]], s->pl[idx[k - 1]], sizeof s->pl[0])
-                                  ? s->pkin[idx[k - 1]] : idx[k] - p0;
+            s->pkin[key[k].idx] = k > 0 && !memcmp(key[k].x, key[k - 1].x, sizeof key[k].x)
+                                      ? s->pkin[key[k - 1].idx] : key[k].idx - p0;
     }
-    free(idx);
+    free(key);
     return 0;
 }
 
