@@ -483,6 +483,28 @@ static void test_restitution_two_measures(void **state)
                      "0.5 0.5 1.0", "contact preset rigid", 0.5, RD_XFAIL);
 }
 
+/* ---- calibration: a crossing the secant steps cannot resolve is told apart ----------------- */
+/* The `3dec` preset (KS = KN / 10, elastic) on the 0.5 x 1 m block: r(e) at e = 0.5 and 0.75 lies
+ * on either side of 0.70 (the block slides and bounces, so r(e) jumps between them). The scan
+ * must find that crossing: the calibration then reaches the target (0) or says the crossing is
+ * too uneven (2), never "no e crosses it" (1), and what it returns as closest is a measured r. */
+static void test_calibration_uneven_crossing(void **state)
+{
+    (void)state;
+    const char *text = "block create brick size 2 2 0.4 position 0 0 -0.2 fixed name floor\n"
+                       "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b\n"
+                       "contact preset 3dec\n";
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "test.dat", text, &err), 0);
+    double e = -1, reached = -1;
+    int rc = rd_restitution_calibrate(&sc, 0.5 * atan(0.5), 0.70, &e, &reached, &err);
+    print_message("3dec preset, target 0.70: return %d, closest r %.4f at e %.4f\n", rc, reached, e);
+    assert_true(rc == 0 || rc == 2);
+    assert_true(e >= 0 && e <= 1 && reached > 0 && reached < 1);
+    rd_scenario_free(&sc);
+}
+
 /* ---- defaults: free rocking neither hops nor slides ------------------------------------- */
 /* The specification (issue 11, must-have 4): the 0.5 x 0.5 x 1.0 m block released from half
  * its tipping angle with the default contact and mu >= 0.7 neither hops (the whole base in the
@@ -557,6 +579,7 @@ int main(void)
         cmocka_unit_test(test_bonded_joint),
         cmocka_unit_test(test_restitution_two_measures),
         cmocka_unit_test(test_defaults_no_hop_no_slide),
+        cmocka_unit_test(test_calibration_uneven_crossing),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

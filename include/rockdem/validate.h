@@ -138,9 +138,11 @@ RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_resti
  * that gives the block restitution `target` in free rocking to |r - target| < RD_CAL_RTOL:
  * a scan of e = 0, 0.25, ..., 1 finds the first interval where r crosses the target (r need
  * not grow with e at a multi-point base), then secant steps inside it. Returns 0 with *e set
- * when reached; 1 when not: *e is then the scanned e closest to the target and *reached its r
- * (below r(e = 0) at corners the impacts are already perfectly plastic: less needs sliding or
- * dashpots; above r(e = 1) the contact is elastic). */
+ * when reached; 1 when no scanned interval crosses the target (below r(e = 0) at corners the
+ * impacts are already perfectly plastic: less needs sliding or dashpots; above r(e = 1) the
+ * contact is elastic); 2 when one does but RD_CAL_ITER steps inside it do not reach the target
+ * (r(e) too uneven there: the block slides or bounces, e.g. the `3dec` preset's KS = KN / 10).
+ * Not reached, *e and *reached are the closest e and r measured. */
 RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                              double *reached, rd_error *err);
 

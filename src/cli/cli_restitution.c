@@ -107,7 +107,11 @@ int rd_cli_restitution(int argc, char **argv)
                a.target > 0 ? "" : ", Housner's r", RD_CAL_RTOL, sc.contact.kn);
         print_check(&at);
     } else {
-        const char *why = reached > target
+        const char *why = rc == 2
+                              ? "r(e) crosses the target between two scanned values of e but is "
+                                "too uneven there to reach it to 0.002 (the block slides or "
+                                "bounces on its new edge: see the table)"
+                              : reached > target
                               ? "no restitution in [0, 1] loses enough: perfectly plastic point "
                                 "impacts already keep more than asked; a lower r needs sliding "
                                 "at the pivot or contact dashpots (model damping viscous)"

@@ -230,8 +230,10 @@ static int measure_at(const rd_scenario *base, double theta0, double e, rd_resti
 }
 
 /* Regula falsi (Illinois variant) for r(e) = target inside a bracket [lo, hi] where r - target
- * changes sign (flo, fhi); bisection when a step leaves it. Returns 0 once within
- * RD_CAL_RTOL, 1 when RD_CAL_ITER steps do not get there, -1 on error. */
+ * changes sign (flo, fhi); bisection when a step leaves it. *e, *reached and *at hold the
+ * closest measurement so far (the caller's on entry) and are replaced by closer ones. Returns 0
+ * once within RD_CAL_RTOL, 2 when RD_CAL_ITER steps do not get there (r(e) too uneven inside
+ * the bracket: the block slides or bounces), -1 on error. */
 static int refine(const rd_scenario *sc, double theta0, double target, double lo, double hi,
                   double flo, double fhi, double *e, double *reached, rd_restitution *at,
                   rd_error *err)
@@ -239,15 +241,15 @@ static int refine(const rd_scenario *sc, double theta0, double target, double lo
     for (int it = 0; it < RD_CAL_ITER; it++) {
         double mid = (lo * fhi - hi * flo) / (fhi - flo);
         if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
-        if (measure_at(sc, theta0, mid, at, err)) return -1;
-        double r = at->r;
-        *e = mid;
-        *reached = r;
+        rd_restitution m;
+        if (measure_at(sc, theta0, mid, &m, err)) return -1;
+        double r = m.r;
+        if (fabs(r - target) < fabs(*reached - target)) { *e = mid; *reached = r; *at = m; }
         if (fabs(r - target) < RD_CAL_RTOL) return 0;
         if ((r - target) * flo > 0) { lo = mid; flo = r - target; fhi *= 0.5; }
         else { hi = mid; fhi = r - target; flo *= 0.5; }
     }
-    return 1;
+    return 2;
 }
 
 int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
