@@ -58,12 +58,19 @@ static double depth_at(const rd_sim *s, int o, const double x[3], int *kmin)
     return d;
 }
 
-/* Point x lies beyond some plane of o by more than tol (its box first: most of the other
- * body's vertices are far from o). */
-static int outside(const rd_sim *s, int o, const double box[6], const double x[3], double tol)
+/* Where x lies against o's box: one bit per side it is beyond (0: inside the box). */
+static unsigned outcode(const double box[6], const double x[3])
 {
-    for (int c = 0; c < 3; c++)
-        if (x[c] < box[c] || x[c] > box[3 + c]) return 1;
+    unsigned code = 0;
+    for (int c = 0; c < 3; c++) code |= (unsigned)(x[c] < box[c]) << c | (unsigned)(x[c] > box[3 + c]) << (3 + c);
+    return code;
+}
+
+/* Point x (box outcode code) lies beyond some plane of o by more than tol (the box first: most
+ * of the other body's vertices are far from o). */
+static int outside(const rd_sim *s, int o, unsigned code, const double x[3], double tol)
+{
+    if (code) return 1;
     for (int k = 0; k < s->poly[o].nf; k++)
         if (dist(s, o, k, x) > tol) return 1;
     return 0;
@@ -149,8 +156,13 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd)
        has every edge here, its vertices included as the ends of the clipped part */
     int t_points = pr->nside == 2;
     unsigned char out[RD_EDGE_MAX_VERTS]; /* vertex of t beyond some plane of o by the band */
+    unsigned char code[RD_EDGE_MAX_VERTS]; /* its outcode against o's box */
     const double *box = s->aabb[o]; /* o's box, grown by the broad phase's margin */
-    for (int v = 0; v < pt->nv; v++) out[v] = outside(s, o, box, s->wv[s->vert0[t] + v], tol);
+    for (int v = 0; v < pt->nv; v++) {
+        const double *x = s->wv[s->vert0[t] + v];
+        code[v] = (unsigned char)outcode(box, x);
+        out[v] = (unsigned char)outside(s, o, code[v], x, tol);
+    }
     int e = sd->edge0;
     for (int f = 0; f < pt->nf; f++) {
         const int *ix = pt->fidx + pt->fstart[f];
@@ -159,7 +171,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd)
             if (va > vb) continue;
             double lo, hi;
             const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
-            if ((t_points && (!out[va] || !out[vb])) || !clip(s, o, a, b, &lo, &hi)) {
+            /* both ends beyond one side of o's box, or (t with points) an end inside o */
+            if ((code[va] & code[vb]) || (t_points && (!out[va] || !out[vb])) || !clip(s, o, a, b, &lo, &hi)) {
                 edge_release(s, e++, kA, sA);
                 continue;
             }
