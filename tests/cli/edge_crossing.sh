@@ -16,7 +16,8 @@
 # Before edge subcontacts (src/engine/edge.c) no point lay on the line where the edge meets the
 # face with the corner layout (the default), and the body fell through the edge: 56 mm (brick)
 # and 171 mm (rim); the point bed (`spacing auto`) held the brick but let the drum sink 9 mm.
-# Each case is strict now.
+# Each case is strict now (edge subcontacts act where the support carries no points: both
+# supports here are fixed; between two free bodies the case is open, docs/CONTACT.md section 1).
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=$(cd "$(dirname "${RD_BIN:-bin/rockdem}")" && pwd)/rockdem; T=${RD_TMP:-$(mktemp -d)}/edge_crossing; rm -rf "$T"; mkdir -p "$T"
