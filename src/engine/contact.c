@@ -173,11 +173,13 @@ static const double *owner_normal(const rd_sim *s, side_ctx *c)
     return c->m;
 }
 
-/* The entrance face of a point that has just been found inside (see the header). */
-static int entrance_face(const rd_sim *s, side_ctx *c, const double p[3], const double vr[3])
+/* The entrance face of point pt (at p, owner frame) that has just been found inside (see the
+ * header); its own normal (rd_sim.pn: its face's, or a merged point's mean) breaks ties. */
+static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const double p[3], const double vr[3])
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
-    double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX;
+    double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX, m[3];
+    rd_mat_vec(s->R[c->o], s->pn[pt], m);
     int best = -1, shallow = -1;
     for (int k = 0; k < c->np; k++) {
         double depth = rd_max(-plane_dist(c->pl[k], p), 0.0);
@@ -187,7 +189,7 @@ static int entrance_face(const rd_sim *s, side_ctx *c, const double p[3], const 
             best = k;
         }
         /* the shallowest plane; within the contact band, one the point's face looks at */
-        double rank = depth + (rd_dot(owner_normal(s, c), wn[k]) <= -RD_FACING_COS ? 0.0 : c->tol);
+        double rank = depth + (rd_dot(m, wn[k]) <= -RD_FACING_COS ? 0.0 : c->tol);
         if (rank < dmin) { dmin = rank; shallow = k; }
     }
     return best >= 0 ? best : shallow;
@@ -214,7 +216,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     const double *kin = point_kinematics(s, c, pt), *ro = kin, *rt = kin + 3, *vr = kin + 6;
     double tmp[3];
     if (!(*fl & RD_PT_INSIDE)) {
-        s->pface[st] = (short)entrance_face(s, c, p, vr);
+        s->pface[st] = (short)entrance_face(s, c, pt, p, vr);
         *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
         s->pset[st] = 0;
     }

@@ -108,8 +108,9 @@ static int pair_create(rd_sim *s, int a, int b)
         sd->edge0 = s->nedge_state; sd->nedge = k ? eb : ea;
         s->nedge_state += sd->nedge;
         double area = 0;
-        for (int q = s->pt0[o]; q < s->pt0[o + 1]; q++) area += s->pa[q];
-        sd->edge_area = area / (s->pt0[o + 1] - s->pt0[o]);
+        int npt = 0; /* points before merging (merge.c) */
+        for (int q = s->pt0[o]; q < s->pt0[o + 1]; q++) { area += s->pa[q]; npt += s->pmult[q]; }
+        sd->edge_area = area / npt;
     }
     /* bonds (cohesion, tension) exist only in joints closed before shaking starts */
     const rd_joint *jt = &s->joint[joint];

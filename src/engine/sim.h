@@ -176,7 +176,10 @@ struct rd_sim {
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
     double (*pl)[3];       /* point in the body frame, m */
-    double *pa;            /* tributary area, m^2 */
+    double *pa;            /* tributary area, m^2 (a merged point's: its places' sum, merge.c) */
+    double (*pn)[3];       /* the point's own outward normal, body frame: its face's, or a merged
+                              point's area-weighted mean over its faces (entrance tie-break) */
+    int *pmult;            /* points before merging that the point stands for (1: not merged) */
     int *pkin;             /* [npts] the point's kinematics slot on its body: the index (from the
                               body's first point) of the first point at the same place. A mesh
                               face carries its vertices, so a vertex is a point of every face
@@ -367,5 +370,9 @@ void rd_observe_release(rd_sim *s);
 /* setup.c */
 int rd_setup_bodies(rd_sim *s, rd_error *err);
 int rd_setup_contacts(rd_sim *s, rd_error *err);
+
+/* merge.c: co-located points on faces that always act merged into one (summed area); faces left
+ * without a point dropped from the candidates. Allocates pn and pmult. 0 or -1. */
+int rd_merge_points(rd_sim *s, rd_error *err);
 
 #endif
