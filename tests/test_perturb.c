@@ -1,7 +1,8 @@
 /* Interface perturbation (src/perturb.c): removal of all but the corners gives the corner-only
  * static tipping threshold; a random removal lowers it to the remaining points' value; the same
  * seed gives identical points; a scatter of 0 changes nothing; points at one place, perturbed or
- * not, share one kinematics slot (setup.c: share_points). */
+ * not, share one kinematics slot (setup.c: share_points); a mesh's co-located points are merged
+ * into one that carries their summed area (merge.c). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -129,6 +130,66 @@ static void test_shared_places(void **state)
     rd_sim_free(b);
 }
 
+/* A mesh vertex is a point of each candidate face around it; merge.c makes it one point with
+ * their summed area. Checked against the mesh itself (independent of the point builder's
+ * sums): no two points of the rock share a place; every point is a mesh vertex standing for
+ * pmult faces around it, at most its degree; a point that stands for every face around the
+ * vertex carries the vertex area, a third of each incident triangle's area (3DEC's rule),
+ * computed here from the edges' cross product. Tolerance 1e-12 relative: the two sums differ
+ * only in rounding (the builder takes each third through the face centroid's fan). */
+static void test_merged_mesh_points(void **state)
+{
+    (void)state;
+    char obj[96], cmd[256], text[1024], path[80];
+    snprintf(obj, sizeof obj, "%s.obj", out);
+    snprintf(cmd, sizeof cmd, "/usr/bin/python3 tools/make_pbr.py --seed 1 -o %s > /dev/null", obj);
+    assert_int_equal(system(cmd), 0);
+    snprintf(path, sizeof path, "%s.%d.h5", out, nout++ % 4);
+    snprintf(text, sizeof text,
+             "block create brick size 1.2 1.2 0.3 position 0 0 -0.15 fixed name pedestal\n"
+             "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
+             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
+             "model solve time 0.01\noutput hdf5 '%s' interval 0.005\n", obj, path);
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "merge.dat", text, &err), 0);
+    rd_sim *s = rd_sim_create(&sc, &err);
+    rd_scenario_free(&sc);
+    unlink(obj);
+    assert_non_null(s);
+    const rd_poly *p = &s->poly[1];
+    int full = 0, merged = 0;
+    for (int pt = s->pt0[1]; pt < s->pt0[2]; pt++) {
+        for (int q = s->pt0[1]; q < pt; q++) assert_true(memcmp(s->pl[q], s->pl[pt], sizeof s->pl[pt]) != 0);
+        int v = 0;
+        while (v < p->nv && memcmp(p->v[v], s->pl[pt], sizeof p->v[v])) v++;
+        assert_true(v < p->nv); /* a mesh face's points are its vertices */
+        int degree = 0;
+        double area = 0;
+        for (int f = 0; f < p->nf; f++)
+            for (int k = 0; k < p->flen[f]; k++) {
+                if (p->fidx[p->fstart[f] + k] != v) continue;
+                assert_int_equal(p->flen[f], 3); /* the OBJ's triangles are kept as faces */
+                const double *a = p->v[p->fidx[p->fstart[f]]], *b = p->v[p->fidx[p->fstart[f] + 1]],
+                             *c = p->v[p->fidx[p->fstart[f] + 2]];
+                double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+                area += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 6.0;
+                degree++;
+            }
+        assert_true(s->pmult[pt] >= 1 && s->pmult[pt] <= degree);
+        merged += s->pmult[pt] > 1;
+        assert_true(s->pa[pt] <= area * (1 + 1e-12));
+        if (s->pmult[pt] == degree) {
+            full++;
+            assert_true(fabs(s->pa[pt] - area) <= 1e-12 * area);
+        }
+    }
+    print_message("PBR mesh: %d points, %d merged, %d carry their whole vertex area\n", s->pt0[2] - s->pt0[1], merged, full);
+    assert_true(merged > 0 && full > 0);
+    rd_sim_free(s);
+}
+
 static void test_bad_settings(void **state)
 {
     (void)state;
@@ -147,6 +208,7 @@ int main(void)
         cmocka_unit_test(test_same_seed_same_points),
         cmocka_unit_test(test_zero_scatter_noop),
         cmocka_unit_test(test_shared_places),
+        cmocka_unit_test(test_merged_mesh_points),
         cmocka_unit_test(test_bad_settings),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
