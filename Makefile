@@ -128,6 +128,7 @@ $(BUILD)/bench/kernel-native: bench/kernel.c
 bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenarios/pbr.obj
 	@bash bench/kernel.sh $(BIN) $(BUILD)/bench
 	@bash bench/run.sh $(BIN)
+	@bash bench/impact_cost.sh $(BIN)
 	@bash bench/columns.sh $(BIN)
 
 # a seed-002-sized PBR study (582 runs of 20 s records) timed on a 12-run sample on all cores,
