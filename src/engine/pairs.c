@@ -124,15 +124,15 @@ static int pair_create(rd_sim *s, int a, int b)
     return p;
 }
 
-/* Bounding box of body i (its step vertices: they include its hull, whose box is the body's),
- * grown by the margin. */
+/* Bounding box of body i (its hull vertices, refreshed each step as step vertices), grown by the
+ * margin. */
 static void body_box(rd_sim *s, int i)
 {
     double *bx = s->aabb[i];
     bx[0] = bx[1] = bx[2] = INFINITY;
     bx[3] = bx[4] = bx[5] = -INFINITY;
-    for (int e = s->sv0[i]; e < s->sv0[i + 1]; e++)
-        for (int k = 0, v = s->sv[e]; k < 3; k++) {
+    for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++)
+        for (int k = 0, v = s->hv[e]; k < 3; k++) {
             bx[k] = rd_min(bx[k], s->wv[v][k]);
             bx[k + 3] = rd_max(bx[k + 3], s->wv[v][k]);
         }

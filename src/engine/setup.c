@@ -383,8 +383,9 @@ static int list_vertices(const rd_sim *s, const char *use, int **first, int **li
     return 0;
 }
 
-/* Step vertices of every body (rd_sim.sv): all of a convex body's; of a non-convex one, its
- * hull vertices (its bounding box in any pose) and its candidate faces' vertices (contact).
+/* Hull vertices of every body (rd_sim.hv: its bounding box in any pose), then its step vertices
+ * (rd_sim.sv): all of a convex body's; of a non-convex one, its hull vertices and its candidate
+ * faces' vertices (contact).
  * A hull that qhull cannot make keeps every vertex. Then every body's candidate-face vertices
  * (rd_sim.cv) and the scratch of their plane distances and masks. */
 static int build_step_vertices(rd_sim *s, rd_error *err)
@@ -396,8 +397,9 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
         char *u = use + s->vert0[i];
         rd_error e;
         if (s->convex[i] || rd_poly_hull_marks(&s->poly[i], u, &e)) memset(u, 1, (size_t)s->poly[i].nv);
-        mark_candidate_vertices(s, i, u);
     }
+    rc = rc || list_vertices(s, use, &s->hv0, &s->hv);
+    for (int i = 0; i < s->nb && !rc; i++) mark_candidate_vertices(s, i, use + s->vert0[i]);
     rc = rc || list_vertices(s, use, &s->sv0, &s->sv);
     if (!rc) memset(use, 0, (size_t)nv);
     for (int i = 0; i < s->nb && !rc; i++) {

@@ -163,6 +163,8 @@ struct rd_sim {
                               non-convex body's hull (its box) and candidate-face vertices.
                               A non-convex body's other vertices and non-candidate faces are
                               refreshed only by rd_bodies_refresh (setup, start of shaking) */
+    int *hv0;              /* [nb+1] first entry of each body's hull vertices in hv */
+    int *hv;               /* hull vertices (world index; a step vertex): a body's box is theirs */
     int *cv0;              /* [nb+1] first entry of each body's candidate-face vertices in cv
                               (faces share vertices, so contact.c finds each vertex's plane
                               distances once per side and step) */
