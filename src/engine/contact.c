@@ -39,6 +39,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "engine/law.h"
 #include "base/vec.h"
 
 #include <float.h>
@@ -135,16 +136,8 @@ static void point_idle(rd_sim *s, int st, double kA, double sA, double stretch)
 static void relative_velocity(const rd_sim *s, const side_ctx *c, const double ro[3], double rt[3],
                               double vr[3])
 {
-    const int o = c->o, t = c->t;
-    double tmp[3];
-    for (int k = 0; k < 3; k++) rt[k] = ro[k] + s->x[o][k] - s->x[t][k];
-    rd_cross(s->w[o], ro, vr);
-    rd_axpy(1.0, s->v[o], vr);
-    if (!s->fixed[t]) {
-        rd_cross(s->w[t], rt, tmp);
-        rd_axpy(-1.0, tmp, vr);
-        rd_axpy(-1.0, s->v[t], vr);
-    }
+    for (int k = 0; k < 3; k++) rt[k] = ro[k] + s->x[c->o][k] - s->x[c->t][k];
+    rd_law_relative_velocity(s, c->o, c->t, ro, rt, vr);
 }
 
 /* Point pt's offsets from the owner's and the other's centre and its relative velocity (ro, rt,
@@ -268,30 +261,13 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     if (fn != fel) s->e_damp -= (fn - fel) * vn * s->dt; /* dashpot or tension-cap work */
     c->k_active += kA;
 
-    /* shear: keep last step's force in the plane of the entrance face (turned with it, its
-       magnitude kept), then add the elastic increment of the tangential displacement */
+    /* shear: the incremental Coulomb spring on the plane of the entrance face (law.h) */
     double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]}; /* in registers: stored once */
-    double fu = rd_dot(fs, u), prev2 = rd_dot(fs, fs);
-    if (fu != 0) {
-        for (int k = 0; k < 3; k++) fs[k] -= fu * u[k];
-        double now2 = rd_dot(fs, fs);
-        double r = now2 > 0 ? sqrt(prev2 / now2) : 0.0;
-        fs[0] *= r; fs[1] *= r; fs[2] *= r;
-    }
-    for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * u[k]) * s->dt;
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
     double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
-    double mag2 = rd_dot(fs, fs);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
-    if (mag2 > lim * lim) {
-        /* slip d = (|F_trial| - F_lim) / (KS A) happens at a force between F_lim and the
-           smaller of |F_prev|, |F_trial|: this books lim*d when sliding steadily, the released
-           spring energy when the limit drops, and nothing when frictionless */
-        double mag = sqrt(mag2), r = lim / mag;
-        s->e_fric += (mag - lim) * (lim + fmin(sqrt(prev2), mag)) / (2.0 * sA);
-        fs[0] *= r; fs[1] *= r; fs[2] *= r;
+    if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
-    }
     rd_copy3(fs, s->fs[st]);
     s->pj[st][0] = fn;
     for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];

@@ -25,6 +25,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "engine/law.h"
 #include "base/vec.h"
 
 #include <math.h>
@@ -103,26 +104,9 @@ static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, c
     const double *n = s->wn[s->face0[o] + k];
     double ro[3], rt[3], vr[3], tmp[3];
     for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; }
-    rd_cross(s->w[o], ro, vr);
-    rd_axpy(1.0, s->v[o], vr);
-    if (!s->fixed[t]) {
-        rd_cross(s->w[t], rt, tmp);
-        rd_axpy(-1.0, tmp, vr);
-        rd_axpy(-1.0, s->v[t], vr);
-    }
-    double *fs = s->efs[e], fu = rd_dot(fs, n), prev2 = rd_dot(fs, fs), vn = rd_dot(vr, n);
-    if (fu != 0) { /* keep the shear in the plane, its magnitude kept (contact.c) */
-        for (int i = 0; i < 3; i++) fs[i] -= fu * n[i];
-        double now2 = rd_dot(fs, fs), r = now2 > 0 ? sqrt(prev2 / now2) : 0.0;
-        for (int i = 0; i < 3; i++) fs[i] *= r;
-    }
-    for (int i = 0; i < 3; i++) fs[i] -= sA * (vr[i] - vn * n[i]) * s->dt;
-    double fn = kA * d, lim = fn * j->tan_phi, mag2 = rd_dot(fs, fs);
-    if (mag2 > lim * lim) {
-        double mag = sqrt(mag2), r = lim / mag;
-        s->e_fric += (mag - lim) * (lim + fmin(sqrt(prev2), mag)) / (2.0 * sA);
-        for (int i = 0; i < 3; i++) fs[i] *= r;
-    }
+    rd_law_relative_velocity(s, o, t, ro, rt, vr);
+    double *fs = s->efs[e], fn = kA * d;
+    rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * j->tan_phi, &s->e_fric);
     double F[3] = {-fn * n[0] + fs[0], -fn * n[1] + fs[1], -fn * n[2] + fs[2]};
     rd_axpy(1.0, F, s->f[o]);
     rd_cross(ro, F, tmp);

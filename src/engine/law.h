@@ -1,0 +1,56 @@
+/* rockdem (private) — the joint law's kinematics and Coulomb shear, shared by the vertex
+ * subcontacts (contact.c) and the edge subcontacts (edge.c).
+ * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
+ * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
+ */
+#ifndef RD_LAW_H
+#define RD_LAW_H
+
+#include "engine/sim.h"
+#include "base/vec.h"
+
+#include <math.h>
+
+/* Velocity, m/s, of a point of owner body o against body t at offsets ro (from o's centre) and
+ * rt (from t's centre), ground frame: v_o + w_o x ro - (v_t + w_t x rt), t's part left out when
+ * t is fixed. */
+static inline void rd_law_relative_velocity(const rd_sim *s, int o, int t, const double ro[3],
+                                            const double rt[3], double vr[3])
+{
+    double tmp[3];
+    rd_cross(s->w[o], ro, vr);
+    rd_axpy(1.0, s->v[o], vr);
+    if (!s->fixed[t]) {
+        rd_cross(s->w[t], rt, tmp);
+        rd_axpy(-1.0, tmp, vr);
+        rd_axpy(-1.0, s->v[t], vr);
+    }
+}
+
+/* One step of the incremental Coulomb shear spring fs (N) on the plane of unit normal n: last
+ * step's force is kept in the plane (turned with it, its magnitude kept), the elastic increment
+ * -KS A' dUs of the tangential relative velocity vr - vn n over dt (sA = KS A', N/m) is added,
+ * and the force is scaled back to lim (N) when it exceeds it. The slip's dissipated energy is
+ * added to *e_fric (J): slip d = (|F_trial| - F_lim) / (KS A') happens at a force between F_lim
+ * and the smaller of |F_prev|, |F_trial|, which books lim*d when sliding steadily, the released
+ * spring energy when the limit drops, and nothing when frictionless. Returns 1 on slip. */
+static inline int rd_law_shear(double fs[3], const double n[3], const double vr[3], double vn,
+                               double sA, double dt, double lim, double *e_fric)
+{
+    double fu = rd_dot(fs, n), prev2 = rd_dot(fs, fs);
+    if (fu != 0) {
+        for (int k = 0; k < 3; k++) fs[k] -= fu * n[k];
+        double now2 = rd_dot(fs, fs);
+        double r = now2 > 0 ? sqrt(prev2 / now2) : 0.0;
+        fs[0] *= r; fs[1] *= r; fs[2] *= r;
+    }
+    for (int k = 0; k < 3; k++) fs[k] -= sA * (vr[k] - vn * n[k]) * dt;
+    double mag2 = rd_dot(fs, fs);
+    if (mag2 <= lim * lim) return 0;
+    double mag = sqrt(mag2), r = lim / mag;
+    *e_fric += (mag - lim) * (lim + fmin(sqrt(prev2), mag)) / (2.0 * sA);
+    fs[0] *= r; fs[1] *= r; fs[2] *= r;
+    return 1;
+}
+
+#endif
