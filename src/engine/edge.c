@@ -131,7 +131,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd)
     double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
     double flat = RD_EDGE_FLAT * tol; /* depths closer than this are level */
     unsigned char code[RD_EDGE_MAX_VERTS]; /* vertex of t against o's box */
-    const double *box = s->aabb[o]; /* o's box, grown by the broad phase's margin */
+    double box[6]; /* o's box, grown by the broad phase's margin */
+    rd_pairs_box_now(s, o, box);
     for (int v = 0; v < pt->nv; v++) code[v] = (unsigned char)outcode(box, s->wv[s->vert0[t] + v]);
     int e = sd->edge0;
     for (int f = 0; f < pt->nf; f++) {

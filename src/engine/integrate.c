@@ -45,16 +45,17 @@ void rd_bodies_refresh(rd_sim *s)
         if (!s->fixed[i]) rd_body_refresh(s, i);
 }
 
-/* What a step needs of non-convex body i: its rotation and step vertices (a scanned rock: a
- * few hundred of its thousands of vertices). It is never a contact target, so its face planes
- * are not needed; the contact finds a candidate face's normal from the rotation when a point
- * needs it (contact.c: owner_normal). */
+/* What a step needs of non-convex body i: its rotation and candidate-face vertices (a scanned
+ * rock: a few hundred of its thousands of vertices). It is never a contact target, so its face
+ * planes are not needed; the contact finds a candidate face's normal from the rotation when a
+ * point needs it (contact.c: owner_normal), and the broad phase transforms the hull vertices
+ * only when it rebuilds the body's box (pairs.c). */
 static void body_refresh_contact(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
     const rd_poly *p = &s->poly[i];
-    for (int k = s->sv0[i]; k < s->sv0[i + 1]; k++) {
-        int v = s->sv[k];
+    for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) {
+        int v = s->cv[k];
         rd_mat_vec(s->R[i], p->v[v - s->vert0[i]], s->wv[v]);
         rd_axpy(1.0, s->x[i], s->wv[v]);
     }

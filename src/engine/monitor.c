@@ -438,7 +438,8 @@ static int criterion_met(const rd_sim *s, int k, const double z[3])
         return s->x[i][2] - w->base_ref[2] < o->value * (w->x_ref[2] - w->base_ref[2]);
     if (o->kind == RD_OVERTURN_OFF) {
         if (w->rests_on < 0) return 0;
-        const double *b = s->aabb[w->rests_on]; /* grown by the broad-phase margin */
+        double b[6]; /* grown by the broad-phase margin */
+        rd_pairs_box_now(s, w->rests_on, b);
         double grow = o->value * s->poly[i].radius;
         return s->x[i][0] < b[0] - grow || s->x[i][0] > b[3] + grow ||
                s->x[i][1] < b[1] - grow || s->x[i][1] > b[4] + grow;

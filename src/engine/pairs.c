@@ -1,9 +1,20 @@
 /* rockdem — broad phase and the contact-pair cache.
  *
- * Each step the axis-aligned bounding boxes of the bodies (grown by a margin) are swept along
- * one axis (sort-and-sweep: insertion sort of the nearly sorted order, then a linear sweep), so
- * the cost grows with the number of bodies, not their square; scenes of a few bodies test all
- * pairs directly. A pair that overlaps for the first time gets a slot found again through a
+ * A pair is live in a step when the axis-aligned bounding boxes of the two bodies' hull
+ * vertices, grown by a margin, overlap in that step's pose. The boxes are swept along one axis
+ * (sort-and-sweep: insertion sort of the nearly sorted order, then a linear sweep), so the cost
+ * grows with the number of bodies, not their square; scenes of a few bodies test all pairs
+ * directly.
+ * Boxes within their margin: a scene of a few bodies does not rebuild a box every step. Each
+ * body keeps the box of its last build and the pose it was built in; each step bounds how far
+ * any hull vertex can have moved since (box_drift, d), and a pair whose boxes certainly overlap
+ * or certainly part, even with each box moved by its d, is decided without rebuilding. Only an
+ * uncertain pair rebuilds its two boxes (d = 0: the exact test), and a body whose d exceeds the
+ * margin rebuilds at once, so certain decisions stay the rule. The live set is therefore the
+ * one exact boxes rebuilt every step give, bit for bit: no pair is found later (pair_live says
+ * why). A mesh body's hull (727 of the shipped PBR's 1,986 vertices) is transformed only when
+ * its box is rebuilt. A scene swept along an axis rebuilds every moving box each step, since
+ * the live list's order follows the exact boxes' order and sets the order of the force sums. A pair that overlaps for the first time gets a slot found again through a
  * hash map keyed by (a, b); its per-point history is appended to growable arrays, so memory
  * is allocated only when two bodies meet for the first time, never in a steady step. A pair
  * whose boxes separate forgets its history (3DEC: a re-created contact starts from zero).
@@ -124,11 +135,15 @@ static int pair_create(rd_sim *s, int a, int b)
     return p;
 }
 
-/* Bounding box of body i (its hull vertices, refreshed each step as step vertices), grown by the
- * margin. */
-static void body_box(rd_sim *s, int i)
+/* A box's drift bound carries this relative allowance for round-off: the world vertices
+ * (R v + x), the box's min and max and the tests' sums are each within a few ulp (1e-16
+ * relative) of exact; 1e-12 of the coordinates' size covers them many times over and is far
+ * below any margin (5 % of a body's radius). */
+#define RD_BOX_ROUNDOFF 1e-12
+
+/* Box of body i's hull vertices (world coordinates in wv) grown by the margin. */
+static void box_of_vertices(const rd_sim *s, int i, double bx[6])
 {
-    double *bx = s->aabb[i];
     bx[0] = bx[1] = bx[2] = INFINITY;
     bx[3] = bx[4] = bx[5] = -INFINITY;
     for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++)
@@ -139,9 +154,93 @@ static void body_box(rd_sim *s, int i)
     for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
 }
 
+/* World position of vertex v of body i in its current pose (rd_body_refresh's expression). */
+static void vertex_now(const rd_sim *s, int i, int v, double w[3])
+{
+    rd_mat_vec(s->R[i], s->poly[i].v[v - s->vert0[i]], w);
+    rd_axpy(1.0, s->x[i], w);
+}
+
+/* Rebuild body i's box in its current pose. A free non-convex body's step leaves its hull
+ * vertices alone (integrate.c): they are brought up to date here. */
+static void box_build(rd_sim *s, int i)
+{
+    if (!s->convex[i] && !s->fixed[i])
+        for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) vertex_now(s, i, s->hv[e], s->wv[s->hv[e]]);
+    box_of_vertices(s, i, s->aabb[i]);
+    rd_copy3(s->x[i], s->box_pose[i]);
+    for (int k = 0; k < 4; k++) s->box_pose[i][3 + k] = s->q[i][k];
+    s->box_drift[i] = 0;
+}
+
+/* Bound on the distance any hull vertex of body i moved since its box was built, m (NaN: never
+ * built). A vertex at r (body frame, |r| <= rho) is at x + R r: it moved by at most
+ * |x - x0| + |R - R0| rho, and for unit quaternions |R - R0| = 2 sin(theta / 2) <=
+ * 2 min(|q - q0|, |q + q0|) (theta the rotation between the poses; |q - q0| = 2 sin(theta / 4)
+ * when q . q0 >= 0). Both poses unchanged bit for bit: 0. */
+static double box_drift(const rd_sim *s, int i)
+{
+    const double *p = s->box_pose[i];
+    double dx2 = 0, dm2 = 0, dp2 = 0, x2 = 0, x02 = 0;
+    for (int k = 0; k < 3; k++) {
+        double d = s->x[i][k] - p[k];
+        dx2 += d * d; x2 += s->x[i][k] * s->x[i][k]; x02 += p[k] * p[k];
+    }
+    for (int k = 0; k < 4; k++) {
+        double m = s->q[i][k] - p[3 + k], a = s->q[i][k] + p[3 + k];
+        dm2 += m * m; dp2 += a * a;
+    }
+    if (dx2 == 0 && dm2 == 0) return 0; /* NaN (never built) fails this test */
+    double rho = s->box_rho[i];
+    return sqrt(dx2) + 2.0 * rho * sqrt(rd_min(dm2, dp2)) + RD_BOX_ROUNDOFF * (sqrt(x2) + sqrt(x02) + rho);
+}
+
+/* Body i's box (hull vertices grown by the margin) in its current pose, m: the stored one when
+ * it is exact this step, else computed as box_build would (the same expression, the same bits).
+ * For users of the box between broad-phase updates (edge subcontacts, the off-support overturn
+ * criterion). */
+void rd_pairs_box_now(const rd_sim *s, int i, double bx[6])
+{
+    if (s->box_drift[i] == 0) { memcpy(bx, s->aabb[i], 6 * sizeof *bx); return; }
+    bx[0] = bx[1] = bx[2] = INFINITY;
+    bx[3] = bx[4] = bx[5] = -INFINITY;
+    for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) {
+        double w[3];
+        int v = s->hv[e];
+        if (!s->convex[i] && !s->fixed[i]) vertex_now(s, i, v, w);
+        else rd_copy3(s->wv[v], w);
+        for (int k = 0; k < 3; k++) { bx[k] = rd_min(bx[k], w[k]); bx[k + 3] = rd_max(bx[k + 3], w[k]); }
+    }
+    for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
+}
+
 static int boxes_overlap(const double *p, const double *q)
 {
     return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];
+}
+
+/* Do the exact boxes of bodies i and j overlap this step? Each exact box B (its hull vertices
+ * now, grown by the margin) lies within the stored box S grown by the drift d, and contains S
+ * shrunk by d (the vertex that set each face of S moved at most d): B.lo in [S.lo - d, S.lo + d],
+ * B.hi in [S.hi - d, S.hi + d]. So the boxes certainly overlap when, on every axis,
+ * S_i.lo + d_i <= S_j.hi - d_j and S_j.lo + d_j <= S_i.hi - d_i, and certainly part when on some
+ * axis S_i.lo - d_i > S_j.hi + d_j or S_j.lo - d_j > S_i.hi + d_i (the floating-point sums are
+ * within RD_BOX_ROUNDOFF, included in d, of the exact ones). Otherwise both boxes are rebuilt
+ * and tested exactly. The answer is always the exact boxes' overlap, as if rebuilt every step. */
+static int pair_live(rd_sim *s, int i, int j)
+{
+    const double *p = s->aabb[i], *q = s->aabb[j];
+    double d = s->box_drift[i] + s->box_drift[j];
+    if (d == 0) return boxes_overlap(p, q);
+    int sure = 1;
+    for (int k = 0; k < 3; k++) {
+        if (p[k] - d > q[k + 3] || q[k] - d > p[k + 3]) return 0;
+        sure = sure && p[k] + d <= q[k + 3] && q[k] + d <= p[k + 3];
+    }
+    if (sure) return 1;
+    if (s->box_drift[i] != 0) box_build(s, i);
+    if (s->box_drift[j] != 0) box_build(s, j);
+    return boxes_overlap(s->aabb[i], s->aabb[j]);
 }
 
 /* Mark pair (i, j) live this step, creating it on first contact. 0, or -1 out of memory. */
@@ -176,8 +275,13 @@ static int sweep(rd_sim *s)
 int rd_pairs_update(rd_sim *s)
 {
     s->stamp++;
-    for (int i = 0; i < s->nb; i++)
-        if (!s->fixed[i] || s->stamp == 1) body_box(s, i);
+    int sweeping = s->nb > RD_BRUTE_MAX;
+    for (int i = 0; i < s->nb; i++) {
+        /* a fixed body never moves: its first box stays exact */
+        double d = s->fixed[i] && s->box_drift[i] == 0 && s->box_pose[i][0] == s->box_pose[i][0] ? 0.0 : box_drift(s, i);
+        s->box_drift[i] = d;
+        if (!(d <= s->margin) || (sweeping && d > 0)) box_build(s, i);
+    }
     /* the live list can hold every pair that overlaps: at most all pairs seen so far + n^2 new */
     int maxlive = s->nb <= RD_BRUTE_MAX ? s->nb * s->nb : s->npair + 8 * s->nb;
     if (reserve((void **)&s->live, &s->cap_live, maxlive, sizeof *s->live)) return -1;
@@ -185,7 +289,7 @@ int rd_pairs_update(rd_sim *s)
     if (s->nb <= RD_BRUTE_MAX) {
         for (int i = 0; i < s->nb; i++)
             for (int j = i + 1; j < s->nb; j++)
-                if (boxes_overlap(s->aabb[i], s->aabb[j]) && touch(s, i, j)) return -1;
+                if (pair_live(s, i, j) && touch(s, i, j)) return -1;
     } else if (sweep(s)) {
         return -1;
     }
@@ -196,9 +300,16 @@ int rd_pairs_init(rd_sim *s, rd_error *err)
 {
     s->order = malloc((size_t)s->nb * sizeof *s->order);
     s->aabb = calloc((size_t)s->nb, sizeof *s->aabb);
-    if (!s->order || !s->aabb || hash_grow(s)) return rd_error_set(err, "out of memory");
+    s->box_pose = malloc((size_t)s->nb * sizeof *s->box_pose);
+    s->box_rho = calloc((size_t)s->nb, sizeof *s->box_rho);
+    s->box_drift = calloc((size_t)s->nb, sizeof *s->box_drift);
+    if (!s->order || !s->aabb || !s->box_pose || !s->box_rho || !s->box_drift || hash_grow(s))
+        return rd_error_set(err, "out of memory");
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, rmin = INFINITY;
     for (int i = 0; i < s->nb; i++) {
+        for (int k = 0; k < 7; k++) s->box_pose[i][k] = NAN; /* built at the first update */
+        for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++)
+            s->box_rho[i] = rd_max(s->box_rho[i], rd_norm(s->poly[i].v[s->hv[e] - s->vert0[i]]));
         s->order[i] = i;
         rmin = rd_min(rmin, s->poly[i].radius);
         for (int k = 0; k < 3; k++) { lo[k] = rd_min(lo[k], s->x[i][k]); hi[k] = rd_max(hi[k], s->x[i][k]); }

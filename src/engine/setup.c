@@ -383,11 +383,9 @@ static int list_vertices(const rd_sim *s, const char *use, int **first, int **li
     return 0;
 }
 
-/* Hull vertices of every body (rd_sim.hv: its bounding box in any pose), then its step vertices
- * (rd_sim.sv): all of a convex body's; of a non-convex one, its hull vertices and its candidate
- * faces' vertices (contact).
- * A hull that qhull cannot make keeps every vertex. Then every body's candidate-face vertices
- * (rd_sim.cv) and the scratch of their plane distances and masks. */
+/* Hull vertices of every body (rd_sim.hv: its bounding box in any pose; a hull that qhull
+ * cannot make keeps every vertex), then every body's candidate-face vertices (rd_sim.cv: what a
+ * non-convex body's step transforms) and the scratch of their plane distances and masks. */
 static int build_step_vertices(rd_sim *s, rd_error *err)
 {
     int nv = s->vert0[s->nb], ncv_max = 0, np_max = 0;
@@ -399,8 +397,6 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
         if (s->convex[i] || rd_poly_hull_marks(&s->poly[i], u, &e)) memset(u, 1, (size_t)s->poly[i].nv);
     }
     rc = rc || list_vertices(s, use, &s->hv0, &s->hv);
-    for (int i = 0; i < s->nb && !rc; i++) mark_candidate_vertices(s, i, use + s->vert0[i]);
-    rc = rc || list_vertices(s, use, &s->sv0, &s->sv);
     if (!rc) memset(use, 0, (size_t)nv);
     for (int i = 0; i < s->nb && !rc; i++) {
         if (s->convex[i]) np_max = s->poly[i].nf > np_max ? s->poly[i].nf : np_max;

@@ -157,14 +157,12 @@ struct rd_sim {
     int *face0;            /* [nb+1] first world face of each body */
     double (*wn)[3];       /* world face normals */
     double *wd;            /* world face offsets, m */
-    int *sv0;              /* [nb+1] first entry of each body's step vertices in sv */
-    int *sv;               /* step vertices (world index): the vertices a step needs, refreshed
-                              every step (rd_bodies_refresh_step): all of a convex body's; a
-                              non-convex body's hull (its box) and candidate-face vertices.
-                              A non-convex body's other vertices and non-candidate faces are
-                              refreshed only by rd_bodies_refresh (setup, start of shaking) */
     int *hv0;              /* [nb+1] first entry of each body's hull vertices in hv */
-    int *hv;               /* hull vertices (world index; a step vertex): a body's box is theirs */
+    int *hv;               /* hull vertices (world index): a body's box is theirs. A convex body's
+                              step (rd_bodies_refresh_step) transforms all its vertices; a
+                              non-convex one's only its candidate-face vertices (cv), its hull
+                              when the broad phase rebuilds its box (pairs.c), the rest only in
+                              rd_bodies_refresh (setup, start of shaking) */
     int *cv0;              /* [nb+1] first entry of each body's candidate-face vertices in cv
                               (faces share vertices, so contact.c finds each vertex's plane
                               distances once per side and step) */
@@ -199,7 +197,13 @@ struct rd_sim {
                               while it faces the other body's entrance face) */
 
     /* broad phase (pairs.c) */
-    double (*aabb)[6];     /* per body: min xyz, max xyz, grown by `margin`, m */
+    double (*aabb)[6];     /* per body: min xyz, max xyz of its hull vertices, grown by
+                              `margin`, m, when the box was last built (at box_pose) */
+    double (*box_pose)[7]; /* per body: position (3) and quaternion (4) at the last box build;
+                              NaN: never built */
+    double *box_rho;       /* per body: largest distance of a hull vertex from its centre, m */
+    double *box_drift;     /* per body: bound on how far any hull vertex moved since the box was
+                              built, this step (0: the box is exact), m */
     double margin;         /* m */
     int *order;            /* bodies sorted by box minimum along sweep_axis */
     int sweep_axis;
@@ -307,6 +311,7 @@ void rd_history_step(rd_sim *s);
 /* pairs.c */
 int rd_pairs_init(rd_sim *s, rd_error *err);
 int rd_pairs_update(rd_sim *s);
+void rd_pairs_box_now(const rd_sim *s, int i, double box[6]);
 
 /* contact.c */
 int rd_contact_step(rd_sim *s);
