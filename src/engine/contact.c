@@ -86,7 +86,9 @@ typedef struct side_ctx {
     int mf;                     /* the current owner face */
     double mbuf[3];
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
-    double nsum[3];             /* sum of fn times the normal from body a towards b, N */
+    double nsum[3];             /* sum of fn times the owner's entrance-face normal u, N (times
+                                   to_b at the end of the side: the normal from a towards b) */
+    double area;                /* the current face's bearing area A', m^2 */
     double f_o[3], tq_o[3];     /* the owner's force (N) and torque (N m) accumulators, and */
     double f_t[3], tq_t[3];     /* the other's (a free one): rd_sim.f and .tq carried through the
                                    side in locals (the same sums in the same order, but no
@@ -132,11 +134,12 @@ static void point_idle(rd_sim *s, int st, double kA, double sA, double stretch)
 }
 
 /* Relative velocity of owner point ro (offset from the owner's centre, ground frame) against
- * the other body, m/s; rt receives the point's offset from the other body's centre. */
+ * the other body, m/s; rt receives the point's offset from the other body's centre when that
+ * body is free, else 0 (a fixed body takes no torque and has no velocity: rt is not used). */
 static inline __attribute__((always_inline)) void relative_velocity(const rd_sim *s, const side_ctx *c, const double ro[3], double rt[3],
                               double vr[3])
 {
-    for (int k = 0; k < 3; k++) rt[k] = ro[k] + s->x[c->o][k] - s->x[c->t][k];
+    for (int k = 0; k < 3; k++) rt[k] = c->t_free ? ro[k] + s->x[c->o][k] - s->x[c->t][k] : 0.0;
     rd_law_relative_velocity(s, c->o, c->t, ro, rt, vr);
 }
 
@@ -290,9 +293,11 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     rd_copy3(fs, s->fs[st]);
     s->pj[st][0] = fn;
-    for (int k = 0; k < 3; k++) c->nsum[k] += fn * c->to_b * u[k];
+    double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
+    for (int k = 0; k < 3; k++) c->nsum[k] += fu[k];
+    c->area += A;
 
-    double F[3] = {fn * u[0] + fs[0], fn * u[1] + fs[1], fn * u[2] + fs[2]};
+    double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
     rd_axpy(1.0, F, c->f_o);
     rd_cross(ro, F, tmp);
     rd_axpy(1.0, tmp, c->tq_o);
@@ -465,23 +470,22 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
         }
         int na = 0, nin = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
-        double area = 0;
+        c.area = 0;
         for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
             if (subcontact(s, &c, j, pt, st)) {
                 na++;
-                area += c.wa * s->pa[pt];
                 nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
             }
             nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
         }
         s->face_nactive[sd->face0 + k] = nin;
         if (!s->settling) s->active_point_steps += na;
-        rd_monitor_contact(watch, s->shaking, area, na, nslip);
+        rd_monitor_contact(watch, s->shaking, c.area, na, nslip);
     }
     rd_copy3(c.f_o, s->f[c.o]); rd_copy3(c.tq_o, s->tq[c.o]);
     if (c.t_free) { rd_copy3(c.f_t, s->f[c.t]); rd_copy3(c.tq_t, s->tq[c.t]); }
     *k_active += c.k_active;
-    rd_axpy(1.0, c.nsum, nsum);
+    rd_axpy(c.to_b, c.nsum, nsum); /* to_b = +-1: +-(fn u) summed, exactly */
 }
 
 /* Broad phase, then every live pair's subcontact forces. 0, or -1 when the broad phase ran out

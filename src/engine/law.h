@@ -37,8 +37,11 @@ static inline void rd_law_relative_velocity(const rd_sim *s, int o, int t, const
 static inline int rd_law_shear(double fs[3], const double n[3], const double vr[3], double vn,
                                double sA, double dt, double lim, double *e_fric)
 {
-    double fu = rd_dot(fs, n), prev2 = rd_dot(fs, fs);
+    const double f0[3] = {fs[0], fs[1], fs[2]}; /* last step's force: |f0|^2 is found only where
+                                                   needed (turned, or slipping) */
+    double fu = rd_dot(fs, n);
     if (fu != 0) {
+        double prev2 = rd_dot(f0, f0);
         for (int k = 0; k < 3; k++) fs[k] -= fu * n[k];
         double now2 = rd_dot(fs, fs);
         double r = now2 > 0 ? sqrt(prev2 / now2) : 0.0;
@@ -48,7 +51,7 @@ static inline int rd_law_shear(double fs[3], const double n[3], const double vr[
     double mag2 = rd_dot(fs, fs);
     if (mag2 <= lim * lim) return 0;
     double mag = sqrt(mag2), r = lim / mag;
-    *e_fric += (mag - lim) * (lim + fmin(sqrt(prev2), mag)) / (2.0 * sA);
+    *e_fric += (mag - lim) * (lim + fmin(sqrt(rd_dot(f0, f0)), mag)) / (2.0 * sA);
     fs[0] *= r; fs[1] *= r; fs[2] *= r;
     return 1;
 }
