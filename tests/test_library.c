@@ -1,7 +1,7 @@
 /* The library as an embedding program sees it (issue 14): a run with no file at all, observers
  * (samples, events, summary), the HDF5 file as one observer, a per-simulation stop beside the
- * process-wide one, and HDF5's error printing left as the program set it. Only the public
- * headers are used. */
+ * process-wide one, HDF5's error printing left as the program set it, and the progress of a
+ * threshold scan run on several worker processes. Only the public headers are used. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -11,6 +11,7 @@
 #include "rockdem/observer.h"
 #include "rockdem/output.h"
 #include "rockdem/rockdem.h"
+#include "rockdem/validate.h"
 
 #include <hdf5.h>
 #include <math.h>
@@ -241,6 +242,48 @@ static void test_free_scenario_before_run(void **state)
     assert_int_equal(kept.steps, freed.steps);
 }
 
+/* Progress as a bar reads it (cli_progress.c's rule): a new run where t falls back; runs' worth
+ * done = runs before this one + t / t_end of it. */
+typedef struct progress_seen { int runs, calls, backwards; double t_prev, done; } progress_seen;
+static void count_progress(void *ctx, double t, double t_end)
+{
+    progress_seen *p = ctx;
+    if (t < p->t_prev || p->runs == 0) p->runs++;
+    p->t_prev = t;
+    double done = p->runs - 1 + (t_end > 0 ? fmin(t / t_end, 1.0) : 0.0);
+    p->backwards += done < p->done;
+    p->done = done;
+    p->calls++;
+}
+
+/* rd_threshold with jobs 2 runs its coarse scan in worker processes; the progress callback of
+ * the calling process must follow the whole scan: one run counted per run made (the scan's and
+ * the bisection's), never going back. (Before, only the first worker of each batch drew, in its
+ * own process: the caller saw the bisection runs alone.) */
+static void test_threshold_progress_jobs(void **state)
+{
+    (void)state;
+    rd_scenario sc;
+    rd_error err;
+    if (rd_scenario_load(&sc, "tests/cli/data/sweep_brick.dat", &err)) fail_msg("%s", err.msg);
+    char set[160];
+    snprintf(set, sizeof set, "output.file=%s/threshold.h5", tmpdir);
+    assert_int_equal(rd_scenario_set(&sc, set, &err), 0);
+    rd_threshold_opts o = rd_threshold_opts_default();
+    o.lo = 3.5; o.hi = 7; o.nscan = 12; o.jobs = 2; o.rtol = 0.01; /* bisection runs follow the scan */
+    progress_seen seen = {0};
+    rd_set_progress(count_progress, &seen);
+    rd_threshold_result r;
+    int rc = rd_threshold(&sc, RD_ENGINE_DEM, &o, &r, &err);
+    rd_set_progress(NULL, NULL);
+    rd_scenario_free(&sc);
+    if (rc) fail_msg("%s", err.msg);
+    print_message("threshold -j 2: %d runs, %d counted from %d reports\n", r.runs, seen.runs, seen.calls);
+    assert_true(r.found && r.runs > o.jobs);
+    assert_int_equal(seen.runs, r.runs);
+    assert_int_equal(seen.backwards, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -248,6 +291,7 @@ int main(void)
         cmocka_unit_test(test_hdf5_error_handler_kept),
         cmocka_unit_test(test_observers_no_file),
         cmocka_unit_test(test_free_scenario_before_run),
+        cmocka_unit_test(test_threshold_progress_jobs),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

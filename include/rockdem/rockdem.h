@@ -166,6 +166,10 @@ RD_API void rd_sim_stop(rd_sim *sim);
 #define RD_PROGRESS_STEPS 2048
 typedef void (*rd_progress_fn)(void *ctx, double t, double t_end);
 RD_API void rd_set_progress(rd_progress_fn fn, void *ctx);
+/* Pass (t, t_end) to the process's callback, as rd_sim_run does: for an ensemble that runs its
+ * simulations in worker processes and relays their progress (threshold -j). A callback counts a
+ * new run where t falls back. */
+RD_API void rd_progress_report(double t, double t_end);
 
 /* Events so far (n receives the count); valid until the next run call or rd_sim_free. */
 RD_API const rd_event *rd_sim_events(const rd_sim *sim, int *n);

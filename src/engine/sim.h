@@ -365,9 +365,6 @@ void rd_monitor_finish(rd_sim *s);
 void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
 
-/* progress.c: the process's progress callback (rd_set_progress) */
-void rd_progress_report(double t, double t_end);
-
 /* observe.c: samples, events and the summary handed to the observers */
 void rd_observe_begin(rd_sim *s);
 int rd_observe_sample(rd_sim *s);

@@ -1,7 +1,9 @@
 /* rockdem — minimum overturning amplitude of a scenario's horizontal pulse, with the DEM or the
  * rigid reference (include/rockdem/validate.h explains what the search finds). The coarse scan
  * runs its amplitudes in batches of opts->jobs worker processes (fork, one pipe each); the
- * outcomes are read in scan order, so the bracket is the serial scan's.
+ * outcomes are read in scan order, so the bracket is the serial scan's. The workers send their
+ * progress on the same pipes, and the scan relays the batch's sum to the process's progress
+ * callback as runs' worth done (see relay_progress), so a progress bar follows the whole scan.
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */
@@ -13,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <poll.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -82,6 +85,15 @@ typedef struct scan_outcome {
     char msg[RD_ERROR_MAX];
 } scan_outcome;
 
+/* A message on a worker's pipe: its progress (t of t_end, s), then once its outcome (done). */
+typedef struct scan_message {
+    int done;
+    double t, t_end;
+    scan_outcome o;
+} scan_message;
+
+#define RD_SCAN_REPORTS 200 /* progress messages per worker run, at most (one per 0.5 % of it) */
+
 #define RD_SCAN_MAX_JOBS 256 /* worker processes at once, at most (each batch's state is on the stack) */
 
 /* Worker processes for the scan: opts->jobs, or every online core when it is <= 0. */
@@ -104,31 +116,72 @@ static int read_full(int fd, void *buf, size_t n)
     return 0;
 }
 
-/* The worker: one run, its outcome on fd, never returns. Only the first worker of a batch
-   reports progress (one bar, not several drawn over each other). */
-static void scan_worker(const rd_scenario *sc, rd_engine engine, double amplitude, int slot, int fd)
+static int write_full(int fd, const void *buf, size_t n)
 {
-    scan_outcome o = {0};
-    rd_error err = {{0}};
-    if (slot > 0) rd_set_progress(NULL, NULL);
-    o.rc = rd_overturns(sc, engine, amplitude, &o.over, &err);
-    memcpy(o.msg, err.msg, sizeof o.msg);
-    const char *p = (const char *)&o;
-    size_t n = sizeof o;
+    const char *p = buf;
     while (n > 0) {
         ssize_t w = write(fd, p, n);
         if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) _exit(3);
+        if (w <= 0) return -1;
         p += w;
         n -= (size_t)w;
     }
-    _exit(0);
+    return 0;
+}
+
+/* A worker's progress callback: its run's progress on its pipe, each 1 / RD_SCAN_REPORTS of the
+   run at most (the scan reads it while it waits, so the pipe never fills). */
+typedef struct worker_pipe { int fd; double sent, t_end; } worker_pipe;
+static void worker_progress(void *ctx, double t, double t_end)
+{
+    worker_pipe *w = ctx;
+    double f = t_end > 0 ? t / t_end : 1.0;
+    w->t_end = t_end;
+    if (f - w->sent < 1.0 / RD_SCAN_REPORTS && f < 1.0) return;
+    w->sent = f;
+    scan_message m = {.done = 0, .t = t, .t_end = t_end};
+    if (write_full(w->fd, &m, sizeof m)) _exit(3);
+}
+
+/* The worker: one run, its progress and outcome on fd, never returns. */
+static void scan_worker(const rd_scenario *sc, rd_engine engine, double amplitude, int fd)
+{
+    scan_message m = {.done = 1};
+    rd_error err = {{0}};
+    worker_pipe w = {fd, -1.0, 0.0};
+    rd_set_progress(worker_progress, &w);
+    m.o.rc = rd_overturns(sc, engine, amplitude, &m.o.over, &err);
+    m.t = m.t_end = w.t_end;
+    memcpy(m.o.msg, err.msg, sizeof m.o.msg);
+    _exit(write_full(fd, &m, sizeof m) ? 3 : 0);
+}
+
+/* The batch's progress to the process's callback: base runs finished before the batch plus each
+   worker's fraction (f[k], 1 once done) make `done` runs' worth, told as rd_sim_run would tell
+   that many runs one after the other (a run's t from 0 to t_end, then the next one's from 0), so
+   a bar that counts runs where t falls back and shows the current one's t follows the whole
+   scan. *told: runs' worth told so far in this scan (0: none; the first report starts a run). */
+static void relay_progress(double base, const double *f, int n, double t_end, double *told)
+{
+    double done = base;
+    for (int k = 0; k < n; k++) done += f[k];
+    if (!(done > *told) || !(t_end > 0)) return;
+    if (*told == 0) rd_progress_report(0, t_end);      /* the scan's first run starts */
+    int run = *told > 0 ? (int)ceil(*told) : 1;          /* the run the callback is in */
+    int last = done > floor(done) ? (int)floor(done) + 1 : (int)done; /* the one done ends in */
+    for (; run < last; run++) {
+        rd_progress_report(t_end, t_end);                /* it is complete, the next starts */
+        rd_progress_report(0, t_end);
+    }
+    rd_progress_report(done < last ? (done - floor(done)) * t_end : t_end, t_end);
+    *told = done;
 }
 
 /* Runs amplitudes a[0..n) at once, one worker process each; out[k] their outcomes (a worker
-   that dies leaves rc -1 and says so). -1 only when no worker could be started. */
-static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, int n,
-                      scan_outcome *out, rd_error *err)
+   that dies leaves rc -1 and says so). Their progress is relayed as it arrives, after `base`
+   runs of the scan (relay_progress). -1 only when no worker could be started. */
+static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, int n, double base,
+                      double *told, scan_outcome *out, rd_error *err)
 {
     pid_t pid[n];
     int fd[n], started = 0;
@@ -144,16 +197,40 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
             if (prctl(PR_SET_PDEATHSIG, SIGKILL) || getppid() != parent) _exit(3);
             for (int k = 0; k < started; k++) close(fd[k]);
             close(p[0]);
-            scan_worker(sc, engine, a[started], started, p[1]);
+            scan_worker(sc, engine, a[started], p[1]);
         }
         close(p[1]);
         fd[started] = p[0];
     }
-    for (int k = 0; k < started; k++) {
-        if (read_full(fd[k], &out[k], sizeof out[k])) {
-            out[k] = (scan_outcome){.rc = -1};
-            snprintf(out[k].msg, sizeof out[k].msg, "threshold: the worker for %.4g m/s^2 died", a[k]);
+    double f[n], t_end = 0;
+    struct pollfd pfd[n];
+    for (int k = 0; k < started; k++) { f[k] = 0; pfd[k] = (struct pollfd){.fd = fd[k], .events = POLLIN}; }
+    for (int open = started, waiting = 1; open > 0;) {
+        if (waiting && poll(pfd, (nfds_t)started, -1) < 0) {
+            if (errno == EINTR) continue;
+            waiting = 0;
         }
+        for (int k = 0; k < started; k++) { /* (without poll: blocking reads, in order) */
+            if (pfd[k].fd < 0 || (waiting && !pfd[k].revents)) continue;
+            scan_message m;
+            int lost = read_full(fd[k], &m, sizeof m);
+            if (!lost && m.t_end > 0) t_end = m.t_end;
+            if (!lost && !m.done) { /* progress */
+                f[k] = m.t_end > 0 ? fmin(fmax(m.t / m.t_end, 0), 1) : 0;
+                continue;
+            }
+            if (lost) { /* the pipe closed with no outcome: the worker died */
+                m.o = (scan_outcome){.rc = -1};
+                snprintf(m.o.msg, sizeof m.o.msg, "threshold: the worker for %.4g m/s^2 died", a[k]);
+            }
+            out[k] = m.o;
+            f[k] = 1;
+            pfd[k].fd = -1;
+            open--;
+        }
+        relay_progress(base, f, started, t_end, told);
+    }
+    for (int k = 0; k < started; k++) {
         close(fd[k]);
         waitpid(pid[k], NULL, 0);
     }
@@ -167,6 +244,7 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
 static int coarse_scan(const rd_scenario *sc, rd_engine engine, double lo, double hi, int n,
                        int jobs, double *below, double *above, rd_threshold_result *out, rd_error *err)
 {
+    double told = 0; /* runs' worth told to the progress callback (relay_progress) */
     *below = lo;
     *above = -1;
     for (int k0 = 0; k0 <= n && *above < 0; k0 += jobs) {
@@ -177,7 +255,7 @@ static int coarse_scan(const rd_scenario *sc, rd_engine engine, double lo, doubl
         if (m == 1) { /* one run: in this process */
             o[0].rc = rd_overturns(sc, engine, a[0], &o[0].over, err);
             if (o[0].rc) return -1;
-        } else if (scan_batch(sc, engine, a, m, o, err)) {
+        } else if (scan_batch(sc, engine, a, m, k0, &told, o, err)) {
             return -1;
         }
         out->runs += m;
