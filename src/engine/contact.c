@@ -197,6 +197,32 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
     return best >= 0 ? best : shallow;
 }
 
+/* A bearing subcontact's results (A: its area A', m^2; fn: normal force, N; u: its entrance
+ * face's outward normal; fs: its shear force, N; ro, rt: its offsets from the owner's and the
+ * other's centre, m): its stored shear and normal force, the side's normal and area sums, and
+ * the force F = fn u + fs with its torques on the owner and (opposite) on a free other body. */
+static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, int st, double A,
+                                                       double fn, const double u[3], const double fs[3],
+                                                       const double ro[3], const double rt[3])
+{
+    double tmp[3];
+    rd_copy3(fs, s->fs[st]);
+    s->pj[st][0] = fn;
+    double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
+    for (int k = 0; k < 3; k++) c->nsum[k] += fu[k];
+    c->area += A;
+
+    double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
+    rd_axpy(1.0, F, c->f_o);
+    rd_cross(ro, F, tmp);
+    rd_axpy(1.0, tmp, c->tq_o);
+    if (c->t_free) {
+        rd_axpy(-1.0, F, c->f_t);
+        rd_cross(rt, F, tmp);
+        rd_axpy(-1.0, tmp, c->tq_t);
+    }
+}
+
 /* Force of one subcontact on the owner; returns 1 if it carries force. */
 static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
@@ -254,7 +280,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     }
     if (!moved) point_kinematics(s, c, pt, kin);
     const double *ro = kin, *rt = kin + 3, *vr = kin + 6;
-    double tmp[3], vn = rd_dot(vr, u);
+    double vn = rd_dot(vr, u);
     if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE) && vn > 0 &&
         !s->settling) {
         /* first unloading of a new contact that bore force: the impact loss (permanent set);
@@ -291,21 +317,67 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
-    rd_copy3(fs, s->fs[st]);
-    s->pj[st][0] = fn;
-    double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
-    for (int k = 0; k < 3; k++) c->nsum[k] += fu[k];
-    c->area += A;
+    bear(s, c, st, A, fn, u, fs, ro, rt);
+    return 1;
+}
 
-    double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
-    rd_axpy(1.0, F, c->f_o);
-    rd_cross(ro, F, tmp);
-    rd_axpy(1.0, tmp, c->tq_o);
-    if (c->t_free) {
-        rd_axpy(-1.0, F, c->f_t);
-        rd_cross(rt, F, tmp);
-        rd_axpy(-1.0, tmp, c->tq_t);
+/* subcontact's common cases, with its arithmetic (the same expressions in the same order, so
+ * the same bits) and none of its branches on rare state:
+ * - a point beyond the band that was already out: only its gap is recorded;
+ * - a point inside that was idle and stays so: above its face within the band, or (no dashpot)
+ *   below its permanent set;
+ * - a steady bearing point: inside, bearing last step, no bond, no impact loss to come, its face
+ *   not a late one, below its entrance face, compressed, and within the Coulomb limit.
+ * Returns 0 or 1 as subcontact does, or -1 (nothing stored) when the point needs subcontact. */
+static inline int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
+{
+    const unsigned fl = s->pstate[st];
+    const double *p = s->pl[pt];
+    if (fl & RD_PT_BONDED) return -1;
+    for (int k = 0; k < c->ncr; k++) {
+        double out = plane_dist(c->pl[c->cr[k]], p);
+        if (out > c->tol + 0.0) { /* subcontact's band, unbonded (slack 0) */
+            if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return -1;
+            s->pj[st][0] = 0;
+            s->pj[st][1] = out;
+            s->pset[st] = 0;
+            return 0;
+        }
     }
+    if (!(fl & RD_PT_INSIDE) || c->facing) return -1;
+    int e = s->pface[st];
+    double depth = -plane_dist(c->pl[e], p);
+    double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
+    if ((fl & ~(unsigned)RD_PT_VIRGIN) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
+        if (depth <= 0) { /* above its face, within the band */
+            s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
+            s->pset[st] = 0;
+        } else if (!(c->damp_coef == 0 && kA * (depth - s->pset[st]) < 0)) {
+            return -1; /* touches: subcontact */
+        } /* else below its permanent set, no dashpot: idle */
+        s->pj[st][0] = 0;
+        s->pj[st][1] = -depth;
+        return 0;
+    }
+    if ((fl & ~(unsigned)RD_PT_SLIP) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0)) return -1;
+    const double *u = s->wn[s->face0[c->t] + e];
+    double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
+    rd_mat_vec(s->R[c->o], p, ro);
+    relative_velocity(s, c, ro, rt, vr);
+    double vn = rd_dot(vr, u);
+    double stretch = depth - s->pset[st];
+    double fel = kA * stretch;
+    double fn = fel - c->damp_coef * kA * vn;
+    if (!(fn >= 0)) return -1;
+    double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]};
+    double lim = rd_max(fn, 0.0) * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion) */
+    rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
+    if (!(rd_dot(fs, fs) <= lim * lim)) return -1; /* slips: rd_law_shear_cap in subcontact */
+    if (fn != fel) s->e_damp -= (fn - fel) * vn * s->dt;
+    c->k_active += kA;
+    s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
+    s->pj[st][1] = -depth;
+    bear(s, c, st, A, fn, u, fs, ro, rt);
     return 1;
 }
 
@@ -472,7 +544,9 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         c.area = 0;
         for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
-            if (subcontact(s, &c, j, pt, st)) {
+            int bears = steady_point(s, &c, j, pt, st);
+            if (bears < 0) bears = subcontact(s, &c, j, pt, st);
+            if (bears) {
                 na++;
                 nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
             }
