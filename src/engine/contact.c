@@ -325,9 +325,10 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
  * the same bits) and none of its branches on rare state:
  * - a point beyond the band that was already out: only its gap is recorded;
  * - a point inside that was idle and stays so: above its face within the band, or (no dashpot)
- *   below its permanent set;
- * - a steady bearing point: inside, bearing last step, no bond, no impact loss to come, its face
- *   not a late one, below its entrance face, compressed, and within the Coulomb limit.
+ *   below its permanent set, or on a late face that looks away from its entrance face;
+ * - a steady bearing point: inside, bearing last step, no bond, no impact loss this step (not
+ *   new, or not unloading), its face not a late one, below its entrance face, compressed, and
+ *   within the Coulomb limit.
  * Returns 0 or 1 as subcontact does, or -1 (nothing stored) when the point needs subcontact. */
 static inline int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
@@ -344,10 +345,18 @@ static inline int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt
             return 0;
         }
     }
-    if (!(fl & RD_PT_INSIDE) || c->facing) return -1;
+    if (!(fl & RD_PT_INSIDE)) return -1;
     int e = s->pface[st];
     double depth = -plane_dist(c->pl[e], p);
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
+    const double *u = s->wn[s->face0[c->t] + e];
+    if (c->facing) { /* a late face: only its points that stay idle facing away are common */
+        if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
+            return -1;
+        s->pj[st][0] = 0;
+        s->pj[st][1] = -depth;
+        return 0;
+    }
     if ((fl & ~(unsigned)RD_PT_VIRGIN) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
         if (depth <= 0) { /* above its face, within the band */
             s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
@@ -359,12 +368,13 @@ static inline int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt
         s->pj[st][1] = -depth;
         return 0;
     }
-    if ((fl & ~(unsigned)RD_PT_SLIP) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0)) return -1;
-    const double *u = s->wn[s->face0[c->t] + e];
+    if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
+        return -1;
     double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
     rd_mat_vec(s->R[c->o], p, ro);
     relative_velocity(s, c, ro, rt, vr);
     double vn = rd_dot(vr, u);
+    if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return -1; /* its impact loss: subcontact */
     double stretch = depth - s->pset[st];
     double fel = kA * stretch;
     double fn = fel - c->damp_coef * kA * vn;
