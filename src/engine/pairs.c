@@ -14,10 +14,19 @@
  * one exact boxes rebuilt every step give, bit for bit: no pair is found later (pair_live says
  * why). A mesh body's hull (727 of the shipped PBR's 1,986 vertices) is transformed only when
  * its box is rebuilt. A scene swept along an axis rebuilds every moving box each step, since
- * the live list's order follows the exact boxes' order and sets the order of the force sums. A pair that overlaps for the first time gets a slot found again through a
- * hash map keyed by (a, b); its per-point history is appended to growable arrays, so memory
- * is allocated only when two bodies meet for the first time, never in a steady step. A pair
- * whose boxes separate forgets its history (3DEC: a re-created contact starts from zero).
+ * the live list's order follows the exact boxes' order and sets the order of the force sums.
+ * Found before a point bears: a subcontact point lies in its body's hull and bears only within
+ * the contact band of the other (convex) body, tol = RD_CONTACT_BAND min(r_a, r_b) beyond its
+ * planes (plus a bond's slack T / KN), so the two hull boxes lie within about tol of each other
+ * (sqrt(3) tol at a right-angled corner), while each is grown by margin = RD_BROAD_MARGIN r_min:
+ * the grown boxes overlap before a point can bear while the pair's smaller body is at most 57
+ * times the smallest body's radius (2 RD_BROAD_MARGIN >= sqrt(3) RD_CONTACT_BAND x 57) and a
+ * bond's slack stays below the margin.
+ * tests/test_broadphase.c checks that a vertex within the band of another body has its pair
+ * live. A pair that overlaps for the first time gets a slot found again through a hash map
+ * keyed by (a, b); its per-point history is appended to growable arrays, so memory is allocated
+ * only when two bodies meet for the first time, never in a steady step. A pair whose boxes
+ * separate forgets its history (3DEC: a re-created contact starts from zero).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
