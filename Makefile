@@ -6,12 +6,20 @@ PKGS    := hdf5-serial gsl
 # PBR 55 -> 45, 20-drum column 145 -> 114; -march=native measured no faster than x86-64-v2
 # (within the scatter), and a binary built with it stops with an illegal instruction on an
 # older CPU (CI runners, the Python wheel), so the shipped default stays x86-64-v2.
-# `make OPT="-O3 -march=native"` and `make CC=clang` build cleanly too and give the same results
-# to the bit. Never -ffast-math: the NaN guards rely on isfinite.
+# Re-measured 2026-11-23 03:33 UTC after the contact's steady path (min of 3-7 interleaved runs,
+# load 2.8): -march=native 4-19 % slower than x86-64-v2 (ns per active subcontact-step: bed 38.7
+# vs 32.6, PBR 60.7 vs 55.0, 20-drum column 88.7 vs 84.5, corner block 208 vs 200), x86-64-v3
+# likewise. `make CC=clang` builds cleanly and gives the same results to the bit.
+# `make OPT="-O3 -march=native"` builds cleanly, but with gcc 12 on an FMA machine it differs
+# at round-off (1e-30 at 0.01 s, 5e-11 after 2 s of the rocking bed): the SLP vectoriser fuses the
+# quaternion product of engine/integrate.c into vfmaddsub despite -ffp-contract=off (that file
+# built with -fno-tree-slp-vectorize gives bit-identical outputs).
+# Never -ffast-math: the NaN guards rely on isfinite.
 OPT     ?= -O3 -march=x86-64-v2
 CFLAGS  ?= $(OPT) -g
 # -ffp-contract=off: no fused multiply-adds, so every compiler and -march gives the same
-# round-off (clang contracts by default; with FMA a rocking history drifts apart within a second)
+# round-off (clang contracts by default; with FMA a rocking history drifts apart within a second;
+# gcc 12's vectoriser at -march=native is the exception noted above)
 WFLAGS  := -std=c11 -Wall -Wextra -Werror -ffp-contract=off -D_DEFAULT_SOURCE
 PKGCFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lhdf5_hl
