@@ -590,7 +590,10 @@ int rd_contact_step(rd_sim *s)
         double k_active = 0, nsum[3] = {0, 0, 0};
         for (int q = 0; q < pr->nside; q++) {
             side_step(s, pr, &pr->side[q], &k_active, nsum);
-            rd_edge_side(s, pr, &pr->side[q]);
+            /* edge subcontacts (edge.c): with two sides, this side's owner's edges against the
+               other body, from the vertex distances side_step has just found */
+            if (pr->nside == 2) rd_edge_side(s, pr, &pr->side[1 - q], s->cv_dist, s->cv_mask);
+            else rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
         }
         pr->k_active = k_active;
         double nn = rd_norm(nsum);

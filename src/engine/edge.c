@@ -1,26 +1,39 @@
-/* rockdem — edge subcontacts: another body's edge that crosses the owner between the vertex
- * points of both bodies (issue 10: a brick toppling over a pedestal's edge, a drum's base
- * pivoting on the lower drum's rim).
+/* rockdem — edge subcontacts: an edge of one body that crosses the other between the vertex
+ * points of both (issue 10: a brick toppling over a pedestal's or a lower block's edge, a drum
+ * pivoting on the lower drum's rim between its vertices).
  *
- * The vertex-face points of contact.c hold wherever a vertex of one body enters the other. When
- * an edge of the other body enters the owner while both its end vertices stay outside, and the
- * owner's own points are beside it, nothing bears: the edge passes through the owner's face.
- * 3DEC's common plane holds such an edge by the polygon where the two faces overlap, whose
- * corners are the edge crossings. Here, per side (owner o, other body t, both convex, t without
- * points of its own: a fixed pedestal or base) and per edge of t, the part of the edge inside o
- * is clipped against o's face planes; its deepest point, the maximum over the clipped part of
- * the depth below o's nearest plane (a concave function of the position along the edge, found
- * by ternary search; an edge lying level in a face bears at its middle), is a subcontact:
- *     Fn = KN A' depth    along the nearest plane's inward normal (o pushed off the edge)
- *     Fs <- proj(Fs) - KS A' dUs, |Fs| <= Fn tan(phi)   (contact.c's Coulomb law)
- * with A' = weight * the owner's mean point area (as one corner of its faces). The contact is
- * elastic (no impact set, no dashpot) and bonds never form on it. Its spring energy is in the
- * balance (rd_edge_elastic_energy) and released into friction when it stops bearing.
- * Not between two free bodies (both carry points): there an edge's end enters the other body
- * as a vertex subcontact while the edge subcontact lets go, and that handover is not smooth
- * (a new vertex spring starts at the edge's depth): the unequal stack toppling at 0.75 g, 2 Hz
- * (rigid preset, KN 1e10) ended with residual 8.8e-3 (3.1e-4 without), and the 10-drum column
- * ran 40 % slower. Edge crossings between two free bodies are left open.
+ * The vertex-face points of contact.c hold wherever a vertex of one body enters the other. An
+ * edge can enter the other body while its ends stay outside or stay shallower than its middle
+ * (it lies across a ridge of the other body), and then the points beside it carry nothing: the
+ * edge passes through a face. 3DEC's common plane holds such an edge by the polygon where the
+ * two faces overlap, whose corners are the edge crossings. Here, per side (owner o, other body
+ * t, both convex) and per edge a + u (b - a) of t, the depth of the edge below o's plane k is a
+ * line c_k + s_k u, and its depth inside o is their minimum, a concave function of u; its
+ * maximum d (walked exactly along the lower envelope: u = 0, then each next breakpoint while
+ * the active plane rises) is at
+ *   - a kink, where a rising plane p and a falling plane m meet (an edge across o's ridge):
+ *     the gradient of d with respect to the pose is g = (s_p n_m - s_m n_p) / (s_p - s_m)
+ *     (n: o's outward normals; moving the edge changes both planes' depths and slides the
+ *     meeting point along the edge), or
+ *   - the middle of a level part (an edge lying in a face), g the face's normal, or an end.
+ * The subcontact at that point, with A' = weight * the owner's mean point area:
+ *     Fn = KN A' (d - d0)  against g: -Fn g on o, +Fn g on t (the gradient of 1/2 KN A' (d - d0)^2)
+ *     Fs <- proj(Fs) - KS A' dUs, |Fs| <= |Fn g| tan(phi)   (contact.c's Coulomb law, law.h)
+ * Where t carries points (two free bodies), its edge's ends are vertex subcontacts: the edge
+ * bears only while its deepest point lies deeper than both ends (floor = the deeper end's
+ * depth, at least 0: a crossing, not an edge lying in a face, whose ends hold it), and its
+ * spring starts from the depth where that began: d0 = floor at onset, kept until it ends. The
+ * normal force is then the gradient of a potential of the pose that is 0 at onset, so no
+ * energy is made when an edge starts or stops bearing, nor when one of its ends enters and
+ * becomes a vertex subcontact (that vertex starts from its own entrance, contact.c); what the
+ * spring holds when the edge stops bearing (its deepest point becomes an end) is released and
+ * booked as friction, as 3DEC drops a contact's forces. Where t carries no points (a fixed
+ * pedestal or base) floor and d0 are 0 and an end inside bears too. The contact is elastic (no
+ * impact set, no dashpot), bonds never form on it, and its spring energy is in the balance
+ * (rd_edge_elastic_energy).
+ * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
+ * cv_dist, already found) where t carries points; an edge wholly beyond one side of o's box is
+ * skipped first.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
@@ -29,10 +42,9 @@
 #include "base/vec.h"
 
 #include <math.h>
+#include <stdlib.h>
 
-/* ternary-search iterations for the deepest point: (2/3)^40 of an edge, below 1e-7 of it */
-#define RD_EDGE_SEARCH 40
-/* depths along an edge that differ by less than this fraction of the contact band are level
+/* slopes of a plane's depth along an edge below this fraction of the contact band are level
  * (round-off of a 1 m body is 1e-16 m; 1e-9 of the 1 mm band is 1e-12 m) */
 #define RD_EDGE_FLAT 1e-9
 /* most vertices of a body whose edges are tested (a 128-sided drum has 256) */
@@ -46,22 +58,34 @@ int rd_edge_count(const rd_poly *p)
     return n / 2;
 }
 
+/* Every body's edges, each once (face f's side from vertex a to b, taken where a < b), in the
+ * order of the edge subcontact slots. */
+int rd_edge_init(rd_sim *s, rd_error *err)
+{
+    int n = 0;
+    for (int i = 0; i < s->nb; i++) n += rd_edge_count(&s->poly[i]);
+    s->edge_v0 = malloc((size_t)(s->nb + 1) * sizeof *s->edge_v0);
+    s->edge_v = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->edge_v);
+    if (!s->edge_v0 || !s->edge_v) return rd_error_set(err, "out of memory");
+    n = 0;
+    for (int i = 0; i < s->nb; i++) {
+        const rd_poly *p = &s->poly[i];
+        s->edge_v0[i] = n;
+        for (int f = 0; f < p->nf; f++) {
+            const int *ix = p->fidx + p->fstart[f];
+            for (int k = 0, a = ix[p->flen[f] - 1]; k < p->flen[f]; a = ix[k++])
+                if (a < ix[k]) { s->edge_v[n][0] = a; s->edge_v[n][1] = ix[k]; n++; }
+        }
+    }
+    s->edge_v0[s->nb] = n;
+    return 0;
+}
+
 /* Signed distance of world point x to plane k of body o (> 0 outside), m. */
 static double dist(const rd_sim *s, int o, int k, const double x[3])
 {
     int j = s->face0[o] + k;
     return rd_dot(s->wn[j], x) - s->wd[j];
-}
-
-/* Depth of x inside o below its nearest plane (< 0 outside), m; *kmin that plane. */
-static double depth_at(const rd_sim *s, int o, const double x[3], int *kmin)
-{
-    double d = INFINITY;
-    for (int k = 0; k < s->poly[o].nf; k++) {
-        double e = -dist(s, o, k, x);
-        if (e < d) { d = e; *kmin = k; }
-    }
-    return d;
 }
 
 /* Where x lies against o's box: one bit per side it is beyond (0: inside the box). */
@@ -72,42 +96,100 @@ static unsigned outcode(const double box[6], const double x[3])
     return code;
 }
 
-/* Part [lo, hi] of segment a + u (b - a), u in [0, 1], inside o; 0 when empty. */
-static int clip(const rd_sim *s, int o, const double a[3], const double b[3], double *lo, double *hi)
-{
-    *lo = 0; *hi = 1;
-    for (int k = 0; k < s->poly[o].nf; k++) {
-        double da = dist(s, o, k, a), db = dist(s, o, k, b);
-        if (da > 0 && db > 0) return 0;
-        if (da > 0) *lo = fmax(*lo, da / (da - db));
-        else if (db > 0) *hi = fmin(*hi, da / (da - db));
-        if (*lo >= *hi) return 0;
-    }
-    return 1;
-}
-
-/* The slot stops bearing: its spring energy is released into friction. */
+/* The slot stops bearing: its spring energy is released into friction (3DEC drops the forces
+ * of a contact that ends). */
 static void edge_release(rd_sim *s, int e, double kA, double sA)
 {
     if (!s->eon[e]) return;
-    s->e_fric += 0.5 * (kA * s->edepth[e] * s->edepth[e] + rd_dot(s->efs[e], s->efs[e]) / sA);
+    s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
-    s->edepth[e] = 0;
+    s->edepth[e][0] = s->edepth[e][1] = 0;
     s->eon[e] = 0;
 }
 
-/* Force of edge slot e at world point q, depth d below o's plane k. */
-static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double q[3], double d, int k,
-                       double kA, double sA)
+/* One edge of t against o: plane k's depth along it is c[k] + sl[k] u, m (< 0: beyond k). */
+typedef struct edge_lines {
+    double c[RD_MAX_PLANES], sl[RD_MAX_PLANES];
+    int np;
+} edge_lines;
+
+/* The lines of edge a-b; da, db: the ends' distances to o's planes when already found, else
+ * NULL. */
+static void lines(const rd_sim *s, int o, const double *a, const double *b, const double *da, const double *db,
+                  edge_lines *L)
+{
+    L->np = s->poly[o].nf;
+    for (int k = 0; k < L->np; k++) {
+        double xa = da ? da[k] : dist(s, o, k, a), xb = db ? db[k] : dist(s, o, k, b);
+        L->c[k] = -xa;
+        L->sl[k] = xa - xb;
+    }
+}
+
+/* The deepest point of the edge inside o: position u along it, depth d (m), and the gradient g
+ * of d (see the header). */
+typedef struct deep {
+    double u, d, g[3];
+} deep;
+
+static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, deep *dp)
+{
+    const double (*n)[3] = s->wn + s->face0[o];
+    const double *c = L->c, *sl = L->sl;
+    int act = 0, prev = -1;
+    for (int k = 1; k < L->np; k++) /* the nearest plane at u = 0, the least rising of ties */
+        if (c[k] < c[act] || (c[k] == c[act] && sl[k] < sl[act])) act = k;
+    double u = 0;
+    for (;;) {
+        if (sl[act] < -flat) { /* falling: the maximum is here */
+            dp->u = u;
+            dp->d = c[act] + sl[act] * u;
+            if (prev < 0) { rd_copy3(n[act], dp->g); return; }
+            double sp = sl[prev], sm = sl[act];
+            for (int i = 0; i < 3; i++) dp->g[i] = (sp * n[act][i] - sm * n[prev][i]) / (sp - sm);
+            return;
+        }
+        /* the next breakpoint: the first plane of smaller slope to cross the active one, at
+           u = gap / rate (compared as cross products: rates are positive) */
+        double gn = 1, rn = 0, un = INFINITY;
+        int next = -1;
+        for (int k = 0; k < L->np; k++) {
+            double rate = sl[act] - sl[k];
+            if (!(rate > 0)) continue;
+            double gap = c[k] - c[act], lhs = gap * rn, rhs = gn * rate;
+            if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) { gn = gap; rn = rate; next = k; }
+        }
+        if (next >= 0) un = gn / rn;
+        if (sl[act] <= flat) { /* level: the middle of the level part */
+            dp->u = 0.5 * (u + fmin(un, 1.0));
+            dp->d = c[act] + sl[act] * dp->u;
+            rd_copy3(n[act], dp->g);
+            return;
+        }
+        if (next < 0 || un >= 1) { /* rising to the end b */
+            dp->u = 1;
+            dp->d = c[act] + sl[act];
+            rd_copy3(n[act], dp->g);
+            return;
+        }
+        prev = act;
+        act = next;
+        u = fmax(u, un);
+    }
+}
+
+/* Force of edge slot e at world point q: the normal spring fn = kA * stretch against the depth
+ * gradient g, and the Coulomb shear on the plane normal to g. */
+static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double q[3],
+                       const double g[3], double stretch, double kA, double sA)
 {
     const int o = sd->owner, t = sd->other;
-    const double *n = s->wn[s->face0[o] + k];
-    double ro[3], rt[3], vr[3], tmp[3];
-    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; }
+    double ro[3], rt[3], vr[3], tmp[3], gn = rd_norm(g), n[3];
+    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
     rd_law_relative_velocity(s, o, t, ro, rt, vr);
-    double *fs = s->efs[e], fn = kA * d;
-    rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * j->tan_phi, &s->e_fric);
-    double F[3] = {-fn * n[0] + fs[0], -fn * n[1] + fs[1], -fn * n[2] + fs[2]};
+    double *fs = s->efs[e], fn = kA * stretch;
+    rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
+    double F[3] = {-fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2]};
     rd_axpy(1.0, F, s->f[o]);
     rd_cross(ro, F, tmp);
     rd_axpy(1.0, tmp, s->tq[o]);
@@ -116,11 +198,151 @@ static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, c
         rd_cross(rt, F, tmp);
         rd_axpy(-1.0, tmp, s->tq[t]);
     }
-    s->edepth[e] = d;
-    s->eon[e] = 1;
+    s->edepth[e][0] = stretch;
 }
 
-void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd)
+/* Per vertex of t, found once per side and step when an edge needs it: its distances to o's
+ * planes (rd_sim.cv_dist of t's side where t carries points, else NULL: found with dist()),
+ * and its depth inside o below its nearest plane (< 0 outside: minus its distance beyond the
+ * plane it is most beyond) and that plane. */
+typedef struct vinfo {
+    const double *dist;
+    const uint64_t *mask; /* rd_sim.cv_mask of t's side, with dist */
+    int np, nw;           /* o's planes, and the mask words they use */
+    double tol;           /* the contact band, m */
+    unsigned char code[RD_EDGE_MAX_VERTS]; /* against o's box */
+    unsigned char done[RD_EDGE_MAX_VERTS];
+    short out[RD_EDGE_MAX_VERTS]; /* vertex_out's answer, once found (-2 before) */
+    short k[RD_EDGE_MAX_VERTS];
+    double d[RD_EDGE_MAX_VERTS];
+} vinfo;
+
+/* The plane of o that t's vertex v lies farthest beyond, among those it lies beyond by more
+ * than the contact band (contact.c's masks); RD_MAX_PLANES when none (v lies within the band
+ * of o: a vertex subcontact holds it), -1 when not known. */
+static int vertex_out(const rd_sim *s, int t, vinfo *vi, int v)
+{
+    if (vi->out[v] != -2) return vi->out[v];
+    vi->out[v] = -1;
+    if (!vi->mask) return -1;
+    int slot = s->cv_slot[s->vert0[t] + v];
+    if (slot < 0) return -1;
+    const uint64_t *mk = vi->mask + (size_t)slot * 2 * RD_MASK_WORDS;
+    const double *row = vi->dist + (size_t)slot * (size_t)vi->np;
+    int q = RD_MAX_PLANES;
+    for (int w = 0; w < vi->nw; w++)
+        for (uint64_t m = mk[w]; m; m &= m - 1) {
+            int k = 64 * w + __builtin_ctzll(m);
+            if (q == RD_MAX_PLANES || row[k] > row[q]) q = k;
+        }
+    vi->out[v] = (short)q;
+    return q;
+}
+
+/* Whether t's vertices va and vb (both with masks) lie beyond one plane of o by more than the
+ * band: the whole edge does. */
+static int beyond_one(const rd_sim *s, int t, const vinfo *vi, int va, int vb)
+{
+    const uint64_t *ma = vi->mask + (size_t)s->cv_slot[s->vert0[t] + va] * 2 * RD_MASK_WORDS;
+    const uint64_t *mb = vi->mask + (size_t)s->cv_slot[s->vert0[t] + vb] * 2 * RD_MASK_WORDS;
+    for (int w = 0; w < vi->nw; w++)
+        if (ma[w] & mb[w]) return 1;
+    return 0;
+}
+
+static const double *vertex_row(const rd_sim *s, int t, const vinfo *vi, int v)
+{
+    if (!vi->dist) return NULL;
+    int slot = s->cv_slot[s->vert0[t] + v];
+    return slot < 0 ? NULL : vi->dist + (size_t)slot * (size_t)vi->np;
+}
+
+/* Distance of t's vertex v to o's plane k, m. */
+static double vertex_dist(const rd_sim *s, int o, int t, const vinfo *vi, int v, int k)
+{
+    const double *row = vertex_row(s, t, vi, v);
+    return row ? row[k] : dist(s, o, k, s->wv[s->vert0[t] + v]);
+}
+
+static void vertex_depth(const rd_sim *s, int o, int t, vinfo *vi, int v)
+{
+    if (vi->done[v]) return;
+    const double *row = vertex_row(s, t, vi, v), *x = s->wv[s->vert0[t] + v];
+    double dmax = -INFINITY;
+    int kmax = 0;
+    if (row) {
+        for (int k = 0; k < vi->np; k++)
+            if (row[k] > dmax) { dmax = row[k]; kmax = k; }
+    } else {
+        for (int k = 0; k < vi->np; k++) {
+            double e = dist(s, o, k, x);
+            if (e > dmax) { dmax = e; kmax = k; }
+        }
+    }
+    vi->d[v] = -dmax;
+    vi->k[v] = (short)kmax;
+    vi->done[v] = 1;
+}
+
+/* Whether edge (va, vb) may bear, from bounds that need no walk. The depth along the edge is at
+ * most that below any one plane, a line; so when the depth below an end's nearest plane stays
+ * at most `floor` along the edge (the deeper end's depth, at least 0, where the ends are
+ * points; 0 otherwise), or the smaller of the two ends' nearest planes' lines does, it cannot
+ * exceed floor. */
+static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, int t_points)
+{
+    if (vi->code[va] & vi->code[vb]) return 0; /* both beyond one side of o's box */
+    if (t_points) {
+        /* ends within the contact band bear as vertex subcontacts (contact.c): an edge between
+           two of them is held by them; so is one whose part inside o lies within the band of
+           its held end (it leaves o through plane q, which its other end lies beyond), or whose
+           depth falls from its held end along q's line (q is that end's nearest plane) */
+        int qa = vertex_out(s, t, vi, va), qb = vertex_out(s, t, vi, vb);
+        if (qa == RD_MAX_PLANES && qb == RD_MAX_PLANES) return 0;
+        if (qa >= 0 && qb >= 0 && beyond_one(s, t, vi, va, vb)) return 0;
+        int in = qa == RD_MAX_PLANES ? va : qb == RD_MAX_PLANES ? vb : -1;
+        int q = in == va ? qb : qa;
+        if (in >= 0 && q >= 0) {
+            const double *ri = vertex_row(s, t, vi, in), *ro = vertex_row(s, t, vi, in == va ? vb : va);
+            const double *xa = s->wv[s->vert0[t] + va], *xb = s->wv[s->vert0[t] + vb];
+            double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
+            double din = -ri[q], dout = -ro[q]; /* depths below q: dout < -band */
+            double part = din > 0 ? din : 0, span = vi->tol * (din - dout); /* length * part / span */
+            if (rd_dot(ab, ab) * part * part <= span * span) return 0; /* the part inside, <= tol */
+            int nearest = 1;
+            for (int k = 0; k < vi->np; k++) nearest &= ri[k] <= ri[q];
+            if (nearest) return 0;
+        }
+    }
+    int ends[2] = {va, vb};
+    for (int i = 0; i < 2; i++) { /* an end in o's box: its nearest plane's line */
+        int x = ends[i], y = ends[1 - i];
+        if (vi->code[x]) continue;
+        vertex_depth(s, o, t, vi, x);
+        double dx = vi->d[x], lb = t_points && dx > 0 ? dx : 0; /* at most floor */
+        if (dx <= lb && -vertex_dist(s, o, t, vi, y, vi->k[x]) <= lb) return 0;
+    }
+    vertex_depth(s, o, t, vi, va);
+    vertex_depth(s, o, t, vi, vb);
+    int ka = vi->k[va], kb = vi->k[vb];
+    double da = vi->d[va], db = vi->d[vb], floor = t_points ? (da > db ? da : db) : 0;
+    floor = floor > 0 ? floor : 0;
+    /* one plane nearest at both ends: the depth is at most its line, deepest at an end */
+    if (ka == kb) return (da > db ? da : db) > floor;
+    /* min of plane ka's line (da at a, c1 at b) and plane kb's (c2 at a, db at b) */
+    double a1 = da, b1 = -vertex_dist(s, o, t, vi, vb, ka), a2 = -vertex_dist(s, o, t, vi, va, kb), b2 = db;
+    double s1 = b1 - a1, s2 = b2 - a2, top;
+    if (s1 <= 0) top = a1 < a2 ? a1 : a2;          /* the first falls from a */
+    else if (s2 >= 0) top = b1 < b2 ? b1 : b2;     /* the second rises to b */
+    else {
+        double u = (a2 - a1) / (s1 - s2);
+        u = u < 0 ? 0 : u > 1 ? 1 : u;
+        top = a1 + s1 * u;
+    }
+    return top > floor;
+}
+
+void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *dist, const uint64_t *mask)
 {
     if (sd->nedge == 0) return;
     const int o = sd->owner, t = sd->other;
@@ -128,43 +350,51 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd)
     if (pt->nv > RD_EDGE_MAX_VERTS) return;
     const rd_joint *j = &s->joint[pr->joint];
     double A = sd->weight * sd->edge_area, kA = j->kn * A, sA = j->ks * A;
-    double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
-    double flat = RD_EDGE_FLAT * tol; /* depths closer than this are level */
-    unsigned char code[RD_EDGE_MAX_VERTS]; /* vertex of t against o's box */
+    double flat = RD_EDGE_FLAT * RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
+    int t_points = pr->nside == 2; /* t's vertices are subcontact points against o */
+    vinfo vi;
+    vi.dist = dist;
+    vi.mask = mask;
+    vi.tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
+    vi.np = s->poly[o].nf;
+    vi.nw = (vi.np + 63) / 64;
     double box[6]; /* o's box, grown by the broad phase's margin */
     rd_pairs_box_now(s, o, box);
-    for (int v = 0; v < pt->nv; v++) code[v] = (unsigned char)outcode(box, s->wv[s->vert0[t] + v]);
-    int e = sd->edge0;
-    for (int f = 0; f < pt->nf; f++) {
-        const int *ix = pt->fidx + pt->fstart[f];
-        for (int i = 0; i < pt->flen[f]; i++) {
-            int va = ix[i], vb = ix[(i + 1) % pt->flen[f]];
-            if (va > vb) continue;
-            double lo, hi;
-            const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
-            /* both ends beyond one side of o's box */
-            if ((code[va] & code[vb]) || !clip(s, o, a, b, &lo, &hi)) {
-                edge_release(s, e++, kA, sA);
-                continue;
-            }
-            double q[3], d = -INFINITY;
-            int k = 0;
-            for (int it = 0; it < RD_EDGE_SEARCH; it++) { /* the deepest point of the clipped part */
-                double u1 = lo + (hi - lo) / 3, u2 = hi - (hi - lo) / 3, x1[3], x2[3];
-                int k1, k2;
-                for (int c = 0; c < 3; c++) { x1[c] = a[c] + u1 * (b[c] - a[c]); x2[c] = a[c] + u2 * (b[c] - a[c]); }
-                double d1 = depth_at(s, o, x1, &k1), d2 = depth_at(s, o, x2, &k2);
-                if (d1 < d2 - flat) lo = u1;
-                else if (d2 < d1 - flat) hi = u2;
-                else { lo = u1; hi = u2; } /* level (an edge lying in a face): its middle */
-            }
-            double u = 0.5 * (lo + hi);
-            for (int c = 0; c < 3; c++) q[c] = a[c] + u * (b[c] - a[c]);
-            d = depth_at(s, o, q, &k);
-            if (d > 0) edge_force(s, sd, j, e, q, d, k, kA, sA);
-            else edge_release(s, e, kA, sA);
-            e++;
+    for (int v = 0; v < pt->nv; v++) {
+        vi.code[v] = (unsigned char)outcode(box, s->wv[s->vert0[t] + v]);
+        vi.done[v] = 0;
+        vi.out[v] = -2;
+    }
+    edge_lines L;
+    const int (*ev)[2] = s->edge_v + s->edge_v0[t];
+    for (int e = sd->edge0, i = 0; i < sd->nedge; e++, i++) {
+        int va = ev[i][0], vb = ev[i][1];
+        if ((vi.code[va] & vi.code[vb]) || (!s->eon[e] && !may_bear(s, o, t, &vi, va, vb, t_points))) {
+            edge_release(s, e, kA, sA); /* wholly beyond one side of o's box, or cannot start */
+            continue;
         }
+        const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
+        lines(s, o, a, b, vertex_row(s, t, &vi, va), vertex_row(s, t, &vi, vb), &L);
+        deep dp;
+        deepest(s, o, &L, flat, &dp);
+        int fresh = !s->eon[e];
+        if (fresh) {
+            /* onset where the edge lies deeper than both ends (points) or enters o (no points):
+               the spring starts from here (from 0 where t carries no points: its edge starts
+               bearing as it enters o) */
+            double floor = t_points ? (vi.d[va] > vi.d[vb] ? vi.d[va] : vi.d[vb]) : 0;
+            if (!(dp.d > (floor > 0 ? floor : 0))) continue;
+            s->eon[e] = 1;
+            s->edepth[e][1] = t_points ? dp.d : 0;
+        }
+        /* the episode lasts while the spring is compressed: it ends at zero stretch */
+        double q[3], stretch = dp.d - s->edepth[e][1];
+        if (!(stretch > 0) && !fresh) {
+            edge_release(s, e, kA, sA);
+            continue;
+        }
+        for (int c = 0; c < 3; c++) q[c] = a[c] + dp.u * (b[c] - a[c]);
+        edge_force(s, sd, j, e, q, dp.g, stretch > 0 ? stretch : 0, kA, sA);
     }
 }
 
@@ -172,7 +402,7 @@ void rd_edge_reset(rd_sim *s, const rd_side *sd)
 {
     for (int e = sd->edge0; e < sd->edge0 + sd->nedge; e++) {
         s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
-        s->edepth[e] = 0;
+        s->edepth[e][0] = s->edepth[e][1] = 0;
         s->eon[e] = 0;
     }
 }
@@ -182,6 +412,6 @@ double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side 
     const rd_joint *j = &s->joint[pr->joint];
     double A = sd->weight * sd->edge_area, kA = j->kn * A, sA = j->ks * A, en = 0;
     for (int e = sd->edge0; e < sd->edge0 + sd->nedge; e++)
-        if (s->eon[e]) en += 0.5 * (kA * s->edepth[e] * s->edepth[e] + rd_dot(s->efs[e], s->efs[e]) / sA);
+        if (s->eon[e]) en += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     return en;
 }

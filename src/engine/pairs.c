@@ -93,10 +93,9 @@ static int pair_create(rd_sim *s, int a, int b)
         reserve((void **)&s->fs, &s->cap_state, s->nstate + ns, sizeof *s->fs) ||
         reserve((void **)&s->face_nactive, &s->cap_face_state, s->nface_state + nf, sizeof *s->face_nactive))
         return -1;
-    /* edge subcontacts: the other body's edges, where both bodies are convex and the other one
-       carries no points (a fixed pedestal; edge.c says why not between two free bodies) */
-    int ea = pa && !pb && s->convex[a] ? rd_edge_count(&s->poly[b]) : 0;
-    int eb = pb && !pa && s->convex[b] ? rd_edge_count(&s->poly[a]) : 0;
+    /* edge subcontacts (edge.c): the other body's edges, where both bodies are convex */
+    int ea = pa && s->convex[a] ? rd_edge_count(&s->poly[b]) : 0;
+    int eb = pb && s->convex[b] ? rd_edge_count(&s->poly[a]) : 0;
     if (reserve((void **)&s->efs, &s->cap_efs, s->nedge_state + ea + eb, sizeof *s->efs) ||
         reserve((void **)&s->edepth, &s->cap_edepth, s->nedge_state + ea + eb, sizeof *s->edepth) ||
         reserve((void **)&s->eon, &s->cap_eon, s->nedge_state + ea + eb, sizeof *s->eon))

@@ -453,7 +453,7 @@ static int share_points(rd_sim *s, rd_error *err)
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
-    if (build_points(s, err) || build_step_vertices(s, err) || rd_perturb_points(s, err) ||
+    if (build_points(s, err) || build_step_vertices(s, err) || rd_edge_init(s, err) || rd_perturb_points(s, err) ||
         rd_merge_points(s, err) || share_points(s, err) || rd_pairs_init(s, err))
         return -1;
     return 0;

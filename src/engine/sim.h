@@ -168,6 +168,8 @@ struct rd_sim {
                               distances once per side and step) */
     int *cv;               /* world vertex indices */
     int *cv_slot;          /* [vertices] position of a vertex in its body's cv list, -1 if absent */
+    int *edge_v0;          /* [bodies + 1] first entry of a body's edges in edge_v (edge.c) */
+    int (*edge_v)[2];      /* each edge of every body once: its vertices (body-local, a < b) */
     double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
     uint64_t *cv_mask;     /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
@@ -234,7 +236,8 @@ struct rd_sim {
     /* edge subcontacts (edge.c), grown with the pairs */
     int nedge_state, cap_efs, cap_edepth, cap_eon;
     double (*efs)[3];      /* shear force on the owner, ground frame, N */
-    double *edepth;        /* depth while bearing, m */
+    double (*edepth)[2];   /* while bearing: elastic stretch (depth less the set) and the set
+                              taken at the contact's onset, m */
     unsigned char *eon;    /* 1 while bearing */
 
     /* time */
@@ -321,7 +324,9 @@ double rd_contact_elastic_energy(const rd_sim *s);
 
 /* edge.c */
 int rd_edge_count(const rd_poly *p);
-void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd);
+int rd_edge_init(rd_sim *s, rd_error *err);
+void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *dist,
+                  const uint64_t *mask);
 void rd_edge_reset(rd_sim *s, const rd_side *sd);
 double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd);
 
