@@ -223,7 +223,9 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, i
     }
 }
 
-/* Force of one subcontact on the owner; returns 1 if it carries force. */
+/* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
+ * repeats this law's common cases expression for expression: a change here must be made there
+ * too (the outputs of every shipped scene are bit-identical between the two paths). */
 static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
     unsigned char *fl = &s->pstate[st];
