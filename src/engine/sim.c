@@ -372,7 +372,7 @@ rd_status rd_sim_run(rd_sim *s)
     rd_progress_report(s->t, end);
     rd_monitor_finish(s);
     rd_joints_sample(s);
-    rd_energy_sample(s);
+    rd_energy_sample_end(s);
     judge_energy(s);
     rd_observe_end(s);
     return s->status;

@@ -344,6 +344,7 @@ double rd_timestep_critical(const rd_sim *s);
 /* energy.c */
 void rd_energy_step(rd_sim *s);
 void rd_energy_sample(rd_sim *s);
+void rd_energy_sample_end(rd_sim *s);
 
 /* rest.c: the free-vibration tail (`model solve time T tail D`) */
 double rd_rest_end(rd_sim *s);
