@@ -461,30 +461,64 @@ static void side_planes(const rd_sim *s, side_ctx *c)
 
 /* Signed distances of the owner's candidate-face vertices (rd_sim.cv) to the other body's
  * planes, each once per side and step (faces share their vertices), and each vertex's plane
- * masks (side_ctx.mask), so that face_planes needs one AND and one OR per vertex and word. */
-static void vertex_distances(const rd_sim *s, side_ctx *c)
+ * masks (side_ctx.mask), so that face_planes needs one AND and one OR per vertex and word.
+ * Far planes: against a fixed other body (a pedestal), a plane that every candidate vertex
+ * cleared by more than RD_FAR_BANDS bands below reach when last measured (rd_side.far, the
+ * least clearance far_clear, the owner's pose far_pose) is skipped while the owner's vertices
+ * cannot have moved (rd_pairs_drift) more than far_clear - tol / 2 since: each vertex then still
+ * lies below reach by tol / 2 (far more than round-off), so both of its bits for that plane are 0
+ * (reach < out_band) as the full loop would make them, and no face is culled on that plane, so
+ * face_planes never reads the distance left out. The shipped PBR computes 1 of its pedestal's 6
+ * planes per vertex and step. */
+#define RD_FAR_BANDS 2.0
+static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
     const double *wd = s->wd + s->face0[c->t];
-    const int np = c->np;
+    const int np = c->np, fixed = s->fixed[c->t];
     const double out_band = c->out_band, reach = c->reach;
-    /* the planes as structure of arrays in locals (nothing aliases them): the distance loop
-       vectorises, each lane the expression of rd_dot(n, x) - d */
+    const int reuse = fixed && sd->far_clear > 0 &&
+                      rd_pairs_drift(s, c->o, sd->far_pose) <= sd->far_clear - 0.5 * c->tol;
+    /* the planes measured (all, or the near ones) as structure of arrays in locals (nothing
+       aliases them): the distance loop vectorises, each lane the expression of rd_dot(n, x) - d */
+    int near[RD_MAX_PLANES], nn = 0;
     double nx[RD_MAX_PLANES], ny[RD_MAX_PLANES], nz[RD_MAX_PLANES], nd[RD_MAX_PLANES];
-    for (int q = 0; q < np; q++) { nx[q] = wn[q][0]; ny[q] = wn[q][1]; nz[q] = wn[q][2]; nd[q] = wd[q]; }
+    double dl[RD_MAX_PLANES], dmax[RD_MAX_PLANES];
+    for (int q = 0; q < np; q++) {
+        if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
+        nx[nn] = wn[q][0]; ny[nn] = wn[q][1]; nz[nn] = wn[q][2]; nd[nn] = wd[q];
+        dmax[nn] = -INFINITY;
+        near[nn++] = q;
+    }
     double *restrict d = s->cv_dist;
     uint64_t *restrict mk = s->cv_mask;
     c->nw = (np + 63) / 64;
     for (int k = s->cv0[c->o]; k < s->cv0[c->o + 1]; k++, d += np, mk += 2 * RD_MASK_WORDS) {
         const double *x = s->wv[s->cv[k]];
         const double x0 = x[0], x1 = x[1], x2 = x[2];
-        for (int q = 0; q < np; q++) d[q] = nx[q] * x0 + ny[q] * x1 + nz[q] * x2 - nd[q];
+        for (int i = 0; i < nn; i++) dl[i] = nx[i] * x0 + ny[i] * x1 + nz[i] * x2 - nd[i];
         for (int w = 0; w < 2 * RD_MASK_WORDS; w++) mk[w] = 0;
-        for (int q = 0; q < np; q++) {
+        for (int i = 0; i < nn; i++) {
+            int q = near[i];
             uint64_t bit = (uint64_t)1 << (q & 63);
-            if (!(d[q] <= out_band)) mk[q >> 6] |= bit;       /* NaN too: min skips it */
-            if (d[q] > reach) mk[RD_MASK_WORDS + (q >> 6)] |= bit; /* NaN not: max skips it */
+            d[q] = dl[i];
+            if (!(dl[i] <= out_band)) mk[q >> 6] |= bit;       /* NaN too: min skips it */
+            if (dl[i] > reach) mk[RD_MASK_WORDS + (q >> 6)] |= bit; /* NaN not: max skips it */
+            if (!(dl[i] <= dmax[i])) dmax[i] = dl[i];           /* NaN sticks: never far */
         }
+    }
+    if (fixed && !reuse) { /* every plane measured: the far ones, from this pose */
+        sd->far_clear = INFINITY;
+        for (int w = 0; w < RD_MASK_WORDS; w++) sd->far[w] = 0;
+        for (int q = 0; q < np; q++) { /* (near[q] == q here) */
+            double clear = reach - dmax[q];
+            if (!(clear > RD_FAR_BANDS * c->tol)) continue;
+            sd->far[q >> 6] |= (uint64_t)1 << (q & 63);
+            sd->far_clear = rd_min(sd->far_clear, clear);
+        }
+        if (!isfinite(sd->far_clear)) sd->far_clear = 0; /* none far (or no vertex) */
+        rd_copy3(s->x[c->o], sd->far_pose);
+        for (int k = 0; k < 4; k++) sd->far_pose[3 + k] = s->q[c->o][k];
     }
     c->dist = s->cv_dist;
     c->mask = s->cv_mask;
@@ -549,7 +583,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     rd_copy3(s->f[c.o], c.f_o); rd_copy3(s->tq[c.o], c.tq_o);
     rd_copy3(s->f[c.t], c.f_t); rd_copy3(s->tq[c.t], c.tq_t);
     side_planes(s, &c);
-    vertex_distances(s, &c);
+    vertex_distances(s, &c, sd);
     s->kin_epoch++;
     rd_watch *watch = rd_monitor_contact_watch(s, c.o, c.t);
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {

@@ -186,9 +186,12 @@ static void box_build(rd_sim *s, int i)
  * |x - x0| + |R - R0| rho, and for unit quaternions |R - R0| = 2 sin(theta / 2) <=
  * 2 min(|q - q0|, |q + q0|) (theta the rotation between the poses; |q - q0| = 2 sin(theta / 4)
  * when q . q0 >= 0). Both poses unchanged bit for bit: 0. */
-static double box_drift(const rd_sim *s, int i)
+static double box_drift(const rd_sim *s, int i) { return rd_pairs_drift(s, i, s->box_pose[i]); }
+
+/* Bound on the distance any hull vertex of body i (so any of its vertices) moved since it was at
+ * pose p (position, quaternion), m; see box_drift. */
+double rd_pairs_drift(const rd_sim *s, int i, const double p[7])
 {
-    const double *p = s->box_pose[i];
     double dx2 = 0, dm2 = 0, dp2 = 0, x2 = 0, x02 = 0;
     for (int k = 0; k < 3; k++) {
         double d = s->x[i][k] - p[k];

@@ -68,6 +68,10 @@ typedef struct rd_side {
     int edge0, nedge; /* the other body's edges as edge subcontacts (edge.c): first slot in
                          rd_sim.efs / edepth / eon, count (0: none) */
     double edge_area; /* tributary area of an edge subcontact: the owner's mean point area, m^2 */
+    uint64_t far[RD_MASK_WORDS]; /* planes of a fixed other body that the owner's candidate
+                                    vertices clear (contact.c: vertex_distances skips them) */
+    double far_clear;            /* their least clearance below reach when measured, m (0: none) */
+    double far_pose[7];          /* the owner's position and quaternion then */
 } rd_side;
 
 /* A pair of bodies that may touch: one or two sides, each the points of one body tested
@@ -315,6 +319,7 @@ void rd_history_step(rd_sim *s);
 int rd_pairs_init(rd_sim *s, rd_error *err);
 int rd_pairs_update(rd_sim *s);
 void rd_pairs_box_now(const rd_sim *s, int i, double box[6]);
+double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
 
 /* contact.c */
 int rd_contact_step(rd_sim *s);
