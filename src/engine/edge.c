@@ -47,8 +47,9 @@
 /* slopes of a plane's depth along an edge below this fraction of the contact band are level
  * (round-off of a 1 m body is 1e-16 m; 1e-9 of the 1 mm band is 1e-12 m) */
 #define RD_EDGE_FLAT 1e-9
-/* most vertices of a body whose edges are tested (a 128-sided drum has 256) */
+/* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
 #define RD_EDGE_MAX_VERTS 512
+#define RD_EDGE_MAX_EDGES 1024
 
 /* Edges of a convex polyhedron, each once: face f's side (a, b) with a < b. */
 int rd_edge_count(const rd_poly *p)
@@ -347,7 +348,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     if (sd->nedge == 0) return;
     const int o = sd->owner, t = sd->other;
     const rd_poly *pt = &s->poly[t];
-    if (pt->nv > RD_EDGE_MAX_VERTS) return;
+    if (pt->nv > RD_EDGE_MAX_VERTS || sd->nedge > RD_EDGE_MAX_EDGES) return;
     const rd_joint *j = &s->joint[pr->joint];
     double A = sd->weight * sd->edge_area, kA = j->kn * A, sA = j->ks * A;
     double flat = RD_EDGE_FLAT * RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
@@ -367,8 +368,14 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     }
     edge_lines L;
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
-    for (int e = sd->edge0, i = 0; i < sd->nedge; e++, i++) {
-        int va = ev[i][0], vb = ev[i][1];
+    const unsigned char *on = s->eon + sd->edge0;
+    int cand[RD_EDGE_MAX_EDGES], nc = 0;
+    for (int i = 0; i < sd->nedge; i++) { /* bearing, or not wholly beyond one side of o's box */
+        cand[nc] = i;
+        nc += on[i] | !(vi.code[ev[i][0]] & vi.code[ev[i][1]]);
+    }
+    for (int c = 0; c < nc; c++) {
+        int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
         if ((vi.code[va] & vi.code[vb]) || (!s->eon[e] && !may_bear(s, o, t, &vi, va, vb, t_points))) {
             edge_release(s, e, kA, sA); /* wholly beyond one side of o's box, or cannot start */
             continue;
