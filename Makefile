@@ -89,6 +89,16 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/librockdem-internal.a $(HEADERS)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $< $(BUILD)/librockdem-internal.a $(LDLIBS) -lcmocka -o $@
 
+# the program with the contact's steady path switched off (every point through the general
+# law): tests/cli/steady_path.sh checks that its outputs equal bin/rockdem's to the bit
+$(BUILD)/obj-general/engine/contact.o: src/engine/contact.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -DRD_STEADY_PATH=0 -c $< -o $@
+
+$(BUILD)/tests/rockdem-general: src/cli/main.c $(CLIOBJ) $(filter-out $(BUILD)/obj/engine/contact.o,$(LIBOBJ)) $(BUILD)/obj-general/engine/contact.o $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) src/cli/main.c $(filter %.o,$^) $(LDLIBS) -o $@
+
 run: $(BIN)/rockdem
 	$(BIN)/rockdem run scenarios/default.dat
 
@@ -96,7 +106,7 @@ run: $(BIN)/rockdem
 scenarios/pbr.obj: tools/make_pbr.py
 	/usr/bin/python3 tools/make_pbr.py --seed 1 -o $@
 
-test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed $(TESTBIN) scenarios/pbr.obj
+test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed $(TESTBIN) $(BUILD)/tests/rockdem-general scenarios/pbr.obj
 	@bash tests/run.sh $(BUILD) $(BIN)
 
 # the full validation ladder (tools/validate/ladder.py; `make test` runs its fast depth): writes

@@ -52,6 +52,12 @@
 /* A plane counts as approached when the point moves into it faster than this fraction of its
  * relative speed (below, the motion is tangential: round-off must not pick a side face). */
 #define RD_APPROACH_FRACTION 1e-3
+/* steady_point is a pure shortcut of subcontact. Built with -DRD_STEADY_PATH=0 every point takes
+ * subcontact, and every output must be bit-identical: tests/cli/steady_path.sh checks that on
+ * scenes that visit every branch (bed, corners, late faces, slip, bonds, dashpots, mesh, drums). */
+#ifndef RD_STEADY_PATH
+#define RD_STEADY_PATH 1
+#endif
 
 /* The other body's face planes expressed in the owner's body frame, so a point's signed
  * distances need no transform: s_k(p) = n_k . p - d_k (> 0: outside plane k). */
@@ -225,7 +231,7 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, i
 
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
- * too (the outputs of every shipped scene are bit-identical between the two paths). */
+ * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
 static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
     unsigned char *fl = &s->pstate[st];
@@ -597,7 +603,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
         c.area = 0;
         for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
-            int bears = steady_point(s, &c, j, pt, st);
+            int bears = RD_STEADY_PATH ? steady_point(s, &c, j, pt, st) : -1;
             if (bears < 0) bears = subcontact(s, &c, j, pt, st);
             if (bears) {
                 na++;
