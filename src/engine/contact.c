@@ -211,7 +211,6 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, i
                                                        double fn, const double u[3], const double fs[3],
                                                        const double ro[3], const double rt[3])
 {
-    double tmp[3];
     rd_copy3(fs, s->fs[st]);
     s->pj[st][0] = fn;
     double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
@@ -219,14 +218,7 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, i
     c->area += A;
 
     double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
-    rd_axpy(1.0, F, c->f_o);
-    rd_cross(ro, F, tmp);
-    rd_axpy(1.0, tmp, c->tq_o);
-    if (c->t_free) {
-        rd_axpy(-1.0, F, c->f_t);
-        rd_cross(rt, F, tmp);
-        rd_axpy(-1.0, tmp, c->tq_t);
-    }
+    rd_law_apply(F, ro, rt, c->f_o, c->tq_o, c->t_free, c->f_t, c->tq_t);
 }
 
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)

@@ -185,20 +185,13 @@ static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, c
                        const double g[3], double stretch, double kA, double sA)
 {
     const int o = sd->owner, t = sd->other;
-    double ro[3], rt[3], vr[3], tmp[3], gn = rd_norm(g), n[3];
+    double ro[3], rt[3], vr[3], gn = rd_norm(g), n[3];
     for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
     rd_law_relative_velocity(s, o, t, ro, rt, vr);
     double *fs = s->efs[e], fn = kA * stretch;
     rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
     double F[3] = {-fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2]};
-    rd_axpy(1.0, F, s->f[o]);
-    rd_cross(ro, F, tmp);
-    rd_axpy(1.0, tmp, s->tq[o]);
-    if (!s->fixed[t]) {
-        rd_axpy(-1.0, F, s->f[t]);
-        rd_cross(rt, F, tmp);
-        rd_axpy(-1.0, tmp, s->tq[t]);
-    }
+    rd_law_apply(F, ro, rt, s->f[o], s->tq[o], !s->fixed[t], s->f[t], s->tq[t]);
     s->edepth[e][0] = stretch;
 }
 

@@ -1,4 +1,4 @@
-/* rockdem (private) — the joint law's kinematics and Coulomb shear, shared by the vertex
+/* rockdem (private) — the joint law's kinematics, Coulomb shear and force sums, shared by the vertex
  * subcontacts (contact.c) and the edge subcontacts (edge.c).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
@@ -24,6 +24,23 @@ static inline void rd_law_relative_velocity(const rd_sim *s, int o, int t, const
         rd_cross(s->w[t], rt, tmp);
         rd_axpy(-1.0, tmp, vr);
         rd_axpy(-1.0, s->v[t], vr);
+    }
+}
+
+/* Force F (N) of a subcontact at offsets ro (from owner o's centre) and rt (from the other body
+ * t's centre), m: F and ro x F added to o's force and torque sums (f_o, tq_o), -F and -(rt x F)
+ * to t's (f_t, tq_t) when t is free (t_free; a fixed body takes no force). */
+static inline void rd_law_apply(const double F[3], const double ro[3], const double rt[3], double f_o[3],
+                                double tq_o[3], int t_free, double f_t[3], double tq_t[3])
+{
+    double tmp[3];
+    rd_axpy(1.0, F, f_o);
+    rd_cross(ro, F, tmp);
+    rd_axpy(1.0, tmp, tq_o);
+    if (t_free) {
+        rd_axpy(-1.0, F, f_t);
+        rd_cross(rt, F, tmp);
+        rd_axpy(-1.0, tmp, tq_t);
     }
 }
 
