@@ -149,19 +149,6 @@ static int pair_create(rd_sim *s, int a, int b)
  * below any margin (5 % of a body's radius). */
 #define RD_BOX_ROUNDOFF 1e-12
 
-/* Box of body i's hull vertices (world coordinates in wv) grown by the margin. */
-static void box_of_vertices(const rd_sim *s, int i, double bx[6])
-{
-    bx[0] = bx[1] = bx[2] = INFINITY;
-    bx[3] = bx[4] = bx[5] = -INFINITY;
-    for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++)
-        for (int k = 0, v = s->hv[e]; k < 3; k++) {
-            bx[k] = rd_min(bx[k], s->wv[v][k]);
-            bx[k + 3] = rd_max(bx[k + 3], s->wv[v][k]);
-        }
-    for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
-}
-
 /* World position of vertex v of body i in its current pose (rd_body_refresh's expression). */
 static void vertex_now(const rd_sim *s, int i, int v, double w[3])
 {
@@ -169,13 +156,32 @@ static void vertex_now(const rd_sim *s, int i, int v, double w[3])
     rd_axpy(1.0, s->x[i], w);
 }
 
-/* Rebuild body i's box in its current pose. A free non-convex body's step leaves its hull
- * vertices alone (integrate.c): they are brought up to date here. */
+/* Box of body i's hull vertices in its current pose, grown by the margin, m. A free non-convex
+ * body's step leaves its hull vertices alone (integrate.c): their positions are found here, and
+ * stored into store (rd_sim.wv) unless it is NULL. */
+static void hull_box(const rd_sim *s, int i, double (*store)[3], double bx[6])
+{
+    int stale = !s->convex[i] && !s->fixed[i];
+    bx[0] = bx[1] = bx[2] = INFINITY;
+    bx[3] = bx[4] = bx[5] = -INFINITY;
+    for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) {
+        int v = s->hv[e];
+        double now[3];
+        const double *w = s->wv[v];
+        if (stale) {
+            double *to = store ? store[v] : now;
+            vertex_now(s, i, v, to);
+            w = to;
+        }
+        for (int k = 0; k < 3; k++) { bx[k] = rd_min(bx[k], w[k]); bx[k + 3] = rd_max(bx[k + 3], w[k]); }
+    }
+    for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
+}
+
+/* Rebuild body i's box in its current pose. */
 static void box_build(rd_sim *s, int i)
 {
-    if (!s->convex[i] && !s->fixed[i])
-        for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) vertex_now(s, i, s->hv[e], s->wv[s->hv[e]]);
-    box_of_vertices(s, i, s->aabb[i]);
+    hull_box(s, i, s->wv, s->aabb[i]);
     rd_copy3(s->x[i], s->box_pose[i]);
     for (int k = 0; k < 4; k++) s->box_pose[i][3 + k] = s->q[i][k];
     s->box_drift[i] = 0;
@@ -213,16 +219,7 @@ double rd_pairs_drift(const rd_sim *s, int i, const double p[7])
 void rd_pairs_box_now(const rd_sim *s, int i, double bx[6])
 {
     if (s->box_drift[i] == 0) { memcpy(bx, s->aabb[i], 6 * sizeof *bx); return; }
-    bx[0] = bx[1] = bx[2] = INFINITY;
-    bx[3] = bx[4] = bx[5] = -INFINITY;
-    for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) {
-        double w[3];
-        int v = s->hv[e];
-        if (!s->convex[i] && !s->fixed[i]) vertex_now(s, i, v, w);
-        else rd_copy3(s->wv[v], w);
-        for (int k = 0; k < 3; k++) { bx[k] = rd_min(bx[k], w[k]); bx[k + 3] = rd_max(bx[k + 3], w[k]); }
-    }
-    for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
+    hull_box(s, i, NULL, bx);
 }
 
 static int boxes_overlap(const double *p, const double *q)
@@ -288,8 +285,7 @@ int rd_pairs_update(rd_sim *s)
     s->stamp++;
     int sweeping = s->nb > RD_BRUTE_MAX;
     for (int i = 0; i < s->nb; i++) {
-        /* a fixed body never moves: its first box stays exact */
-        double d = s->fixed[i] && s->box_drift[i] == 0 && s->box_pose[i][0] == s->box_pose[i][0] ? 0.0 : box_drift(s, i);
+        double d = box_drift(s, i); /* 0 for a body that has not moved (a fixed one) */
         s->box_drift[i] = d;
         if (!(d <= s->margin) || (sweeping && d > 0)) box_build(s, i);
     }
