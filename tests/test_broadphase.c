@@ -41,6 +41,25 @@ static rd_sim *make(const char *text)
     return s;
 }
 
+/* The shipped PBR (tools/make_pbr.py, seed 1) seated on a fixed 1.2 m pedestal, with `more`
+ * scenario lines (other bodies) after it. */
+static rd_sim *make_pbr(const char *more)
+{
+    char obj[96], cmd[256], text[1024];
+    snprintf(obj, sizeof obj, "%s.obj", out);
+    snprintf(cmd, sizeof cmd, "/usr/bin/python3 tools/make_pbr.py --seed 1 -o %s > /dev/null", obj);
+    assert_int_equal(system(cmd), 0);
+    snprintf(text, sizeof text,
+             "block create brick size 1.2 1.2 0.3 position 0 0 -0.15 fixed name pedestal\n"
+             "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
+             "%s"
+             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
+             "model solve time 0.01\n", obj, more);
+    rd_sim *s = make(text);
+    unlink(obj);
+    return s;
+}
+
 static uint64_t rng = 88172645463325252u;
 static double uniform(void) /* xorshift64, [-1, 1) */
 {
@@ -155,19 +174,8 @@ static long check_walk(rd_sim *s, double box0[][3], double spread)
 static void test_direct_pairs_exact(void **state)
 {
     (void)state;
-    char obj[96], cmd[256], text[1024];
-    snprintf(obj, sizeof obj, "%s.obj", out);
-    snprintf(cmd, sizeof cmd, "/usr/bin/python3 tools/make_pbr.py --seed 1 -o %s > /dev/null", obj);
-    assert_int_equal(system(cmd), 0);
-    snprintf(text, sizeof text,
-             "block create brick size 1.2 1.2 0.3 position 0 0 -0.15 fixed name pedestal\n"
-             "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
-             "block create brick size 0.3 0.3 0.5 position 0.75 0 0.25 name b1\n"
-             "block create brick size 0.3 0.3 0.5 position 0 0.75 0.25 name b2\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
-             "model solve time 0.01\n", obj);
-    rd_sim *s = make(text);
-    unlink(obj);
+    rd_sim *s = make_pbr("block create brick size 0.3 0.3 0.5 position 0.75 0 0.25 name b1\n"
+                         "block create brick size 0.3 0.3 0.5 position 0 0.75 0.25 name b2\n");
     assert_true(s->nb <= 8 && !s->convex[1]);
     double box0[4][3];
     for (int i = 0; i < s->nb; i++) memcpy(box0[i], s->x[i], sizeof box0[i]);
@@ -205,17 +213,7 @@ static void test_sweep_pairs_exact(void **state)
 static void test_far_planes_exact(void **state)
 {
     (void)state;
-    char obj[96], cmd[256], text[1024];
-    snprintf(obj, sizeof obj, "%s.far.obj", out);
-    snprintf(cmd, sizeof cmd, "/usr/bin/python3 tools/make_pbr.py --seed 1 -o %s > /dev/null", obj);
-    assert_int_equal(system(cmd), 0);
-    snprintf(text, sizeof text,
-             "block create brick size 1.2 1.2 0.3 position 0 0 -0.15 fixed name pedestal\n"
-             "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
-             "model solve time 0.01\n", obj);
-    rd_sim *s = make(text);
-    unlink(obj);
+    rd_sim *s = make_pbr("");
     const int o = 1, t = 0, np = s->poly[t].nf;
     double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius);
     double raise = s->sc.contact.perturb.raise, reach = 0.5 * tol - raise, out_band = tol + raise;
