@@ -108,37 +108,6 @@ static inline double plane_dist(const double *pl, const double p[3])
     return pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] - pl[3];
 }
 
-/* Spring energy, J, released by a subcontact that stops bearing (it leaves the contact, its
- * face turns away, its bond breaks): normal (elastic stretch `stretch`, m) and shear. The joint
- * model dissipates it (3DEC drops the forces of an opening contact); it is booked as friction
- * so the energy balance stays closed. */
-static void release(rd_sim *s, int st, double kA, double sA, double stretch)
-{
-    if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
-    s->e_fric += 0.5 * (kA * stretch * stretch + rd_dot(s->fs[st], s->fs[st]) / sA);
-    s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
-}
-
-/* The point leaves the contact (stretch: its elastic normal stretch, m): forces drop, the
- * contact episode ends, and so does a bond. */
-static void point_exit(rd_sim *s, int st, double kA, double sA, double stretch)
-{
-    unsigned char *fl = &s->pstate[st];
-    release(s, st, kA, sA, stretch);
-    if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
-    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN);
-    s->pset[st] = 0;
-}
-
-/* A point inside but not bearing (its face turned away, or lifted off its permanent set):
- * forces drop, the rest of its state is kept. */
-static void point_idle(rd_sim *s, int st, double kA, double sA, double stretch)
-{
-    unsigned char *fl = &s->pstate[st];
-    release(s, st, kA, sA, stretch);
-    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
-}
-
 /* Relative velocity of owner point ro (offset from the owner's centre, ground frame) against
  * the other body, m/s; rt receives the point's offset from the other body's centre when that
  * body is free, else 0 (a fixed body takes no torque and has no velocity: rt is not used). */
@@ -167,6 +136,45 @@ static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, co
     } else {
         for (int i = 0; i < 9; i++) k[i] = sk[i];
     }
+}
+
+/* Spring energy released by subcontact st (point pt) that stops bearing at this step (it leaves
+ * the contact, its face turns away, its bond breaks): its springs at mid-step
+ * (rd_law_release_energy), the normal one between its last bearing stretch s_prev and s_now
+ * (m; 0, 0 where the point has lifted off its face or its permanent set). The joint model
+ * dissipates it (3DEC drops the forces of an opening contact); it is booked as friction so the
+ * energy balance stays closed. */
+static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, double s_prev,
+                    double s_now)
+{
+    if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
+    double kin[9];
+    point_kinematics(s, c, pt, kin);
+    const double *u = s->wn[s->face0[c->t] + s->pface[st]], *vr = kin + 6;
+    s->e_fric += rd_law_release_energy(kA, s_prev, s_now, s->fs[st], u, vr, rd_dot(vr, u), sA, s->dt);
+    s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
+}
+
+/* The point leaves the contact (s_prev, s_now: as release): forces drop, the contact episode
+ * ends, and so does a bond. */
+static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, double s_prev,
+                       double s_now)
+{
+    unsigned char *fl = &s->pstate[st];
+    release(s, c, pt, st, kA, sA, s_prev, s_now);
+    if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN);
+    s->pset[st] = 0;
+}
+
+/* A point inside but not bearing (its face turned away, or lifted off its permanent set):
+ * forces drop, the rest of its state is kept. */
+static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, double s_prev,
+                       double s_now)
+{
+    unsigned char *fl = &s->pstate[st];
+    release(s, c, pt, st, kA, sA, s_prev, s_now);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
 }
 
 /* Outward normal of the current owner face, ground frame, found once per face and side step
@@ -230,13 +238,14 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
+    double s_prev = -s->pj[st][1] - s->pset[st]; /* last step's stretch, when it bore */
     for (int k = 0; k < c->ncr; k++) {
         double out = plane_dist(c->pl[c->cr[k]], p);
         if (out > c->tol + slack) {
             s->pj[st][0] = 0;
             s->pj[st][1] = out;
             double stretch = (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
-            point_exit(s, st, kA, sA, stretch);
+            point_exit(s, c, pt, st, kA, sA, s_prev, stretch);
             return 0;
         }
     }
@@ -258,12 +267,12 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
     if (c->facing && rd_dot(owner_normal(s, c), u) > -RD_FACING_COS) {
-        point_idle(s, st, kA, sA, depth - s->pset[st]);
+        point_idle(s, c, pt, st, kA, sA, s_prev, depth - s->pset[st]);
         return 0;
     }
     if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
                                                    touch is a new impact */
-        point_idle(s, st, kA, sA, 0.0);
+        point_idle(s, c, pt, st, kA, sA, 0.0, 0.0);
         *fl |= RD_PT_VIRGIN;
         s->pset[st] = 0;
         return 0;
@@ -275,7 +284,7 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
         kA * (depth - s->pset[st]) < 0) { /* below its permanent set, no dashpot, no bond, no
                                               impact to book: the law below would idle it */
-        point_idle(s, st, kA, sA, 0.0);
+        point_idle(s, c, pt, st, kA, sA, 0.0, 0.0);
         return 0;
     }
     if (!moved) point_kinematics(s, c, pt, kin);
@@ -303,7 +312,10 @@ static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
         if (!bonded) {
             int was_bonded = (*fl & RD_PT_BONDED) != 0; /* a breaking bond releases its tension */
             *fl &= (unsigned char)~RD_PT_BONDED;
-            if (stretch <= 0) { point_idle(s, st, kA, sA, was_bonded ? stretch : 0.0); return 0; }
+            if (stretch <= 0) {
+                point_idle(s, c, pt, st, kA, sA, was_bonded ? s_prev : 0.0, was_bonded ? stretch : 0.0);
+                return 0;
+            }
         }
         fn = bonded ? fmax(fn, -j->tension * A) : 0.0;
     }
@@ -439,7 +451,7 @@ static void clear_face(rd_sim *s, const side_ctx *c, const rd_side *sd, const rd
     for (int pt = s->cf_pt0[cf], st = first; pt < s->cf_pt0[cf + 1]; pt++, st++) {
         double A = sd->weight * s->pa[pt];
         double stretch = (s->pstate[st] & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], s->pl[pt]) - s->pset[st] : 0.0;
-        point_exit(s, st, j->kn * A, j->ks * A, stretch);
+        point_exit(s, c, pt, st, j->kn * A, j->ks * A, -s->pj[st][1] - s->pset[st], stretch);
     }
     *na = 0;
 }

@@ -98,11 +98,24 @@ static unsigned outcode(const double box[6], const double x[3])
 }
 
 /* The slot stops bearing: its spring energy is released into friction (3DEC drops the forces
- * of a contact that ends). */
-static void edge_release(rd_sim *s, int e, double kA, double sA)
+ * of a contact that ends). Where its deepest point q (world, m) and depth gradient g are known
+ * (its spring has come back to zero stretch), the springs are let go at mid-step as a vertex
+ * subcontact's (law.h, rd_law_release_energy): the normal one at zero stretch, the shear one
+ * loaded by half the step's displacement at q. Else (q NULL: the edge has left o's box in one
+ * step) their stored energy. */
+static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double sA, const double *q,
+                         const double *g)
 {
     if (!s->eon[e]) return;
-    s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+    if (q) {
+        const int o = sd->owner, t = sd->other;
+        double ro[3], rt[3], vr[3], gn = rd_norm(g), n[3];
+        for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
+        rd_law_relative_velocity(s, o, t, ro, rt, vr);
+        s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, s->efs[e], n, vr, rd_dot(vr, n), sA, s->dt);
+    } else {
+        s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+    }
     s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
     s->edepth[e][0] = s->edepth[e][1] = 0;
     s->eon[e] = 0;
@@ -370,7 +383,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
         if ((vi.code[va] & vi.code[vb]) || (!s->eon[e] && !may_bear(s, o, t, &vi, va, vb, t_points))) {
-            edge_release(s, e, kA, sA); /* wholly beyond one side of o's box, or cannot start */
+            edge_release(s, sd, e, kA, sA, NULL, NULL); /* wholly beyond one side of o's box, or
+                                                           cannot start */
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
@@ -389,11 +403,11 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
         }
         /* the episode lasts while the spring is compressed: it ends at zero stretch */
         double q[3], stretch = dp.d - s->edepth[e][1];
+        for (int c = 0; c < 3; c++) q[c] = a[c] + dp.u * (b[c] - a[c]);
         if (!(stretch > 0) && !fresh) {
-            edge_release(s, e, kA, sA);
+            edge_release(s, sd, e, kA, sA, q, dp.g);
             continue;
         }
-        for (int c = 0; c < 3; c++) q[c] = a[c] + dp.u * (b[c] - a[c]);
         edge_force(s, sd, j, e, q, dp.g, stretch > 0 ? stretch : 0, kA, sA);
     }
 }

@@ -64,8 +64,6 @@ XFAILS = {
     "stack-history/undamped-first-impact-time": "0.014 % at KN 1e11, inside the 1 % asked by issue 10 but above the two-KN bound (the DEM's impact is the zero crossing of an elastic pivot)",
     "stack-history/equal4-stack-uplift-time-1pct": "6.1 % at the rigid preset's KN 1e11: the elastic joints' rocking mode (56 Hz) set off by the pulse onset, inside its bound 1/(omega cos(2 pi f t)); within 1 % at KN 1e13 (docs/CONTACT.md)",
     "stack-threshold/damped-2.5Hz": "+89 %: the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact); the dashpots take about 1 % more from the stack's impacts (docs/CONTACT.md)",
-    "column-energy/4-drum-dt5e-5": "3.5e-3 at the YADE scene's fixed step 5e-5 s (e = 1, 0.5 g): step error at springs that switch on or off between steps, 7.3e-4 at half the step (docs/CONTACT.md)",
-    "column-energy/4-drum-order-2": "1.90: with edge subcontacts between free drums the residual at 2.5e-5 s fell 8.9e-4 -> 7.3e-4 while at 1.25e-5 s it stayed 3.9e-4; it keeps falling, 1.4e-4 at 6.25e-6 s (ratio 2.8), so no floor (docs/CONTACT.md)",
     "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
     "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
     "yade-overturn/bracket-scenario-ks": "shear stiffness per point, not per face: with the scenario's KS the pivot slides (docs/YADE.md)",
