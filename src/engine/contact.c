@@ -85,8 +85,8 @@ typedef struct side_ctx {
                                    vertices, raised inward by at most raise; tol / 2 is left for
                                    round-off), so their exit test skips q */
     double raise;               /* a raised point lies up to this far inside its face, m */
-    int ncr;                    /* planes some point of the current face may lie beyond */
-    int cr[RD_MAX_PLANES];
+    uint64_t cross[RD_MASK_WORDS]; /* bit q: some point of the current face may lie beyond plane
+                                      q (words in use: nw) */
     const double *m;            /* outward normal of the current owner face, ground frame, once
                                    found (owner_normal), else NULL */
     int mf;                     /* the current owner face */
@@ -232,15 +232,15 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, i
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
-static int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
+static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
 {
     unsigned char *fl = &s->pstate[st];
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
     double s_prev = -s->pj[st][1] - s->pset[st]; /* last step's stretch, when it bore */
-    for (int k = 0; k < c->ncr; k++) {
-        double out = plane_dist(c->pl[c->cr[k]], p);
+    for (int w = 0; w < c->nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
+        double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
         if (out > c->tol + slack) {
             s->pj[st][0] = 0;
             s->pj[st][1] = out;
@@ -347,8 +347,8 @@ static inline int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt
     const unsigned fl = s->pstate[st];
     const double *p = s->pl[pt];
     if (fl & RD_PT_BONDED) return -1;
-    for (int k = 0; k < c->ncr; k++) {
-        double out = plane_dist(c->pl[c->cr[k]], p);
+    for (int w = 0; w < c->nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
+        double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
         if (out > c->tol + 0.0) { /* subcontact's band, unbonded (slack 0) */
             if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return -1;
             s->pj[st][0] = 0;
@@ -489,38 +489,40 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     const double out_band = c->out_band, reach = c->reach;
     const int reuse = fixed && sd->far_clear > 0 &&
                       rd_pairs_drift(s, c->o, sd->far_pose) <= sd->far_clear - 0.5 * c->tol;
-    /* the planes measured (all, or the near ones) as structure of arrays in locals (nothing
-       aliases them): the distance loop vectorises, each lane the expression of rd_dot(n, x) - d */
-    int near[RD_MAX_PLANES], nn = 0;
-    double nx[RD_MAX_PLANES], ny[RD_MAX_PLANES], nz[RD_MAX_PLANES], nd[RD_MAX_PLANES];
-    double dl[RD_MAX_PLANES], dmax[RD_MAX_PLANES];
-    for (int q = 0; q < np; q++) {
-        if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
-        nx[nn] = wn[q][0]; ny[nn] = wn[q][1]; nz[nn] = wn[q][2]; nd[nn] = wd[q];
-        dmax[nn] = -INFINITY;
-        near[nn++] = q;
-    }
+    const int nw = (np + 63) / 64, ncv = s->cv0[c->o + 1] - s->cv0[c->o];
+    const int *cv = s->cv + s->cv0[c->o];
     double *restrict d = s->cv_dist;
     uint64_t *restrict mk = s->cv_mask;
-    c->nw = (np + 63) / 64;
-    for (int k = s->cv0[c->o]; k < s->cv0[c->o + 1]; k++, d += np, mk += 2 * RD_MASK_WORDS) {
-        const double *x = s->wv[s->cv[k]];
-        const double x0 = x[0], x1 = x[1], x2 = x[2];
-        for (int i = 0; i < nn; i++) dl[i] = nx[i] * x0 + ny[i] * x1 + nz[i] * x2 - nd[i];
-        for (int w = 0; w < 2 * RD_MASK_WORDS; w++) mk[w] = 0;
-        for (int i = 0; i < nn; i++) {
-            int q = near[i];
-            uint64_t bit = (uint64_t)1 << (q & 63);
-            d[q] = dl[i];
-            if (!(dl[i] <= out_band)) mk[q >> 6] |= bit;       /* NaN too: min skips it */
-            if (dl[i] > reach) mk[RD_MASK_WORDS + (q >> 6)] |= bit; /* NaN not: max skips it */
-            if (!(dl[i] <= dmax[i])) dmax[i] = dl[i];           /* NaN sticks: never far */
+    c->nw = nw;
+    if (nw == 1) { /* the words in use (face_planes and edge.c read no others) */
+        for (int k = 0; k < ncv; k++) mk[k * 2 * RD_MASK_WORDS] = mk[k * 2 * RD_MASK_WORDS + RD_MASK_WORDS] = 0;
+    } else {
+        memset(mk, 0, (size_t)ncv * 2 * RD_MASK_WORDS * sizeof *mk);
+    }
+    double dmax[RD_MAX_PLANES];
+    /* plane by plane (all, or the near ones), each a pass over the vertices: with few planes
+       (a pedestal's one near plane) the loop is all vertices, none of its overhead per plane */
+    for (int q = 0; q < np; q++) {
+        dmax[q] = -INFINITY;
+        if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
+        const double n0 = wn[q][0], n1 = wn[q][1], n2 = wn[q][2], dq = wd[q];
+        const uint64_t bit = (uint64_t)1 << (q & 63);
+        uint64_t *mo = mk + (q >> 6), *mc = mk + RD_MASK_WORDS + (q >> 6);
+        double hi = -INFINITY;
+        for (int k = 0; k < ncv; k++) {
+            const double *x = s->wv[cv[k]];
+            const double dl = n0 * x[0] + n1 * x[1] + n2 * x[2] - dq;
+            d[k * np + q] = dl;
+            if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
+            if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
+            if (!(dl <= hi)) hi = dl;                                /* NaN sticks: never far */
         }
+        dmax[q] = hi;
     }
     if (fixed && !reuse) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
         for (int w = 0; w < RD_MASK_WORDS; w++) sd->far[w] = 0;
-        for (int q = 0; q < np; q++) { /* (near[q] == q here) */
+        for (int q = 0; q < np; q++) {
             double clear = reach - dmax[q];
             if (!(clear > RD_FAR_BANDS * c->tol)) continue;
             sd->far[q >> 6] |= (uint64_t)1 << (q & 63);
@@ -534,35 +536,52 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     c->mask = s->cv_mask;
 }
 
+/* Word w of candidate face cf's plane masks (its vertices' slots, nv of them): the planes every
+ * vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
+ * (*cross). Out of line: the common triangle is face_planes' own. */
+static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *slot, int nv, int w,
+                                                 uint64_t *out, uint64_t *cross)
+{
+    uint64_t o = ~(uint64_t)0, x = 0;
+    for (int v = 0; v < nv; v++) {
+        const uint64_t *mk = c->mask + (size_t)slot[v] * 2 * RD_MASK_WORDS;
+        o &= mk[w];
+        x |= mk[RD_MASK_WORDS + w];
+    }
+    *out = o;
+    *cross = x;
+}
+
 /* Planes that some point of candidate face cf may lie beyond by more than the band (some vertex
- * above reach); 0, or 1 when the whole face lies outside one plane (no point can touch), with *gap
- * the face's clearance from the first such plane, m. As a loop over planes of the least and
- * largest vertex distance (NaN skipped) against the bands, from the vertices' plane masks. */
+ * above reach: side_ctx.cross); 0, or 1 when the whole face lies outside one plane (no point can
+ * touch), with *gap the face's clearance from the first such plane, m. As a loop over planes of
+ * the least and largest vertex distance (NaN skipped) against the bands, from the vertices' plane
+ * masks (rd_sim.cf_v: the face's vertices' slots). */
 static int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap)
 {
-    const rd_poly *po = &s->poly[c->o];
-    int f = s->cf_face[cf], nv = po->flen[f];
-    const int *ix = po->fidx + po->fstart[f];
-    const int *slot = s->cv_slot + s->vert0[c->o];
-    c->ncr = 0;
+    const int *slot = s->cf_v + s->cf_v0[cf], nv = s->cf_v0[cf + 1] - s->cf_v0[cf];
     c->m = NULL;
-    c->mf = f;
+    c->mf = s->cf_face[cf];
     c->facing = s->cf_facing[cf];
     for (int w = 0; w < c->nw; w++) {
-        uint64_t out = ~(uint64_t)0, cross = 0;
-        for (int v = 0; v < nv; v++) {
-            const uint64_t *mk = c->mask + (size_t)slot[ix[v]] * 2 * RD_MASK_WORDS;
-            out &= mk[w];
-            cross |= mk[RD_MASK_WORDS + w];
+        uint64_t out, cross;
+        if (nv == 3) { /* a mesh's triangle */
+            const uint64_t *m0 = c->mask + (size_t)slot[0] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m1 = c->mask + (size_t)slot[1] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m2 = c->mask + (size_t)slot[2] * 2 * RD_MASK_WORDS + w;
+            out = m0[0] & m1[0] & m2[0];
+            cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS];
+        } else {
+            face_masks(c, slot, nv, w, &out, &cross);
         }
         if (out) { /* every vertex beyond plane q */
             int q = 64 * w + __builtin_ctzll(out);
             double emin = DBL_MAX;
-            for (int v = 0; v < nv; v++) emin = rd_min(c->dist[slot[ix[v]] * c->np + q], emin);
+            for (int v = 0; v < nv; v++) emin = rd_min(c->dist[slot[v] * c->np + q], emin);
             *gap = emin - c->raise;
             return 1;
         }
-        for (; cross; cross &= cross - 1) c->cr[c->ncr++] = 64 * w + __builtin_ctzll(cross);
+        c->cross[w] = cross;
     }
     return 0;
 }
@@ -595,7 +614,12 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     side_planes(s, &c);
     vertex_distances(s, &c, sd);
     s->kin_epoch++;
+    /* the side's contact tally (rd_monitor_contact's sums, face by face in the same order) and
+       its active point-steps, carried in locals and stored once */
     rd_watch *watch = rd_monitor_contact_watch(s, c.o, c.t);
+    rd_watch tally = {0};
+    if (watch) { tally.area = watch->area; tally.nactive = watch->nactive; tally.nslip = watch->nslip; tally.touched = watch->touched; }
+    long active_steps = 0;
     for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, &c, cf, &gap)) {
@@ -616,9 +640,11 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
             nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
         }
         s->face_nactive[sd->face0 + k] = nin;
-        if (!s->settling) s->active_point_steps += na;
-        rd_monitor_contact(watch, s->shaking, c.area, na, nslip);
+        active_steps += na;
+        rd_monitor_contact(&tally, s->shaking, c.area, na, nslip);
     }
+    if (watch) { watch->area = tally.area; watch->nactive = tally.nactive; watch->nslip = tally.nslip; watch->touched = tally.touched; }
+    if (!s->settling) s->active_point_steps += active_steps;
     rd_copy3(c.f_o, s->f[c.o]); rd_copy3(c.tq_o, s->tq[c.o]);
     if (c.t_free) { rd_copy3(c.f_t, s->f[c.t]); rd_copy3(c.tq_t, s->tq[c.t]); }
     *k_active += c.k_active;

@@ -450,11 +450,32 @@ static int share_points(rd_sim *s, rd_error *err)
     return 0;
 }
 
+/* Each candidate face's vertices as cv positions (rd_sim.cf_v), once the faces are final (after
+ * merging). */
+static int face_vertices(rd_sim *s, rd_error *err)
+{
+    int n = 0;
+    for (int i = 0; i < s->nb; i++)
+        for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) n += s->poly[i].flen[s->cf_face[cf]];
+    if (!ALLOC(s->cf_v0, s->ncf + 1) || !ALLOC(s->cf_v, n)) return rd_error_set(err, "out of memory");
+    n = 0;
+    for (int i = 0; i < s->nb; i++) {
+        const rd_poly *p = &s->poly[i];
+        for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
+            int f = s->cf_face[cf];
+            s->cf_v0[cf] = n;
+            for (int k = 0; k < p->flen[f]; k++) s->cf_v[n++] = s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
+        }
+    }
+    s->cf_v0[s->ncf] = n;
+    return 0;
+}
+
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
     if (build_points(s, err) || build_step_vertices(s, err) || rd_edge_init(s, err) || rd_perturb_points(s, err) ||
-        rd_merge_points(s, err) || share_points(s, err) || rd_pairs_init(s, err))
+        rd_merge_points(s, err) || face_vertices(s, err) || share_points(s, err) || rd_pairs_init(s, err))
         return -1;
     return 0;
 }

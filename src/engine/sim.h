@@ -177,7 +177,8 @@ struct rd_sim {
     double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
     uint64_t *cv_mask;     /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
-                              (contact.c: vertex_distances) */
+                              (contact.c: vertex_distances; only the words the other body's
+                              planes use are set) */
 
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
@@ -201,6 +202,10 @@ struct rd_sim {
     int *cf_pt0;           /* [ncf+1] first point of each candidate face */
     char *cf_facing;       /* [ncf] 1: a face that touches only later (its vertices act only
                               while it faces the other body's entrance face) */
+    int *cf_v0;            /* [ncf+1] first entry of each candidate face's vertices in cf_v */
+    int *cf_v;             /* the candidate faces' vertices as positions in their body's cv list
+                              (cv_slot of each, in face order): contact.c's face test reads their
+                              plane masks with one load each */
 
     /* broad phase (pairs.c) */
     double (*aabb)[6];     /* per body: min xyz, max xyz of its hull vertices, grown by
