@@ -15,13 +15,15 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 
-def main(path):
+def joint_slips(path):
+    """[(lower name, upper name, max slip m, final slip m)] for each joint between free bodies."""
     with h5py.File(path, "r") as f:
         x, q = f["position"][:], f["quaternion"][:]
         names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["bodies"]["names"][:]]
         verts = [f["bodies"][n]["vertices"][:] for n in names]
     free = list(range(x.shape[1]))  # /position holds the free bodies, in output order
     rot = [Rotation.from_quat(np.c_[q[:, k, 1], q[:, k, 2], q[:, k, 3], q[:, k, 0]]) for k in free]
+    out = []
     for k in free[:-1]:
         up = k + 1
         world0 = x[0, up] + rot[up][0].apply(verts[up])
@@ -29,7 +31,13 @@ def main(path):
         foot = verts[up][low].mean(axis=0)                     # its base face's centre
         rel = rot[k].inv().apply(x[:, up] + rot[up].apply(foot) - x[:, k])
         d = np.hypot(rel[:, 0] - rel[0, 0], rel[:, 1] - rel[0, 1])
-        print("joint %s/%s: slip max %.3f mm, final %.3f mm" % (names[k], names[up], 1e3 * d.max(), 1e3 * d[-1]))
+        out.append((names[k], names[up], float(d.max()), float(d[-1])))
+    return out
+
+
+def main(path):
+    for lo, up, dmax, dend in joint_slips(path):
+        print("joint %s/%s: slip max %.3f mm, final %.3f mm" % (lo, up, 1e3 * dmax, 1e3 * dend))
 
 
 if __name__ == "__main__":

@@ -39,7 +39,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tools", "yade"))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
 import closed_forms as cf  # noqa: E402
+import relative_slide as rs  # noqa: E402  (tools/relative_slide.py)
 
 try:
     import h5py  # noqa: E402
@@ -53,7 +55,10 @@ KN_RATIO = 10.0
 # Known gaps (issue numbers refer to the project's tracker). Each key is a row id; the check is
 # made with its derived tolerance and reported XFAIL with the measured gap while it misses.
 XFAILS = {
-    "stack-threshold/undamped-2Hz": "2.2 %, inside the 3 % asked by issue 10 but just above the two-KN bound (docs/CONTACT.md)",
+    "stack-threshold/undamped-2Hz-3pct": "3.2 % at the rigid preset's KN 1e11, 0.2 % over the 3 % asked; it converges with KN (+7.7 % at 1e10, +3.2 % at 1e11, -0.8 % at 1e12, bisection to 0.1 %) and the same stack with dashpots is +0.6 % at 1e11: the stack falls before any impact, and the undamped elastic joints' rocking vibration, which rigid theory lacks, is what is left (docs/CONTACT.md)",
+    "stack-threshold/undamped-2.5Hz-3pct": "+85 % at KN 1e11 (+2.0 % at 1e10): the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact), and which branch the elastic stack lands on changes with KN (docs/CONTACT.md)",
+    "stack-threshold/damped-2Hz": "0.55 % at KN 1e11, inside the 3 % asked; 1e10 and 1e11 differ by 0.2 % only, so the two-KN bound (0.48 %) does not cover it (docs/CONTACT.md)",
+    "stack-threshold/damped-2.5Hz-3pct": "+90 %: the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact); the dashpots take about 1 % more from the stack's impacts (docs/CONTACT.md)",
     "yade-column/0.4g-d1-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
     "block-free/impact2-time": "rigid preset: the plastic drop is placed to within a step of the end of compression; 0.1 %, inside the 1 % asked by issue 10 but above the two-KN bound (docs/CONTACT.md)",
     "other-r/threshold-2Hz": "mid-line layout at the steep 2 Hz region: 1.7 % high at KN 1e12, inside the 2 % asked by issue 11 but above its two-KN bound (1e12, 1e13); its free-rocking r is the same for releases from 0.3 to 0.9 alpha there, so the impact's speed is not the cause (open, docs/CONTACT.md section 2)",
@@ -64,6 +69,7 @@ XFAILS = {
     "stack-history/undamped-first-impact-time": "0.014 % at KN 1e11, inside the 1 % asked by issue 10 but above the two-KN bound (the DEM's impact is the zero crossing of an elastic pivot)",
     "stack-history/equal4-stack-uplift-time-1pct": "6.1 % at the rigid preset's KN 1e11: the elastic joints' rocking mode (56 Hz) set off by the pulse onset, inside its bound 1/(omega cos(2 pi f t)); within 1 % at KN 1e13 (docs/CONTACT.md)",
     "stack-threshold/damped-2.5Hz": "+89 %: the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact); the dashpots take about 1 % more from the stack's impacts (docs/CONTACT.md)",
+    "energy/every-run": "the runs above 1e-3 are the YADE cross-check scenes at the stored YADE runs' fixed step 5e-5 s (overturn bracket 3.0e-3, stack 0.3 g 1.95e-3, 4-drum column 3.5e-3): step error at springs that switch on or off between steps, falling with the step (docs/CONTACT.md)",
     "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
     "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
     "yade-overturn/bracket-scenario-ks": "shear stiffness per point, not per face: with the scenario's KS the pivot slides (docs/YADE.md)",
@@ -81,6 +87,7 @@ class Ladder:
     def __init__(self, bin_, tmp, depth):
         self.bin, self.tmp, self.depth = bin_, tmp, depth
         self.rows, self.failed, self.xpassed = [], 0, 0
+        self.residuals = []   # (energy residual, scene and settings) of every `run`
         self.nrun = 0
 
     # ---- running rockdem ---------------------------------------------------------------------
@@ -105,7 +112,11 @@ class Ladder:
         for s in sets:
             args += ["--set", s]
         self.rockdem(*args)
-        return os.path.join(self.tmp, out)
+        path = os.path.join(self.tmp, out)
+        # every run's energy residual, for the closing check (case_energy_every_run)
+        label = os.path.basename(dat) + "".join(" " + s for s in sets)
+        self.residuals.append((float(h5(path, "summary:energy_residual_max")), label))
+        return path
 
     def reference(self, dat, out, *sets):
         args = ["reference", dat, "-o", os.path.join(self.tmp, out)]
@@ -114,11 +125,11 @@ class Ladder:
         self.rockdem(*args)
         return os.path.join(self.tmp, out)
 
-    def threshold(self, dat, engine, *sets):
+    def threshold(self, dat, engine, *sets, rtol=0.005):
         """(amplitude m/s^2, relative bracket width) of the minimum overturning amplitude; the
         search scans from 0.9 to 10 x g tan(alpha) (the whole range: an early overturning is
-        seen) and bisects to rtol 0.005."""
-        args = ["threshold", dat, "--engine", engine]
+        seen) and bisects to rtol (rockdem's default 0.005)."""
+        args = ["threshold", dat, "--engine", engine, "--rtol", "%g" % rtol]
         for s in sets:
             args += ["--set", s]
         out = self.rockdem(*args)
@@ -350,15 +361,37 @@ def case_slender_threshold(L):
 DAMPED = "model damping viscous 0.2"
 
 
+STACK_RTOL = 0.002   # bisection of the stack thresholds: brackets well inside the 3 % asked
+STACK_ASKED = 0.03   # issue 10: stack thresholds within 3 % of the Kounadis reference
+
+
 def case_stack_threshold(L):
-    # undamped: plastic point impacts are Kounadis' plastic impacts; damped: the same with dashpots
+    """The stack's minimum overturning amplitude of one-sine pulses at 1, 1.5, 2 and 2.5 Hz
+    (w/p 1.7 to 4.3 of the lower block; above 4.3 the rigid reference lifts off), undamped and
+    damped, at the setting docs/CONTACT.md recommends for comparison with rigid theory: the
+    rigid preset's KN (10 KN0). Its error bound is the two-KN study against KN0 (as the stack
+    histories) plus both bisection brackets; issue 10's 3 % is checked as its own row.
+    Undamped: plastic point impacts are Kounadis' plastic impacts; damped: the same with
+    dashpots."""
     runs = [("undamped", "", (1.5,) if L.depth == "fast" else (1.0, 1.5, 2.0, 2.5))]
     if L.depth == "full":
-        runs.append(("damped", DAMPED, (1.0, 1.5, 2.5)))
+        runs.append(("damped", DAMPED, (1.0, 1.5, 2.0, 2.5)))
+    src = "CVODE Kounadis (plastic impacts)"
     for label, damping, freqs in runs:
         for f in freqs:
-            threshold_case(L, "stack-threshold/%s-%gHz" % (label, f), stack_scene, f, damping, [],
-                           "CVODE Kounadis (plastic impacts)")
+            rid = "stack-threshold/%s-%gHz" % (label, f)
+            motion = "ground-motion pulse one-sine amplitude 1g frequency %g" % f
+
+            def dem(kf):
+                return L.threshold(stack_scene(L, "thr_%s_%g" % (rid.replace("/", "_"), kf), kf, damping, motion),
+                                   "dem", rtol=STACK_RTOL)
+            ref, wr = L.threshold(stack_scene(L, "thr_ref", 1.0, damping, motion), "reference", rtol=STACK_RTOL)
+            (a1, w1), (a2, w2) = L.kn_pair(dem)
+            err = abs(a2 - ref) / ref
+            what = "minimum overturning amplitude at %g Hz (g), rigid preset's KN %g, relative error" % (f, 10 * KN0)
+            L.check(rid, what, ref / cf.G0, src, a2 / cf.G0, err, RICHARDSON * abs(a1 - a2) / ref + w2 + wr,
+                    "two-KN study (%g, %g) + both bisection brackets (rtol %g)" % (KN0, 10 * KN0, STACK_RTOL))
+            L.check(rid + "-3pct", what, ref / cf.G0, src, a2 / cf.G0, err, STACK_ASKED, "issue 10's requirement (3 %)")
 
 
 def stack_events(path):
@@ -453,6 +486,65 @@ def stack_event_checks(L, label, ev_ref, v1, v2, dt, t_imp, halves):
         # issue 10 asks for each event time within 1 % of the rigid reference
         L.check(rid + "-1pct", "%s time (s) at KN %g, relative error" % (what, 10 * KN0), ev_ref[k], src, v2[k], err,
                 0.01, "issue 10's requirement (1 %)")
+
+
+# ==== rung 3b: stacks and columns that must stay put ============================================
+# Issue 10 items 2, 4 and 7 at the setting docs/CONTACT.md recommends for comparison with rigid
+# theory (the rigid preset). Friction 80 deg (mu g = 5.7 g): a rigid block never slips under
+# these motions, so every slip is the contact model's; the issue allows 1 mm over 5 s.
+SLIP_ASKED = 1e-3   # m: issue 10, a high-friction block's slide on the one below over 5 s
+QUIET = "ground-motion stochastic seed 1 pga 0.03g duration 5"
+COLUMN4 = SCENE.format(blocks="\n".join(
+    ["block create prism sides 12 radius 0.3 height 0.6 seat-on %s name d%d" % ("base" if k == 1 else "d%d" % (k - 1), k)
+     for k in range(1, 5)]))
+COLUMN10_RIGID = SCENE.format(blocks="block create column drums 10 diameter 0.8 height 0.6 sides 16 seat-on base name c")
+
+
+def slip_checks(L, rid, path):
+    """Every joint's slip (the engine's measure at the centre of pressure, elastic part removed)
+    and, between free bodies, the upper body's footprint displacement in the lower body's frame
+    at the end (tools/relative_slide.py, geometry only), against the 1 mm asked; and the energy
+    residual against the 1e-3 asked."""
+    names, out = h5(path, "joints/joint", "joints/outcomes")
+    cols = [attr(c) for c in h5(path, "joints/outcome")]
+    worst = int(np.argmax(out[:, cols.index("max_slip")]))
+    L.check(rid + "/joint-slip", "largest joint slip over 5 s (m), joint %s" % attr(names[worst]), 0.0,
+            "rigid blocks, mu = 5.7", float(out[worst, cols.index("max_slip")]), float(out[worst, cols.index("max_slip")]),
+            SLIP_ASKED, "issue 10's requirement (1 mm over 5 s)")
+    rel = rs.joint_slips(path)
+    k = int(np.argmax([r[3] for r in rel]))
+    L.check(rid + "/relative-slide", "upper body's final footprint shift on the lower (m), %s/%s" % rel[k][:2], 0.0,
+            "rigid blocks, mu = 5.7", rel[k][3], rel[k][3], SLIP_ASKED, "issue 10's requirement (1 mm over 5 s)")
+    r = float(h5(path, "summary:energy_residual_max"))
+    L.check(rid + "/energy", "energy residual", 0.0, "energy conservation", r, r, RESIDUAL_ASKED, "issue 10's bound (1e-3)")
+
+
+def case_stack_fidelity(L):
+    """No spurious events, no walk, a closed energy balance: (a) the equal-width h/b 4 stack under
+    a 0.03 g stochastic record (an eighth of its static uplift acceleration g b / 2h = 0.125 g,
+    far below mu g), with the rigid preset and with the default contact: no uplift, no slip
+    event; (b) the unequal stack under a 0.6 g 2 Hz pulse (0.9 of its overturning threshold: it
+    rocks hard), (c) in full depth, a 4-drum column (12-sided drums, 0.5 g at 2 Hz) and a
+    10-drum column (16 sides, 0.2 g at 2 Hz): slip and residual checks (slip_checks)."""
+    quiet = [("preset", equal_stack_scene(L, "quiet_preset", 10.0, "", QUIET, T=5)),
+             ("default", L.scene("quiet_default", EQUAL4.replace("contact preset rigid\n", "")
+                                 .replace("contact property stiffness-normal {kn} stiffness-shear {ks}\n", "")
+                                 .format(damping="", motion=QUIET, T=5)))]
+    for label, dat in quiet:
+        p = L.run(dat, "quiet_%s.h5" % label)
+        n = sum(len(event_times(p, kind)) for kind in ("uplift", "slip"))
+        L.check("stack-quiet/%s-events" % label, "uplift and slip events of the equal stack at 0.03 g (count)", 0,
+                "rigid stack at rest (a_g < g b / 2h, a_g < mu g)", n, n, 0, "an event: must agree (issue 10)")
+        r = float(h5(p, "summary:energy_residual_max"))
+        L.check("stack-quiet/%s-energy" % label, "energy residual", 0.0, "energy conservation", r, r, RESIDUAL_ASKED,
+                "issue 10's bound (1e-3)")
+    slip_checks(L, "stack-walk/unequal-0.6g", L.run(stack_scene(L, "walk", 10.0, "",
+                "ground-motion pulse one-sine amplitude 0.6g frequency 2", T=5), "walk.h5"))
+    if L.depth == "full":
+        for name, text, motion in (("4-drum-0.5g", COLUMN4, "ground-motion pulse one-sine amplitude 0.5g frequency 2"),
+                                   ("10-drum-0.2g", COLUMN10_RIGID, "ground-motion pulse one-sine amplitude 0.2g frequency 2")):
+            dat = L.scene("walk_" + name, text.format(kn=10 * KN0, ks=100 * KN0, damping="", motion=motion, T=5))
+            slip_checks(L, "column-walk/" + name, L.run(dat, "walk_%s.h5" % name))
 
 
 # ==== rung 4: sliding vs Newmark ================================================================
@@ -813,6 +905,20 @@ def case_column_energy(L):
                     "at least first order")
 
 
+def case_energy_every_run(L):
+    """Issue 10 asks the residual to stay under 1e-3 on every validation scene: the largest
+    residual over every DEM run the ladder made (thresholds excepted, whose runs write no file),
+    and how many runs exceed 1e-3 (each printed)."""
+    if not L.residuals:
+        return
+    res = sorted(L.residuals, reverse=True)
+    over = [r for r in res if r[0] > RESIDUAL_ASKED]
+    for r, label in over:
+        print("  residual %.3g: %s" % (r, label))
+    L.check("energy/every-run", "largest energy residual over %d runs (%d above 1e-3); worst: %s" % (len(res), len(over), res[0][1]),
+            0.0, "energy conservation", res[0][0], res[0][0], RESIDUAL_ASKED, "issue 10's bound (1e-3)")
+
+
 # ==== the case list: one definition, two depths =================================================
 CASES = [
     # (group, function, in the fast subset)
@@ -822,6 +928,7 @@ CASES = [
     ("block", case_slender_threshold, True),
     ("stack", case_stack_history, True),
     ("stack", case_stack_threshold, True),
+    ("stack", case_stack_fidelity, True),
     ("slide", case_slide, True),
     ("tipping", case_tipping, True),
     ("restitution", case_restitution, True),
@@ -832,6 +939,7 @@ CASES = [
     ("yade", case_yade_slide, True),
     ("column", case_yade_column, True),
     ("column", case_column_energy, False),
+    ("energy", case_energy_every_run, True),   # last: it reads every run made before it
 ]
 
 
@@ -868,7 +976,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--depth", choices=["fast", "full"], default="fast")
     ap.add_argument("--bin", default=os.path.join(ROOT, "bin", "rockdem"))
-    ap.add_argument("--only", help="groups: block,stack,slide,tipping,restitution,yade,column")
+    ap.add_argument("--only", help="groups: block,stack,slide,tipping,restitution,yade,column (the energy check of every run made always closes the list)")
     ap.add_argument("--md", help="write the markdown report here")
     ap.add_argument("--tmp")
     a = ap.parse_args()
@@ -879,7 +987,7 @@ def main():
     t0 = time.time()
     errors = 0
     for group, fn, fast in CASES:
-        if (only and group not in only) or (a.depth == "fast" and not fast):
+        if (only and group not in only and group != "energy") or (a.depth == "fast" and not fast):
             continue
         try:
             fn(L)
