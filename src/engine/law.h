@@ -107,6 +107,19 @@ static inline int rd_law_shear(double fs[3], const double n[3], const double vr[
     return rd_law_shear_cap(fs, f0, sA, lim, e_fric);
 }
 
+/* Work, J, dissipated over a step by the non-elastic part of a normal force (a dashpot, a
+ * tension cap): fd_prev and fd (N, along the entrance face's outward normal) at the step's two
+ * ends, vn (m/s) the normal relative velocity over the step. Leapfrog's kinetic energy changes
+ * by the mean of a force's values at the step's two ends times the step's displacement, so the
+ * work is the trapezoid rule's -(fd_prev + fd) vn dt / 2; fd vn dt (the force at the step's end
+ * only) missed (fd_prev - fd) vn dt / 2 a step, a first-order error wherever the dashpot force
+ * changes fast (an impact). A subcontact that stops bearing books its last half step with
+ * fd = 0. */
+static inline double rd_law_dashpot_work(double fd_prev, double fd, double vn, double dt)
+{
+    return -0.5 * (fd_prev + fd) * vn * dt;
+}
+
 /* Energy, J, that a subcontact's springs hold when it stops bearing at step n (its force F(n-1)
  * acted last): the normal spring at the stretch midway between the last bearing step's s_prev
  * and this step's s_now (m; kA = KN A', N/m; nothing when the stretch has changed sign: a spring
