@@ -488,6 +488,31 @@ static void side_planes(const rd_sim *s, side_ctx *c)
  * face_planes never reads the distance left out. The shipped PBR computes 1 of its pedestal's 6
  * planes per vertex and step. */
 #define RD_FAR_BANDS 2.0
+
+/* One plane (n: normal and offset, ground frame) against the ncv vertices wv[cv[k]]: each
+ * signed distance into row k of d (np planes a row, this plane's column q), the plane's bit q in
+ * each vertex's masks (mk, vertex_distances: beyond band[0] = out_band, above band[1] = reach),
+ * and, when track (a constant at each call, so the loop without it carries no dependency chain),
+ * the largest distance (NaN sticks), else -INFINITY. */
+static inline __attribute__((always_inline)) double plane_pass(const double (*wv)[3], const int *cv, int ncv,
+                                                               const double n[4], const double band[2], int np,
+                                                               int q, double *restrict d,
+                                                               uint64_t *restrict mk, int track)
+{
+    const double n0 = n[0], n1 = n[1], n2 = n[2], dq = n[3], out_band = band[0], reach = band[1];
+    const uint64_t bit = (uint64_t)1 << (q & 63);
+    uint64_t *mo = mk + (q >> 6), *mc = mk + RD_MASK_WORDS + (q >> 6);
+    double hi = -INFINITY;
+    for (int k = 0; k < ncv; k++) {
+        const double *x = wv[cv[k]];
+        const double dl = n0 * x[0] + n1 * x[1] + n2 * x[2] - dq;
+        d[k * np + q] = dl;
+        if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
+        if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
+        if (track && !(dl <= hi)) hi = dl;                       /* NaN sticks: never far */
+    }
+    return hi;
+}
 static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
@@ -506,27 +531,19 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     } else {
         memset(mk, 0, (size_t)ncv * 2 * RD_MASK_WORDS * sizeof *mk);
     }
-    double dmax[RD_MAX_PLANES];
+    double dmax[RD_MAX_PLANES]; /* the largest distance to each plane, wanted only to find the far
+                                   planes (a fixed other body, every plane measured) */
+    const int track = fixed && !reuse;
     /* plane by plane (all, or the near ones), each a pass over the vertices: with few planes
        (a pedestal's one near plane) the loop is all vertices, none of its overhead per plane */
     for (int q = 0; q < np; q++) {
         dmax[q] = -INFINITY;
         if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
-        const double n0 = wn[q][0], n1 = wn[q][1], n2 = wn[q][2], dq = wd[q];
-        const uint64_t bit = (uint64_t)1 << (q & 63);
-        uint64_t *mo = mk + (q >> 6), *mc = mk + RD_MASK_WORDS + (q >> 6);
-        double hi = -INFINITY;
-        for (int k = 0; k < ncv; k++) {
-            const double *x = s->wv[cv[k]];
-            const double dl = n0 * x[0] + n1 * x[1] + n2 * x[2] - dq;
-            d[k * np + q] = dl;
-            if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
-            if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
-            if (!(dl <= hi)) hi = dl;                                /* NaN sticks: never far */
-        }
-        dmax[q] = hi;
+        const double n[4] = {wn[q][0], wn[q][1], wn[q][2], wd[q]}, band[2] = {out_band, reach};
+        dmax[q] = track ? plane_pass(s->wv, cv, ncv, n, band, np, q, d, mk, 1)
+                        : plane_pass(s->wv, cv, ncv, n, band, np, q, d, mk, 0);
     }
-    if (fixed && !reuse) { /* every plane measured: the far ones, from this pose */
+    if (track) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
         for (int w = 0; w < RD_MASK_WORDS; w++) sd->far[w] = 0;
         for (int q = 0; q < np; q++) {

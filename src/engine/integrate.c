@@ -26,15 +26,17 @@ void rd_body_refresh(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
     const rd_poly *p = &s->poly[i];
+    double R[9], x[3]; /* in locals: the stores below cannot alias them */
+    for (int k = 0; k < 9; k++) R[k] = s->R[i][k];
+    rd_copy3(s->x[i], x);
+    double (*wv)[3] = s->wv + s->vert0[i], (*wn)[3] = s->wn + s->face0[i], *wd = s->wd + s->face0[i];
     for (int k = 0; k < p->nv; k++) {
-        double *out = s->wv[s->vert0[i] + k];
-        rd_mat_vec(s->R[i], p->v[k], out);
-        rd_axpy(1.0, s->x[i], out);
+        rd_mat_vec(R, p->v[k], wv[k]);
+        rd_axpy(1.0, x, wv[k]);
     }
     for (int f = 0; f < p->nf; f++) {
-        int j = s->face0[i] + f;
-        rd_mat_vec(s->R[i], p->fn[f], s->wn[j]);
-        s->wd[j] = p->fd[f] + rd_dot(s->wn[j], s->x[i]);
+        rd_mat_vec(R, p->fn[f], wn[f]);
+        wd[f] = p->fd[f] + rd_dot(wn[f], x);
     }
 }
 
@@ -54,10 +56,14 @@ static void body_refresh_contact(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
     const rd_poly *p = &s->poly[i];
+    double R[9], x[3]; /* in locals: the stores below cannot alias them */
+    for (int k = 0; k < 9; k++) R[k] = s->R[i][k];
+    rd_copy3(s->x[i], x);
+    const int v0 = s->vert0[i];
     for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) {
         int v = s->cv[k];
-        rd_mat_vec(s->R[i], p->v[v - s->vert0[i]], s->wv[v]);
-        rd_axpy(1.0, s->x[i], s->wv[v]);
+        rd_mat_vec(R, p->v[v - v0], s->wv[v]);
+        rd_axpy(1.0, x, s->wv[v]);
     }
 }
 
