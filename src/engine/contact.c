@@ -347,12 +347,13 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
  *   new, or not unloading), its face not a late one, below its entrance face, compressed, and
  *   within the Coulomb limit.
  * Returns 0 or 1 as subcontact does, or -1 (nothing stored) when the point needs subcontact. */
-static inline int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
+static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
+                                                             const int nw)
 {
     const unsigned fl = s->pstate[st];
     const double *p = s->pl[pt];
     if (fl & RD_PT_BONDED) return -1;
-    for (int w = 0; w < c->nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
+    for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
         double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
         if (out > c->tol + 0.0) { /* subcontact's band, unbonded (slack 0) */
             if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return -1;
@@ -581,13 +582,13 @@ static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *s
  * touch), with *gap the face's clearance from the first such plane, m. As a loop over planes of
  * the least and largest vertex distance (NaN skipped) against the bands, from the vertices' plane
  * masks (rd_sim.cf_v: the face's vertices' slots). */
-static int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap)
+static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap, const int nw)
 {
     const int *slot = s->cf_v + s->cf_v0[cf], nv = s->cf_v0[cf + 1] - s->cf_v0[cf];
     c->m = NULL;
     c->mf = s->cf_face[cf];
     c->facing = s->cf_facing[cf];
-    for (int w = 0; w < c->nw; w++) {
+    for (int w = 0; w < nw; w++) {
         uint64_t out, cross;
         if (nv == 3) { /* a mesh's triangle */
             const uint64_t *m0 = c->mask + (size_t)slot[0] * 2 * RD_MASK_WORDS + w;
@@ -608,6 +609,38 @@ static int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap)
         c->cross[w] = cross;
     }
     return 0;
+}
+
+/* The candidate faces of a side (side_step's context c), each tested against the other body
+ * (face_planes), then its points (steady_point, else subcontact); the contact tally and active
+ * point-steps summed into *tally and *active_steps. nw: the mask words in use (a constant at
+ * each call: 1 for most bodies). */
+static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd, const rd_joint *j,
+                                                             rd_watch *tally, long *active_steps, const int nw)
+{
+    for (int cf = s->cf0[c->o], k = 0; cf < s->cf0[c->o + 1]; cf++, k++) {
+        double gap;
+        if (face_planes(s, c, cf, &gap, nw)) {
+            clear_face(s, c, sd, j, cf, k);
+            rd_joint_face_open(s, sd, cf, gap);
+            continue;
+        }
+        int na = 0, nin = 0, nslip = 0;
+        int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c->o]);
+        c->area = 0;
+        for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
+            int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, nw) : -1;
+            if (bears < 0) bears = subcontact(s, c, j, pt, st);
+            if (bears) {
+                na++;
+                nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
+            }
+            nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
+        }
+        s->face_nactive[sd->face0 + k] = nin;
+        *active_steps += na;
+        rd_monitor_contact(tally, s->shaking, c->area, na, nslip);
+    }
 }
 
 static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, double nsum[3])
@@ -644,29 +677,10 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     rd_watch tally = {0};
     if (watch) { tally.area = watch->area; tally.nactive = watch->nactive; tally.nslip = watch->nslip; tally.touched = watch->touched; }
     long active_steps = 0;
-    for (int cf = s->cf0[c.o], k = 0; cf < s->cf0[c.o + 1]; cf++, k++) {
-        double gap;
-        if (face_planes(s, &c, cf, &gap)) {
-            clear_face(s, &c, sd, j, cf, k);
-            rd_joint_face_open(s, sd, cf, gap);
-            continue;
-        }
-        int na = 0, nin = 0, nslip = 0;
-        int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c.o]);
-        c.area = 0;
-        for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
-            int bears = RD_STEADY_PATH ? steady_point(s, &c, j, pt, st) : -1;
-            if (bears < 0) bears = subcontact(s, &c, j, pt, st);
-            if (bears) {
-                na++;
-                nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
-            }
-            nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
-        }
-        s->face_nactive[sd->face0 + k] = nin;
-        active_steps += na;
-        rd_monitor_contact(&tally, s->shaking, c.area, na, nslip);
-    }
+    if (c.nw == 1) /* the usual one word of planes (up to 64), as a constant */
+        side_faces(s, &c, sd, j, &tally, &active_steps, 1);
+    else
+        side_faces(s, &c, sd, j, &tally, &active_steps, c.nw);
     if (watch) { watch->area = tally.area; watch->nactive = tally.nactive; watch->nslip = tally.nslip; watch->touched = tally.touched; }
     if (!s->settling) s->active_point_steps += active_steps;
     rd_copy3(c.f_o, s->f[c.o]); rd_copy3(c.tq_o, s->tq[c.o]);
