@@ -138,32 +138,49 @@ static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, co
     }
 }
 
+/* A subcontact's last bearing step, as a release needs it: its elastic normal stretch s (m), the
+ * non-elastic part of its normal force fd (dashpot, tension cap; N) and its Coulomb limit lim
+ * (N). All 0 for a point that did not bear. */
+typedef struct bore {
+    double s, fd, lim;
+} bore;
+
+static inline bore last_bore(const rd_sim *s, const rd_joint *j, int st, double A)
+{
+    bore b = {0.0, 0.0, 0.0};
+    unsigned char fl = s->pstate[st];
+    if (!(fl & RD_PT_ACTIVE)) return b;
+    b.s = -s->pj[st][1] - s->pset[st]; /* pj: its last normal force and minus its depth */
+    b.fd = s->pj[st][0] - j->kn * A * b.s;
+    b.lim = rd_max(s->pj[st][0], 0.0) * j->tan_phi + ((fl & RD_PT_BONDED) ? j->cohesion * A : 0.0);
+    return b;
+}
+
 /* Spring energy released by subcontact st (point pt) that stops bearing at this step (it leaves
- * the contact, its face turns away, its bond breaks): its springs at mid-step
- * (rd_law_release_energy), the normal one between its last bearing stretch s_prev and s_now
- * (m; 0, 0 where the point has lifted off its face or its permanent set). The joint model
- * dissipates it (3DEC drops the forces of an opening contact); it is booked as friction so the
- * energy balance stays closed. */
-static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, double s_prev,
-                    double s_now, double fd_prev)
+ * the contact, its face turns away, its bond breaks), last: its last bearing step, s_now: its
+ * elastic normal stretch now (m): its springs at mid-step (rd_law_release_energy), booked as
+ * friction (the joint model dissipates it: 3DEC drops the forces of an opening contact), and its
+ * dashpot's last half step. */
+static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, const bore *last,
+                    double s_now)
 {
     if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
     double kin[9];
     point_kinematics(s, c, pt, kin);
     const double *u = s->wn[s->face0[c->t] + s->pface[st]], *vr = kin + 6;
     double vn = rd_dot(vr, u);
-    s->e_fric += rd_law_release_energy(kA, s_prev, s_now, s->fs[st], u, vr, vn, sA, s->dt);
-    if (fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, 0.0, vn, s->dt);
+    s->e_fric += rd_law_release_energy(kA, last->s, s_now, s->fs[st], u, vr, vn, sA, last->lim, s->dt);
+    if (last->fd != 0) s->e_damp += rd_law_dashpot_work(last->fd, 0.0, vn, s->dt);
     s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
 }
 
-/* The point leaves the contact (s_prev, s_now: as release): forces drop, the contact episode
+/* The point leaves the contact (last, s_now: as release): forces drop, the contact episode
  * ends, and so does a bond. */
-static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, double s_prev,
-                       double s_now, double fd_prev)
+static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, const bore *last,
+                       double s_now)
 {
     unsigned char *fl = &s->pstate[st];
-    release(s, c, pt, st, kA, sA, s_prev, s_now, fd_prev);
+    release(s, c, pt, st, kA, sA, last, s_now);
     if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
     *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN);
     s->pset[st] = 0;
@@ -171,11 +188,11 @@ static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, 
 
 /* A point inside but not bearing (its face turned away, or lifted off its permanent set):
  * forces drop, the rest of its state is kept. */
-static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, double s_prev,
-                       double s_now, double fd_prev)
+static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, const bore *last,
+                       double s_now)
 {
     unsigned char *fl = &s->pstate[st];
-    release(s, c, pt, st, kA, sA, s_prev, s_now, fd_prev);
+    release(s, c, pt, st, kA, sA, last, s_now);
     *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
 }
 
@@ -240,16 +257,14 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
-    double s_prev = -s->pj[st][1] - s->pset[st]; /* last step's stretch, when it bore */
-    /* and the non-elastic part of its normal force (dashpot, tension cap), N */
-    double fd_prev = (*fl & RD_PT_ACTIVE) ? s->pj[st][0] - kA * s_prev : 0.0;
+    const bore last = last_bore(s, j, st, A);
     for (int w = 0; w < c->nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
         double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
         if (out > c->tol + slack) {
             s->pj[st][0] = 0;
             s->pj[st][1] = out;
             double stretch = (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
-            point_exit(s, c, pt, st, kA, sA, s_prev, stretch, fd_prev);
+            point_exit(s, c, pt, st, kA, sA, &last, stretch);
             return 0;
         }
     }
@@ -271,12 +286,12 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
     if (c->facing && rd_dot(owner_normal(s, c), u) > -RD_FACING_COS) {
-        point_idle(s, c, pt, st, kA, sA, s_prev, depth - s->pset[st], fd_prev);
+        point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
     if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
                                                    touch is a new impact */
-        point_idle(s, c, pt, st, kA, sA, 0.0, 0.0, fd_prev);
+        point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         *fl |= RD_PT_VIRGIN;
         s->pset[st] = 0;
         return 0;
@@ -288,7 +303,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
         (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
         kA * (depth - s->pset[st]) < 0) { /* below its permanent set, no dashpot, no bond, no
                                               impact to book: the law below would idle it */
-        point_idle(s, c, pt, st, kA, sA, 0.0, 0.0, fd_prev);
+        point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
     if (!moved) point_kinematics(s, c, pt, kin);
@@ -314,17 +329,16 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     if (fn < 0) {
         int bonded = (*fl & RD_PT_BONDED) && fel > -j->tension * A;
         if (!bonded) {
-            int was_bonded = (*fl & RD_PT_BONDED) != 0; /* a breaking bond releases its tension */
             *fl &= (unsigned char)~RD_PT_BONDED;
-            if (stretch <= 0) {
-                point_idle(s, c, pt, st, kA, sA, was_bonded ? s_prev : 0.0, was_bonded ? stretch : 0.0, fd_prev);
+            if (stretch <= 0) { /* a breaking bond releases its tension */
+                point_idle(s, c, pt, st, kA, sA, &last, stretch);
                 return 0;
             }
         }
         fn = bonded ? fmax(fn, -j->tension * A) : 0.0;
     }
-    if (fn != fel || fd_prev != 0) /* dashpot or tension-cap work */
-        s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
+    if (fn != fel || last.fd != 0) /* dashpot or tension-cap work */
+        s->e_damp += rd_law_dashpot_work(last.fd, fn - fel, vn, s->dt);
     c->k_active += kA;
 
     /* shear: the incremental Coulomb spring on the plane of the entrance face (law.h) */
@@ -401,7 +415,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double lim = rd_max(fn, 0.0) * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion) */
     rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
     if (!(rd_dot(fs, fs) <= lim * lim)) return -1; /* slips: rd_law_shear_cap in subcontact */
-    double fd_prev = s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]); /* subcontact's, active */
+    double fd_prev = s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]); /* last_bore's fd */
     if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
     c->k_active += kA;
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
@@ -458,8 +472,8 @@ static void clear_face(rd_sim *s, const side_ctx *c, const rd_side *sd, const rd
     for (int pt = s->cf_pt0[cf], st = first; pt < s->cf_pt0[cf + 1]; pt++, st++) {
         double A = sd->weight * s->pa[pt];
         double stretch = (s->pstate[st] & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], s->pl[pt]) - s->pset[st] : 0.0;
-        double s_prev = -s->pj[st][1] - s->pset[st];
-        point_exit(s, c, pt, st, j->kn * A, j->ks * A, s_prev, stretch, s->pj[st][0] - j->kn * A * s_prev);
+        const bore last = last_bore(s, j, st, A);
+        point_exit(s, c, pt, st, j->kn * A, j->ks * A, &last, stretch);
     }
     *na = 0;
 }

@@ -101,10 +101,11 @@ static unsigned outcode(const double box[6], const double x[3])
  * of a contact that ends). Where its deepest point q (world, m) and depth gradient g are known
  * (its spring has come back to zero stretch), the springs are let go at mid-step as a vertex
  * subcontact's (law.h, rd_law_release_energy): the normal one at zero stretch, the shear one
- * loaded by half the step's displacement at q. Else (q NULL: the edge has left o's box in one
- * step) their stored energy. */
-static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double sA, const double *q,
-                         const double *g)
+ * taken through half the step's displacement at q under its last Coulomb limit (its last
+ * stretch's force along g times tan_phi, as edge_force). Else (q NULL: the edge has left o's
+ * box in one step) their stored energy. */
+static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double sA, double tan_phi,
+                         const double *q, const double *g)
 {
     if (!s->eon[e]) return;
     if (q) {
@@ -112,7 +113,8 @@ static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double 
         double ro[3], rt[3], vr[3], gn = rd_norm(g), n[3];
         for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
         rd_law_relative_velocity(s, o, t, ro, rt, vr);
-        s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, s->efs[e], n, vr, rd_dot(vr, n), sA, s->dt);
+        double lim = kA * s->edepth[e][0] * gn * tan_phi;
+        s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
     } else {
         s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     }
@@ -383,7 +385,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
         if ((vi.code[va] & vi.code[vb]) || (!s->eon[e] && !may_bear(s, o, t, &vi, va, vb, t_points))) {
-            edge_release(s, sd, e, kA, sA, NULL, NULL); /* wholly beyond one side of o's box, or
+            edge_release(s, sd, e, kA, sA, j->tan_phi, NULL, NULL); /* wholly beyond one side of o's box, or
                                                            cannot start */
             continue;
         }
@@ -405,7 +407,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
         double q[3], stretch = dp.d - s->edepth[e][1];
         for (int c = 0; c < 3; c++) q[c] = a[c] + dp.u * (b[c] - a[c]);
         if (!(stretch > 0) && !fresh) {
-            edge_release(s, sd, e, kA, sA, q, dp.g);
+            edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp.g);
             continue;
         }
         edge_force(s, sd, j, e, q, dp.g, stretch > 0 ? stretch : 0, kA, sA);

@@ -120,24 +120,28 @@ static inline double rd_law_dashpot_work(double fd_prev, double fd, double vn, d
     return -0.5 * (fd_prev + fd) * vn * dt;
 }
 
-/* Energy, J, that a subcontact's springs hold when it stops bearing at step n (its force F(n-1)
- * acted last): the normal spring at the stretch midway between the last bearing step's s_prev
- * and this step's s_now (m; kA = KN A', N/m; nothing when the stretch has changed sign: a spring
- * that opens by itself stores nothing as it lets go, and the scheme's error at such a switch is
- * of order dt^2), and the shear spring fs (N) turned into the plane
- * n and loaded by half of the step's tangential displacement (vr, vn: the point's relative
- * velocity and its normal part, m/s). Leapfrog gives the bodies the work of F(n-1) over the
- * first half of the step only (the step's kinetic energy change is the mean of F(n-1) and
- * F(n) = 0 times the displacement), so the springs let go at mid-step: booking their energy at
- * step n-1 (or at n) left F(n-1) dU / 2 per release in the balance, a first-order error (the
- * 4-drum YADE column at 0.5 g: 0.93 J of its 1.06 J residual). */
+/* Energy, J, that a subcontact's springs give up when it stops bearing at step n (its force
+ * F(n-1) acted last). Leapfrog gives the bodies the work of F(n-1) over the first half of the
+ * step only (the step's kinetic energy change is the mean of F(n-1) and F(n) = 0 times the
+ * displacement), so the springs let go at mid-step: booking their energy at step n-1 (or at
+ * n) left F(n-1) dU / 2 per release in the balance, a first-order error (the 4-drum YADE column
+ * at 0.5 g: 0.93 J of its 1.06 J residual).
+ *  - normal (kA = KN A', N/m): the stretch midway between the last bearing step's s_prev and
+ *    this step's s_now (m); nothing when the stretch has changed sign (a spring that opens by
+ *    itself stores nothing as it lets go; the scheme's error at that switch is of order dt^2);
+ *  - shear: the spring fs (N) turned into the plane n and taken through half the step's
+ *    tangential displacement (vr, vn: the point's relative velocity and its normal part, m/s)
+ *    under its last Coulomb limit lim (N): its energy then, plus what slips in that half step
+ *    (rd_law_shear_cap). Without the cap a stiff shear spring (KS A' dU >> lim) was credited
+ *    (KS A' dU)^2 / 8 it could never hold (the YADE stack at KS 2e10 Pa/m: a residual floor of
+ *    7e-4 at 2.5e-5 and 1.25e-5 s). */
 static inline double rd_law_release_energy(double kA, double s_prev, double s_now, const double fs[3],
                                            const double n[3], const double vr[3], double vn, double sA,
-                                           double dt)
+                                           double lim, double dt)
 {
-    double sm = s_prev * s_now > 0 ? 0.5 * (s_prev + s_now) : 0.0, f[3] = {fs[0], fs[1], fs[2]};
-    rd_law_shear_trial(f, n, vr, vn, sA, 0.5 * dt);
-    return 0.5 * (kA * sm * sm + rd_dot(f, f) / sA);
+    double sm = s_prev * s_now > 0 ? 0.5 * (s_prev + s_now) : 0.0, f[3] = {fs[0], fs[1], fs[2]}, e = 0;
+    rd_law_shear(f, n, vr, vn, sA, 0.5 * dt, lim, &e);
+    return e + 0.5 * (kA * sm * sm + rd_dot(f, f) / sA);
 }
 
 #endif
