@@ -15,8 +15,8 @@ Scenes and accuracy measures:
           threshold against the CVODE Kounadis reference (plastic impacts);
   column  tests/data/yade/column.dat (four 12-sided drums) under its 0.5 g 2 Hz pulse, 2.5 s:
           no rigid reference exists, so its row gives the cost and the top drum's peak tilt.
-Every code runs the same geometry at several fixed steps (rockdem: its contact preset `rigid`,
-the automatic step; the column its file's fixed step); overturning is a tilt past 1.5 alpha in
+Every code runs the same geometry at several fixed steps (rockdem: its contact preset `rigid` at
+KN 1e10 and at the preset's own 1e11, the automatic step; the column its file's fixed step); overturning is a tilt past 1.5 alpha in
 every code (the reference: certain overturning). The threshold search is rd_threshold's for
 all (24 coarse steps from 0.9 to 10 g tan(alpha), bisection to 0.005), run on one core
 (rockdem -j 1). "Meets" = first-impact error <= 1 % and threshold error <= 2 % (issues 10 and
@@ -48,11 +48,12 @@ PEER_DT = {"pybullet": (1 / 240, 1e-3, 2.5e-4, 1e-4),   # 1/240 s: PyBullet's de
 YADE_DT = 5e-5        # s: the step of tests/data/yade/ (YADE's stability limit for this KN)
 
 
-def scene_text(kind, motion="", init="", T=3.0, rigid=True):
-    """The ladder's block or stack scene; rigid=False: the same without the preset (YADE's
-    translator reads KN, KS and friction only: KS 1e9, friction 80 deg, fixed step)."""
+def scene_text(kind, motion="", init="", T=3.0, rigid=True, kf=1.0):
+    """The ladder's block or stack scene at KN = kf x KN0 (the ladder's 1e10 Pa/m; the preset's
+    own KN is 10 KN0); rigid=False: the same without the preset (YADE's translator reads KN, KS
+    and friction only: KS 1e9, friction 80 deg, fixed step)."""
     base = ladder.BLOCK if kind == "block" else ladder.STACK
-    text = base.format(kn=ladder.KN0, ks=10 * ladder.KN0, damping=init, motion=motion, T=T)
+    text = base.format(kn=kf * ladder.KN0, ks=10 * kf * ladder.KN0, damping=init, motion=motion, T=T)
     if not rigid:
         text = re.sub(r"contact preset rigid\ncontact property .*\n",
                       "contact property stiffness-normal %g stiffness-shear 1e9 friction 80\n" % ladder.KN0, text)
@@ -188,19 +189,24 @@ def main(argv=None):
         print("CVODE reference: first impact %.6f s, 2 Hz threshold block %.4f g, stack %.4f g"
               % (t_ref, a_ref / G0, s_ref / G0), flush=True)
 
-        # ---- rockdem ----------------------------------------------------------------------------
-        t1, _ = B.first_impact(B.write("free_rd", scene_text("block", init=init, T=1.5)), "run")
-        a1, n1, w1 = B.threshold(blk, "dem")
-        s1, ns1, ws1 = B.threshold(stk, "dem")
-        wps_b, p = B.perf(blk, "motion.amplitude=%.6g" % a_ref)
-        wps_s, _ = B.perf(stk, "motion.amplitude=%.6g" % s_ref)
-        dt_rd = float(ladder.h5(p, "summary:dt"))
+        # ---- rockdem: the rigid preset at KN 1e10 and at its own 1e11 (its ladder of stiffness,
+        # as the peers' ladder of steps); the column is its file's own setting, run once ----------
         col = os.path.join(ROOT, "tests", "data", "yade", "column.dat")
         wps_c, pc = B.perf(col, "model.duration=2.5")
         peak_c = float(ladder.h5(pc, "summary:max_tilt")[-1])  # the top drum
-        rows.append(dict(code="rockdem (preset rigid)", dt=dt_rd, imp=rel(t1, t_ref), thr=rel(a1, a_ref), wps=wps_b,
-                         search=w1, runs=n1, sthr=rel(s1, s_ref), swps=wps_s, ssearch=ws1, cwps=wps_c, cpeak=peak_c))
-        print("rockdem done", flush=True)
+        for kf in (1.0, 10.0):
+            t1, _ = B.first_impact(B.write("free_rd", scene_text("block", init=init, T=1.5, kf=kf)), "run")
+            blk_k = B.write("block_rd", scene_text("block", motion=pulse, kf=kf))
+            stk_k = B.write("stack_rd", scene_text("stack", motion=pulse, kf=kf))
+            a1, n1, w1 = B.threshold(blk_k, "dem")
+            s1, ns1, ws1 = B.threshold(stk_k, "dem")
+            wps_b, p = B.perf(blk_k, "motion.amplitude=%.6g" % a_ref)
+            wps_s, _ = B.perf(stk_k, "motion.amplitude=%.6g" % s_ref)
+            dt_rd = float(ladder.h5(p, "summary:dt"))
+            rows.append(dict(code="rockdem (preset rigid, KN %g)" % (kf * ladder.KN0), dt=dt_rd, imp=rel(t1, t_ref),
+                             thr=rel(a1, a_ref), wps=wps_b, search=w1, runs=n1, sthr=rel(s1, s_ref), swps=wps_s,
+                             ssearch=ws1, cwps=wps_c, cpeak=peak_c))
+            print("rockdem KN %g done" % (kf * ladder.KN0), flush=True)
 
         # ---- PyBullet, MuJoCo -------------------------------------------------------------------
         if a.venv_python:
