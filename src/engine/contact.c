@@ -415,7 +415,10 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double lim = rd_max(fn, 0.0) * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion) */
     rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
     if (!(rd_dot(fs, fs) <= lim * lim)) return -1; /* slips: rd_law_shear_cap in subcontact */
-    double fd_prev = s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]); /* last_bore's fd */
+    /* last_bore's fd; exactly 0 where the joint has no dashpot: a bearing point's stored force
+       pj[0] is then its elastic force kA * (depth - set), the product repeated here (the tension
+       cap never holds a bearing point's force below it) */
+    double fd_prev = j->damping > 0 ? s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]) : 0.0;
     if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
     c->k_active += kA;
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
