@@ -47,23 +47,36 @@ void rd_bodies_refresh(rd_sim *s)
         if (!s->fixed[i]) rd_body_refresh(s, i);
 }
 
+/* One ground-frame coordinate of n points: w[k] = r . (bx, by, bz)[k] + x, rd_mat_vec's row r
+ * then rd_axpy's 1.0 * x (the same expressions: the same bits); over contiguous coordinates the
+ * loop vectorises. */
+static void transform_row(int n, const double *restrict bx, const double *restrict by, const double *restrict bz,
+                          const double r[3], double x, double *restrict w)
+{
+    const double r0 = r[0], r1 = r[1], r2 = r[2];
+    for (int k = 0; k < n; k++) w[k] = r0 * bx[k] + r1 * by[k] + r2 * bz[k] + 1.0 * x;
+}
+
 /* What a step needs of non-convex body i: its rotation and candidate-face vertices (a scanned
- * rock: a few hundred of its thousands of vertices). It is never a contact target, so its face
- * planes are not needed; the contact finds a candidate face's normal from the rotation when a
- * point needs it (contact.c: owner_normal), and the broad phase transforms the hull vertices
- * only when it rebuilds the body's box (pairs.c). */
+ * rock: a few hundred of its thousands of vertices), from their contiguous body-frame
+ * coordinates (rd_sim.cv_body) into rd_sim.cv_world, then into the world vertices. It is never a
+ * contact target, so its face planes are not needed; the contact finds a candidate face's normal
+ * from the rotation when a point needs it (contact.c: owner_normal), and the broad phase
+ * transforms the hull vertices only when it rebuilds the body's box (pairs.c). */
 static void body_refresh_contact(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
-    const rd_poly *p = &s->poly[i];
-    double R[9], x[3]; /* in locals: the stores below cannot alias them */
-    for (int k = 0; k < 9; k++) R[k] = s->R[i][k];
-    rd_copy3(s->x[i], x);
-    const int v0 = s->vert0[i];
-    for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) {
-        int v = s->cv[k];
-        rd_mat_vec(R, p->v[v - v0], s->wv[v]);
-        rd_axpy(1.0, x, s->wv[v]);
+    const double *R = s->R[i], *x = s->x[i];
+    const int k0 = s->cv0[i], n = s->cv0[i + 1] - k0, ncv = s->cv0[s->nb];
+    const double *bx = s->cv_body + k0, *by = bx + ncv, *bz = by + ncv;
+    double *wx = s->cv_world, *wy = wx + n, *wz = wy + n;
+    transform_row(n, bx, by, bz, R, x[0], wx);
+    transform_row(n, bx, by, bz, R + 3, x[1], wy);
+    transform_row(n, bx, by, bz, R + 6, x[2], wz);
+    const int *cv = s->cv + k0;
+    for (int k = 0; k < n; k++) {
+        double *w = s->wv[cv[k]];
+        w[0] = wx[k]; w[1] = wy[k]; w[2] = wz[k];
     }
 }
 

@@ -385,7 +385,8 @@ static int list_vertices(const rd_sim *s, const char *use, int **first, int **li
 
 /* Hull vertices of every body (rd_sim.hv: its bounding box in any pose; a hull that qhull
  * cannot make keeps every vertex), then every body's candidate-face vertices (rd_sim.cv: what a
- * non-convex body's step transforms) and the scratch of their plane distances and masks. */
+ * non-convex body's step transforms, their body-frame coordinates in rd_sim.cv_body) and the
+ * scratch of their world coordinates, plane distances and masks. */
 static int build_step_vertices(rd_sim *s, rd_error *err)
 {
     int nv = s->vert0[s->nb], ncv_max = 0, np_max = 0;
@@ -408,8 +409,13 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) s->cv_slot[s->cv[k]] = k - s->cv0[i];
         ncv_max = s->cv0[i + 1] - s->cv0[i] > ncv_max ? s->cv0[i + 1] - s->cv0[i] : ncv_max;
     }
+    int ncv = rc ? 0 : s->cv0[s->nb];
     rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max) ||
-         !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS);
+         !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS) || !ALLOC(s->cv_body, 3 * (size_t)ncv) ||
+         !ALLOC(s->cv_world, 3 * (size_t)ncv_max);
+    for (int i = 0; i < s->nb && !rc; i++)
+        for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++)
+            for (int d = 0; d < 3; d++) s->cv_body[d * ncv + k] = s->poly[i].v[s->cv[k] - s->vert0[i]][d];
     free(use);
     return rc ? rd_error_set(err, "out of memory") : 0;
 }

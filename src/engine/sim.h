@@ -174,6 +174,9 @@ struct rd_sim {
     int *cv_slot;          /* [vertices] position of a vertex in its body's cv list, -1 if absent */
     int *edge_v0;          /* [bodies + 1] first entry of a body's edges in edge_v (edge.c) */
     int (*edge_v)[2];      /* each edge of every body once: its vertices (body-local, a < b) */
+    double *cv_body;       /* [3][cv entries, all bodies] the cv vertices' body-frame coordinates,
+                              x, y, z each contiguous (integrate.c: a mesh's step transform) */
+    double *cv_world;      /* scratch: [3][cv entries of one body] their ground-frame coordinates */
     double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
     uint64_t *cv_mask;     /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
