@@ -69,6 +69,7 @@ typedef struct side_ctx {
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
     int np;                     /* planes of the other body */
+    const double (*wn)[3];      /* the other body's outward face normals, ground frame (rd_sim.wn) */
     double pl[RD_MAX_PLANES][4];/* n (3), d: plane k, owner frame */
     const double *dist;         /* the owner's candidate-face vertices' signed distances to the
                                    planes (rd_sim.cv_dist, [cv slot][plane], m) */
@@ -167,7 +168,7 @@ static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, dou
     if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
     double kin[9];
     point_kinematics(s, c, pt, kin);
-    const double *u = s->wn[s->face0[c->t] + s->pface[st]], *vr = kin + 6;
+    const double *u = c->wn[s->pface[st]], *vr = kin + 6;
     double vn = rd_dot(vr, u);
     s->e_fric += rd_law_release_energy(kA, last->s, s_now, s->fs[st], u, vr, vn, sA, last->lim, s->dt);
     if (last->fd != 0) s->e_damp += rd_law_dashpot_work(last->fd, 0.0, vn, s->dt);
@@ -281,7 +282,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
         s->pset[st] = 0;
     }
     int e = s->pface[st];
-    const double *u = s->wn[s->face0[c->t] + e]; /* outward normal of the entrance face */
+    const double *u = c->wn[e]; /* outward normal of the entrance face */
     double depth = -plane_dist(c->pl[e], p);
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
@@ -381,7 +382,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     int e = s->pface[st];
     double depth = -plane_dist(c->pl[e], p);
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
-    const double *u = s->wn[s->face0[c->t] + e];
+    const double *u = c->wn[e];
     if (c->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
             return -1;
@@ -486,6 +487,7 @@ static void side_planes(const rd_sim *s, side_ctx *c)
 {
     const double *R = s->R[c->o], *xo = s->x[c->o];
     c->np = s->poly[c->t].nf;
+    c->wn = s->wn + s->face0[c->t];
     for (int k = 0; k < c->np; k++) {
         const double *n = s->wn[s->face0[c->t] + k];
         double *pl = c->pl[k];
