@@ -19,7 +19,7 @@ model solve time 1.0
 output hdf5 'fall.h5' interval 0.01
 EOS
 (cd "$T" && "$BIN" run fall.dat -o fall.h5 > fall.log 2>&1) || { echo "FAIL energy-end: the run failed"; cat "$T/fall.log"; exit 1; }
-r=$(/usr/bin/python3 -c "import h5py; print('%.6g' % h5py.File('$T/fall.h5', 'r')['summary'].attrs['energy_residual_max'])")
+r=$(energy_residual "$T/fall.h5")
 echo "free fall, 1 s at 5e-5 s: energy residual $r"
 ok=$(awk -v r="$r" 'BEGIN { print (r <= 1e-9) ? 1 : 0 }')
 verdict "energy-end/free-fall (energy residual)" "$ok" "$r" 1e-9 strict || exit 1

@@ -19,3 +19,21 @@ verdict() {
     echo "FAIL $what: gap=$gap tol=$tol"
     return 1
 }
+
+# energy_residual FILE: the run's summary energy_residual_max
+energy_residual() {
+    /usr/bin/python3 -c "import h5py; print('%.6g' % h5py.File('$1', 'r')['summary'].attrs['energy_residual_max'])"
+}
+
+# check_residual WHAT R: R within issue 10's bound, 1e-3 of the energy scale; returns 1 if not
+check_residual() {
+    verdict "$1 (energy residual)" "$(awk -v r="$2" 'BEGIN { print (r <= 1e-3) ? 1 : 0 }')" "$2" 1e-3 strict
+}
+
+# check_order WHAT A B: the residual A at a step falls to B at half of it by at least 2^1.5 = 2.83
+# (order >= 1.5: between a first-order booking error's 2 and leapfrog's own second order's 4)
+check_order() {
+    local ratio
+    ratio=$(awk -v a="$2" -v b="$3" 'BEGIN { printf "%.4g", (b > 0) ? a / b : 1e9 }')
+    verdict "$1" "$(awk -v q="$ratio" 'BEGIN { print (q >= 2.83) ? 1 : 0 }')" "$ratio" ">=2.83" strict
+}
