@@ -56,6 +56,7 @@ KN_RATIO = 10.0
 # made with its derived tolerance and reported XFAIL with the measured gap while it misses.
 XFAILS = {
     "stack-threshold/undamped-2Hz-3pct": "3.2 % at the rigid preset's KN 1e11, 0.2 % over the 3 % asked; it converges with KN (+7.7 % at 1e10, +3.2 % at 1e11, -0.8 % at 1e12, bisection to 0.1 %) and the same stack with dashpots is +0.6 % at 1e11: the stack falls before any impact, and the undamped elastic joints' rocking vibration, which rigid theory lacks, is what is left (docs/CONTACT.md)",
+    "stack-threshold/undamped-2.5Hz-kn1e+12-3pct": "the 2.5 Hz cliff (docs/CONTACT.md): the reference's threshold jumps from 0.91 to 1.745 g for 1.4 % more loss per impact, and the elastic stack lands on either branch as KN changes",
     "stack-threshold/undamped-2.5Hz-3pct": "+85 % at KN 1e11 (+2.0 % at 1e10): the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact), and which branch the elastic stack lands on changes with KN (docs/CONTACT.md)",
     "stack-threshold/damped-2Hz": "0.55 % at KN 1e11, inside the 3 % asked; 1e10 and 1e11 differ by 0.2 % only, so the two-KN bound (0.48 %) does not cover it (docs/CONTACT.md)",
     "stack-threshold/damped-2.5Hz-3pct": "+90 %: the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact); the dashpots take about 1 % more from the stack's impacts (docs/CONTACT.md)",
@@ -364,6 +365,8 @@ DAMPED = "model damping viscous 0.2"
 
 STACK_RTOL = 0.002   # bisection of the stack thresholds: brackets well inside the 3 % asked
 STACK_ASKED = 0.03   # issue 10: stack thresholds within 3 % of the Kounadis reference
+STACK_P = math.sqrt(3 * cf.G0 / (4 * math.hypot(0.25, 0.5)))   # 1/s: the lower block's p (3.628)
+STIFF_WP = 3.0       # above this w/p docs/CONTACT.md recommends KN 1e12 for undamped thresholds
 
 
 def case_stack_threshold(L):
@@ -393,6 +396,12 @@ def case_stack_threshold(L):
             L.check(rid, what, ref / cf.G0, src, a2 / cf.G0, err, RICHARDSON * abs(a1 - a2) / ref + w2 + wr,
                     "two-KN study (%g, %g) + both bisection brackets (rtol %g)" % (KN0, 10 * KN0, STACK_RTOL))
             L.check(rid + "-3pct", what, ref / cf.G0, src, a2 / cf.G0, err, STACK_ASKED, "issue 10's requirement (3 %)")
+            if L.depth == "full" and not damping and 2 * math.pi * f / STACK_P > STIFF_WP:
+                # docs/CONTACT.md: undamped thresholds above w/p 3 compared with rigid theory at KN 1e12
+                a3, _ = dem(100.0)
+                L.check(rid + "-kn%g-3pct" % (100 * KN0), "minimum overturning amplitude at %g Hz (g), KN %g, relative error"
+                        % (f, 100 * KN0), ref / cf.G0, src, a3 / cf.G0, abs(a3 - ref) / ref, STACK_ASKED,
+                        "issue 10's requirement (3 %), at the KN docs/CONTACT.md recommends above w/p 3")
 
 
 def stack_events(path):
