@@ -67,13 +67,13 @@ static void test_release(void **state)
     (void)state;
     const double lim = 2e3, sA = 1e12, v = 0.1, dt = 5e-5, kA = 3e8;
     const double fs[3] = {-lim, 0, 0}, vr[3] = {v, 0, 0};
-    double e = rd_law_release_energy(0.0, 0.0, 0.0, fs, N_Z, vr, 0.0, sA, lim, dt);
+    double e = rd_law_release_energy(0.0, 0.0, 0.0, 0, fs, N_Z, vr, 0.0, sA, lim, dt);
     rd_check_rel("released slipping shear spring (J)", e, 0.5 * lim * lim / sA + 0.5 * lim * v * dt, ROUNDOFF,
                  RD_STRICT);
     const double zero[3] = {0, 0, 0}, still[3] = {0, 0, 0};
-    e = rd_law_release_energy(kA, 1e-4, 0.8e-4, zero, N_Z, still, 0.0, sA, lim, dt);
+    e = rd_law_release_energy(kA, 1e-4, 0.8e-4, 0, zero, N_Z, still, 0.0, sA, lim, dt);
     rd_check_rel("released compressed normal spring (J)", e, 0.5 * kA * 0.9e-4 * 0.9e-4, ROUNDOFF, RD_STRICT);
-    e = rd_law_release_energy(kA, 1e-6, -2e-6, zero, N_Z, still, 0.0, sA, lim, dt);
+    e = rd_law_release_energy(kA, 1e-6, -2e-6, 0, zero, N_Z, still, 0.0, sA, lim, dt);
     rd_check_abs("normal spring that opened by itself (J)", e, 0.0, 0.0, RD_STRICT);
 }
 

@@ -172,11 +172,8 @@ static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, dou
     point_kinematics(s, c, pt, kin);
     const double *u = c->wn[s->pface[st]], *vr = kin + 6;
     double vn = rd_dot(vr, u);
-    /* an unbonded point that bore below its permanent set (its dashpot holding it, stretch < 0)
-     * has no compression to give up: booking its stretch over-credited the default scenario's
-     * cask 78 J at its 2.0 s impact (residual 1.9e-3; 3.1e-4 booked as nothing) */
-    double s_prev = (last->s > 0 || last->bonded) ? last->s : 0.0;
-    s->e_fric += rd_law_release_energy(kA, s_prev, s_now, s->fs[st], u, vr, vn, sA, last->lim, s->dt);
+    s->e_fric += rd_law_release_energy(kA, last->s, s_now, last->bonded, s->fs[st], u, vr, vn, sA, last->lim,
+                                       s->dt);
     if (last->fd != 0) s->e_damp += rd_law_dashpot_work(last->fd, 0.0, vn, s->dt);
     s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
 }

@@ -114,7 +114,7 @@ static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double 
         for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
         rd_law_relative_velocity(s, o, t, ro, rt, vr);
         double lim = kA * s->edepth[e][0] * gn * tan_phi;
-        s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
+        s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, 0, s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
     } else {
         s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     }
