@@ -356,6 +356,54 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     return 1;
 }
 
+/* steady_point's point beyond the band (out: its distance beyond the plane, m, more than
+ * subcontact's band unbonded, slack 0): one that was already out records its gap; 0, or -1 for
+ * subcontact. */
+static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, unsigned fl, double out)
+{
+    if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return -1;
+    s->pj[st][0] = 0;
+    s->pj[st][1] = out;
+    s->pset[st] = 0;
+    return 0;
+}
+
+/* A face's distance pass (face_pass): its points' signed distances to one plane q of the other
+ * body, found in one loop over the face before its points are visited (the exit test's and the
+ * depth's plane_dist, the same expression, so the same bits). */
+typedef struct face_dist {
+    int q;            /* the plane measured, -1: none */
+    int exit_q;       /* q when it is the only plane the face's points may lie beyond
+                         (side_ctx.cross), so the exit test reads d; -1: plane by plane */
+    const double *d;  /* [the face's points] distances to plane q, m (rd_sim.pdist) */
+} face_dist;
+
+/* Faces with fewer points take no distance pass (a mesh triangle carries one or two, a brick's
+ * late face its four corners). */
+#define RD_PASS_MIN_POINTS 8
+
+/* d[i] = plane_dist(pl, p[i]) for n points (out of line: face_pass runs for every face). */
+static __attribute__((noinline)) void plane_distances(const double pl[4], const double (*restrict p)[3], int n,
+                                                      double *restrict d)
+{
+    const double n0 = pl[0], n1 = pl[1], n2 = pl[2], d0 = pl[3];
+    for (int i = 0; i < n; i++) d[i] = n0 * p[i][0] + n1 * p[i][1] + n2 * p[i][2] - d0;
+}
+
+/* The distance pass of candidate face cf (points pt0 .. pt1 - 1): plane q is the one plane its
+ * points may lie beyond, or, when they lie beyond none, the entrance face of its first point. */
+static face_dist face_pass(rd_sim *s, const side_ctx *c, int pt0, int pt1, int st0, const int nw)
+{
+    face_dist fd = {-1, -1, s->pdist};
+    if (nw != 1 || pt1 - pt0 < RD_PASS_MIN_POINTS) return fd;
+    const uint64_t x = c->cross[0];
+    if (x && !(x & (x - 1))) fd.q = fd.exit_q = __builtin_ctzll(x);
+    else if (!x && (s->pstate[st0] & RD_PT_INSIDE)) fd.q = s->pface[st0];
+    else return fd;
+    plane_distances(c->pl[fd.q], (const double (*)[3])s->pl[pt0], pt1 - pt0, s->pdist);
+    return fd;
+}
+
 /* subcontact's common cases, with its arithmetic (the same expressions in the same order, so
  * the same bits) and none of its branches on rare state:
  * - a point beyond the band that was already out: only its gap is recorded;
@@ -366,24 +414,23 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
  *   within the Coulomb limit.
  * Returns 0 or 1 as subcontact does, or -1 (nothing stored) when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
-                                                             const int nw)
+                                                             const face_dist *fd, int i, const int nw,
+                                                             const int pass)
 {
     const unsigned fl = s->pstate[st];
     const double *p = s->pl[pt];
     if (fl & RD_PT_BONDED) return -1;
-    for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
-        double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
-        if (out > c->tol + 0.0) { /* subcontact's band, unbonded (slack 0) */
-            if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return -1;
-            s->pj[st][0] = 0;
-            s->pj[st][1] = out;
-            s->pset[st] = 0;
-            return 0;
+    if (pass && fd->exit_q >= 0) {
+        if (fd->d[i] > c->tol + 0.0) return steady_out(s, st, fl, fd->d[i]);
+    } else {
+        for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
+            double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
+            if (out > c->tol + 0.0) return steady_out(s, st, fl, out);
         }
     }
     if (!(fl & RD_PT_INSIDE)) return -1;
     int e = s->pface[st];
-    double depth = -plane_dist(c->pl[e], p);
+    double depth = pass && e == fd->q ? -fd->d[i] : -plane_dist(c->pl[e], p);
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     const double *u = c->wn[e];
     if (c->facing) { /* a late face: only its points that stay idle facing away are common */
@@ -633,6 +680,24 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
     return 0;
 }
 
+/* The points of candidate face cf (its first subcontact st), each by steady_point, else subcontact;
+ * their counts into *na (bearing), *nin (inside) and *nslip (slipping). pass (a constant at each
+ * call): the face took a distance pass (fd). */
+static inline __attribute__((always_inline)) void face_points(rd_sim *s, side_ctx *c, const rd_joint *j, int cf,
+                                                              int st, const face_dist *fd, int *na, int *nin,
+                                                              int *nslip, const int nw, const int pass)
+{
+    for (int pt = s->cf_pt0[cf], i = 0; pt < s->cf_pt0[cf + 1]; pt++, st++, i++) {
+        int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fd, i, nw, pass) : -1;
+        if (bears < 0) bears = subcontact(s, c, j, pt, st);
+        if (bears) {
+            ++*na;
+            *nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
+        }
+        *nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
+    }
+}
+
 /* The candidate faces of a side (side_step's context c), each tested against the other body
  * (face_planes), then its points (steady_point, else subcontact); the contact tally and active
  * point-steps summed into *tally and *active_steps. nw: the mask words in use (a constant at
@@ -650,15 +715,12 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
         int na = 0, nin = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c->o]);
         c->area = 0;
-        for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
-            int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, nw) : -1;
-            if (bears < 0) bears = subcontact(s, c, j, pt, st);
-            if (bears) {
-                na++;
-                nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
-            }
-            nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
-        }
+        const face_dist fd = RD_STEADY_PATH ? face_pass(s, c, s->cf_pt0[cf], s->cf_pt0[cf + 1], st, nw)
+                                            : (face_dist){-1, -1, NULL};
+        if (fd.q >= 0)
+            face_points(s, c, j, cf, st, &fd, &na, &nin, &nslip, nw, 1);
+        else
+            face_points(s, c, j, cf, st, &fd, &na, &nin, &nslip, nw, 0);
         s->face_nactive[sd->face0 + k] = nin;
         *active_steps += na;
         rd_monitor_contact(tally, s->shaking, c->area, na, nslip);
