@@ -58,7 +58,7 @@ const char *const rd_energy_names[RD_NENERGY] = {
     "kinetic", "gravitational", "elastic", "friction", "damping", "ground_work", "residual"};
 
 static const char *const energy_long_names[RD_NENERGY] = {
-    "kinetic energy (ground frame)", "gravitational potential energy",
+    "kinetic energy (ground frame), leapfrog's 1/2 m v(n-1/2).v(n+1/2)", "gravitational potential energy",
     "elastic energy stored in the contact springs", "energy dissipated by friction (cumulative)",
     "energy dissipated by damping (cumulative)", "work done by the ground motion (cumulative)",
     "energy balance residual"};
