@@ -35,8 +35,30 @@ static int axis_direction(double ang, double dir[2])
     return -1;
 }
 
+/* What a body is, for the sentence that refuses a shape the planar models cannot describe. */
+static const char *shape_words(rd_shape_kind k)
+{
+    switch (k) {
+    case RD_SHAPE_PRISM: return "a prism (a drum)";
+    case RD_SHAPE_HULL: return "a convex hull of points";
+    case RD_SHAPE_MESH: return "a triangle mesh";
+    default: return "a brick";
+    }
+}
+
+/* The planar models know rectangular blocks only: each body's width and height come from its
+ * brick size, the base's top from its height. */
+static int check_shape(const rd_scenario *sc, const rd_body_def *b, rd_error *err)
+{
+    if (b->shape == RD_SHAPE_BRICK) return 0;
+    return rd_error_set(err, "%s:%d: reference: body '%s' is %s; the Housner and Kounadis models "
+                             "describe rectangular bricks only (`block create brick`, `block "
+                             "create stack`)", sc->file, b->line, b->name, shape_words(b->shape));
+}
+
 static int check_brick(const rd_scenario *sc, const rd_body_def *b, rd_error *err)
 {
+    if (check_shape(sc, b, err)) return -1;
     if (b->rotation[0] != 0 || b->rotation[1] != 0 || b->rotation[2] != 0)
         return rd_error_set(err, "%s:%d: reference: body '%s' is rotated; the reference solvers "
                                  "need axis-aligned bricks", sc->file, b->line, b->name);
@@ -126,6 +148,7 @@ int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err)
     int ibase = -1, fr[2] = {0, 0}, nfree;
     if (count_bodies(sc, &ibase, fr, &nfree, err)) return -1;
     const rd_body_def *base = &sc->bodies[ibase];
+    if (check_shape(sc, base, err)) return -1;
     /* block 1 is the lower of the free bricks */
     if (nfree == 2 && sc->bodies[fr[1]].position[2] < sc->bodies[fr[0]].position[2]) {
         int t = fr[0]; fr[0] = fr[1]; fr[1] = t;
