@@ -59,13 +59,32 @@
 #define RD_STEADY_PATH 1
 #endif
 
+/* The owner's and the other body's pose and motion this step (rd_sim's R, x, v, w), copied
+ * once per side (side_ctx.fr, and a local of side_faces that no store into rd_sim can reach). */
+typedef struct side_frame {
+    double R[9];                /* owner rotation, body -> ground */
+    double xo[3], vo[3], wo[3]; /* owner centre (m), velocity (m/s), angular velocity (rad/s) */
+    double xt[3], vt[3], wt[3]; /* the other body's (read only when it is free) */
+} side_frame;
+
+/* A side's force sums: the owner's and a free other body's force (N) and torque (N m), fn u
+ * summed (N), KN A' summed over active points (N/m), and the current face's bearing area A'
+ * (m^2). side_faces keeps them in a local that no rd_sim store can reach (the same sums in the
+ * same order, but off the store-to-load chains of a struct behind a pointer). */
+typedef struct side_sums {
+    double f_o[3], tq_o[3], f_t[3], tq_t[3];
+    double nsum[3];
+    double k_active;
+    double area;
+} side_sums;
+
 /* The other body's face planes expressed in the owner's body frame, so a point's signed
  * distances need no transform: s_k(p) = n_k . p - d_k (> 0: outside plane k). */
 typedef struct side_ctx {
     int o, t;                   /* owner and other body */
     double wa;                  /* weight */
     double damp_coef;           /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
-    double k_active;            /* accumulates KN A' over active points, N/m */
+    side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
     int np;                     /* planes of the other body */
@@ -93,13 +112,6 @@ typedef struct side_ctx {
     int mf;                     /* the current owner face */
     double mbuf[3];
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
-    double nsum[3];             /* sum of fn times the owner's entrance-face normal u, N (times
-                                   to_b at the end of the side: the normal from a towards b) */
-    double area;                /* the current face's bearing area A', m^2 */
-    double f_o[3], tq_o[3];     /* the owner's force (N) and torque (N m) accumulators, and */
-    double f_t[3], tq_t[3];     /* the other's (a free one): rd_sim.f and .tq carried through the
-                                   side in locals (the same sums in the same order, but no
-                                   pointer aliasing keeps them out of registers) */
     int t_free;                 /* the other body is free (a fixed one takes no force) */
     double to_b;                /* +1 when the owner is the pair's body b, -1 when it is a */
 } side_ctx;
@@ -110,13 +122,30 @@ static inline double plane_dist(const double *pl, const double p[3])
 }
 
 /* Relative velocity of owner point ro (offset from the owner's centre, ground frame) against
- * the other body, m/s; rt receives the point's offset from the other body's centre when that
- * body is free, else 0 (a fixed body takes no torque and has no velocity: rt is not used). */
-static inline __attribute__((always_inline)) void relative_velocity(const rd_sim *s, const side_ctx *c, const double ro[3], double rt[3],
-                              double vr[3])
+ * the other body, m/s (rd_law_relative_velocity's expressions, from the frame fr); rt receives
+ * the point's offset from the other body's centre when that body is free (t_free), else 0 (a
+ * fixed body takes no torque and has no velocity: rt is not used). */
+static inline __attribute__((always_inline)) void relative_velocity(const side_frame *fr, int t_free,
+                                                                    const double ro[3], double rt[3],
+                                                                    double vr[3])
 {
-    for (int k = 0; k < 3; k++) rt[k] = c->t_free ? ro[k] + s->x[c->o][k] - s->x[c->t][k] : 0.0;
-    rd_law_relative_velocity(s, c->o, c->t, ro, rt, vr);
+    double tmp[3];
+    for (int k = 0; k < 3; k++) rt[k] = t_free ? ro[k] + fr->xo[k] - fr->xt[k] : 0.0;
+    rd_cross(fr->wo, ro, vr);
+    rd_axpy(1.0, fr->vo, vr);
+    if (t_free) {
+        rd_cross(fr->wt, rt, tmp);
+        rd_axpy(-1.0, tmp, vr);
+        rd_axpy(-1.0, fr->vt, vr);
+    }
+}
+
+/* rd_sim's frame of the side's two bodies (side_frame). */
+static void side_frame_of(const rd_sim *s, int o, int t, side_frame *fr)
+{
+    for (int k = 0; k < 9; k++) fr->R[k] = s->R[o][k];
+    rd_copy3(s->x[o], fr->xo); rd_copy3(s->v[o], fr->vo); rd_copy3(s->w[o], fr->wo);
+    rd_copy3(s->x[t], fr->xt); rd_copy3(s->v[t], fr->vt); rd_copy3(s->w[t], fr->wt);
 }
 
 /* Point pt's offsets from the owner's and the other's centre and its relative velocity (ro, rt,
@@ -130,8 +159,8 @@ static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, co
     int q = s->pkin[pt];
     double *sk = s->kin[q];
     if (s->kin_stamp[q] != s->kin_epoch) {
-        rd_mat_vec(s->R[c->o], s->pl[pt], k);
-        relative_velocity(s, c, k, k + 3, k + 6);
+        rd_mat_vec(c->fr.R, s->pl[pt], k);
+        relative_velocity(&c->fr, c->t_free, k, k + 3, k + 6);
         for (int i = 0; i < 9; i++) sk[i] = k[i];
         s->kin_stamp[q] = s->kin_epoch;
     } else {
@@ -238,24 +267,25 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
  * face's outward normal; fs: its shear force, N; ro, rt: its offsets from the owner's and the
  * other's centre, m): its stored shear and normal force, the side's normal and area sums, and
  * the force F = fn u + fs with its torques on the owner and (opposite) on a free other body. */
-static inline __attribute__((always_inline)) void bear(rd_sim *s, side_ctx *c, int st, double A,
+static inline __attribute__((always_inline)) void bear(rd_sim *s, side_sums *a, int t_free, int st, double A,
                                                        double fn, const double u[3], const double fs[3],
                                                        const double ro[3], const double rt[3])
 {
     rd_copy3(fs, s->fs[st]);
     s->pj[st][0] = fn;
     double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
-    for (int k = 0; k < 3; k++) c->nsum[k] += fu[k];
-    c->area += A;
+    for (int k = 0; k < 3; k++) a->nsum[k] += fu[k];
+    a->area += A;
 
     double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
-    rd_law_apply(F, ro, rt, c->f_o, c->tq_o, c->t_free, c->f_t, c->tq_t);
+    rd_law_apply(F, ro, rt, a->f_o, a->tq_o, t_free, a->f_t, a->tq_t);
 }
 
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
-static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st)
+static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
+                                                side_sums *a)
 {
     unsigned char *fl = &s->pstate[st];
     const double *p = s->pl[pt];
@@ -343,7 +373,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     }
     if (fn != fel || last.fd != 0) /* dashpot or tension-cap work */
         s->e_damp += rd_law_dashpot_work(last.fd, fn - fel, vn, s->dt);
-    c->k_active += kA;
+    a->k_active += kA;
 
     /* shear: the incremental Coulomb spring on the plane of the entrance face (law.h) */
     double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]}; /* in registers: stored once */
@@ -352,7 +382,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
-    bear(s, c, st, A, fn, u, fs, ro, rt);
+    bear(s, a, c->t_free, st, A, fn, u, fs, ro, rt);
     return 1;
 }
 
@@ -368,42 +398,6 @@ static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, u
     return 0;
 }
 
-/* A face's distance pass (face_pass): its points' signed distances to one plane q of the other
- * body, found in one loop over the face before its points are visited (the exit test's and the
- * depth's plane_dist, the same expression, so the same bits). */
-typedef struct face_dist {
-    int q;            /* the plane measured, -1: none */
-    int exit_q;       /* q when it is the only plane the face's points may lie beyond
-                         (side_ctx.cross), so the exit test reads d; -1: plane by plane */
-    const double *d;  /* [the face's points] distances to plane q, m (rd_sim.pdist) */
-} face_dist;
-
-/* Faces with fewer points take no distance pass (a mesh triangle carries one or two, a brick's
- * late face its four corners). */
-#define RD_PASS_MIN_POINTS 8
-
-/* d[i] = plane_dist(pl, p[i]) for n points (out of line: face_pass runs for every face). */
-static __attribute__((noinline)) void plane_distances(const double pl[4], const double (*restrict p)[3], int n,
-                                                      double *restrict d)
-{
-    const double n0 = pl[0], n1 = pl[1], n2 = pl[2], d0 = pl[3];
-    for (int i = 0; i < n; i++) d[i] = n0 * p[i][0] + n1 * p[i][1] + n2 * p[i][2] - d0;
-}
-
-/* The distance pass of candidate face cf (points pt0 .. pt1 - 1): plane q is the one plane its
- * points may lie beyond, or, when they lie beyond none, the entrance face of its first point. */
-static face_dist face_pass(rd_sim *s, const side_ctx *c, int pt0, int pt1, int st0, const int nw)
-{
-    face_dist fd = {-1, -1, s->pdist};
-    if (nw != 1 || pt1 - pt0 < RD_PASS_MIN_POINTS) return fd;
-    const uint64_t x = c->cross[0];
-    if (x && !(x & (x - 1))) fd.q = fd.exit_q = __builtin_ctzll(x);
-    else if (!x && (s->pstate[st0] & RD_PT_INSIDE)) fd.q = s->pface[st0];
-    else return fd;
-    plane_distances(c->pl[fd.q], (const double (*)[3])s->pl[pt0], pt1 - pt0, s->pdist);
-    return fd;
-}
-
 /* subcontact's common cases, with its arithmetic (the same expressions in the same order, so
  * the same bits) and none of its branches on rare state:
  * - a point beyond the band that was already out: only its gap is recorded;
@@ -414,23 +408,19 @@ static face_dist face_pass(rd_sim *s, const side_ctx *c, int pt0, int pt1, int s
  *   within the Coulomb limit.
  * Returns 0 or 1 as subcontact does, or -1 (nothing stored) when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
-                                                             const face_dist *fd, int i, const int nw,
-                                                             const int pass)
+                                                             const side_frame *fr, side_sums *a, const int nw,
+                                                             const int t_free)
 {
     const unsigned fl = s->pstate[st];
     const double *p = s->pl[pt];
     if (fl & RD_PT_BONDED) return -1;
-    if (pass && fd->exit_q >= 0) {
-        if (fd->d[i] > c->tol + 0.0) return steady_out(s, st, fl, fd->d[i]);
-    } else {
-        for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
-            double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
-            if (out > c->tol + 0.0) return steady_out(s, st, fl, out);
-        }
+    for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
+        double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
+        if (out > c->tol + 0.0) return steady_out(s, st, fl, out);
     }
     if (!(fl & RD_PT_INSIDE)) return -1;
     int e = s->pface[st];
-    double depth = pass && e == fd->q ? -fd->d[i] : -plane_dist(c->pl[e], p);
+    double depth = -plane_dist(c->pl[e], p);
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     const double *u = c->wn[e];
     if (c->facing) { /* a late face: only its points that stay idle facing away are common */
@@ -454,8 +444,8 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
         return -1;
     double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
-    rd_mat_vec(s->R[c->o], p, ro);
-    relative_velocity(s, c, ro, rt, vr);
+    rd_mat_vec(fr->R, p, ro);
+    relative_velocity(fr, t_free, ro, rt, vr);
     double vn = rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return -1; /* its impact loss: subcontact */
     double stretch = depth - s->pset[st];
@@ -471,10 +461,10 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
        cap never holds a bearing point's force below it) */
     double fd_prev = j->damping > 0 ? s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]) : 0.0;
     if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
-    c->k_active += kA;
+    a->k_active += kA;
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
     s->pj[st][1] = -depth;
-    bear(s, c, st, A, fn, u, fs, ro, rt);
+    bear(s, a, t_free, st, A, fn, u, fs, ro, rt);
     return 1;
 }
 
@@ -681,15 +671,16 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
 }
 
 /* The points of candidate face cf (its first subcontact st), each by steady_point, else subcontact;
- * their counts into *na (bearing), *nin (inside) and *nslip (slipping). pass (a constant at each
- * call): the face took a distance pass (fd). */
+ * their forces into *a, their counts into *na (bearing), *nin (inside) and *nslip (slipping).
+ * t_free (a constant at each call): the other body is free. */
 static inline __attribute__((always_inline)) void face_points(rd_sim *s, side_ctx *c, const rd_joint *j, int cf,
-                                                              int st, const face_dist *fd, int *na, int *nin,
-                                                              int *nslip, const int nw, const int pass)
+                                                              int st, const side_frame *fr, side_sums *a,
+                                                              int *na, int *nin, int *nslip, const int nw,
+                                                              const int t_free)
 {
-    for (int pt = s->cf_pt0[cf], i = 0; pt < s->cf_pt0[cf + 1]; pt++, st++, i++) {
-        int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fd, i, nw, pass) : -1;
-        if (bears < 0) bears = subcontact(s, c, j, pt, st);
+    for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
+        int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw, t_free) : -1;
+        if (bears < 0) bears = subcontact(s, c, j, pt, st, a);
         if (bears) {
             ++*na;
             *nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
@@ -699,12 +690,16 @@ static inline __attribute__((always_inline)) void face_points(rd_sim *s, side_ct
 }
 
 /* The candidate faces of a side (side_step's context c), each tested against the other body
- * (face_planes), then its points (steady_point, else subcontact); the contact tally and active
- * point-steps summed into *tally and *active_steps. nw: the mask words in use (a constant at
- * each call: 1 for most bodies). */
+ * (face_planes), then its points (steady_point, else subcontact); their forces summed into
+ * *sums, the contact tally and active point-steps into *tally and *active_steps. nw: the mask
+ * words in use, t_free: the other body is free (constants at each call: 1 word for most
+ * bodies). */
 static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd, const rd_joint *j,
-                                                             rd_watch *tally, long *active_steps, const int nw)
+                                                             side_sums *sums, rd_watch *tally, long *active_steps,
+                                                             const int nw, const int t_free)
 {
+    const side_frame fr = c->fr; /* locals no store into rd_sim reaches */
+    side_sums a = *sums;
     for (int cf = s->cf0[c->o], k = 0; cf < s->cf0[c->o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, c, cf, &gap, nw)) {
@@ -714,17 +709,13 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
         }
         int na = 0, nin = 0, nslip = 0;
         int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c->o]);
-        c->area = 0;
-        const face_dist fd = RD_STEADY_PATH ? face_pass(s, c, s->cf_pt0[cf], s->cf_pt0[cf + 1], st, nw)
-                                            : (face_dist){-1, -1, NULL};
-        if (fd.q >= 0)
-            face_points(s, c, j, cf, st, &fd, &na, &nin, &nslip, nw, 1);
-        else
-            face_points(s, c, j, cf, st, &fd, &na, &nin, &nslip, nw, 0);
+        a.area = 0;
+        face_points(s, c, j, cf, st, &fr, &a, &na, &nin, &nslip, nw, t_free);
         s->face_nactive[sd->face0 + k] = nin;
         *active_steps += na;
-        rd_monitor_contact(tally, s->shaking, c->area, na, nslip);
+        rd_monitor_contact(tally, s->shaking, a.area, na, nslip);
     }
+    *sums = a;
 }
 
 static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, double nsum[3])
@@ -733,8 +724,6 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     side_ctx c;
     c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
     c.to_b = sd->owner == pr->b ? 1.0 : -1.0;
-    c.nsum[0] = c.nsum[1] = c.nsum[2] = 0;
-    c.k_active = 0;
     c.damp_coef = 0;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
        to this far beyond the other body's edge still bears on it (the corners of two equal
@@ -750,8 +739,10 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.out_band = c.tol + slack + c.raise;
     c.reach = 0.5 * c.tol - c.raise;
     c.t_free = !s->fixed[c.t];
-    rd_copy3(s->f[c.o], c.f_o); rd_copy3(s->tq[c.o], c.tq_o);
-    rd_copy3(s->f[c.t], c.f_t); rd_copy3(s->tq[c.t], c.tq_t);
+    side_sums sums = {.nsum = {0, 0, 0}, .k_active = 0, .area = 0};
+    rd_copy3(s->f[c.o], sums.f_o); rd_copy3(s->tq[c.o], sums.tq_o);
+    rd_copy3(s->f[c.t], sums.f_t); rd_copy3(s->tq[c.t], sums.tq_t);
+    side_frame_of(s, c.o, c.t, &c.fr);
     side_planes(s, &c);
     vertex_distances(s, &c, sd);
     s->kin_epoch++;
@@ -761,16 +752,18 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     rd_watch tally = {0};
     if (watch) { tally.area = watch->area; tally.nactive = watch->nactive; tally.nslip = watch->nslip; tally.touched = watch->touched; }
     long active_steps = 0;
-    if (c.nw == 1) /* the usual one word of planes (up to 64), as a constant */
-        side_faces(s, &c, sd, j, &tally, &active_steps, 1);
+    if (c.nw == 1 && c.t_free) /* the usual one word of planes (up to 64), as a constant */
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1, 1);
+    else if (c.nw == 1)
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1, 0);
     else
-        side_faces(s, &c, sd, j, &tally, &active_steps, c.nw);
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, c.nw, c.t_free);
     if (watch) { watch->area = tally.area; watch->nactive = tally.nactive; watch->nslip = tally.nslip; watch->touched = tally.touched; }
     if (!s->settling) s->active_point_steps += active_steps;
-    rd_copy3(c.f_o, s->f[c.o]); rd_copy3(c.tq_o, s->tq[c.o]);
-    if (c.t_free) { rd_copy3(c.f_t, s->f[c.t]); rd_copy3(c.tq_t, s->tq[c.t]); }
-    *k_active += c.k_active;
-    rd_axpy(c.to_b, c.nsum, nsum); /* to_b = +-1: +-(fn u) summed, exactly */
+    rd_copy3(sums.f_o, s->f[c.o]); rd_copy3(sums.tq_o, s->tq[c.o]);
+    if (c.t_free) { rd_copy3(sums.f_t, s->f[c.t]); rd_copy3(sums.tq_t, s->tq[c.t]); }
+    *k_active += sums.k_active;
+    rd_axpy(c.to_b, sums.nsum, nsum); /* to_b = +-1: +-(fn u) summed, exactly */
 }
 
 /* Broad phase, then every live pair's subcontact forces. 0, or -1 when the broad phase ran out

@@ -431,15 +431,13 @@ static int by_place(const void *a, const void *b)
 }
 
 /* Each point's kinematics slot (rd_sim.pkin): points at the same place on a body share one, the
- * first such point's, so the contact finds their motion once. Then the slots' scratch, and the
- * face distance pass's (contact.c). */
+ * first such point's, so the contact finds their motion once. Then the slots' scratch. */
 static int share_points(rd_sim *s, rd_error *err)
 {
     int nmax = 1;
     for (int i = 0; i < s->nb; i++) if (s->pt0[i + 1] - s->pt0[i] > nmax) nmax = s->pt0[i + 1] - s->pt0[i];
     place_key *key = malloc((size_t)nmax * sizeof *key);
-    if (!key || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax) ||
-        !ALLOC(s->pdist, nmax)) {
+    if (!key || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax)) {
         free(key);
         return rd_error_set(err, "out of memory");
     }

@@ -197,8 +197,6 @@ struct rd_sim {
     double (*kin)[9];      /* scratch: [most points of a body] one side's ro, rt, vr per slot
                               (contact.c: point_kinematics) */
     long *kin_stamp;       /* scratch: [most points of a body] the side step that filled kin */
-    double *pdist;         /* scratch: [most points of a body] the current face's points' signed
-                              distances to one plane of the other body, m (contact.c: face_pass) */
     long kin_epoch;        /* side steps taken (stamps kin) */
     int *pt0;              /* [nb+1] first point of each body */
     int ncf;               /* candidate faces (faces that carry points), all bodies */
