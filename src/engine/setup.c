@@ -107,7 +107,7 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
     if (!ALLOC(s->poly, nb) || !ALLOC(s->x, nb) || !ALLOC(s->q, nb) || !ALLOC(s->v, nb) ||
         !ALLOC(s->L, nb) || !ALLOC(s->w, nb) || !ALLOC(s->R, nb) || !ALLOC(s->mass, nb) ||
         !ALLOC(s->inertia, nb) || !ALLOC(s->fixed, nb) || !ALLOC(s->f, nb) || !ALLOC(s->tq, nb) ||
-        !ALLOC(s->v_old, nb) || !ALLOC(s->L_old, nb) || !ALLOC(s->free_body, nb) ||
+        !ALLOC(s->v_old, nb) || !ALLOC(s->L_old, nb) || !ALLOC(s->df_local, nb) || !ALLOC(s->free_body, nb) ||
         !ALLOC(s->free_of, nb) || !ALLOC(s->vert0, nb + 1) || !ALLOC(s->face0, nb + 1) ||
         !ALLOC(s->convex, nb))
         return rd_error_set(err, "out of memory");

@@ -61,12 +61,19 @@ static void damping_local(rd_sim *s, double alpha, int account)
 {
     for (int i = 0; i < s->nb; i++) {
         if (s->fixed[i]) continue;
+        double *prev = s->df_local[i];
         for (int k = 0; k < 3; k++) {
             double df = -alpha * fabs(s->f[i][k]) * (s->v[i][k] > 0 ? 1.0 : s->v[i][k] < 0 ? -1.0 : 0.0);
-            double dt = -alpha * fabs(s->tq[i][k]) * (s->w[i][k] > 0 ? 1.0 : s->w[i][k] < 0 ? -1.0 : 0.0);
+            double dm = -alpha * fabs(s->tq[i][k]) * (s->w[i][k] > 0 ? 1.0 : s->w[i][k] < 0 ? -1.0 : 0.0);
             s->f[i][k] += df;
-            s->tq[i][k] += dt;
-            if (account) s->e_damp -= (df * s->v[i][k] + dt * s->w[i][k]) * s->dt;
+            s->tq[i][k] += dm;
+            if (!account) continue;
+            /* work over [t(n-1), t(n)]: the mean of the two steps' forces over v(n-1/2) dt, as
+             * the kinetic energy sees it (energy.c); the force flips with the velocity, so the
+             * step's own force alone left an error of first order */
+            s->e_damp -= 0.5 * ((prev[k] + df) * s->v[i][k] + (prev[3 + k] + dm) * s->w[i][k]) * s->dt;
+            prev[k] = df;
+            prev[3 + k] = dm;
         }
     }
 }
@@ -461,7 +468,7 @@ void rd_sim_free(rd_sim *s)
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex,
-                      s->f, s->tq, s->v_old, s->L_old, s->free_body, s->free_of, s->vert0, s->face0,
+                      s->f, s->tq, s->v_old, s->L_old, s->df_local, s->free_body, s->free_of, s->vert0, s->face0,
                       s->wv, s->wn, s->wd, s->hv0, s->hv, s->cv0, s->cv, s->cv_slot, s->edge_v0, s->edge_v, s->cv_dist, s->cv_mask, s->cv_body, s->cv_world, s->pl, s->pa, s->pn, s->pmult, s->pkin, s->kin, s->kin_stamp, s->pt0, s->cf0, s->cf_face, s->cf_pt0, s->cf_v0, s->cf_v,
                       s->pair, s->fs, s->pstate, s->pface, s->pset, s->efs, s->edepth, s->eon, s->cf_facing, s->face_nactive,
                       s->watch, s->body_sum, s->event, s->obuf, s->aabb, s->box_pose, s->box_rho, s->box_drift, s->order, s->hkey, s->live, s->live_prev,

@@ -154,6 +154,8 @@ struct rd_sim {
     double (*tq)[3];       /* torque accumulator about the centre of mass, N m */
     double (*v_old)[3];    /* previous half-step velocity (energy at integer steps) */
     double (*L_old)[3];
+    double (*df_local)[6]; /* local damping's force (0-2, N) and torque (3-5, N m) at the last
+                              shaking step: its work is booked by the trapezoid rule */
 
     /* world geometry, refreshed each step for free bodies */
     int *vert0;            /* [nb+1] first world vertex of each body */
