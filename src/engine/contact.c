@@ -622,7 +622,7 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
 
 /* Word w of candidate face cf's plane masks (its vertices' slots, nv of them): the planes every
  * vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
- * (*cross). Out of line: the common triangle is face_planes' own. */
+ * (*cross). Out of line: the common triangle and quadrilateral are face_planes' own. */
 static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *slot, int nv, int w,
                                                  uint64_t *out, uint64_t *cross)
 {
@@ -655,6 +655,13 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
             const uint64_t *m2 = c->mask + (size_t)slot[2] * 2 * RD_MASK_WORDS + w;
             out = m0[0] & m1[0] & m2[0];
             cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS];
+        } else if (nv == 4) { /* a brick's face */
+            const uint64_t *m0 = c->mask + (size_t)slot[0] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m1 = c->mask + (size_t)slot[1] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m2 = c->mask + (size_t)slot[2] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m3 = c->mask + (size_t)slot[3] * 2 * RD_MASK_WORDS + w;
+            out = m0[0] & m1[0] & m2[0] & m3[0];
+            cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS] | m3[RD_MASK_WORDS];
         } else {
             face_masks(c, slot, nv, w, &out, &cross);
         }

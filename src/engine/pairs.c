@@ -162,8 +162,8 @@ static void vertex_now(const rd_sim *s, int i, int v, double w[3])
 static void hull_box(const rd_sim *s, int i, double (*store)[3], double bx[6])
 {
     int stale = !s->convex[i] && !s->fixed[i];
-    bx[0] = bx[1] = bx[2] = INFINITY;
-    bx[3] = bx[4] = bx[5] = -INFINITY;
+    double b[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY}; /* a local: the
+                                                       stores into store cannot alias it */
     for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) {
         int v = s->hv[e];
         double now[3];
@@ -173,9 +173,9 @@ static void hull_box(const rd_sim *s, int i, double (*store)[3], double bx[6])
             vertex_now(s, i, v, to);
             w = to;
         }
-        for (int k = 0; k < 3; k++) { bx[k] = rd_min(bx[k], w[k]); bx[k + 3] = rd_max(bx[k + 3], w[k]); }
+        for (int k = 0; k < 3; k++) { b[k] = rd_min(b[k], w[k]); b[k + 3] = rd_max(b[k + 3], w[k]); }
     }
-    for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
+    for (int k = 0; k < 3; k++) { bx[k] = b[k] - s->margin; bx[k + 3] = b[k + 3] + s->margin; }
 }
 
 /* Rebuild body i's box in its current pose. */
