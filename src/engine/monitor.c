@@ -319,7 +319,7 @@ int rd_monitor_escape(rd_sim *s)
     for (int k = 0; k < s->nfree; k++) {
         int i = s->free_body[k];
         const double *c = s->x[i];
-        if (c[2] < s->floor_z - s->poly[i].radius && s->watch[k].sum->overturned) {
+        if (c[2] < s->floor_z - s->poly[i].radius && (s->watch[k].sum->overturned || s->watch[k].lost)) {
             if (!s->watch[k].lost) rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
             s->watch[k].lost = 1;
         } else if (c[2] < s->floor_z - s->poly[i].radius) {
@@ -493,6 +493,11 @@ static void watch_step(rd_sim *s, int k)
     rd_body_summary *sum = w->sum;
     int i = s->free_body[k];
     double z[3];
+    if (w->lost) { /* it overturned and fell out of the scene: the verdict is final (a body
+                      tumbling in free fall passes upright again, which is no recovery) */
+        w->down = 1;
+        return;
+    }
     rest_vertical(s, k, z);
     track_extremes(s, k, z);
     w->down = z[2] < cos(RD_FALLEN_TILT);

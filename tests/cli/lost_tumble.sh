@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# A body that overturned and fell out of the scene keeps its verdict (issue 10: a run reports
+# what it found). A slender block topples off its narrow pedestal (nothing below it) while a
+# stocky block on another pad stays, so the run goes on; the fallen block tumbles in free fall,
+# and a tumbling block passes upright again. That counted as "recover", and the next escape
+# check found a body below the scene that had not overturned: the run stopped with status
+# "lost" and no verdict for either block (seen on a six-drum column at 0.6 g whose upper drums
+# fell off the stylobate). Checks: the run ends "done"; the slender block is overturned, has
+# one "lost" event and no "recover" after it; the stocky block has its verdict.
+set -u
+BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/lost_tumble; rm -rf "$T"; mkdir -p "$T"
+cat > "$T/fall.dat" <<'EOS'
+block create brick size 1.2 1.2 0.4 position 0 0 -0.2 fixed name padA
+block create brick size 0.4 0.4 0.4 position 3 0 -0.2 fixed name padB
+block create brick size 0.8 0.8 0.5 seat-on padA name stocky
+block create brick size 0.4 0.4 1.6 seat-on padB name slender
+ground-motion pulse one-sine amplitude 1.5g frequency 1 direction 0
+model overturn tilt-ratio 1.0
+model solve time 4
+output hdf5 'fall.h5' interval 0.01
+EOS
+out=$("$BIN" run "$T/fall.dat" -o "$T/fall.h5" 2>&1); rc=$?
+[ "$rc" -eq 0 ] || { echo "FAIL lost-tumble: exit $rc"; printf '%s\n' "$out" | tail -5; exit 1; }
+/usr/bin/python3 - "$T/fall.h5" <<'PY' || exit 1
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+a = f["summary"].attrs
+names = [n.decode() for n in f["body"][:]]
+ev = f["events"]
+kinds = h5py.check_enum_dtype(ev["type"].dtype)
+slender = [(float(t), {v: k for k, v in kinds.items()}[int(y)]) for t, b, y in
+           zip(ev["time"][:], ev["body"][:], ev["type"][:]) if b.decode() == "slender"]
+lost = [t for t, k in slender if k == "lost"]
+print("status %d; overturned %s; slender's events: %s" % (a["status"], list(a["overturned"]),
+      [(round(t, 3), k) for t, k in slender if k in ("overturn", "recover", "lost")]))
+ok = (a["status"] == 0 and a["overturned"][names.index("slender")] == 1 and
+      a["overturned"][names.index("stocky")] == 0 and len(lost) == 1 and
+      not any(k == "recover" and t > lost[0] for t, k in slender))
+if not ok:
+    print("FAIL lost-tumble: the fallen block lost its verdict"); sys.exit(1)
+PY
