@@ -319,7 +319,7 @@ int rd_monitor_escape(rd_sim *s)
     for (int k = 0; k < s->nfree; k++) {
         int i = s->free_body[k];
         const double *c = s->x[i];
-        if (c[2] < s->floor_z - s->poly[i].radius && (s->watch[k].sum->overturned || s->watch[k].lost)) {
+        if (c[2] < s->floor_z - s->poly[i].radius && s->watch[k].sum->overturned) {
             if (!s->watch[k].lost) rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
             s->watch[k].lost = 1;
         } else if (c[2] < s->floor_z - s->poly[i].radius) {
