@@ -70,6 +70,8 @@ XFAILS = {
     "stack-history/undamped-first-impact-time": "0.014 % at KN 1e11, inside the 1 % asked by issue 10 but above the two-KN bound (the DEM's impact is the zero crossing of an elastic pivot)",
     "stack-history/equal4-stack-uplift-time-1pct": "6.1 % at the rigid preset's KN 1e11: the elastic joints' rocking mode (56 Hz) set off by the pulse onset, inside its bound 1/(omega cos(2 pi f t)); within 1 % at KN 1e13 (docs/CONTACT.md)",
     "stack-threshold/damped-2.5Hz": "+89 %: the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact); the dashpots take about 1 % more from the stack's impacts (docs/CONTACT.md)",
+    "stack-walk/unequal-0.6g/base-walk": "the lower block hops at its own impacts (1.6 / 1.9 / 2.0 mm high at KN 1e10 / 1e11 / 1e12, so not a stiffness effect) and lands shifted: at the impact its new corner's plastic drop comes first, then the upper block is spun up through the interface (0.25 -> 1.09 rad/s), which slows the lower block's rotation until its new corner leaves the ground; the rigid model resolves both joints' impulses at once and keeps the corner down (docs/CONTACT.md)",
+    "column-walk/4-drum-0.5g/base-walk": "the bottom drum shifts on the base at the column's impacts (0.37 mm at the first, with a 0.12 mm hop), 2.96 mm over 5 s; the joint slip measure sees 0.15 mm: the shift comes while the landing drum's new pivot is lightly loaded, as in the stack's hops (docs/CONTACT.md)",
     "energy/every-run-yade": "the YADE two-block stack (friction 40 deg, KS 2e10) at 1.0 g and the stored YADE runs' fixed step 5e-5 s (0.54 of the critical step): after both blocks overturned, the upper one lands at 3.4 m/s and one step loses 9 J of 4.3 kJ as a whole face's springs switch on; 2.1e-4 at 2.5e-5 s, 4.4e-5 at 1.25e-5 s, so step error (docs/CONTACT.md)",
     "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
     "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
@@ -512,18 +514,23 @@ COLUMN10_RIGID = SCENE.format(blocks="block create column drums 10 diameter 0.8 
 def slip_checks(L, rid, path):
     """Every joint's slip (the engine's measure at the centre of pressure, elastic part removed)
     and, between free bodies, the upper body's footprint displacement in the lower body's frame
-    at the end (tools/relative_slide.py, geometry only), against the 1 mm asked; and the energy
-    residual against the 1e-3 asked."""
+    at the end (tools/relative_slide.py, geometry only), against the 1 mm asked; the lowest
+    body's footprint displacement on the fixed base, against the same 1 mm (a hop moves a block
+    without any joint slip, so only the geometry sees it); and the energy residual against the
+    1e-3 asked."""
     names, out = h5(path, "joints/joint", "joints/outcomes")
     cols = [attr(c) for c in h5(path, "joints/outcome")]
     worst = int(np.argmax(out[:, cols.index("max_slip")]))
     L.check(rid + "/joint-slip", "largest joint slip over 5 s (m), joint %s" % attr(names[worst]), 0.0,
             "rigid blocks, mu = 5.7", float(out[worst, cols.index("max_slip")]), float(out[worst, cols.index("max_slip")]),
             SLIP_ASKED, "issue 10's requirement (1 mm over 5 s)")
-    rel = rs.joint_slips(path)
+    base, *rel = rs.joint_slips(path)
     k = int(np.argmax([r[3] for r in rel]))
     L.check(rid + "/relative-slide", "upper body's final footprint shift on the lower (m), %s/%s" % rel[k][:2], 0.0,
             "rigid blocks, mu = 5.7", rel[k][3], rel[k][3], SLIP_ASKED, "issue 10's requirement (1 mm over 5 s)")
+    L.check(rid + "/base-walk", "lowest body's final footprint shift on the fixed base (m), %s" % base[1], 0.0,
+            "rigid blocks, mu = 5.7: no walk", base[3], base[3], SLIP_ASKED,
+            "issue 10's 1 mm over 5 s, applied to the base joint (a rocking block must not walk)")
     r = float(h5(path, "summary:energy_residual_max"))
     L.check(rid + "/energy", "energy residual", 0.0, "energy conservation", r, r, RESIDUAL_ASKED, "issue 10's bound (1e-3)")
 
