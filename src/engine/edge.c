@@ -33,7 +33,9 @@
  * (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
  * cv_dist, already found) where t carries points; an edge wholly beyond one side of o's box is
- * skipped first.
+ * skipped first, and so, where o's planes fit one mask word, is one that may_bear's mask tests
+ * reject (both ends held, or both beyond one plane: two word operations; on a drum column these
+ * are 32 of the 48 edges of each side, none of which ever bears).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
@@ -217,11 +219,13 @@ static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, c
 typedef struct vinfo {
     const double *dist;
     const uint64_t *mask; /* rd_sim.cv_mask of t's side, with dist */
+    const int *slot;      /* t's vertices' rows in dist and mask (rd_sim.cv_slot; -1: none) */
     int np, nw;           /* o's planes, and the mask words they use */
     double tol;           /* the contact band, m */
     unsigned char code[RD_EDGE_MAX_VERTS]; /* against o's box */
     unsigned char done[RD_EDGE_MAX_VERTS];
     short out[RD_EDGE_MAX_VERTS]; /* vertex_out's answer, once found (-2 before) */
+    uint64_t word[RD_EDGE_MAX_VERTS]; /* its mask word, where o's planes fit one (vertex_word) */
     short k[RD_EDGE_MAX_VERTS];
     double d[RD_EDGE_MAX_VERTS];
 } vinfo;
@@ -229,12 +233,12 @@ typedef struct vinfo {
 /* The plane of o that t's vertex v lies farthest beyond, among those it lies beyond by more
  * than the contact band (contact.c's masks); RD_MAX_PLANES when none (v lies within the band
  * of o: a vertex subcontact holds it), -1 when not known. */
-static int vertex_out(const rd_sim *s, int t, vinfo *vi, int v)
+static int vertex_out(vinfo *vi, int v)
 {
     if (vi->out[v] != -2) return vi->out[v];
     vi->out[v] = -1;
     if (!vi->mask) return -1;
-    int slot = s->cv_slot[s->vert0[t] + v];
+    int slot = vi->slot[v];
     if (slot < 0) return -1;
     const uint64_t *mk = vi->mask + (size_t)slot * 2 * RD_MASK_WORDS;
     const double *row = vi->dist + (size_t)slot * (size_t)vi->np;
@@ -248,35 +252,49 @@ static int vertex_out(const rd_sim *s, int t, vinfo *vi, int v)
     return q;
 }
 
+/* t's vertex v's mask word (o's planes in one word, t with masks) into vinfo.word; returns 0
+ * when v has none (not a vertex of t's candidate faces). A vertex within the band of every plane
+ * is held (vertex_out's RD_MAX_PLANES, found here). may_bear's first tests then read two words:
+ * an edge whose ends are both held (both words 0), or both beyond one plane by more than the
+ * band (a common bit), cannot start. */
+static int vertex_word(vinfo *vi, int v)
+{
+    int slot = vi->slot[v];
+    if (slot < 0) return 0;
+    vi->word[v] = vi->mask[(size_t)slot * 2 * RD_MASK_WORDS];
+    if (!vi->word[v]) vi->out[v] = RD_MAX_PLANES;
+    return 1;
+}
+
 /* Whether t's vertices va and vb (both with masks) lie beyond one plane of o by more than the
  * band: the whole edge does. */
-static int beyond_one(const rd_sim *s, int t, const vinfo *vi, int va, int vb)
+static int beyond_one(const vinfo *vi, int va, int vb)
 {
-    const uint64_t *ma = vi->mask + (size_t)s->cv_slot[s->vert0[t] + va] * 2 * RD_MASK_WORDS;
-    const uint64_t *mb = vi->mask + (size_t)s->cv_slot[s->vert0[t] + vb] * 2 * RD_MASK_WORDS;
+    const uint64_t *ma = vi->mask + (size_t)vi->slot[va] * 2 * RD_MASK_WORDS;
+    const uint64_t *mb = vi->mask + (size_t)vi->slot[vb] * 2 * RD_MASK_WORDS;
     for (int w = 0; w < vi->nw; w++)
         if (ma[w] & mb[w]) return 1;
     return 0;
 }
 
-static const double *vertex_row(const rd_sim *s, int t, const vinfo *vi, int v)
+static const double *vertex_row(const vinfo *vi, int v)
 {
     if (!vi->dist) return NULL;
-    int slot = s->cv_slot[s->vert0[t] + v];
+    int slot = vi->slot[v];
     return slot < 0 ? NULL : vi->dist + (size_t)slot * (size_t)vi->np;
 }
 
 /* Distance of t's vertex v to o's plane k, m. */
 static double vertex_dist(const rd_sim *s, int o, int t, const vinfo *vi, int v, int k)
 {
-    const double *row = vertex_row(s, t, vi, v);
+    const double *row = vertex_row(vi, v);
     return row ? row[k] : dist(s, o, k, s->wv[s->vert0[t] + v]);
 }
 
 static void vertex_depth(const rd_sim *s, int o, int t, vinfo *vi, int v)
 {
     if (vi->done[v]) return;
-    const double *row = vertex_row(s, t, vi, v), *x = s->wv[s->vert0[t] + v];
+    const double *row = vertex_row(vi, v), *x = s->wv[s->vert0[t] + v];
     double dmax = -INFINITY;
     int kmax = 0;
     if (row) {
@@ -306,13 +324,13 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
            two of them is held by them; so is one whose part inside o lies within the band of
            its held end (it leaves o through plane q, which its other end lies beyond), or whose
            depth falls from its held end along q's line (q is that end's nearest plane) */
-        int qa = vertex_out(s, t, vi, va), qb = vertex_out(s, t, vi, vb);
+        int qa = vertex_out(vi, va), qb = vertex_out(vi, vb);
         if (qa == RD_MAX_PLANES && qb == RD_MAX_PLANES) return 0;
-        if (qa >= 0 && qb >= 0 && beyond_one(s, t, vi, va, vb)) return 0;
+        if (qa >= 0 && qb >= 0 && qa < RD_MAX_PLANES && qb < RD_MAX_PLANES && beyond_one(vi, va, vb)) return 0;
         int in = qa == RD_MAX_PLANES ? va : qb == RD_MAX_PLANES ? vb : -1;
         int q = in == va ? qb : qa;
         if (in >= 0 && q >= 0) {
-            const double *ri = vertex_row(s, t, vi, in), *ro = vertex_row(s, t, vi, in == va ? vb : va);
+            const double *ri = vertex_row(vi, in), *ro = vertex_row(vi, in == va ? vb : va);
             const double *xa = s->wv[s->vert0[t] + va], *xb = s->wv[s->vert0[t] + vb];
             double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
             double din = -ri[q], dout = -ro[q]; /* depths below q: dout < -band */
@@ -364,23 +382,28 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     vinfo vi;
     vi.dist = dist;
     vi.mask = mask;
+    vi.slot = s->cv_slot + s->vert0[t];
     vi.tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
     vi.np = s->poly[o].nf;
     vi.nw = (vi.np + 63) / 64;
     double box[6]; /* o's box, grown by the broad phase's margin */
     rd_pairs_box_now(s, o, box);
+    int held = t_points && mask && vi.nw == 1; /* every vertex's mask word known (vertex_word) */
     for (int v = 0; v < pt->nv; v++) {
         vi.code[v] = (unsigned char)outcode(box, s->wv[s->vert0[t] + v]);
         vi.done[v] = 0;
         vi.out[v] = -2;
+        if (held) held = vertex_word(&vi, v);
     }
     edge_lines L;
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
     int cand[RD_EDGE_MAX_EDGES], nc = 0;
-    for (int i = 0; i < sd->nedge; i++) { /* bearing, or not wholly beyond one side of o's box */
+    for (int i = 0; i < sd->nedge; i++) { /* bearing, or neither wholly beyond one side of o's box
+                                             nor settled by may_bear's mask tests */
+        int settled = held && (!(vi.word[ev[i][0]] | vi.word[ev[i][1]]) || (vi.word[ev[i][0]] & vi.word[ev[i][1]]));
         cand[nc] = i;
-        nc += on[i] | !(vi.code[ev[i][0]] & vi.code[ev[i][1]]);
+        nc += on[i] | (!(vi.code[ev[i][0]] & vi.code[ev[i][1]]) & !settled);
     }
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
@@ -390,7 +413,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
-        lines(s, o, a, b, vertex_row(s, t, &vi, va), vertex_row(s, t, &vi, vb), &L);
+        lines(s, o, a, b, vertex_row(&vi, va), vertex_row(&vi, vb), &L);
         deep dp;
         deepest(s, o, &L, flat, &dp);
         int fresh = !s->eon[e];
