@@ -33,9 +33,10 @@
  * (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
  * cv_dist, already found) where t carries points; an edge wholly beyond one side of o's box is
- * skipped first, and so, where o's planes fit one mask word, is one that may_bear's mask tests
- * reject (both ends held, or both beyond one plane: two word operations; on a drum column these
- * are 32 of the 48 edges of each side, none of which ever bears).
+ * skipped first (where o's planes fit one mask word, one that may_bear's mask tests reject
+ * instead: both ends held, or both beyond one plane, two word operations; on a drum column these
+ * are 32 of the 48 edges of each side, and the other 16 are rejected by may_bear's part test
+ * before any box test, so no box code is found; none of them ever bears).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
@@ -52,6 +53,8 @@
 /* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
 #define RD_EDGE_MAX_VERTS 512
 #define RD_EDGE_MAX_EDGES 1024
+/* a vertex's box outcode not yet found (outcodes use 6 bits) */
+#define RD_EDGE_NO_CODE 0xFF
 
 /* Edges of a convex polyhedron, each once: face f's side (a, b) with a < b. */
 int rd_edge_count(const rd_poly *p)
@@ -222,7 +225,10 @@ typedef struct vinfo {
     const int *slot;      /* t's vertices' rows in dist and mask (rd_sim.cv_slot; -1: none) */
     int np, nw;           /* o's planes, and the mask words they use */
     double tol;           /* the contact band, m */
-    unsigned char code[RD_EDGE_MAX_VERTS]; /* against o's box */
+    const double (*wv)[3];  /* t's world vertices */
+    double box[6];          /* o's box, grown by the broad phase's margin */
+    unsigned char code[RD_EDGE_MAX_VERTS]; /* against box (outcode), once found (RD_EDGE_NO_CODE
+                                              before) */
     unsigned char done[RD_EDGE_MAX_VERTS];
     short out[RD_EDGE_MAX_VERTS]; /* vertex_out's answer, once found (-2 before) */
     uint64_t word[RD_EDGE_MAX_VERTS]; /* its mask word, where o's planes fit one (vertex_word) */
@@ -230,9 +236,21 @@ typedef struct vinfo {
     double d[RD_EDGE_MAX_VERTS];
 } vinfo;
 
-/* The plane of o that t's vertex v lies farthest beyond, among those it lies beyond by more
- * than the contact band (contact.c's masks); RD_MAX_PLANES when none (v lies within the band
- * of o: a vertex subcontact holds it), -1 when not known. */
+/* The plane of o that the vertex with distances row and mask words mk (nw of them) lies
+ * farthest beyond, among those it lies beyond by more than the contact band (contact.c's masks);
+ * RD_MAX_PLANES when none (it lies within the band of o: a vertex subcontact holds it). */
+static inline int farthest_out(const double *row, const uint64_t *mk, int nw)
+{
+    int q = RD_MAX_PLANES;
+    for (int w = 0; w < nw; w++)
+        for (uint64_t m = mk[w]; m; m &= m - 1) {
+            int k = 64 * w + __builtin_ctzll(m);
+            if (q == RD_MAX_PLANES || row[k] > row[q]) q = k;
+        }
+    return q;
+}
+
+/* farthest_out of t's vertex v, once per side; -1 when not known (no masks). */
 static int vertex_out(vinfo *vi, int v)
 {
     if (vi->out[v] != -2) return vi->out[v];
@@ -240,30 +258,29 @@ static int vertex_out(vinfo *vi, int v)
     if (!vi->mask) return -1;
     int slot = vi->slot[v];
     if (slot < 0) return -1;
-    const uint64_t *mk = vi->mask + (size_t)slot * 2 * RD_MASK_WORDS;
-    const double *row = vi->dist + (size_t)slot * (size_t)vi->np;
-    int q = RD_MAX_PLANES;
-    for (int w = 0; w < vi->nw; w++)
-        for (uint64_t m = mk[w]; m; m &= m - 1) {
-            int k = 64 * w + __builtin_ctzll(m);
-            if (q == RD_MAX_PLANES || row[k] > row[q]) q = k;
-        }
-    vi->out[v] = (short)q;
-    return q;
+    vi->out[v] = (short)farthest_out(vi->dist + (size_t)slot * (size_t)vi->np,
+                                     vi->mask + (size_t)slot * 2 * RD_MASK_WORDS, vi->nw);
+    return vi->out[v];
 }
 
-/* t's vertex v's mask word (o's planes in one word, t with masks) into vinfo.word; returns 0
- * when v has none (not a vertex of t's candidate faces). A vertex within the band of every plane
- * is held (vertex_out's RD_MAX_PLANES, found here). may_bear's first tests then read two words:
- * an edge whose ends are both held (both words 0), or both beyond one plane by more than the
- * band (a common bit), cannot start. */
+/* t's vertex v's mask word (o's planes in one word, t with masks) into vinfo.word, and its
+ * vertex_out; returns 0 when v has none (not a vertex of t's candidate faces). may_bear's first
+ * tests then read two words: an edge whose ends are both held (both words 0), or both beyond
+ * one plane by more than the band (a common bit), cannot start. */
 static int vertex_word(vinfo *vi, int v)
 {
     int slot = vi->slot[v];
     if (slot < 0) return 0;
     vi->word[v] = vi->mask[(size_t)slot * 2 * RD_MASK_WORDS];
-    if (!vi->word[v]) vi->out[v] = RD_MAX_PLANES;
+    vi->out[v] = (short)farthest_out(vi->dist + (size_t)slot * (size_t)vi->np, &vi->word[v], 1);
     return 1;
+}
+
+/* t's vertex v against o's box (outcode), found once per side when a test needs it. */
+static unsigned vertex_code(vinfo *vi, int v)
+{
+    if (vi->code[v] == RD_EDGE_NO_CODE) vi->code[v] = (unsigned char)outcode(vi->box, vi->wv[v]);
+    return vi->code[v];
 }
 
 /* Whether t's vertices va and vb (both with masks) lie beyond one plane of o by more than the
@@ -315,10 +332,11 @@ static void vertex_depth(const rd_sim *s, int o, int t, vinfo *vi, int v)
  * most that below any one plane, a line; so when the depth below an end's nearest plane stays
  * at most `floor` along the edge (the deeper end's depth, at least 0, where the ends are
  * points; 0 otherwise), or the smaller of the two ends' nearest planes' lines does, it cannot
- * exceed floor. */
+ * exceed floor. Each test only rejects, so their order leaves the answer alone: the box test
+ * comes after the tests on points' masks and rows, which reject a drum's edges first (their
+ * ends' box codes are then never needed). */
 static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, int t_points)
 {
-    if (vi->code[va] & vi->code[vb]) return 0; /* both beyond one side of o's box */
     if (t_points) {
         /* ends within the contact band bear as vertex subcontacts (contact.c): an edge between
            two of them is held by them; so is one whose part inside o lies within the band of
@@ -341,10 +359,11 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
             if (nearest) return 0;
         }
     }
+    if (vertex_code(vi, va) & vertex_code(vi, vb)) return 0; /* both beyond one side of o's box */
     int ends[2] = {va, vb};
     for (int i = 0; i < 2; i++) { /* an end in o's box: its nearest plane's line */
         int x = ends[i], y = ends[1 - i];
-        if (vi->code[x]) continue;
+        if (vertex_code(vi, x)) continue;
         vertex_depth(s, o, t, vi, x);
         double dx = vi->d[x], lb = t_points && dx > 0 ? dx : 0; /* at most floor */
         if (dx <= lb && -vertex_dist(s, o, t, vi, y, vi->k[x]) <= lb) return 0;
@@ -386,11 +405,11 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     vi.tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
     vi.np = s->poly[o].nf;
     vi.nw = (vi.np + 63) / 64;
-    double box[6]; /* o's box, grown by the broad phase's margin */
-    rd_pairs_box_now(s, o, box);
+    vi.wv = s->wv + s->vert0[t];
+    rd_pairs_box_now(s, o, vi.box);
     int held = t_points && mask && vi.nw == 1; /* every vertex's mask word known (vertex_word) */
     for (int v = 0; v < pt->nv; v++) {
-        vi.code[v] = (unsigned char)outcode(box, s->wv[s->vert0[t] + v]);
+        vi.code[v] = RD_EDGE_NO_CODE;
         vi.done[v] = 0;
         vi.out[v] = -2;
         if (held) held = vertex_word(&vi, v);
@@ -399,17 +418,19 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
     int cand[RD_EDGE_MAX_EDGES], nc = 0;
-    for (int i = 0; i < sd->nedge; i++) { /* bearing, or neither wholly beyond one side of o's box
-                                             nor settled by may_bear's mask tests */
-        int settled = held && (!(vi.word[ev[i][0]] | vi.word[ev[i][1]]) || (vi.word[ev[i][0]] & vi.word[ev[i][1]]));
+    for (int i = 0; i < sd->nedge; i++) { /* bearing, or not settled by may_bear's mask tests (with
+                                             masks; else not wholly beyond one side of o's box) */
+        const int a = ev[i][0], b = ev[i][1];
+        int keep = held ? (vi.word[a] | vi.word[b]) && !(vi.word[a] & vi.word[b])
+                        : !(vertex_code(&vi, a) & vertex_code(&vi, b));
         cand[nc] = i;
-        nc += on[i] | (!(vi.code[ev[i][0]] & vi.code[ev[i][1]]) & !settled);
+        nc += on[i] | keep;
     }
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
-        if ((vi.code[va] & vi.code[vb]) || (!s->eon[e] && !may_bear(s, o, t, &vi, va, vb, t_points))) {
-            edge_release(s, sd, e, kA, sA, j->tan_phi, NULL, NULL); /* wholly beyond one side of o's box, or
-                                                           cannot start */
+        if (s->eon[e] ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {
+            edge_release(s, sd, e, kA, sA, j->tan_phi, NULL, NULL); /* bearing: wholly beyond one side of
+                                                           o's box; else: cannot start */
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
