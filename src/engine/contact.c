@@ -576,14 +576,13 @@ static inline __attribute__((always_inline)) double plane_pass(const double (*wv
 }
 
 /* Against a free other body (no far planes to skip): vertex by vertex, each vertex's row of
- * distances to the np planes written in one contiguous pass (coefficients n0, n1, n2, dq, one
- * array each: the loop runs two planes a vector), then its mask words built from the row (each
- * bit selected from bit[], so that loop vectorises too) and stored once. The same expression as
- * plane_pass's, so the same bits. A drum-drum side (32 vertices, 18 planes) runs about 10 %
- * faster than plane by plane, whose read-modify-writes of the masks and gathered vertices do
- * not vectorise. */
+ * distances to the np planes (coefficients n0, n1, n2, dq, one array each) and its nw mask
+ * words in one pass over the planes, the words kept in registers and stored once; each bit is
+ * selected from bit[], so the loop runs two planes a vector. The same expression as plane_pass's,
+ * so the same bits. A drum-drum side (32 vertices, 18 planes) runs about 15 % faster than plane
+ * by plane, whose read-modify-writes of the masks and gathered vertices do not vectorise. */
 static void vertex_rows(const double (*wv)[3], const int *cv, int ncv, const double *n0, const double *n1,
-                        const double *n2, const double *dq, int np, double out_band, double reach,
+                        const double *n2, const double *dq, int np, int nw, double out_band, double reach,
                         double *restrict d, uint64_t *restrict mk)
 {
     uint64_t bit[64]; /* bit q of a mask word, as a value a vector lane can select */
@@ -591,14 +590,15 @@ static void vertex_rows(const double (*wv)[3], const int *cv, int ncv, const dou
     for (int k = 0; k < ncv; k++) {
         const double x0 = wv[cv[k]][0], x1 = wv[cv[k]][1], x2 = wv[cv[k]][2];
         double *restrict row = d + (size_t)k * np;
-        for (int q = 0; q < np; q++) row[q] = n0[q] * x0 + n1[q] * x1 + n2[q] * x2 - dq[q];
         uint64_t *m = mk + (size_t)k * 2 * RD_MASK_WORDS;
-        for (int w = 0; w < RD_MASK_WORDS; w++) {
-            uint64_t mo = 0, mc = 0;
+        for (int w = 0; w < nw; w++) {
             const int q0 = 64 * w, nq = np - q0 < 64 ? np - q0 : 64;
+            uint64_t mo = 0, mc = 0;
             for (int q = 0; q < nq; q++) {
-                mo |= !(row[q0 + q] <= out_band) ? bit[q] : 0; /* NaN too: min skips it */
-                mc |= row[q0 + q] > reach ? bit[q] : 0;        /* NaN not: max skips it */
+                const double dl = n0[q0 + q] * x0 + n1[q0 + q] * x1 + n2[q0 + q] * x2 - dq[q0 + q];
+                row[q0 + q] = dl;
+                mo |= !(dl <= out_band) ? bit[q] : 0; /* NaN too: min skips it */
+                mc |= dl > reach ? bit[q] : 0;        /* NaN not: max skips it */
             }
             m[w] = mo;
             m[RD_MASK_WORDS + w] = mc;
@@ -624,7 +624,7 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     if (!fixed) {
         double n0[RD_MAX_PLANES], n1[RD_MAX_PLANES], n2[RD_MAX_PLANES], dq[RD_MAX_PLANES];
         for (int q = 0; q < np; q++) { n0[q] = wn[q][0]; n1[q] = wn[q][1]; n2[q] = wn[q][2]; dq[q] = wd[q]; }
-        vertex_rows(s->wv, cv, ncv, n0, n1, n2, dq, np, out_band, reach, d, mk);
+        vertex_rows(s->wv, cv, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
         return;
     }
     if (nw == 1) { /* the words in use (face_planes and edge.c read no others) */
