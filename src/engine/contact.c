@@ -333,10 +333,12 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     if (c->facing && !(*fl & RD_PT_ACTIVE)) /* a face that has just turned towards the other
                                                body: its vertex bears from where it is now */
         s->pset[st] = fmax(s->pset[st], depth);
-    if (c->damp_coef == 0 && !(*fl & RD_PT_BONDED) &&
-        (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
-        kA * (depth - s->pset[st]) < 0) { /* below its permanent set, no dashpot, no bond, no
-                                              impact to book: the law below would idle it */
+    if (!(*fl & RD_PT_BONDED) && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
+        kA * (depth - s->pset[st]) < 0) { /* below its permanent set, no bond, no impact to book:
+                                              the contact's surface is at the set, so neither
+                                              spring nor dashpot acts (a dashpot pushing a
+                                              spring held in tension had both springs' energy
+                                              flicker in and out of the balance each step) */
         point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
@@ -434,9 +436,9 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         if (depth <= 0) { /* above its face, within the band */
             s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
             s->pset[st] = 0;
-        } else if (!(c->damp_coef == 0 && kA * (depth - s->pset[st]) < 0)) {
+        } else if (!(kA * (depth - s->pset[st]) < 0)) {
             return -1; /* touches: subcontact */
-        } /* else below its permanent set, no dashpot: idle */
+        } /* else below its permanent set: idle */
         s->pj[st][0] = 0;
         s->pj[st][1] = -depth;
         return 0;
@@ -449,6 +451,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double vn = rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return -1; /* its impact loss: subcontact */
     double stretch = depth - s->pset[st];
+    if (!(stretch >= 0)) return -1; /* below its permanent set: subcontact idles it */
     double fel = kA * stretch;
     double fn = fel - c->damp_coef * kA * vn;
     if (!(fn >= 0)) return -1;

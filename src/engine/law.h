@@ -129,10 +129,8 @@ static inline double rd_law_dashpot_work(double fd_prev, double fd, double vn, d
  *  - normal (kA = KN A', N/m): the stretch midway between the last bearing step's s_prev and
  *    this step's s_now (m), while both are compressions, or both tensions of a spring that may
  *    pull (pulls: a bond); nothing otherwise: a spring that opens by itself stores nothing as it
- *    lets go (the scheme's error at that switch is of order dt^2), and an unbonded point that
- *    bore below its permanent set (its dashpot holding it, both stretches < 0) has no
- *    compression to give up (booking it over-credited the default scenario's cask 78 J at its
- *    2.0 s impact: residual 1.9e-3, 3.1e-4 without);
+ *    lets go (the scheme's error at that switch is of order dt^2), and an unbonded spring in
+ *    tension holds nothing (an unbonded point idles below its permanent set: contact.c);
  *  - shear: the spring fs (N) turned into the plane n and taken through half the step's
  *    tangential displacement (vr, vn: the point's relative velocity and its normal part, m/s)
  *    under its last Coulomb limit lim (N): its energy then, plus what slips in that half step
