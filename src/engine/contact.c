@@ -230,11 +230,14 @@ static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, 
 }
 
 /* Outward normal of the current owner face, ground frame, found once per face and side step
- * when a point needs it (rd_body_refresh's expression: a mesh body's step leaves its face
- * normals alone). */
+ * when a point needs it: a convex owner's rd_sim.wn (rd_body_refresh found it from the same
+ * rotation, so the same bits); a mesh body's step leaves its face normals alone, so its normal
+ * is found here (rd_body_refresh's expression). */
 static const double *owner_normal(const rd_sim *s, side_ctx *c)
 {
-    if (!c->m) {
+    if (!c->m && s->convex[c->o]) {
+        c->m = s->wn[s->face0[c->o] + c->mf];
+    } else if (!c->m) {
         rd_mat_vec(s->R[c->o], s->poly[c->o].fn[c->mf], c->mbuf);
         c->m = c->mbuf;
     }
