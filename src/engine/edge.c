@@ -226,9 +226,14 @@ typedef struct vinfo {
     int np, nw;           /* o's planes, and the mask words they use */
     double tol;           /* the contact band, m */
     const double (*wv)[3];  /* t's world vertices */
+    const rd_sim *s;
+    int o;                  /* the owner, whose box the outcodes test */
+    int box_found;          /* box holds o's box (found when the first outcode needs it) */
     double box[6];          /* o's box, grown by the broad phase's margin */
     unsigned char code[RD_EDGE_MAX_VERTS]; /* against box (outcode), once found (RD_EDGE_NO_CODE
                                               before) */
+    unsigned char sure[RD_EDGE_MAX_VERTS]; /* against o's outer box (rd_pairs_box_outer): its bits
+                                              are a subset of code's */
     unsigned char done[RD_EDGE_MAX_VERTS];
     short out[RD_EDGE_MAX_VERTS]; /* vertex_out's answer, once found (-2 before) */
     uint64_t word[RD_EDGE_MAX_VERTS]; /* its mask word, where o's planes fit one (vertex_word) */
@@ -276,11 +281,27 @@ static int vertex_word(vinfo *vi, int v)
     return 1;
 }
 
-/* t's vertex v against o's box (outcode), found once per side when a test needs it. */
+/* t's vertex v against o's box (outcode), found once per side when a test needs it; o's box too
+ * (an edge side whose edges the outer box's codes all reject, a block's on its base, never finds
+ * it). */
 static unsigned vertex_code(vinfo *vi, int v)
 {
-    if (vi->code[v] == RD_EDGE_NO_CODE) vi->code[v] = (unsigned char)outcode(vi->box, vi->wv[v]);
+    if (vi->code[v] != RD_EDGE_NO_CODE) return vi->code[v];
+    if (!vi->box_found) {
+        rd_pairs_box_now(vi->s, vi->o, vi->box);
+        vi->box_found = 1;
+    }
+    vi->code[v] = (unsigned char)outcode(vi->box, vi->wv[v]);
     return vi->code[v];
+}
+
+/* Every vertex of t against o's outer box (rd_pairs_box_outer, no hull vertex transformed): an
+ * edge whose ends share a bit there has both ends beyond one side of o's box. */
+static void sure_codes(vinfo *vi, int nv)
+{
+    double outer[6];
+    rd_pairs_box_outer(vi->s, vi->o, outer);
+    for (int v = 0; v < nv; v++) vi->sure[v] = (unsigned char)outcode(outer, vi->wv[v]);
 }
 
 /* Whether t's vertices va and vb (both with masks) lie beyond one plane of o by more than the
@@ -406,7 +427,9 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     vi.np = s->poly[o].nf;
     vi.nw = (vi.np + 63) / 64;
     vi.wv = s->wv + s->vert0[t];
-    rd_pairs_box_now(s, o, vi.box);
+    vi.s = s;
+    vi.o = o;
+    vi.box_found = 0;
     int held = t_points && mask && vi.nw == 1; /* every vertex's mask word known (vertex_word) */
     for (int v = 0; v < pt->nv; v++) {
         vi.code[v] = RD_EDGE_NO_CODE;
@@ -414,6 +437,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
         vi.out[v] = -2;
         if (held) held = vertex_word(&vi, v);
     }
+    if (!held) sure_codes(&vi, pt->nv);
     edge_lines L;
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
@@ -422,7 +446,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
                                              masks; else not wholly beyond one side of o's box) */
         const int a = ev[i][0], b = ev[i][1];
         int keep = held ? (vi.word[a] | vi.word[b]) && !(vi.word[a] & vi.word[b])
-                        : !(vertex_code(&vi, a) & vertex_code(&vi, b));
+                        : !(vi.sure[a] & vi.sure[b]) && !(vertex_code(&vi, a) & vertex_code(&vi, b));
         cand[nc] = i;
         nc += on[i] | keep;
     }

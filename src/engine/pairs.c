@@ -222,6 +222,16 @@ void rd_pairs_box_now(const rd_sim *s, int i, double bx[6])
     hull_box(s, i, NULL, bx);
 }
 
+/* Body i's stored box grown by its drift this step, m: the exact box (rd_pairs_box_now) lies
+ * within it (pair_live's bound), so a point beyond one of its sides lies beyond that side of the
+ * exact box too. Found without the hull vertices; where the stored box is exact (drift 0) it is
+ * that box. */
+void rd_pairs_box_outer(const rd_sim *s, int i, double bx[6])
+{
+    const double d = s->box_drift[i];
+    for (int k = 0; k < 3; k++) { bx[k] = s->aabb[i][k] - d; bx[k + 3] = s->aabb[i][k + 3] + d; }
+}
+
 static int boxes_overlap(const double *p, const double *q)
 {
     return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];

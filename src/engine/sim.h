@@ -329,6 +329,7 @@ void rd_history_step(rd_sim *s);
 int rd_pairs_init(rd_sim *s, rd_error *err);
 int rd_pairs_update(rd_sim *s);
 void rd_pairs_box_now(const rd_sim *s, int i, double box[6]);
+void rd_pairs_box_outer(const rd_sim *s, int i, double box[6]);
 double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
 
 /* contact.c */
