@@ -122,9 +122,21 @@ static int healthy(rd_sim *s)
 }
 
 /* One explicit step from t to t + dt. */
+/* Whether the scene's ground motion depends on time: a pulse or an applied record (with
+ * neither, rd_motion_eval gives the same values at every t). */
+static int ground_varies(const rd_motion_def *m)
+{
+    int varies = m->horizontal.kind != RD_PULSE_NONE || m->vertical.kind != RD_PULSE_NONE;
+    for (int k = 0; k < RD_NCOMPONENTS; k++) varies |= m->record[k].applied != NULL;
+    return varies;
+}
+
 static void step_once(rd_sim *s)
 {
-    if (!s->settling) rd_motion_eval(&s->sc.motion, s->t, s->ag, s->vg, s->dg);
+    if (!s->settling && !s->ground_still) {
+        rd_motion_eval(&s->sc.motion, s->t, s->ag, s->vg, s->dg);
+        s->ground_still = !ground_varies(&s->sc.motion);
+    }
     rd_bodies_refresh_step(s);
     forces_external(s);
     if (rd_contact_step(s)) {
@@ -163,6 +175,7 @@ static void settle(rd_sim *s)
     s->settling = 1;
     s->t = 0;
     memset(s->ag, 0, sizeof s->ag);
+    s->ground_still = 0;
     s->settle_ratio = INFINITY;
     while (s->t < s->sc.settle.max_time && !stopping(s) && s->status == RD_STATUS_DONE) {
         step_once(s);

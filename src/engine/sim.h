@@ -265,6 +265,8 @@ struct rd_sim {
     /* ground motion this step (m/s^2, m/s, m) */
     double ag[3], vg[3], dg[3];
     double ag_prev[3];     /* ground acceleration at the previous step, m/s^2 */
+    int ground_still;      /* 1: ag, vg, dg hold a motion without pulses or records, the same at
+                              every t (evaluated at the first step that shakes) */
 
     /* energy bookkeeping, J */
     double e_fric, e_damp, e_work; /* accumulated friction, damping dissipation, ground work */

@@ -119,6 +119,7 @@ double rd_pulse_end(const rd_pulse_def *p)
  * vertical along z. Absent components cost nothing. */
 static void add_records(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3])
 {
+    if (!m->record[RD_H1].applied && !m->record[RD_H2].applied && !m->record[RD_VERTICAL].applied) return;
     double c = cos(m->direction), s = sin(m->direction);
     const double axis[RD_NCOMPONENTS][3] = {{c, s, 0}, {-s, c, 0}, {0, 0, 1}};
     for (int k = 0; k < RD_NCOMPONENTS; k++) {
