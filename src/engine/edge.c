@@ -232,7 +232,7 @@ typedef struct vinfo {
     double box[6];          /* o's box, grown by the broad phase's margin */
     unsigned char code[RD_EDGE_MAX_VERTS]; /* against box (outcode), once found (RD_EDGE_NO_CODE
                                               before) */
-    unsigned char sure[RD_EDGE_MAX_VERTS]; /* against o's outer box (rd_pairs_box_outer): its bits
+    unsigned char sure[RD_EDGE_MAX_VERTS]; /* against o's loose box (rd_pairs_box_loose): its bits
                                               are a subset of code's */
     unsigned char done[RD_EDGE_MAX_VERTS];
     short out[RD_EDGE_MAX_VERTS]; /* vertex_out's answer, once found (-2 before) */
@@ -282,7 +282,7 @@ static int vertex_word(vinfo *vi, int v)
 }
 
 /* t's vertex v against o's box (outcode), found once per side when a test needs it; o's box too
- * (an edge side whose edges the outer box's codes all reject, a block's on its base, never finds
+ * (an edge side whose edges the loose box's codes all reject, a block's on its base, never finds
  * it). */
 static unsigned vertex_code(vinfo *vi, int v)
 {
@@ -295,13 +295,13 @@ static unsigned vertex_code(vinfo *vi, int v)
     return vi->code[v];
 }
 
-/* Every vertex of t against o's outer box (rd_pairs_box_outer, no hull vertex transformed): an
+/* Every vertex of t against o's loose box (rd_pairs_box_loose, no hull vertex transformed): an
  * edge whose ends share a bit there has both ends beyond one side of o's box. */
 static void sure_codes(vinfo *vi, int nv)
 {
-    double outer[6];
-    rd_pairs_box_outer(vi->s, vi->o, outer);
-    for (int v = 0; v < nv; v++) vi->sure[v] = (unsigned char)outcode(outer, vi->wv[v]);
+    double loose[6];
+    rd_pairs_box_loose(vi->s, vi->o, loose);
+    for (int v = 0; v < nv; v++) vi->sure[v] = (unsigned char)outcode(loose, vi->wv[v]);
 }
 
 /* Whether t's vertices va and vb (both with masks) lie beyond one plane of o by more than the
@@ -409,10 +409,13 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
     return top > floor;
 }
 
-void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *dist, const uint64_t *mask)
+void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist, const uint64_t *mask)
 {
     if (sd->nedge == 0) return;
     const int o = sd->owner, t = sd->other;
+    /* a fixed t's edges stay where they were, and o's loose box until it is built again: edges
+       that all lay beyond one of its sides (none bearing) still do, and nothing is to be done */
+    if (s->fixed[t] && sd->edges_clear == s->box_builds[o] + 1) return;
     const rd_poly *pt = &s->poly[t];
     if (pt->nv > RD_EDGE_MAX_VERTS || sd->nedge > RD_EDGE_MAX_EDGES) return;
     const rd_joint *j = &s->joint[pr->joint];
@@ -441,15 +444,18 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double 
     edge_lines L;
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
-    int cand[RD_EDGE_MAX_EDGES], nc = 0;
+    int cand[RD_EDGE_MAX_EDGES], nc = 0, clear = !held;
     for (int i = 0; i < sd->nedge; i++) { /* bearing, or not settled by may_bear's mask tests (with
                                              masks; else not wholly beyond one side of o's box) */
         const int a = ev[i][0], b = ev[i][1];
+        const int loose_out = !held && (vi.sure[a] & vi.sure[b]);
         int keep = held ? (vi.word[a] | vi.word[b]) && !(vi.word[a] & vi.word[b])
-                        : !(vi.sure[a] & vi.sure[b]) && !(vertex_code(&vi, a) & vertex_code(&vi, b));
+                        : !loose_out && !(vertex_code(&vi, a) & vertex_code(&vi, b));
         cand[nc] = i;
         nc += on[i] | keep;
+        clear &= loose_out && !on[i];
     }
+    sd->edges_clear = clear && s->fixed[t] ? s->box_builds[o] + 1 : 0;
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
         if (s->eon[e] ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {

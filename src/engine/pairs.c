@@ -185,6 +185,7 @@ static void box_build(rd_sim *s, int i)
     rd_copy3(s->x[i], s->box_pose[i]);
     for (int k = 0; k < 4; k++) s->box_pose[i][3 + k] = s->q[i][k];
     s->box_drift[i] = 0;
+    s->box_builds[i]++;
 }
 
 /* Bound on the distance any hull vertex of body i moved since its box was built, m (NaN: never
@@ -222,14 +223,13 @@ void rd_pairs_box_now(const rd_sim *s, int i, double bx[6])
     hull_box(s, i, NULL, bx);
 }
 
-/* Body i's stored box grown by its drift this step, m: the exact box (rd_pairs_box_now) lies
- * within it (pair_live's bound), so a point beyond one of its sides lies beyond that side of the
- * exact box too. Found without the hull vertices; where the stored box is exact (drift 0) it is
- * that box. */
-void rd_pairs_box_outer(const rd_sim *s, int i, double bx[6])
+/* Body i's stored box grown by the margin, m: the exact box (rd_pairs_box_now) lies within the
+ * stored box grown by the drift (pair_live's bound), which rd_pairs_update holds at most the
+ * margin, so a point beyond one of its sides lies beyond that side of the exact box too. Found
+ * without the hull vertices, and the same until the box is built again (rd_sim.box_builds). */
+void rd_pairs_box_loose(const rd_sim *s, int i, double bx[6])
 {
-    const double d = s->box_drift[i];
-    for (int k = 0; k < 3; k++) { bx[k] = s->aabb[i][k] - d; bx[k + 3] = s->aabb[i][k + 3] + d; }
+    for (int k = 0; k < 3; k++) { bx[k] = s->aabb[i][k] - s->margin; bx[k + 3] = s->aabb[i][k + 3] + s->margin; }
 }
 
 static int boxes_overlap(const double *p, const double *q)
@@ -320,7 +320,8 @@ int rd_pairs_init(rd_sim *s, rd_error *err)
     s->box_pose = malloc((size_t)s->nb * sizeof *s->box_pose);
     s->box_rho = calloc((size_t)s->nb, sizeof *s->box_rho);
     s->box_drift = calloc((size_t)s->nb, sizeof *s->box_drift);
-    if (!s->order || !s->aabb || !s->box_pose || !s->box_rho || !s->box_drift || hash_grow(s))
+    s->box_builds = calloc((size_t)s->nb, sizeof *s->box_builds);
+    if (!s->order || !s->aabb || !s->box_pose || !s->box_rho || !s->box_drift || !s->box_builds || hash_grow(s))
         return rd_error_set(err, "out of memory");
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, rmin = INFINITY;
     for (int i = 0; i < s->nb; i++) {

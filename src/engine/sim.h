@@ -72,6 +72,9 @@ typedef struct rd_side {
                                     vertices clear (contact.c: vertex_distances skips them) */
     double far_clear;            /* their least clearance below reach when measured, m (0: none) */
     double far_pose[7];          /* the owner's position and quaternion then */
+    uint64_t edges_clear;        /* the owner's box build (rd_sim.box_builds) + 1 at which every
+                                    edge of a fixed other body lay beyond one side of the owner's
+                                    loose box (edge.c skips the side while it stands); 0: none */
 } rd_side;
 
 /* A pair of bodies that may touch: one or two sides, each the points of one body tested
@@ -220,6 +223,7 @@ struct rd_sim {
     double *box_rho;       /* per body: largest distance of a hull vertex from its centre, m */
     double *box_drift;     /* per body: bound on how far any hull vertex moved since the box was
                               built, this step (0: the box is exact), m */
+    uint64_t *box_builds;  /* per body: boxes built so far (a box's generation) */
     double margin;         /* m */
     int *order;            /* bodies sorted by box minimum along sweep_axis */
     int sweep_axis;
@@ -331,7 +335,7 @@ void rd_history_step(rd_sim *s);
 int rd_pairs_init(rd_sim *s, rd_error *err);
 int rd_pairs_update(rd_sim *s);
 void rd_pairs_box_now(const rd_sim *s, int i, double box[6]);
-void rd_pairs_box_outer(const rd_sim *s, int i, double box[6]);
+void rd_pairs_box_loose(const rd_sim *s, int i, double box[6]);
 double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
 
 /* contact.c */
@@ -343,7 +347,7 @@ double rd_contact_elastic_energy(const rd_sim *s);
 /* edge.c */
 int rd_edge_count(const rd_poly *p);
 int rd_edge_init(rd_sim *s, rd_error *err);
-void rd_edge_side(rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *dist,
+void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
                   const uint64_t *mask);
 void rd_edge_reset(rd_sim *s, const rd_side *sd);
 double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd);
