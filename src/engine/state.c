@@ -122,6 +122,10 @@ int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
 void rd_state_restored(rd_sim *s, const double settle[2])
 {
     for (int k = 0; k < s->nfree; k++) s->watch[k].area = s->rest_area[k]; /* contact area at rest */
+    /* an edge side's skip holds for the saving run's box builds (rd_sim.box_builds, not in the
+       image: this run counts its own) */
+    for (int p = 0; p < s->npair; p++)
+        for (int q = 0; q < s->pair[p].nside; q++) s->pair[p].side[q].edges_clear = 0;
     s->settle_time = settle[0];
     s->settle_ratio = settle[1];
     s->restored = 1;
