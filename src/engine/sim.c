@@ -134,7 +134,7 @@ static int ground_varies(const rd_motion_def *m)
 static void step_once(rd_sim *s)
 {
     if (!s->settling && !s->ground_still) {
-        rd_motion_eval(&s->sc.motion, s->t, s->ag, s->vg, s->dg);
+        rd_motion_eval_axes(&s->sc.motion, &s->ground_axes, s->t, s->ag, s->vg, s->dg);
         s->ground_still = !ground_varies(&s->sc.motion);
     }
     rd_bodies_refresh_step(s);
@@ -311,6 +311,7 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
         return NULL;
     }
     rd_monitor_scene(s);
+    rd_motion_axes_of(&s->sc.motion, &s->ground_axes);
     return s;
 }
 

@@ -10,6 +10,7 @@
 #include "rockdem/observer.h"
 #include "rockdem/rockdem.h"
 #include "engine/state.h"
+#include "records/motion_axes.h"
 #include "geometry/geom.h"
 
 #include <signal.h>
@@ -271,6 +272,7 @@ struct rd_sim {
     double ag_prev[3];     /* ground acceleration at the previous step, m/s^2 */
     int ground_still;      /* 1: ag, vg, dg hold a motion without pulses or records, the same at
                               every t (evaluated at the first step that shakes) */
+    rd_motion_axes ground_axes; /* the motion's directions' cosines and sines, found once */
 
     /* energy bookkeeping, J */
     double e_fric, e_damp, e_work; /* accumulated friction, damping dissipation, ground work */

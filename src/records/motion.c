@@ -11,6 +11,7 @@
  */
 #include "rockdem/motion.h"
 #include "rockdem/record.h"
+#include "records/motion_axes.h"
 
 #include <math.h>
 
@@ -35,17 +36,19 @@ static double pulse_length(const rd_pulse_def *p)
 /* a sin(w tau): v = a/w (1 - cos w tau), d = a/w (tau - sin(w tau)/w). */
 static void eval_sine(double amp, double w, double tau, double *a, double *v, double *d)
 {
-    *a = amp * sin(w * tau);
+    double sn = sin(w * tau); /* once: libm's sin may set errno, so gcc calls it at each use */
+    *a = amp * sn;
     *v = amp / w * (1.0 - cos(w * tau));
-    *d = amp / w * (tau - sin(w * tau) / w);
+    *d = amp / w * (tau - sn / w);
 }
 
 /* a cos(w tau): v = a/w sin(w tau), d = a/w^2 (1 - cos w tau). */
 static void eval_cosine(double amp, double w, double tau, double *a, double *v, double *d)
 {
-    *a = amp * cos(w * tau);
+    double cs = cos(w * tau); /* once, as eval_sine's sin */
+    *a = amp * cs;
     *v = amp / w * sin(w * tau);
-    *d = amp / (w * w) * (1.0 - cos(w * tau));
+    *d = amp / (w * w) * (1.0 - cs);
 }
 
 /* Triangle of height amp and base T: a = 2 amp tau/T up to T/2, then 2 amp (T - tau)/T.
@@ -115,12 +118,21 @@ double rd_pulse_end(const rd_pulse_def *p)
     return p->start + pulse_length(p);
 }
 
-/* Adds the applied records at t: h1 along (cos, sin) of m->direction, h2 along (-sin, cos),
- * vertical along z. Absent components cost nothing. */
-static void add_records(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3])
+void rd_motion_axes_of(const rd_motion_def *m, rd_motion_axes *ax)
+{
+    ax->pulse[0] = cos(m->horizontal.direction);
+    ax->pulse[1] = sin(m->horizontal.direction);
+    ax->record[0] = cos(m->direction);
+    ax->record[1] = sin(m->direction);
+}
+
+/* Adds the applied records at t: h1 along (cos, sin) of m->direction (ax->record), h2 along
+ * (-sin, cos), vertical along z. Absent components cost nothing. */
+static void add_records(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3], double vel[3],
+                        double disp[3])
 {
     if (!m->record[RD_H1].applied && !m->record[RD_H2].applied && !m->record[RD_VERTICAL].applied) return;
-    double c = cos(m->direction), s = sin(m->direction);
+    double c = ax->record[0], s = ax->record[1];
     const double axis[RD_NCOMPONENTS][3] = {{c, s, 0}, {-s, c, 0}, {0, 0, 1}};
     for (int k = 0; k < RD_NCOMPONENTS; k++) {
         const rd_record *r = m->record[k].applied;
@@ -136,16 +148,24 @@ static void add_records(const rd_motion_def *m, double t, double acc[3], double 
     }
 }
 
-void rd_motion_eval(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3])
+void rd_motion_eval_axes(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3], double vel[3],
+                         double disp[3])
 {
     double ah, vh, dh, az, vz, dz;
     rd_pulse_eval(&m->horizontal, t, &ah, &vh, &dh);
     rd_pulse_eval(&m->vertical, t, &az, &vz, &dz);
-    double c = cos(m->horizontal.direction), s = sin(m->horizontal.direction);
+    double c = ax->pulse[0], s = ax->pulse[1];
     acc[0] = ah * c, acc[1] = ah * s, acc[2] = az;
     vel[0] = vh * c, vel[1] = vh * s, vel[2] = vz;
     disp[0] = dh * c, disp[1] = dh * s, disp[2] = dz;
-    add_records(m, t, acc, vel, disp);
+    add_records(m, ax, t, acc, vel, disp);
+}
+
+void rd_motion_eval(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3])
+{
+    rd_motion_axes ax;
+    rd_motion_axes_of(m, &ax);
+    rd_motion_eval_axes(m, &ax, t, acc, vel, disp);
 }
 
 double rd_motion_end(const rd_motion_def *m)
