@@ -121,7 +121,6 @@ static int healthy(rd_sim *s)
     return 1;
 }
 
-/* One explicit step from t to t + dt. */
 /* Whether the scene's ground motion depends on time: a pulse or an applied record (with
  * neither, rd_motion_eval gives the same values at every t). */
 static int ground_varies(const rd_motion_def *m)
@@ -131,11 +130,12 @@ static int ground_varies(const rd_motion_def *m)
     return varies;
 }
 
+/* One explicit step from t to t + dt. */
 static void step_once(rd_sim *s)
 {
     if (!s->settling && !s->ground_still) {
         rd_motion_eval_axes(&s->sc.motion, &s->ground_axes, s->t, s->ag, s->vg, s->dg);
-        s->ground_still = !ground_varies(&s->sc.motion);
+        s->ground_still = s->ground_const;
     }
     rd_bodies_refresh_step(s);
     forces_external(s);
@@ -312,6 +312,7 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
     }
     rd_monitor_scene(s);
     rd_motion_axes_of(&s->sc.motion, &s->ground_axes);
+    s->ground_const = !ground_varies(&s->sc.motion);
     return s;
 }
 

@@ -270,8 +270,9 @@ struct rd_sim {
     /* ground motion this step (m/s^2, m/s, m) */
     double ag[3], vg[3], dg[3];
     double ag_prev[3];     /* ground acceleration at the previous step, m/s^2 */
-    int ground_still;      /* 1: ag, vg, dg hold a motion without pulses or records, the same at
-                              every t (evaluated at the first step that shakes) */
+    int ground_const;      /* 1: the motion has no pulse and no record, the same at every t */
+    int ground_still;      /* 1: ag, vg, dg hold such a motion (evaluated at the first step that
+                              shakes) */
     rd_motion_axes ground_axes; /* the motion's directions' cosines and sines, found once */
 
     /* energy bookkeeping, J */
