@@ -122,22 +122,15 @@ static inline double plane_dist(const double *pl, const double p[3])
 }
 
 /* Relative velocity of owner point ro (offset from the owner's centre, ground frame) against
- * the other body, m/s (rd_law_relative_velocity's expressions, from the frame fr); rt receives
- * the point's offset from the other body's centre when that body is free (t_free), else 0 (a
- * fixed body takes no torque and has no velocity: rt is not used). */
+ * the other body, m/s (rd_law_relative_velocity_of, from the frame fr); rt receives the point's
+ * offset from the other body's centre when that body is free (t_free), else 0 (a fixed body
+ * takes no torque and has no velocity: rt is not used). */
 static inline __attribute__((always_inline)) void relative_velocity(const side_frame *fr, int t_free,
                                                                     const double ro[3], double rt[3],
                                                                     double vr[3])
 {
-    double tmp[3];
     for (int k = 0; k < 3; k++) rt[k] = t_free ? ro[k] + fr->xo[k] - fr->xt[k] : 0.0;
-    rd_cross(fr->wo, ro, vr);
-    rd_axpy(1.0, fr->vo, vr);
-    if (t_free) {
-        rd_cross(fr->wt, rt, tmp);
-        rd_axpy(-1.0, tmp, vr);
-        rd_axpy(-1.0, fr->vt, vr);
-    }
+    rd_law_relative_velocity_of(fr->vo, fr->wo, fr->vt, fr->wt, t_free, ro, rt, vr);
 }
 
 /* rd_sim's frame of the side's two bodies (side_frame). */

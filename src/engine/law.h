@@ -11,20 +11,28 @@
 
 #include <math.h>
 
-/* Velocity, m/s, of a point of owner body o against body t at offsets ro (from o's centre) and
- * rt (from t's centre), ground frame: v_o + w_o x ro - (v_t + w_t x rt), t's part left out when
- * t is fixed. */
+/* Velocity, m/s, of a point at offsets ro (from the owner's centre) and rt (from the other
+ * body's centre) of an owner moving with (vo, wo) against another body moving with (vt, wt),
+ * ground frame: vo + wo x ro - (vt + wt x rt), the other's part left out unless t_free. */
+static inline void rd_law_relative_velocity_of(const double vo[3], const double wo[3], const double vt[3],
+                                               const double wt[3], int t_free, const double ro[3],
+                                               const double rt[3], double vr[3])
+{
+    double tmp[3];
+    rd_cross(wo, ro, vr);
+    rd_axpy(1.0, vo, vr);
+    if (t_free) {
+        rd_cross(wt, rt, tmp);
+        rd_axpy(-1.0, tmp, vr);
+        rd_axpy(-1.0, vt, vr);
+    }
+}
+
+/* rd_law_relative_velocity_of for owner body o against body t of the simulation. */
 static inline void rd_law_relative_velocity(const rd_sim *s, int o, int t, const double ro[3],
                                             const double rt[3], double vr[3])
 {
-    double tmp[3];
-    rd_cross(s->w[o], ro, vr);
-    rd_axpy(1.0, s->v[o], vr);
-    if (!s->fixed[t]) {
-        rd_cross(s->w[t], rt, tmp);
-        rd_axpy(-1.0, tmp, vr);
-        rd_axpy(-1.0, s->v[t], vr);
-    }
+    rd_law_relative_velocity_of(s->v[o], s->w[o], s->v[t], s->w[t], !s->fixed[t], ro, rt, vr);
 }
 
 /* Force F (N) of a subcontact at offsets ro (from owner o's centre) and rt (from the other body
