@@ -8,6 +8,7 @@
  */
 #define _GNU_SOURCE
 #include "rockdem/sweep.h"
+#include "ensembles/pipe_io.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -27,33 +28,6 @@ typedef struct pool_ctx {
     int *result;  /* read end of each worker's result pipe (-1 once closed) */
 } pool_ctx;
 
-static int write_all(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return -1;
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-/* 0 ok, 1 end of file before anything, -1 error or short. */
-static int read_all(int fd, void *buf, size_t n)
-{
-    char *p = buf;
-    size_t got = 0;
-    while (got < n) {
-        ssize_t r = read(fd, p + got, n - got);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) return r == 0 && got == 0 ? 1 : -1;
-        got += (size_t)r;
-    }
-    return 0;
-}
-
 static void on_stop(int sig)
 {
     (void)sig;
@@ -68,9 +42,9 @@ static void worker(const rd_sweep_plan *p, int in, int out)
     signal(SIGINT, on_stop);
     signal(SIGTERM, on_stop);
     signal(SIGHUP, on_stop);
-    while (r && read_all(in, &k, sizeof k) == 0 && k >= 0) {
+    while (r && rd_pipe_read(in, &k, sizeof k) == 0 && k >= 0) {
         rd_sweep_run_case(p, k, r);
-        if (write_all(out, r, sizeof *r)) break;
+        if (rd_pipe_write(out, r, sizeof *r)) break;
     }
     _exit(r ? 0 : 3);
 }
@@ -78,7 +52,7 @@ static void worker(const rd_sweep_plan *p, int in, int out)
 static int pool_send(void *ctx, int w, long k)
 {
     pool_ctx *c = ctx;
-    return c->task[w] >= 0 && write_all(c->task[w], &k, sizeof k) == 0 ? 0 : -1;
+    return c->task[w] >= 0 && rd_pipe_write(c->task[w], &k, sizeof k) == 0 ? 0 : -1;
 }
 
 static int pool_recv(void *ctx, int wait_ms, int *worker, rd_sweep_result *r)
@@ -91,7 +65,7 @@ static int pool_recv(void *ctx, int wait_ms, int *worker, rd_sweep_result *r)
     for (int w = 0; w < c->n; w++) {
         if (!(fds[w].revents & (POLLIN | POLLHUP | POLLERR))) continue;
         *worker = w;
-        if (read_all(c->result[w], r, sizeof *r) == 0) return 1;
+        if (rd_pipe_read(c->result[w], r, sizeof *r) == 0) return 1;
         close(c->result[w]);
         c->result[w] = -1;
         return -1;

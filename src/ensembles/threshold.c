@@ -8,6 +8,7 @@
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/validate.h"
+#include "ensembles/pipe_io.h"
 
 #include <errno.h>
 #include <math.h>
@@ -103,32 +104,6 @@ static int scan_jobs(const rd_threshold_opts *opts)
     return n < 1 ? 1 : n > RD_SCAN_MAX_JOBS ? RD_SCAN_MAX_JOBS : (int)n;
 }
 
-static int read_full(int fd, void *buf, size_t n)
-{
-    char *p = buf;
-    while (n > 0) {
-        ssize_t r = read(fd, p, n);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) return -1;
-        p += r;
-        n -= (size_t)r;
-    }
-    return 0;
-}
-
-static int write_full(int fd, const void *buf, size_t n)
-{
-    const char *p = buf;
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return -1;
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
 /* A worker's progress callback: its run's progress on its pipe, each 1 / RD_SCAN_REPORTS of the
    run at most (the scan reads it while it waits, so the pipe never fills). */
 typedef struct worker_pipe { int fd; double sent, t_end; } worker_pipe;
@@ -140,7 +115,7 @@ static void worker_progress(void *ctx, double t, double t_end)
     if (f - w->sent < 1.0 / RD_SCAN_REPORTS && f < 1.0) return;
     w->sent = f;
     scan_message m = {.done = 0, .t = t, .t_end = t_end};
-    if (write_full(w->fd, &m, sizeof m)) _exit(3);
+    if (rd_pipe_write(w->fd, &m, sizeof m)) _exit(3);
 }
 
 /* The worker: one run, its progress and outcome on fd, never returns. */
@@ -153,7 +128,7 @@ static void scan_worker(const rd_scenario *sc, rd_engine engine, double amplitud
     m.o.rc = rd_overturns(sc, engine, amplitude, &m.o.over, &err);
     m.t = m.t_end = w.t_end;
     memcpy(m.o.msg, err.msg, sizeof m.o.msg);
-    _exit(write_full(fd, &m, sizeof m) ? 3 : 0);
+    _exit(rd_pipe_write(fd, &m, sizeof m) ? 3 : 0);
 }
 
 /* The batch's progress to the process's callback: base runs finished before the batch plus each
@@ -213,7 +188,7 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
         for (int k = 0; k < started; k++) { /* (without poll: blocking reads, in order) */
             if (pfd[k].fd < 0 || (waiting && !pfd[k].revents)) continue;
             scan_message m;
-            int lost = read_full(fd[k], &m, sizeof m);
+            int lost = rd_pipe_read(fd[k], &m, sizeof m);
             if (!lost && m.t_end > 0) t_end = m.t_end;
             if (!lost && !m.done) { /* progress */
                 f[k] = m.t_end > 0 ? fmin(fmax(m.t / m.t_end, 0), 1) : 0;
