@@ -715,36 +715,43 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
     return 0;
 }
 
-/* The points of candidate face cf (its first subcontact st), each by steady_point, else subcontact;
- * their forces into *a, their counts into *na (bearing), *nin (inside) and *nslip (slipping).
- * t_free (a constant at each call): the other body is free. */
-static inline __attribute__((always_inline)) void face_points(rd_sim *s, side_ctx *c, const rd_joint *j, int cf,
-                                                              int st, const side_frame *fr, side_sums *a,
-                                                              int *na, int *nin, int *nslip, const int nw,
-                                                              const int t_free)
+/* The points pt0 .. pt1 - 1 of a candidate face (point pt's subcontact: pt + dst), each by
+ * steady_point, else subcontact; their forces into *a, the side's bearing and slipping counts
+ * into *na and *nslip. Returns the face's points inside. t_free (a constant at each call): the
+ * other body is free. */
+static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j, int pt0,
+                                                             int pt1, int dst, const side_frame *fr, side_sums *a,
+                                                             int *na, int *nslip, const int nw, const int t_free)
 {
-    for (int pt = s->cf_pt0[cf]; pt < s->cf_pt0[cf + 1]; pt++, st++) {
+    int nin = 0;
+    for (int pt = pt0; pt < pt1; pt++) {
+        const int st = pt + dst;
         int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw, t_free) : -1;
         if (bears < 0) bears = subcontact(s, c, j, pt, st, a);
         if (bears) {
             ++*na;
             *nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
         }
-        *nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
+        nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
     }
+    return nin;
 }
 
 /* The candidate faces of a side (side_step's context c), each tested against the other body
  * (face_planes), then its points (steady_point, else subcontact); their forces summed into
- * *sums, the contact tally and active point-steps into *tally and *active_steps. nw: the mask
- * words in use, t_free: the other body is free (constants at each call: 1 word for most
- * bodies). */
+ * *sums, the contact tally into *tally and the active point-steps into *active_steps. The tally
+ * takes each face's bearing area in face order (a face's own sum first, as the monitor's area
+ * always was), its counts and whether it touched once for the side. nw: the mask words in use,
+ * t_free: the other body is free (constants at each call: 1 word for most bodies). */
 static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd, const rd_joint *j,
                                                              side_sums *sums, rd_watch *tally, long *active_steps,
                                                              const int nw, const int t_free)
 {
     const side_frame fr = c->fr; /* locals no store into rd_sim reaches */
     side_sums a = *sums;
+    const int dst = sd->state0 - s->pt0[c->o]; /* a point's subcontact, less its index */
+    int na = 0, nslip = 0, touch = 0;
+    double area = tally->area;
     for (int cf = s->cf0[c->o], k = 0; cf < s->cf0[c->o + 1]; cf++, k++) {
         double gap;
         if (face_planes(s, c, cf, &gap, nw)) {
@@ -752,15 +759,18 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
             rd_joint_face_open(s, sd, cf, gap);
             continue;
         }
-        int na = 0, nin = 0, nslip = 0;
-        int st = sd->state0 + (s->cf_pt0[cf] - s->pt0[c->o]);
         a.area = 0;
-        face_points(s, c, j, cf, st, &fr, &a, &na, &nin, &nslip, nw, t_free);
-        s->face_nactive[sd->face0 + k] = nin;
-        *active_steps += na;
-        rd_monitor_contact(tally, s->shaking, a.area, na, nslip);
+        s->face_nactive[sd->face0 + k] =
+            face_points(s, c, j, s->cf_pt0[cf], s->cf_pt0[cf + 1], dst, &fr, &a, &na, &nslip, nw, t_free);
+        area += a.area;
+        touch |= a.area > 0;
     }
     *sums = a;
+    tally->area = area;
+    tally->nactive += na;
+    tally->nslip += nslip;
+    if (touch && s->shaking) tally->touched = 1;
+    *active_steps += na;
 }
 
 static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, double nsum[3])
@@ -791,8 +801,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     side_planes(s, &c);
     vertex_distances(s, &c, sd);
     s->kin_epoch++;
-    /* the side's contact tally (rd_monitor_contact's sums, face by face in the same order) and
-       its active point-steps, carried in locals and stored once */
+    /* the side's contact tally and its active point-steps, carried in locals and stored once */
     rd_watch *watch = rd_monitor_contact_watch(s, c.o, c.t);
     rd_watch tally = {0};
     if (watch) { tally.area = watch->area; tally.nactive = watch->nactive; tally.nslip = watch->nslip; tally.touched = watch->touched; }

@@ -383,14 +383,6 @@ void rd_monitor_start(rd_sim *s);
 void rd_monitor_step(rd_sim *s);
 rd_watch *rd_monitor_contact_watch(rd_sim *s, int owner, int other);
 
-/* Books one candidate face's contact (area m^2, active and slipping subcontacts) on the watch
- * of its side (rd_monitor_contact_watch; NULL: nobody's). */
-static inline void rd_monitor_contact(rd_watch *w, int shaking, double area, int nactive, int nslip)
-{
-    if (!w) return;
-    w->area += area; w->nactive += nactive; w->nslip += nslip;
-    if (area > 0 && shaking) w->touched = 1;
-}
 int rd_monitor_all_fallen(const rd_sim *s);
 void rd_monitor_finish(rd_sim *s);
 void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
