@@ -108,8 +108,9 @@ typedef struct side_ctx {
     uint64_t cross[RD_MASK_WORDS]; /* bit q: some point of the current face may lie beyond plane
                                       q (words in use: nw) */
     const double *m;            /* outward normal of the current owner face, ground frame, once
-                                   found (owner_normal), else NULL */
-    int mf;                     /* the current owner face */
+                                   found (owner_normal), else NULL; set, with mf, for late faces
+                                   only (no other face's points ask for it) */
+    int mf;                     /* the current owner face (a late one) */
     double mbuf[3];
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
     int t_free;                 /* the other body is free (a fixed one takes no force) */
@@ -682,9 +683,11 @@ static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *s
 static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap, const int nw)
 {
     const int *slot = s->cf_v + s->cf_v0[cf], nv = s->cf_v0[cf + 1] - s->cf_v0[cf];
-    c->m = NULL;
-    c->mf = s->cf_face[cf];
     c->facing = s->cf_facing[cf];
+    if (c->facing) { /* owner_normal: only a late face's points ask for the face's normal */
+        c->m = NULL;
+        c->mf = s->cf_face[cf];
+    }
     for (int w = 0; w < nw; w++) {
         uint64_t out, cross;
         if (nv == 3) { /* a mesh's triangle */
