@@ -84,6 +84,7 @@ typedef struct side_ctx {
     int o, t;                   /* owner and other body */
     double wa;                  /* weight */
     double damp_coef;           /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
+    int damped;                 /* the joint has a normal dashpot (damping > 0) */
     side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
@@ -456,11 +457,14 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double lim = rd_max(fn, 0.0) * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion) */
     rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
     if (!(rd_dot(fs, fs) <= lim * lim)) return -1; /* slips: rd_law_shear_cap in subcontact */
-    /* last_bore's fd; exactly 0 where the joint has no dashpot: a bearing point's stored force
-       pj[0] is then its elastic force kA * (depth - set), the product repeated here (the tension
-       cap never holds a bearing point's force below it) */
-    double fd_prev = j->damping > 0 ? s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]) : 0.0;
-    if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
+    /* the dashpot's work, with last_bore's fd; without a dashpot there is none: fd is exactly 0
+       (a bearing point's stored force pj[0] is then its elastic force kA * (depth - set), the
+       product repeated here: the tension cap never holds a bearing point's force below it), and
+       fn == fel (damp_coef is 0, and a NaN fn went to subcontact above) */
+    if (c->damped) {
+        double fd_prev = s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]);
+        if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
+    }
     a->k_active += kA;
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
     s->pj[st][1] = -depth;
@@ -783,6 +787,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
     c.to_b = sd->owner == pr->b ? 1.0 : -1.0;
     c.damp_coef = 0;
+    c.damped = j->damping > 0;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
        to this far beyond the other body's edge still bears on it (the corners of two equal
        blocks lying on each other, twisted or slid by a hair), and one hovering this close
