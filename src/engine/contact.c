@@ -554,12 +554,33 @@ static void side_planes(const rd_sim *s, side_ctx *c)
  * vertex by vertex (vertex_rows). */
 #define RD_FAR_BANDS 2.0
 
-/* One plane (n: normal and offset, ground frame) against the ncv vertices wv[cv[k]]: each
- * signed distance into row k of d (np planes a row, this plane's column q), the plane's bit q in
- * each vertex's masks (mk, vertex_distances: beyond band[0] = out_band, above band[1] = reach),
- * and, when track (a constant at each call, so the loop without it carries no dependency chain),
- * the largest distance (NaN sticks), else -INFINITY. */
-static inline __attribute__((always_inline)) double plane_pass(const double (*wv)[3], const int *cv, int ncv,
+/* The owner's candidate vertices in the ground frame: vertex k at (x[k], y[k], z[k]) for a
+ * non-convex owner (soa: rd_sim.cv_world, the only vertices its step transforms, integrate.c),
+ * else at wv[cv[k]] (rd_sim.wv). */
+typedef struct cv_coords {
+    const double *x, *y, *z;
+    const double (*wv)[3];
+    const int *cv;
+} cv_coords;
+
+/* Vertex k of v (soa: a constant at each call) into p. */
+static inline __attribute__((always_inline)) void cv_vertex(const cv_coords *v, int k, const int soa, double p[3])
+{
+    if (soa) {
+        p[0] = v->x[k]; p[1] = v->y[k]; p[2] = v->z[k];
+    } else {
+        const double *w = v->wv[v->cv[k]];
+        p[0] = w[0]; p[1] = w[1]; p[2] = w[2];
+    }
+}
+
+/* One plane (n: normal and offset, ground frame) against the ncv candidate vertices v (soa, a
+ * constant at each call: cv_vertex): each signed distance into row k of d (np planes a row, this
+ * plane's column q), the plane's bit q in each vertex's masks (mk, vertex_distances: beyond
+ * band[0] = out_band, above band[1] = reach), and, when track (a constant at each call, so the
+ * loop without it carries no dependency chain), the largest distance (NaN sticks), else
+ * -INFINITY. */
+static inline __attribute__((always_inline)) double plane_pass(const cv_coords *v, const int soa, int ncv,
                                                                const double n[4], const double band[2], int np,
                                                                int q, double *restrict d,
                                                                uint64_t *restrict mk, int track)
@@ -569,7 +590,8 @@ static inline __attribute__((always_inline)) double plane_pass(const double (*wv
     uint64_t *mo = mk + (q >> 6), *mc = mk + RD_MASK_WORDS + (q >> 6);
     double hi = -INFINITY;
     for (int k = 0; k < ncv; k++) {
-        const double *x = wv[cv[k]];
+        double x[3];
+        cv_vertex(v, k, soa, x);
         const double dl = n0 * x[0] + n1 * x[1] + n2 * x[2] - dq;
         d[k * np + q] = dl;
         if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
@@ -585,14 +607,18 @@ static inline __attribute__((always_inline)) double plane_pass(const double (*wv
  * selected from bit[], so the loop runs two planes a vector. The same expression as plane_pass's,
  * so the same bits. A drum-drum side (32 vertices, 18 planes) runs about 15 % faster than plane
  * by plane, whose read-modify-writes of the masks and gathered vertices do not vectorise. */
-static void vertex_rows(const double (*wv)[3], const int *cv, int ncv, const double *n0, const double *n1,
-                        const double *n2, const double *dq, int np, int nw, double out_band, double reach,
-                        double *restrict d, uint64_t *restrict mk)
+static inline __attribute__((always_inline)) void vertex_rows(const cv_coords *v, const int soa, int ncv,
+                                                               const double *n0, const double *n1,
+                                                               const double *n2, const double *dq, int np, int nw,
+                                                               double out_band, double reach, double *restrict d,
+                                                               uint64_t *restrict mk)
 {
     uint64_t bit[64]; /* bit q of a mask word, as a value a vector lane can select */
     for (int q = 0; q < 64 && q < np; q++) bit[q] = (uint64_t)1 << q;
     for (int k = 0; k < ncv; k++) {
-        const double x0 = wv[cv[k]][0], x1 = wv[cv[k]][1], x2 = wv[cv[k]][2];
+        double x[3];
+        cv_vertex(v, k, soa, x);
+        const double x0 = x[0], x1 = x[1], x2 = x[2];
         double *restrict row = d + (size_t)k * np;
         uint64_t *m = mk + (size_t)k * 2 * RD_MASK_WORDS;
         for (int w = 0; w < nw; w++) {
@@ -610,7 +636,9 @@ static void vertex_rows(const double (*wv)[3], const int *cv, int ncv, const dou
     }
 }
 
-static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
+/* vertex_distances from the candidate vertices v (soa: a constant at each call, cv_vertex). */
+static inline __attribute__((always_inline)) void distances_from(const rd_sim *s, side_ctx *c, rd_side *sd,
+                                                                 const cv_coords *v, const int soa)
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
     const double *wd = s->wd + s->face0[c->t];
@@ -619,7 +647,6 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     const int reuse = fixed && sd->far_clear > 0 &&
                       rd_pairs_drift(s, c->o, sd->far_pose) <= sd->far_clear - 0.5 * c->tol;
     const int nw = (np + 63) / 64, ncv = s->cv0[c->o + 1] - s->cv0[c->o];
-    const int *cv = s->cv + s->cv0[c->o];
     double *restrict d = s->cv_dist;
     uint64_t *restrict mk = s->cv_mask;
     c->nw = nw;
@@ -628,7 +655,7 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     if (!fixed) {
         double n0[RD_MAX_PLANES], n1[RD_MAX_PLANES], n2[RD_MAX_PLANES], dq[RD_MAX_PLANES];
         for (int q = 0; q < np; q++) { n0[q] = wn[q][0]; n1[q] = wn[q][1]; n2[q] = wn[q][2]; dq[q] = wd[q]; }
-        vertex_rows(s->wv, cv, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
+        vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
         return;
     }
     if (nw == 1) { /* the words in use (face_planes and edge.c read no others) */
@@ -645,8 +672,8 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
         dmax[q] = -INFINITY;
         if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
         const double n[4] = {wn[q][0], wn[q][1], wn[q][2], wd[q]}, band[2] = {out_band, reach};
-        dmax[q] = track ? plane_pass(s->wv, cv, ncv, n, band, np, q, d, mk, 1)
-                        : plane_pass(s->wv, cv, ncv, n, band, np, q, d, mk, 0);
+        dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1)
+                        : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0);
     }
     if (track) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
@@ -660,6 +687,19 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
         if (!isfinite(sd->far_clear)) sd->far_clear = 0; /* none far (or no vertex) */
         rd_copy3(s->x[c->o], sd->far_pose);
         for (int k = 0; k < 4; k++) sd->far_pose[3 + k] = s->q[c->o][k];
+    }
+}
+
+static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
+{
+    const int k0 = s->cv0[c->o], ncv_all = s->cv0[s->nb];
+    if (!s->convex[c->o]) {
+        const double *x = s->cv_world + k0;
+        const cv_coords v = {.x = x, .y = x + ncv_all, .z = x + 2 * ncv_all};
+        distances_from(s, c, sd, &v, 1);
+    } else {
+        const cv_coords v = {.wv = s->wv, .cv = s->cv + k0};
+        distances_from(s, c, sd, &v, 0);
     }
 }
 

@@ -40,13 +40,6 @@ void rd_body_refresh(rd_sim *s, int i)
     }
 }
 
-/* World geometry of every free body (fixed bodies never move in the ground frame). */
-void rd_bodies_refresh(rd_sim *s)
-{
-    for (int i = 0; i < s->nb; i++)
-        if (!s->fixed[i]) rd_body_refresh(s, i);
-}
-
 /* One ground-frame coordinate of n points: w[k] = r . (bx, by, bz)[k] + x, rd_mat_vec's row r
  * then rd_axpy's 1.0 * x (the same expressions: the same bits); over contiguous coordinates the
  * loop vectorises. */
@@ -59,24 +52,32 @@ static void transform_row(int n, const double *restrict bx, const double *restri
 
 /* What a step needs of non-convex body i: its rotation and candidate-face vertices (a scanned
  * rock: a few hundred of its thousands of vertices), from their contiguous body-frame
- * coordinates (rd_sim.cv_body) into rd_sim.cv_world, then into the world vertices. It is never a
- * contact target, so its face planes are not needed; the contact finds a candidate face's normal
- * from the rotation when a point needs it (contact.c: owner_normal), and the broad phase
- * transforms the hull vertices only when it rebuilds the body's box (pairs.c). */
+ * coordinates (rd_sim.cv_body) into their contiguous ground-frame ones (rd_sim.cv_world, which
+ * the contact reads: contact.c, vertex_distances). It is never a contact target, so its face
+ * planes are not needed; the contact finds a candidate face's normal from the rotation when a
+ * point needs it (contact.c: owner_normal), and the broad phase transforms the hull vertices
+ * only when it rebuilds the body's box (pairs.c). Its world vertices (rd_sim.wv) are left as
+ * rd_bodies_refresh found them. */
 static void body_refresh_contact(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
     const double *R = s->R[i], *x = s->x[i];
     const int k0 = s->cv0[i], n = s->cv0[i + 1] - k0, ncv = s->cv0[s->nb];
     const double *bx = s->cv_body + k0, *by = bx + ncv, *bz = by + ncv;
-    double *wx = s->cv_world, *wy = wx + n, *wz = wy + n;
+    double *wx = s->cv_world + k0, *wy = wx + ncv, *wz = wy + ncv;
     transform_row(n, bx, by, bz, R, x[0], wx);
     transform_row(n, bx, by, bz, R + 3, x[1], wy);
     transform_row(n, bx, by, bz, R + 6, x[2], wz);
-    const int *cv = s->cv + k0;
-    for (int k = 0; k < n; k++) {
-        double *w = s->wv[cv[k]];
-        w[0] = wx[k]; w[1] = wy[k]; w[2] = wz[k];
+}
+
+/* World geometry of every free body (fixed bodies never move in the ground frame), a
+ * non-convex one's candidate vertices into rd_sim.cv_world too (the same expressions). */
+void rd_bodies_refresh(rd_sim *s)
+{
+    for (int i = 0; i < s->nb; i++) {
+        if (s->fixed[i]) continue;
+        rd_body_refresh(s, i);
+        if (!s->convex[i]) body_refresh_contact(s, i);
     }
 }
 

@@ -412,10 +412,13 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     int ncv = rc ? 0 : s->cv0[s->nb];
     rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max) ||
          !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS) || !ALLOC(s->cv_body, 3 * (size_t)ncv) ||
-         !ALLOC(s->cv_world, 3 * (size_t)ncv_max);
+         !ALLOC(s->cv_world, 3 * (size_t)ncv);
     for (int i = 0; i < s->nb && !rc; i++)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++)
-            for (int d = 0; d < 3; d++) s->cv_body[d * ncv + k] = s->poly[i].v[s->cv[k] - s->vert0[i]][d];
+            for (int d = 0; d < 3; d++) {
+                s->cv_body[d * ncv + k] = s->poly[i].v[s->cv[k] - s->vert0[i]][d];
+                s->cv_world[d * ncv + k] = s->wv[s->cv[k]][d]; /* as placed (rd_setup_bodies) */
+            }
     free(use);
     return rc ? rd_error_set(err, "out of memory") : 0;
 }

@@ -170,9 +170,10 @@ struct rd_sim {
     int *hv0;              /* [nb+1] first entry of each body's hull vertices in hv */
     int *hv;               /* hull vertices (world index): a body's box is theirs. A convex body's
                               step (rd_bodies_refresh_step) transforms all its vertices; a
-                              non-convex one's only its candidate-face vertices (cv), its hull
-                              when the broad phase rebuilds its box (pairs.c), the rest only in
-                              rd_bodies_refresh (setup, start of shaking) */
+                              non-convex one's only its candidate-face vertices (cv, into
+                              cv_world), its hull when the broad phase rebuilds its box
+                              (pairs.c), the rest only in rd_bodies_refresh (setup, start of
+                              shaking) */
     int *cv0;              /* [nb+1] first entry of each body's candidate-face vertices in cv
                               (faces share vertices, so contact.c finds each vertex's plane
                               distances once per side and step) */
@@ -182,7 +183,10 @@ struct rd_sim {
     int (*edge_v)[2];      /* each edge of every body once: its vertices (body-local, a < b) */
     double *cv_body;       /* [3][cv entries, all bodies] the cv vertices' body-frame coordinates,
                               x, y, z each contiguous (integrate.c: a mesh's step transform) */
-    double *cv_world;      /* scratch: [3][cv entries of one body] their ground-frame coordinates */
+    double *cv_world;      /* [3][cv entries, all bodies] their ground-frame coordinates, x, y, z
+                              each contiguous: a non-convex body's step transforms only these
+                              (integrate.c), and the contact reads them there (contact.c:
+                              vertex_distances); a convex body's are read from wv */
     double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
     uint64_t *cv_mask;     /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
