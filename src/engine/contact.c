@@ -386,16 +386,21 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     return 1;
 }
 
+/* What steady_point found, with the point's state bits after it (face_points counts them from
+ * this): NONE, the point needs subcontact (nothing stored); OUT, outside (not RD_PT_INSIDE);
+ * IDLE, inside, not bearing; BEARS, inside, bearing, not slipping. */
+enum { STEADY_NONE = -1, STEADY_OUT, STEADY_IDLE, STEADY_BEARS };
+
 /* steady_point's point beyond the band (out: its distance beyond the plane, m, more than
- * subcontact's band unbonded, slack 0): one that was already out records its gap; 0, or -1 for
- * subcontact. */
+ * subcontact's band unbonded, slack 0): one that was already out records its gap; STEADY_OUT,
+ * or STEADY_NONE for subcontact. */
 static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, unsigned fl, double out)
 {
-    if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return -1;
+    if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return STEADY_NONE;
     s->pj[st][0] = 0;
     s->pj[st][1] = out;
     s->pset[st] = 0;
-    return 0;
+    return STEADY_OUT;
 }
 
 /* subcontact's common cases, with its arithmetic (the same expressions in the same order, so
@@ -406,57 +411,58 @@ static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, u
  * - a steady bearing point: inside, bearing last step, no bond, no impact loss this step (not
  *   new, or not unloading), its face not a late one, below its entrance face, compressed, and
  *   within the Coulomb limit.
- * Returns 0 or 1 as subcontact does, or -1 (nothing stored) when the point needs subcontact. */
+ * Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
+ * when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
                                                              const side_frame *fr, side_sums *a, const int nw,
                                                              const int t_free)
 {
     const unsigned fl = s->pstate[st];
     const double *p = s->pl[pt];
-    if (fl & RD_PT_BONDED) return -1;
+    if (fl & RD_PT_BONDED) return STEADY_NONE;
     for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
         double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
         if (out > c->tol + 0.0) return steady_out(s, st, fl, out);
     }
-    if (!(fl & RD_PT_INSIDE)) return -1;
+    if (!(fl & RD_PT_INSIDE)) return STEADY_NONE;
     int e = s->pface[st];
     double depth = -plane_dist(c->pl[e], p);
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     const double *u = c->wn[e];
     if (c->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
-            return -1;
+            return STEADY_NONE;
         s->pj[st][0] = 0;
         s->pj[st][1] = -depth;
-        return 0;
+        return STEADY_IDLE;
     }
     if ((fl & ~(unsigned)RD_PT_VIRGIN) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
         if (depth <= 0) { /* above its face, within the band */
             s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
             s->pset[st] = 0;
         } else if (!(kA * (depth - s->pset[st]) < 0)) {
-            return -1; /* touches: subcontact */
+            return STEADY_NONE; /* touches: subcontact */
         } /* else below its permanent set: idle */
         s->pj[st][0] = 0;
         s->pj[st][1] = -depth;
-        return 0;
+        return STEADY_IDLE;
     }
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
-        return -1;
+        return STEADY_NONE;
     double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
     rd_mat_vec(fr->R, p, ro);
     relative_velocity(fr, t_free, ro, rt, vr);
     double vn = rd_dot(vr, u);
-    if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return -1; /* its impact loss: subcontact */
+    if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return STEADY_NONE; /* its impact loss: subcontact */
     double stretch = depth - s->pset[st];
-    if (!(stretch >= 0)) return -1; /* below its permanent set: subcontact idles it */
+    if (!(stretch >= 0)) return STEADY_NONE; /* below its permanent set: subcontact idles it */
     double fel = kA * stretch;
     double fn = fel - c->damp_coef * kA * vn;
-    if (!(fn >= 0)) return -1;
+    if (!(fn >= 0)) return STEADY_NONE;
     double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]};
     double lim = rd_max(fn, 0.0) * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion) */
     rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
-    if (!(rd_dot(fs, fs) <= lim * lim)) return -1; /* slips: rd_law_shear_cap in subcontact */
+    if (!(rd_dot(fs, fs) <= lim * lim)) return STEADY_NONE; /* slips: rd_law_shear_cap in subcontact */
     /* the dashpot's work, with last_bore's fd; without a dashpot there is none: fd is exactly 0
        (a bearing point's stored force pj[0] is then its elastic force kA * (depth - set), the
        product repeated here: the tension cap never holds a bearing point's force below it), and
@@ -469,7 +475,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
     s->pj[st][1] = -depth;
     bear(s, a, t_free, st, A, fn, u, fs, ro, rt);
-    return 1;
+    return STEADY_BEARS;
 }
 
 /* Forget a pair's contact history (shear forces, entrance faces, sets); bonds are kept. */
@@ -773,13 +779,17 @@ static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx
     int nin = 0;
     for (int pt = pt0; pt < pt1; pt++) {
         const int st = pt + dst;
-        int bears = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw, t_free) : -1;
-        if (bears < 0) bears = subcontact(s, c, j, pt, st, a);
-        if (bears) {
-            ++*na;
-            *nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
+        const int found = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw, t_free) : STEADY_NONE;
+        if (found == STEADY_NONE) {
+            if (subcontact(s, c, j, pt, st, a)) {
+                ++*na;
+                *nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
+            }
+            nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
+        } else { /* its bits as steady_point left them */
+            *na += found == STEADY_BEARS;
+            nin += found != STEADY_OUT;
         }
-        nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
     }
     return nin;
 }
