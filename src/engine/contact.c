@@ -460,7 +460,9 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double fn = fel - c->damp_coef * kA * vn;
     if (!(fn >= 0)) return STEADY_NONE;
     double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]};
-    double lim = rd_max(fn, 0.0) * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion) */
+    double lim = fn * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion); fn >= 0, so
+                                           rd_max(fn, 0.0) is fn but for -0, whose product + 0.0
+                                           is +0 too */
     rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
     if (!(rd_dot(fs, fs) <= lim * lim)) return STEADY_NONE; /* slips: rd_law_shear_cap in subcontact */
     /* the dashpot's work, with last_bore's fd; without a dashpot there is none: fd is exactly 0
