@@ -711,15 +711,15 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     }
 }
 
-/* Word w of candidate face cf's plane masks (its vertices' slots, nv of them): the planes every
+/* Word w of candidate face cf's plane masks (its vertices' mask offsets, nv of them): the planes every
  * vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
  * (*cross). Out of line: the common triangle and quadrilateral are face_planes' own. */
-static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *slot, int nv, int w,
+static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *mo, int nv, int w,
                                                  uint64_t *out, uint64_t *cross)
 {
     uint64_t o = ~(uint64_t)0, x = 0;
     for (int v = 0; v < nv; v++) {
-        const uint64_t *mk = c->mask + (size_t)slot[v] * 2 * RD_MASK_WORDS;
+        const uint64_t *mk = c->mask + mo[v];
         o &= mk[w];
         x |= mk[RD_MASK_WORDS + w];
     }
@@ -731,10 +731,10 @@ static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *s
  * above reach: side_ctx.cross); 0, or 1 when the whole face lies outside one plane (no point can
  * touch), with *gap the face's clearance from the first such plane, m. As a loop over planes of
  * the least and largest vertex distance (NaN skipped) against the bands, from the vertices' plane
- * masks (rd_sim.cf_v: the face's vertices' slots). */
+ * masks (rd_sim.cf_v: the offsets of the face's vertices' masks). */
 static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap, const int nw)
 {
-    const int *slot = s->cf_v + s->cf_v0[cf], nv = s->cf_v0[cf + 1] - s->cf_v0[cf];
+    const int *mo = s->cf_v + s->cf_v0[cf], nv = s->cf_v0[cf + 1] - s->cf_v0[cf];
     c->facing = s->cf_facing[cf];
     if (c->facing) { /* owner_normal: only a late face's points ask for the face's normal */
         c->m = NULL;
@@ -743,25 +743,25 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
     for (int w = 0; w < nw; w++) {
         uint64_t out, cross;
         if (nv == 3) { /* a mesh's triangle */
-            const uint64_t *m0 = c->mask + (size_t)slot[0] * 2 * RD_MASK_WORDS + w;
-            const uint64_t *m1 = c->mask + (size_t)slot[1] * 2 * RD_MASK_WORDS + w;
-            const uint64_t *m2 = c->mask + (size_t)slot[2] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m0 = c->mask + mo[0] + w;
+            const uint64_t *m1 = c->mask + mo[1] + w;
+            const uint64_t *m2 = c->mask + mo[2] + w;
             out = m0[0] & m1[0] & m2[0];
             cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS];
         } else if (nv == 4) { /* a brick's face */
-            const uint64_t *m0 = c->mask + (size_t)slot[0] * 2 * RD_MASK_WORDS + w;
-            const uint64_t *m1 = c->mask + (size_t)slot[1] * 2 * RD_MASK_WORDS + w;
-            const uint64_t *m2 = c->mask + (size_t)slot[2] * 2 * RD_MASK_WORDS + w;
-            const uint64_t *m3 = c->mask + (size_t)slot[3] * 2 * RD_MASK_WORDS + w;
+            const uint64_t *m0 = c->mask + mo[0] + w;
+            const uint64_t *m1 = c->mask + mo[1] + w;
+            const uint64_t *m2 = c->mask + mo[2] + w;
+            const uint64_t *m3 = c->mask + mo[3] + w;
             out = m0[0] & m1[0] & m2[0] & m3[0];
             cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS] | m3[RD_MASK_WORDS];
         } else {
-            face_masks(c, slot, nv, w, &out, &cross);
+            face_masks(c, mo, nv, w, &out, &cross);
         }
         if (out) { /* every vertex beyond plane q */
             int q = 64 * w + __builtin_ctzll(out);
             double emin = DBL_MAX;
-            for (int v = 0; v < nv; v++) emin = rd_min(c->dist[slot[v] * c->np + q], emin);
+            for (int v = 0; v < nv; v++) emin = rd_min(c->dist[mo[v] / (2 * RD_MASK_WORDS) * c->np + q], emin);
             *gap = emin - c->raise;
             return 1;
         }

@@ -459,8 +459,8 @@ static int share_points(rd_sim *s, rd_error *err)
     return 0;
 }
 
-/* Each candidate face's vertices as cv positions (rd_sim.cf_v), once the faces are final (after
- * merging). */
+/* Each candidate face's vertices as the offsets of their cv_mask entries (rd_sim.cf_v), once the
+ * faces are final (after merging). */
 static int face_vertices(rd_sim *s, rd_error *err)
 {
     int n = 0;
@@ -473,7 +473,8 @@ static int face_vertices(rd_sim *s, rd_error *err)
         for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) {
             int f = s->cf_face[cf];
             s->cf_v0[cf] = n;
-            for (int k = 0; k < p->flen[f]; k++) s->cf_v[n++] = s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
+            for (int k = 0; k < p->flen[f]; k++)
+                s->cf_v[n++] = 2 * RD_MASK_WORDS * s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
         }
     }
     s->cf_v0[s->ncf] = n;

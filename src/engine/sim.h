@@ -216,9 +216,10 @@ struct rd_sim {
     char *cf_facing;       /* [ncf] 1: a face that touches only later (its vertices act only
                               while it faces the other body's entrance face) */
     int *cf_v0;            /* [ncf+1] first entry of each candidate face's vertices in cf_v */
-    int *cf_v;             /* the candidate faces' vertices as positions in their body's cv list
-                              (cv_slot of each, in face order): contact.c's face test reads their
-                              plane masks with one load each */
+    int *cf_v;             /* the candidate faces' vertices, in face order, as the offsets of
+                              their plane masks in cv_mask (their positions in their body's cv
+                              list, cv_slot, times 2 RD_MASK_WORDS): contact.c's face test reads
+                              each mask word with one load */
 
     /* broad phase (pairs.c) */
     double (*aabb)[6];     /* per body: min xyz, max xyz of its hull vertices, grown by
