@@ -585,13 +585,14 @@ static inline __attribute__((always_inline)) void cv_vertex(const cv_coords *v, 
 /* One plane (n: normal and offset, ground frame) against the ncv candidate vertices v (soa, a
  * constant at each call: cv_vertex): each signed distance into row k of d (np planes a row, this
  * plane's column q), the plane's bit q in each vertex's masks (mk, vertex_distances: beyond
- * band[0] = out_band, above band[1] = reach), and, when track (a constant at each call, so the
- * loop without it carries no dependency chain), the largest distance (NaN sticks), else
+ * band[0] = out_band, above band[1] = reach; set: the plane is the first in its mask word, whose
+ * bits it sets, else it adds its bit), and, when track (track and set: constants at each call, so
+ * the loop without it carries no dependency chain), the largest distance (NaN sticks), else
  * -INFINITY. */
 static inline __attribute__((always_inline)) double plane_pass(const cv_coords *v, const int soa, int ncv,
                                                                const double n[4], const double band[2], int np,
                                                                int q, double *restrict d,
-                                                               uint64_t *restrict mk, int track)
+                                                               uint64_t *restrict mk, int track, const int set)
 {
     const double n0 = n[0], n1 = n[1], n2 = n[2], dq = n[3], out_band = band[0], reach = band[1];
     const uint64_t bit = (uint64_t)1 << (q & 63);
@@ -602,8 +603,13 @@ static inline __attribute__((always_inline)) double plane_pass(const cv_coords *
         cv_vertex(v, k, soa, x);
         const double dl = n0 * x[0] + n1 * x[1] + n2 * x[2] - dq;
         d[k * np + q] = dl;
-        if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
-        if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
+        if (set) { /* the word's first plane: its bits alone */
+            mo[k * 2 * RD_MASK_WORDS] = !(dl <= out_band) ? bit : 0;
+            mc[k * 2 * RD_MASK_WORDS] = dl > reach ? bit : 0;
+        } else {
+            if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
+            if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
+        }
         if (track && !(dl <= hi)) hi = dl;                       /* NaN sticks: never far */
     }
     return hi;
@@ -666,11 +672,10 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
         vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
         return;
     }
-    if (nw == 1) { /* the words in use (face_planes and edge.c read no others) */
-        for (int k = 0; k < ncv; k++) mk[k * 2 * RD_MASK_WORDS] = mk[k * 2 * RD_MASK_WORDS + RD_MASK_WORDS] = 0;
-    } else {
-        memset(mk, 0, (size_t)ncv * 2 * RD_MASK_WORDS * sizeof *mk);
-    }
+    /* with one mask word in use (face_planes and edge.c read no others), the first plane measured
+       sets each vertex's two words; with more, they are cleared first */
+    int set = nw == 1;
+    if (!set) memset(mk, 0, (size_t)ncv * 2 * RD_MASK_WORDS * sizeof *mk);
     double dmax[RD_MAX_PLANES]; /* the largest distance to each plane, wanted only to find the far
                                    planes (a fixed other body, every plane measured) */
     const int track = fixed && !reuse;
@@ -680,9 +685,16 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
         dmax[q] = -INFINITY;
         if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
         const double n[4] = {wn[q][0], wn[q][1], wn[q][2], wd[q]}, band[2] = {out_band, reach};
-        dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1)
-                        : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0);
+        if (set)
+            dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1, 1)
+                            : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0, 1);
+        else
+            dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1, 0)
+                            : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0, 0);
+        set = 0;
     }
+    if (set) /* no plane measured: no bits */
+        for (int k = 0; k < ncv; k++) mk[k * 2 * RD_MASK_WORDS] = mk[k * 2 * RD_MASK_WORDS + RD_MASK_WORDS] = 0;
     if (track) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
         for (int w = 0; w < RD_MASK_WORDS; w++) sd->far[w] = 0;
