@@ -823,7 +823,12 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
     const int dst = sd->state0 - s->pt0[c->o]; /* a point's subcontact, less its index */
     int na = 0, nslip = 0, touch = 0;
     double area = tally->area;
-    for (int cf = s->cf0[c->o], k = 0; cf < s->cf0[c->o + 1]; cf++, k++) {
+    /* the loop's bounds and arrays in locals: rd_sim's fields are reloaded after every byte store */
+    const int cf0 = s->cf0[c->o], ncf = s->cf0[c->o + 1] - cf0;
+    const int *pt0 = s->cf_pt0 + cf0;
+    int *nactive = s->face_nactive + sd->face0;
+    for (int k = 0; k < ncf; k++) {
+        const int cf = cf0 + k;
         double gap;
         if (face_planes(s, c, cf, &gap, nw)) {
             clear_face(s, c, sd, j, cf, k);
@@ -831,8 +836,7 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
             continue;
         }
         a.area = 0;
-        s->face_nactive[sd->face0 + k] =
-            face_points(s, c, j, s->cf_pt0[cf], s->cf_pt0[cf + 1], dst, &fr, &a, &na, &nslip, nw, t_free);
+        nactive[k] = face_points(s, c, j, pt0[k], pt0[k + 1], dst, &fr, &a, &na, &nslip, nw, t_free);
         area += a.area;
         touch |= a.area > 0;
     }
