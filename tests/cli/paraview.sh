@@ -33,13 +33,23 @@ for R, key in ((XDMFReader, "FileNames"), (Xdmf3ReaderS, "FileName"), (Xdmf3Read
         assert {"body", "tilt", "tilt_ratio"} <= set(r.CellData.keys()), r.CellData.keys()
     print(R.__name__, "ok:", len(ts), "steps,", n, "points")
 PVPY
-(cd / && timeout 120 pvpython "$T/load.py" 2>&1 | grep -E " ok:|Error|assert" )
-[ "$(cd / && timeout 120 pvpython "$T/load.py" 2>/dev/null | grep -c ' ok:')" -eq 3 ]
+# pvpython itself is not steady on a loaded machine (measured here with three busy loops on two
+# cores: 1 run in 3 aborted or read a body short), so each ParaView step gets three tries and
+# passes when one of them does; a wrong file fails all three
+for try in 1 2 3; do
+    (cd / && timeout 120 pvpython "$T/load.py" > "$T/load.txt" 2>&1) || true
+    [ "$(grep -c ' ok:' "$T/load.txt")" -eq 3 ] && break
+done
+grep -E " ok:|Error|assert" "$T/load.txt"
+[ "$(grep -c ' ok:' "$T/load.txt")" -eq 3 ]
 command -v xvfb-run > /dev/null || { echo "skipped: xvfb-run (Debian xvfb) not installed: no display for the scene"; exit 77; }
 # Xvfb's GLX may fail at pvpython's exit (GLXBadContext) or, rarely, at start: judge by what was
-# written, and try twice
-for try in 1 2; do
-    (cd "$T" && timeout 300 xvfb-run -a -s "-screen 0 1280x1024x24 +extension GLX" pvpython \
+# written, and try three times (as above). The display search starts at a number of this
+# process's own (-n), so that two test suites on one machine do not race for the same free
+# display (xvfb-run -a alone starts both at 99)
+for try in 1 2 3; do
+    (cd "$T" && timeout 300 xvfb-run -a -n $((100 + ($$ * 7 + try) % 800)) \
+        -s "-screen 0 1280x1024x24 +extension GLX" pvpython \
         "$REPO/tools/rdparaview.py" run.h5 --state run.pvsm --screenshot run.png --time end \
         > rdpv.txt 2>&1) || true
     [ -s "$T/run.png" ] && [ -s "$T/run.pvsm" ] && break
