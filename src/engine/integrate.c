@@ -40,14 +40,21 @@ void rd_body_refresh(rd_sim *s, int i)
     }
 }
 
-/* One ground-frame coordinate of n points: w[k] = r . (bx, by, bz)[k] + x, rd_mat_vec's row r
- * then rd_axpy's 1.0 * x (the same expressions: the same bits); over contiguous coordinates the
- * loop vectorises. */
-static void transform_row(int n, const double *restrict bx, const double *restrict by, const double *restrict bz,
-                          const double r[3], double x, double *restrict w)
+/* n points' ground-frame coordinates: w[c][k] = R's row c . (bx, by, bz)[k] + x[c], rd_mat_vec's
+ * rows then rd_axpy's 1.0 * x (the same expressions: the same bits); over contiguous coordinates
+ * the loop vectorises, and each body-frame coordinate is loaded once for the three rows. */
+static void transform_points(int n, const double *restrict bx, const double *restrict by,
+                             const double *restrict bz, const double R[9], const double x[3], double *restrict wx,
+                             double *restrict wy, double *restrict wz)
 {
-    const double r0 = r[0], r1 = r[1], r2 = r[2];
-    for (int k = 0; k < n; k++) w[k] = r0 * bx[k] + r1 * by[k] + r2 * bz[k] + 1.0 * x;
+    const double r0 = R[0], r1 = R[1], r2 = R[2], r3 = R[3], r4 = R[4], r5 = R[5], r6 = R[6], r7 = R[7], r8 = R[8];
+    const double x0 = x[0], x1 = x[1], x2 = x[2];
+    for (int k = 0; k < n; k++) {
+        const double b0 = bx[k], b1 = by[k], b2 = bz[k];
+        wx[k] = r0 * b0 + r1 * b1 + r2 * b2 + 1.0 * x0;
+        wy[k] = r3 * b0 + r4 * b1 + r5 * b2 + 1.0 * x1;
+        wz[k] = r6 * b0 + r7 * b1 + r8 * b2 + 1.0 * x2;
+    }
 }
 
 /* What a step needs of non-convex body i: its rotation and candidate-face vertices (a scanned
@@ -65,9 +72,7 @@ static void body_refresh_contact(rd_sim *s, int i)
     const int k0 = s->cv0[i], n = s->cv0[i + 1] - k0, ncv = s->cv0[s->nb];
     const double *bx = s->cv_body + k0, *by = bx + ncv, *bz = by + ncv;
     double *wx = s->cv_world + k0, *wy = wx + ncv, *wz = wy + ncv;
-    transform_row(n, bx, by, bz, R, x[0], wx);
-    transform_row(n, bx, by, bz, R + 3, x[1], wy);
-    transform_row(n, bx, by, bz, R + 6, x[2], wz);
+    transform_points(n, bx, by, bz, R, x, wx, wy, wz);
 }
 
 /* World geometry of every free body (fixed bodies never move in the ground frame), a
