@@ -710,6 +710,8 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
     }
 }
 
+/* The side's candidate-vertex distances and plane masks (see above RD_FAR_BANDS), a non-convex
+ * owner's vertices read from rd_sim.cv_world, a convex one's from rd_sim.wv. */
 static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
 {
     const int k0 = s->cv0[c->o], ncv_all = s->cv0[s->nb];
@@ -723,8 +725,8 @@ static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     }
 }
 
-/* Word w of candidate face cf's plane masks (its vertices' mask offsets, nv of them): the planes every
- * vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
+/* Word w of candidate face cf's plane masks (its vertices' mask offsets, nv of them): the planes
+ * every vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
  * (*cross). Out of line: the common triangle and quadrilateral are face_planes' own. */
 static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *mo, int nv, int w,
                                                  uint64_t *out, uint64_t *cross)
