@@ -33,6 +33,14 @@
  * plastic at the point, which is the impact of rigid rocking theory (Housner; Kounadis):
  * no rebound at the new pivot, angular momentum kept about it. e = 1 (3DEC's elastic joint)
  * loses nothing.
+ * A new impact is an event of its two bodies, not of the point alone: while a point of one of a
+ * body's contacts is in its first compression, every bearing point of that body's contacts that
+ * is pressed (approaches, vn < 0) is struck, and its next unloading takes the same loss. The
+ * rigid theory resolves all the impulses of an impact at once, each contact plastic (Housner;
+ * Kounadis: the ground corner and the interface of a stack together); without this, a bearing
+ * point pressed by the impulse of another contact gives its compression back elastically, and a
+ * stack hops at its impacts and walks (docs/CONTACT.md section 7). Found from the last contact
+ * step (rd_sim.impacting), so the order of the pairs does not matter.
  * An exiting subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
@@ -85,6 +93,10 @@ typedef struct side_ctx {
     double wa;                  /* weight */
     double damp_coef;           /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
     int damped;                 /* the joint has a normal dashpot (damping > 0) */
+    int struck;                 /* one of the two bodies takes a new impact (rd_sim.impacting) and
+                                   the joint loses energy at impacts: a bearing point pressed now
+                                   is struck */
+    int opens;                  /* a point of this side is in its first compression */
     side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
@@ -210,7 +222,7 @@ static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, 
     unsigned char *fl = &s->pstate[st];
     release(s, c, pt, st, kA, sA, last, s_now);
     if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
-    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN | RD_PT_STRUCK);
     s->pset[st] = 0;
 }
 
@@ -221,7 +233,7 @@ static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, 
 {
     unsigned char *fl = &s->pstate[st];
     release(s, c, pt, st, kA, sA, last, s_now);
-    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_BONDED | RD_PT_STRUCK);
 }
 
 /* Outward normal of the current owner face, ground frame, found once per face and side step
@@ -343,19 +355,23 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     if (!moved) point_kinematics(s, c, pt, kin);
     const double *ro = kin, *rt = kin + 3, *vr = kin + 6;
     double vn = rd_dot(vr, u);
-    if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE) && vn > 0 &&
-        !s->settling) {
-        /* first unloading of a new contact that bore force: the impact loss (permanent set);
+    if (c->struck && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_STRUCK)) == RD_PT_ACTIVE && vn < 0) {
+        *fl |= RD_PT_STRUCK; /* a bearing point pressed during a new impact of one of its bodies: */
+        s->pstrike[st] = depth - s->pset[st]; /* the impact's share is what it gains from here */
+    }
+    if ((*fl & RD_PT_ACTIVE) && (*fl & (RD_PT_VIRGIN | RD_PT_STRUCK)) && vn > 0 && !s->settling) {
+        /* first unloading of a new or struck contact that bore force: the impact loss (set);
            settling seats the bodies quasi-statically, with no impacts. The energy lost is the
            drop of the scheme's own spring energy: leapfrog conserves sum 1/2 KN A' s(n) s(n+1)
            over a spring that bears throughout (not 1/2 KN A' s(n)^2), and s(n-1) = s(n) + vn dt,
            so the set takes 1/2 KN A' set (s(n-1) + s(n) - set). Booking 1/2 KN A' s(n)^2 left
            1/2 KN A' set vn dt per impact unbooked, an order-dt^2 loss (10-drum column: 2/3 of
            its residual at the default step) */
-        double stretch = depth - s->pset[st], set = (1.0 - j->restitution) * stretch;
+        double stretch = depth - s->pset[st];
+        double set = (1.0 - j->restitution) * ((*fl & RD_PT_VIRGIN) ? stretch : rd_max(stretch - s->pstrike[st], 0.0));
         if (stretch > 0) s->e_damp += 0.5 * kA * set * (2.0 * stretch + vn * s->dt - set);
         s->pset[st] += set;
-        *fl &= (unsigned char)~RD_PT_VIRGIN;
+        *fl &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK);
     }
     double stretch = depth - s->pset[st];
     double fel = kA * stretch;                 /* elastic normal force, N (< 0: tension) */
@@ -382,6 +398,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
+    if (*fl & RD_PT_VIRGIN) c->opens = 1;
     bear(s, a, c->t_free, st, A, fn, u, fs, ro, rt);
     return 1;
 }
@@ -454,6 +471,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     relative_velocity(fr, t_free, ro, rt, vr);
     double vn = rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return STEADY_NONE; /* its impact loss: subcontact */
+    if (c->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
     double stretch = depth - s->pset[st];
     if (!(stretch >= 0)) return STEADY_NONE; /* below its permanent set: subcontact idles it */
     double fel = kA * stretch;
@@ -475,6 +493,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     }
     a->k_active += kA;
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
+    if (fl & RD_PT_VIRGIN) c->opens = 1;
     s->pj[st][1] = -depth;
     bear(s, a, t_free, st, A, fn, u, fs, ro, rt);
     return STEADY_BEARS;
@@ -505,7 +524,24 @@ void rd_contact_reset_body(rd_sim *s, int body)
 /* Contacts made while settling are seated, not impacts: no impact loss when they first unload. */
 void rd_contact_seat(rd_sim *s)
 {
-    for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~RD_PT_VIRGIN;
+    for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK);
+    memset(s->impacting, 0, (size_t)s->nb);
+}
+
+/* rd_sim.impacting from the points' state (a restored run: the image holds no flags of its own):
+ * a body takes a new impact when a point of one of its contacts bore last step in its first
+ * compression, as rd_contact_step finds it. */
+void rd_contact_find_impacts(rd_sim *s)
+{
+    memset(s->impacting, 0, (size_t)s->nb);
+    for (int p = 0; p < s->npair; p++)
+        for (int q = 0; q < s->pair[p].nside; q++) {
+            const rd_side *sd = &s->pair[p].side[q];
+            int n = s->pt0[sd->owner + 1] - s->pt0[sd->owner];
+            for (int k = 0; k < n; k++)
+                if ((s->pstate[sd->state0 + k] & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE))
+                    s->impacting[sd->owner] = s->impacting[sd->other] = 1;
+        }
 }
 
 /* Pairs that were live last step but whose boxes no longer overlap lose their history. */
@@ -858,6 +894,8 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.to_b = sd->owner == pr->b ? 1.0 : -1.0;
     c.damp_coef = 0;
     c.damped = j->damping > 0;
+    c.struck = j->restitution < 1 && !s->settling && (s->impacting[c.o] || s->impacting[c.t]);
+    c.opens = 0;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
        to this far beyond the other body's edge still bears on it (the corners of two equal
        blocks lying on each other, twisted or slid by a hair), and one hovering this close
@@ -891,6 +929,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     else
         side_faces(s, &c, sd, j, &sums, &tally, &active_steps, c.nw, c.t_free);
     if (watch) { watch->area = tally.area; watch->nactive = tally.nactive; watch->nslip = tally.nslip; watch->touched = tally.touched; }
+    if (c.opens && !s->settling) s->impacting_next[c.o] = s->impacting_next[c.t] = 1;
     if (!s->settling) s->active_point_steps += active_steps;
     rd_copy3(sums.f_o, s->f[c.o]); rd_copy3(sums.tq_o, s->tq[c.o]);
     if (c.t_free) { rd_copy3(sums.f_t, s->f[c.t]); rd_copy3(sums.tq_t, s->tq[c.t]); }
@@ -918,6 +957,10 @@ int rd_contact_step(rd_sim *s)
         double nn = rd_norm(nsum);
         if (nn > 0) for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
     }
+    unsigned char *im = s->impacting; /* this step's new impacts, for the next step */
+    s->impacting = s->impacting_next;
+    s->impacting_next = im;
+    memset(s->impacting_next, 0, (size_t)s->nb);
     int *t = s->live_prev; s->live_prev = s->live; s->live = t;
     int c = s->cap_live_prev; s->cap_live_prev = s->cap_live; s->cap_live = c;
     s->nlive_prev = s->nlive;

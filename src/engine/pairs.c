@@ -103,7 +103,8 @@ static int pair_create(rd_sim *s, int a, int b)
     int cap = s->cap_state_flags;
     if (reserve((void **)&s->pstate, &cap, s->nstate + ns, sizeof *s->pstate) ||
         reserve((void **)&s->pface, &s->cap_pface, s->nstate + ns, sizeof *s->pface) ||
-        reserve((void **)&s->pset, &s->cap_pset, s->nstate + ns, sizeof *s->pset))
+        reserve((void **)&s->pset, &s->cap_pset, s->nstate + ns, sizeof *s->pset) ||
+        reserve((void **)&s->pstrike, &s->cap_pstrike, s->nstate + ns, sizeof *s->pstrike))
         return -1;
     s->cap_state_flags = cap;
     cap = s->cap_state_joint;

@@ -109,7 +109,7 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
         !ALLOC(s->inertia, nb) || !ALLOC(s->fixed, nb) || !ALLOC(s->f, nb) || !ALLOC(s->tq, nb) ||
         !ALLOC(s->v_old, nb) || !ALLOC(s->L_old, nb) || !ALLOC(s->df_local, nb) || !ALLOC(s->free_body, nb) ||
         !ALLOC(s->free_of, nb) || !ALLOC(s->vert0, nb + 1) || !ALLOC(s->face0, nb + 1) ||
-        !ALLOC(s->convex, nb))
+        !ALLOC(s->convex, nb) || !ALLOC(s->impacting, nb) || !ALLOC(s->impacting_next, nb))
         return rd_error_set(err, "out of memory");
     for (int i = 0; i < nb; i++) {
         if (build_body(s, i, err)) return -1;

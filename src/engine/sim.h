@@ -32,7 +32,9 @@ enum {
     RD_PT_BONDED = 2, /* cohesion and tension intact */
     RD_PT_SLIP = 4,   /* at the Coulomb limit this step */
     RD_PT_INSIDE = 8, /* inside the other body; rd_sim.pface holds its entrance face */
-    RD_PT_VIRGIN = 16 /* new contact not yet unloaded: the impact loss is still to come */
+    RD_PT_VIRGIN = 16, /* new contact not yet unloaded: the impact loss is still to come */
+    RD_PT_STRUCK = 32  /* bearing, and pressed while one of its bodies takes a new impact: the
+                          impact loss is still to come (contact.c) */
 };
 
 /* The resolved properties of one joint (joint.c): the default or a per-range override. Pairs
@@ -153,6 +155,9 @@ struct rd_sim {
     double *mass;          /* kg */
     double (*inertia)[3];  /* principal moments, kg m^2 */
     int *fixed;            /* 1 for pedestals (move with the ground: at rest in this frame) */
+    unsigned char *impacting;      /* [nb] 1: at the last contact step a point of one of the body's
+                                      contacts was in its first compression (a new impact) */
+    unsigned char *impacting_next; /* [nb] the same, found during this contact step */
     int *convex;           /* 1 for convex bodies: only they can be contact targets */
     double (*f)[3];        /* force accumulator, N */
     double (*tq)[3];       /* torque accumulator about the centre of mass, N m */
@@ -247,7 +252,8 @@ struct rd_sim {
     unsigned char *pstate; /* RD_PT_* bits */
     short *pface;          /* entrance face (index on the other body) while RD_PT_INSIDE */
     double *pset;          /* permanent set of the normal spring after the impact loss, m */
-    int cap_pface, cap_pset;
+    double *pstrike;       /* a struck point's stretch (depth - set) when it was struck, m */
+    int cap_pface, cap_pset, cap_pstrike;
     int nface_state, cap_face_state;
     int *face_nactive;     /* active points per (side, candidate face) last step */
     int bonds;             /* 1 when cohesion or tension is set */
@@ -350,6 +356,7 @@ double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
 int rd_contact_step(rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
 void rd_contact_seat(rd_sim *s);
+void rd_contact_find_impacts(rd_sim *s);
 double rd_contact_elastic_energy(const rd_sim *s);
 
 /* edge.c */

@@ -54,6 +54,7 @@ int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS])
     a[n++] = (rd_state_array){"state/entrance_face", RD_STATE_BYTE, s->pface,
                               (long)(s->nstate * sizeof *s->pface)};
     a[n++] = (rd_state_array){"state/permanent_set", RD_STATE_DOUBLE, s->pset, s->nstate};
+    a[n++] = (rd_state_array){"state/struck_stretch", RD_STATE_DOUBLE, s->pstrike, s->nstate};
     a[n++] = (rd_state_array){"state/face_active", RD_STATE_INT, s->face_nactive, s->nface_state};
     a[n++] = (rd_state_array){"state/events", RD_STATE_BYTE, s->event, (long)(s->nevent * sizeof *s->event)};
     a[n++] = (rd_state_array){"state/rest_area", RD_STATE_DOUBLE, s->rest_area, s->nfree};
@@ -91,14 +92,14 @@ int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
     long nstate = h[RD_STATE_H_NSTATE];
     void **p[] = {(void **)&s->hkey, (void **)&s->live_prev, (void **)&s->pair, (void **)&s->joint,
                   (void **)&s->fs, (void **)&s->pstate, (void **)&s->pj, (void **)&s->face_nactive,
-                  (void **)&s->event, (void **)&s->pface, (void **)&s->pset, (void **)&s->efs,
+                  (void **)&s->event, (void **)&s->pface, (void **)&s->pset, (void **)&s->pstrike, (void **)&s->efs,
                   (void **)&s->edepth, (void **)&s->eon};
     size_t sz[] = {sizeof *s->hkey * (size_t)h[RD_STATE_H_HCAP], sizeof *s->live_prev * (size_t)h[RD_STATE_H_NLIVE],
                    sizeof *s->pair * (size_t)h[RD_STATE_H_NPAIR], sizeof *s->joint * (size_t)h[RD_STATE_H_NJOINT],
                    sizeof *s->fs * (size_t)nstate, sizeof *s->pstate * (size_t)nstate,
                    sizeof *s->pj * (size_t)nstate, sizeof *s->face_nactive * (size_t)h[RD_STATE_H_NFACE],
                    sizeof *s->event * (size_t)h[RD_STATE_H_NEVENT], sizeof *s->pface * (size_t)nstate,
-                   sizeof *s->pset * (size_t)nstate, sizeof *s->efs * (size_t)h[RD_STATE_H_NEDGE],
+                   sizeof *s->pset * (size_t)nstate, sizeof *s->pstrike * (size_t)nstate, sizeof *s->efs * (size_t)h[RD_STATE_H_NEDGE],
                    sizeof *s->edepth * (size_t)h[RD_STATE_H_NEDGE], sizeof *s->eon * (size_t)h[RD_STATE_H_NEDGE]};
     for (size_t k = 0; k < sizeof sz / sizeof sz[0]; k++) {
         void *t = realloc(*p[k], sz[k] ? sz[k] : 1);
@@ -110,7 +111,7 @@ int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
     s->npair = s->cap_pair = (int)h[RD_STATE_H_NPAIR];
     s->njoint = s->cap_joint = (int)h[RD_STATE_H_NJOINT];
     s->nstate = s->cap_state = s->cap_state_flags = s->cap_state_joint = (int)nstate;
-    s->cap_pface = s->cap_pset = (int)nstate;
+    s->cap_pface = s->cap_pset = s->cap_pstrike = (int)nstate;
     s->nface_state = s->cap_face_state = (int)h[RD_STATE_H_NFACE];
     s->nevent = s->cap_event = (int)h[RD_STATE_H_NEVENT];
     s->nedge_state = s->cap_efs = s->cap_edepth = s->cap_eon = (int)h[RD_STATE_H_NEDGE];
@@ -126,6 +127,7 @@ void rd_state_restored(rd_sim *s, const double settle[2])
        image: this run counts its own) */
     for (int p = 0; p < s->npair; p++)
         for (int q = 0; q < s->pair[p].nside; q++) s->pair[p].side[q].edges_clear = 0;
+    rd_contact_find_impacts(s); /* the bodies taking a new impact, from the points' state */
     s->settle_time = settle[0];
     s->settle_ratio = settle[1];
     s->restored = 1;
