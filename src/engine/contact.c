@@ -40,7 +40,11 @@
  * Kounadis: the ground corner and the interface of a stack together); without this, a bearing
  * point pressed by the impulse of another contact gives its compression back elastically, and a
  * stack hops at its impacts and walks (docs/CONTACT.md section 7). Found from the last contact
- * step (rd_sim.impacting), so the order of the pairs does not matter.
+ * step (rd_sim.impacting), so the order of the pairs does not matter. A touch counts as an impact
+ * when the point approaches faster than g sqrt(m_eff / K_active), the speed the pair's weight
+ * reaches settling onto its bearing springs from rest: slower, it is a quasi-static touchdown,
+ * like a scanned rock's points coming and going as it sways, and striking the bearing points at
+ * each of those would sink the body step by step into its support.
  * An exiting subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
@@ -96,7 +100,9 @@ typedef struct side_ctx {
     int struck;                 /* one of the two bodies takes a new impact (rd_sim.impacting) and
                                    the joint loses energy at impacts: a bearing point pressed now
                                    is struck */
-    int opens;                  /* a point of this side is in its first compression */
+    int opens;                  /* a point of this side is in its first compression after an
+                                   impact (RD_PT_IMPACT) */
+    double v_touch;             /* approach speed above which a new touch is an impact, m/s */
     side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
@@ -222,7 +228,7 @@ static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, 
     unsigned char *fl = &s->pstate[st];
     release(s, c, pt, st, kA, sA, last, s_now);
     if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
-    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN | RD_PT_STRUCK);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
     s->pset[st] = 0;
 }
 
@@ -371,7 +377,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
         double set = (1.0 - j->restitution) * ((*fl & RD_PT_VIRGIN) ? stretch : rd_max(stretch - s->pstrike[st], 0.0));
         if (stretch > 0) s->e_damp += 0.5 * kA * set * (2.0 * stretch + vn * s->dt - set);
         s->pset[st] += set;
-        *fl &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK);
+        *fl &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
     }
     double stretch = depth - s->pset[st];
     double fel = kA * stretch;                 /* elastic normal force, N (< 0: tension) */
@@ -395,10 +401,12 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]}; /* in registers: stored once */
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
     double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
+    if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == RD_PT_VIRGIN) /* its first bearing step */
+        *fl = (unsigned char)(-vn > c->v_touch ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
-    if (*fl & RD_PT_VIRGIN) c->opens = 1;
+    if ((*fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
     bear(s, a, c->t_free, st, A, fn, u, fs, ro, rt);
     return 1;
 }
@@ -453,7 +461,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         s->pj[st][1] = -depth;
         return STEADY_IDLE;
     }
-    if ((fl & ~(unsigned)RD_PT_VIRGIN) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
+    if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
         if (depth <= 0) { /* above its face, within the band */
             s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
             s->pset[st] = 0;
@@ -464,7 +472,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         s->pj[st][1] = -depth;
         return STEADY_IDLE;
     }
-    if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
+    if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
         return STEADY_NONE;
     double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
     rd_mat_vec(fr->R, p, ro);
@@ -493,7 +501,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     }
     a->k_active += kA;
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
-    if (fl & RD_PT_VIRGIN) c->opens = 1;
+    if ((fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
     s->pj[st][1] = -depth;
     bear(s, a, t_free, st, A, fn, u, fs, ro, rt);
     return STEADY_BEARS;
@@ -524,13 +532,13 @@ void rd_contact_reset_body(rd_sim *s, int body)
 /* Contacts made while settling are seated, not impacts: no impact loss when they first unload. */
 void rd_contact_seat(rd_sim *s)
 {
-    for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK);
+    for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
     memset(s->impacting, 0, (size_t)s->nb);
 }
 
 /* rd_sim.impacting from the points' state (a restored run: the image holds no flags of its own):
- * a body takes a new impact when a point of one of its contacts bore last step in its first
- * compression, as rd_contact_step finds it. */
+ * a body takes a new impact when a point of one of its contacts bore last step in the first
+ * compression of an impact, as rd_contact_step finds it. */
 void rd_contact_find_impacts(rd_sim *s)
 {
     memset(s->impacting, 0, (size_t)s->nb);
@@ -539,7 +547,8 @@ void rd_contact_find_impacts(rd_sim *s)
             const rd_side *sd = &s->pair[p].side[q];
             int n = s->pt0[sd->owner + 1] - s->pt0[sd->owner];
             for (int k = 0; k < n; k++)
-                if ((s->pstate[sd->state0 + k] & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == (RD_PT_VIRGIN | RD_PT_ACTIVE))
+                if ((s->pstate[sd->state0 + k] & (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_IMPACT)) ==
+                    (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_IMPACT))
                     s->impacting[sd->owner] = s->impacting[sd->other] = 1;
         }
 }
@@ -896,6 +905,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.damped = j->damping > 0;
     c.struck = j->restitution < 1 && !s->settling && (s->impacting[c.o] || s->impacting[c.t]);
     c.opens = 0;
+    c.v_touch = pr->k_active > 0 ? s->sc.gravity * sqrt(pr->m_eff / pr->k_active) : 0.0;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
        to this far beyond the other body's edge still bears on it (the corners of two equal
        blocks lying on each other, twisted or slid by a hair), and one hovering this close

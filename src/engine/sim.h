@@ -33,8 +33,9 @@ enum {
     RD_PT_SLIP = 4,   /* at the Coulomb limit this step */
     RD_PT_INSIDE = 8, /* inside the other body; rd_sim.pface holds its entrance face */
     RD_PT_VIRGIN = 16, /* new contact not yet unloaded: the impact loss is still to come */
-    RD_PT_STRUCK = 32  /* bearing, and pressed while one of its bodies takes a new impact: the
+    RD_PT_STRUCK = 32, /* bearing, and pressed while one of its bodies takes a new impact: the
                           impact loss is still to come (contact.c) */
+    RD_PT_IMPACT = 64  /* with RD_PT_VIRGIN: the touch was an impact, not a settling (contact.c) */
 };
 
 /* The resolved properties of one joint (joint.c): the default or a per-range override. Pairs
