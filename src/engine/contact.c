@@ -102,7 +102,7 @@ typedef struct side_ctx {
                                    is struck */
     int opens;                  /* a point of this side is in its first compression after an
                                    impact (RD_PT_IMPACT) */
-    double v_touch;             /* approach speed above which a new touch is an impact, m/s */
+    const rd_pair *pr;          /* the pair (its m_eff and last K_active: touch_speed) */
     side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
@@ -297,6 +297,14 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_sums *a, 
     rd_law_apply(F, ro, rt, a->f_o, a->tq_o, t_free, a->f_t, a->tq_t);
 }
 
+/* Approach speed above which a new touch of pair pr is an impact, m/s: g sqrt(m_eff / K_active),
+ * the speed the pair's weight reaches settling onto its bearing springs from rest (0 while none
+ * bore last step: any touch then is an impact). Found only at a point's first bearing step. */
+static double touch_speed(const rd_sim *s, const rd_pair *pr)
+{
+    return pr->k_active > 0 ? s->sc.gravity * sqrt(pr->m_eff / pr->k_active) : 0.0;
+}
+
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
@@ -402,7 +410,7 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
     double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
     if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == RD_PT_VIRGIN) /* its first bearing step */
-        *fl = (unsigned char)(-vn > c->v_touch ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
+        *fl = (unsigned char)(-vn > touch_speed(s, c->pr) ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
@@ -905,7 +913,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.damped = j->damping > 0;
     c.struck = j->restitution < 1 && !s->settling && (s->impacting[c.o] || s->impacting[c.t]);
     c.opens = 0;
-    c.v_touch = pr->k_active > 0 ? s->sc.gravity * sqrt(pr->m_eff / pr->k_active) : 0.0;
+    c.pr = pr;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
        to this far beyond the other body's edge still bears on it (the corners of two equal
        blocks lying on each other, twisted or slid by a hair), and one hovering this close
