@@ -102,6 +102,9 @@ typedef struct side_ctx {
                                    is struck */
     int opens;                  /* a point of this side is in its first compression after an
                                    impact (RD_PT_IMPACT) */
+    int mean_switch;            /* an elastic joint (restitution 1): an unbonded spring that
+                                   switches on or off within the step bears its mean force over
+                                   the step (rd_law_switch_stretch) */
     const rd_pair *pr;          /* the pair (its m_eff and last K_active: touch_speed) */
     side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
@@ -347,22 +350,33 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
         point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
+    /* w: the stretch an elastic joint's unbonded spring moves through in this step (|vn| dt,
+       m); one within w / 2 of switching bears its mean force over the step (0: a plain switch) */
+    double w = 0;
+    if (c->mean_switch && !(*fl & RD_PT_BONDED)) {
+        if (!moved) point_kinematics(s, c, pt, kin);
+        moved = 1;
+        w = fabs(rd_dot(kin + 6, u)) * s->dt;
+    }
     if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
                                                    touch is a new impact */
-        point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
-        *fl |= RD_PT_VIRGIN;
-        s->pset[st] = 0;
-        return 0;
+        if (!(depth > -0.5 * w)) {
+            point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
+            *fl |= RD_PT_VIRGIN;
+            s->pset[st] = 0;
+            return 0;
+        }
+        s->pset[st] = 0; /* it touches within this step */
     }
     if (c->facing && !(*fl & RD_PT_ACTIVE)) /* a face that has just turned towards the other
                                                body: its vertex bears from where it is now */
         s->pset[st] = fmax(s->pset[st], depth);
     if (!(*fl & RD_PT_BONDED) && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
-        kA * (depth - s->pset[st]) < 0) { /* below its permanent set, no bond, no impact to book:
-                                              the contact's surface is at the set, so neither
-                                              spring nor dashpot acts (a dashpot pushing a
-                                              spring held in tension had both springs' energy
-                                              flicker in and out of the balance each step) */
+        kA * (depth - s->pset[st]) < 0 && !(depth - s->pset[st] > -0.5 * w)) {
+        /* below its permanent set (by more than w / 2), no bond, no impact to book: the
+           contact's surface is at the set, so neither spring nor dashpot acts (a dashpot pushing
+           a spring held in tension had both springs' energy flicker in and out of the balance
+           each step) */
         point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
@@ -390,6 +404,14 @@ static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd
     double stretch = depth - s->pset[st];
     double fel = kA * stretch;                 /* elastic normal force, N (< 0: tension) */
     double fn = fel - c->damp_coef * kA * vn;  /* plus the dashpot */
+    if (w > 0 && stretch < 0.5 * w) { /* it switches within the step: the spring's mean force;
+                                         the dashpot acts while the point is pressed */
+        double sm = rd_law_switch_stretch(stretch, w);
+        fel = kA * sm;
+        fn = stretch > 0 ? fel - c->damp_coef * kA * vn : fel;
+        s->pj[st][1] = -(s->pset[st] + sm); /* the stretch the spring energy and the dashpot's
+                                                share are read from (last_bore) */
+    }
     if (fn < 0) {
         int bonded = (*fl & RD_PT_BONDED) && fel > -j->tension * A;
         if (!bonded) {
@@ -470,6 +492,14 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         return STEADY_IDLE;
     }
     if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
+        if (c->mean_switch) { /* an elastic joint's spring that touches within this step (as
+                                 subcontact's w): subcontact */
+            double kin[9];
+            rd_mat_vec(fr->R, p, kin);
+            relative_velocity(fr, t_free, kin, kin + 3, kin + 6);
+            double reach = -0.5 * fabs(rd_dot(kin + 6, u)) * s->dt;
+            if ((depth <= 0 ? depth : depth - s->pset[st]) > reach) return STEADY_NONE;
+        }
         if (depth <= 0) { /* above its face, within the band */
             s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
             s->pset[st] = 0;
@@ -490,6 +520,8 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if (c->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
     double stretch = depth - s->pset[st];
     if (!(stretch >= 0)) return STEADY_NONE; /* below its permanent set: subcontact idles it */
+    if (c->mean_switch && !(stretch >= 0.5 * fabs(vn) * s->dt)) return STEADY_NONE; /* it lets go within
+                                                                                  this step */
     double fel = kA * stretch;
     double fn = fel - c->damp_coef * kA * vn;
     if (!(fn >= 0)) return STEADY_NONE;
@@ -913,6 +945,7 @@ static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, dou
     c.damped = j->damping > 0;
     c.struck = j->restitution < 1 && !s->settling && (s->impacting[c.o] || s->impacting[c.t]);
     c.opens = 0;
+    c.mean_switch = j->restitution >= 1;
     c.pr = pr;
     /* the contact band (3DEC's contact tolerance, a fraction of the bodies' size): a point up
        to this far beyond the other body's edge still bears on it (the corners of two equal

@@ -7,7 +7,9 @@
 # scenes visit every branch the steady path takes or hands over: a point bed and corners, impacts
 # (new points unloading), points idle above their face and below their permanent set, late faces
 # (a brick that topples), slip, bonds that break (cohesion, tension), dashpots, a mesh, and
-# free-free drum joints (the shear force turning with the lower drum).
+# free-free drum joints (the shear force turning with the lower drum), and elastic joints
+# (restitution 1: a spring within w/2 of switching bears its mean force over the step, in the
+# general law only) on the YADE stack and column.
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=${RD_BIN:-bin/rockdem}
@@ -46,6 +48,8 @@ scenes=(
     "stack-bonded|stack_bonded.dat|"
     "column|column.dat|"
     "pbr|pbr.dat|--set model.duration=0.3"
+    "elastic-stack|$ROOT/tests/data/yade/stack.dat|--set motion.amplitude=1.0g --set model.duration=2.1"
+    "elastic-column|$ROOT/tests/data/yade/column.dat|--set motion.amplitude=0.7g --set model.duration=1"
 )
 fails=0
 for row in "${scenes[@]}"; do

@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""Energy a point mass keeps when it bounces once on a compression-only linear spring, integrated
+by leapfrog as rockdem's contact loop does, with the spring's force at t(n) or with its mean force
+over the step (engine/law.h rd_law_switch_stretch). Touches are spread evenly over a step.
+
+    /usr/bin/python3 tools/validate/switch_impulse.py        (the table of docs/CONTACT.md section 6)
+
+Units: mass 1, stiffness 1 (omega = 1), approach speed 1; x > 0 is the gap, the stretch is -x.
+"""
+import numpy as np
+
+
+def mean_stretch(s, w):
+    """The mean of max(stretch, 0) over a step in which the stretch moves linearly through s by w."""
+    if w <= 0 or s >= 0.5 * w:
+        return max(s, 0.0)
+    if s <= -0.5 * w:
+        return 0.0
+    return (s + 0.5 * w) ** 2 / (2.0 * w)
+
+
+def bounce(dt, phase, mean):
+    """Kinetic energy after the bounce over the energy before; phase in (0, 1): where in the step
+    the touch falls."""
+    v, x = -1.0, phase * dt        # v at t(n) - dt/2, x at t(n)
+    for _ in range(100000):
+        s = -x
+        f = mean_stretch(s, abs(v) * dt) if mean else max(s, 0.0)
+        v += f * dt
+        x += v * dt
+        if x > abs(v) * dt and v > 0:
+            return v * v
+    raise RuntimeError("no rebound")
+
+
+def main():
+    print("| omega dt | force at t(n) | the step's mean force |")
+    print("|---|---|---|")
+    for dt in (0.1, 0.2, 0.4):
+        cols = []
+        for mean in (False, True):
+            e = np.array([bounce(dt, p, mean) for p in np.linspace(0.001, 0.999, 400)])
+            cols.append("%.5f - %.5f" % (e.min(), e.max()))
+        print("| %g | %s | %s |" % (dt, cols[0], cols[1]))
+
+
+if __name__ == "__main__":
+    main()
