@@ -65,7 +65,7 @@ XFAILS = {
     "stack-history/undamped-upper": "elastic pivots uplift a little later than rigid ones: 0.33 % of the peak, inside the 3 % asked by issue 10 but above the two-KN bound",
     "stack-history/undamped-first-impact-time": "0.014 % at KN 1e11, inside the 1 % asked by issue 10 but above the two-KN bound (the DEM's impact is the zero crossing of an elastic pivot)",
     "stack-history/equal4-stack-uplift-time-1pct": "6.1 % at the rigid preset's KN 1e11: the elastic joints' rocking mode (56 Hz) set off by the pulse onset, inside its bound 1/(omega cos(2 pi f t)); within 1 % at KN 1e13 (docs/CONTACT.md)",
-    "column-walk/4-drum-0.5g/base-walk": "shaken along a vertex (direction 0) each 12-sided drum rocks on a single rim vertex, which has no torsional friction: after the pulse the column turns to wobbling (the bottom drum's axis leans 0.067 rad across the shaking plane by 5 s) and twists about its pivots (up to 13 mrad), so the bottom drum's footprint moves 3.4 mm with 0.017 mm of Coulomb slip; shaken face-on (row 4-drum-0.5g-face-on: rocking on an edge) it moves 0.36 mm (docs/CONTACT.md)",
+    "column-walk/4-drum-0.5g/base-walk": "shaken along a vertex (direction 0) each 12-sided drum rocks on a single rim vertex, which has no torsional friction: after the pulse the column turns to wobbling (the bottom drum's axis leans 0.067 rad across the shaking plane by 5 s) and twists about its pivots (up to 13 mrad), so the bottom drum's footprint moves 3.4 mm with 0.017 mm of Coulomb slip, not a compliance or step effect (5.1 mm at KN 1e12, 3.7 mm at half the step); shaken face-on (row 4-drum-0.5g-face-on: rocking on an edge) it moves 0.36 mm (docs/CONTACT.md)",
     "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
     "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
     "yade-overturn/bracket-scenario-ks": "shear stiffness per point, not per face: with the scenario's KS the pivot slides (docs/YADE.md)",
@@ -363,7 +363,7 @@ DAMPED = "model damping viscous 0.2"
 STACK_RTOL = 0.002   # bisection of the stack thresholds: brackets well inside the 3 % asked
 STACK_ASKED = 0.03   # issue 10: stack thresholds within 3 % of the Kounadis reference
 STACK_P = math.sqrt(3 * cf.G0 / (4 * math.hypot(0.25, 0.5)))   # 1/s: the lower block's p (3.628)
-STIFF_WP = 3.0       # above this w/p docs/CONTACT.md recommends KN 1e12 for undamped thresholds
+STIFF_WP = 3.0       # above this w/p the undamped thresholds are also checked at KN 1e12 (convergence in KN)
 
 
 def case_stack_threshold(L):
@@ -394,11 +394,12 @@ def case_stack_threshold(L):
                     "two-KN study (%g, %g) + both bisection brackets (rtol %g)" % (KN0, 10 * KN0, STACK_RTOL))
             L.check(rid + "-3pct", what, ref / cf.G0, src, a2 / cf.G0, err, STACK_ASKED, "issue 10's requirement (3 %)")
             if L.depth == "full" and not damping and 2 * math.pi * f / STACK_P > STIFF_WP:
-                # docs/CONTACT.md: undamped thresholds above w/p 3 compared with rigid theory at KN 1e12
+                # above w/p 3 (the steep region) the undamped threshold at ten times the preset's KN as well:
+                # the 3 % asked must not hang on the preset's stiffness (docs/CONTACT.md, stack thresholds)
                 a3, _ = dem(100.0)
                 L.check(rid + "-kn%g-3pct" % (100 * KN0), "minimum overturning amplitude at %g Hz (g), KN %g, relative error"
                         % (f, 100 * KN0), ref / cf.G0, src, a3 / cf.G0, abs(a3 - ref) / ref, STACK_ASKED,
-                        "issue 10's requirement (3 %), at the KN docs/CONTACT.md recommends above w/p 3")
+                        "issue 10's requirement (3 %), at ten times the rigid preset's KN")
 
 
 def stack_events(path):
