@@ -449,6 +449,16 @@ def case_stack_history(L):
             L.check("stack-history/%s-%s" % (label, name), "%s block tilt up to the first impact: max |diff| / peak" % name,
                     0.0, "CVODE Kounadis (%s)" % label, e1[b], e1[b], tol, "two-KN study (+1e-4 interpolation)")
         stack_event_checks(L, label, ev_ref, v1, v2, dt2, t_imp, halves)
+        # issue 10's own measure: each block's largest tilt over the whole run (impacts and free
+        # rocking included, the reference's 2 s) within 3 % of the reference's
+        full = L.run(scene_fn(L, "sh_full_" + label, 10.0, damping, motion, T=2), "sh_full.h5")
+        thd = h5(full, "tilt")
+        for b, name in enumerate(("lower", "upper")):
+            peak = float(np.abs(thr[:, b]).max())
+            err = abs(float(np.abs(thd[:, b]).max()) - peak) / peak
+            L.check("stack-history/%s-%s-max-tilt-3pct" % (label, name), "%s block's largest tilt over 2 s (rad), relative error"
+                    % name, peak, "CVODE Kounadis (%s)" % label, float(np.abs(thd[:, b]).max()), err, STACK_ASKED,
+                    "issue 10's requirement (3 %)")
         if L.depth == "full":
             # the KN docs/CONTACT.md recommends for uplift times to 1 %: the smallest decade whose
             # elastic bound (above) is under 1 % of the rigid uplift time
