@@ -45,6 +45,12 @@
  * reaches settling onto its bearing springs from rest: slower, it is a quasi-static touchdown,
  * like a scanned rock's points coming and going as it sways, and striking the bearing points at
  * each of those would sink the body step by step into its support.
+ * On an elastic joint (e = 1) an unbonded spring that switches on or off within a step bears the
+ * step's mean force, KN A' (s + w/2)^2 / (2 w) for a stretch s within w/2 = |vn| dt / 2 of zero
+ * (law.h rd_law_switch_stretch): leapfrog's impulse F(n) dt is then the spring's own over the
+ * step, and a bounce keeps its energy wherever the touch fell in the step (with KN A' s, up to
+ * (omega dt)^2 / 4 of it was gained or lost). A joint with e < 1 takes the set at the first
+ * unloading step, booked for the force at t(n), and keeps KN A' s.
  * An exiting subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
@@ -465,7 +471,8 @@ static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, u
  *   below its permanent set, or on a late face that looks away from its entrance face;
  * - a steady bearing point: inside, bearing last step, no bond, no impact loss this step (not
  *   new, or not unloading), its face not a late one, below its entrance face, compressed, and
- *   within the Coulomb limit.
+ *   within the Coulomb limit;
+ * on an elastic joint, none within w/2 of its spring's switch (subcontact's mean force).
  * Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
  * when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
