@@ -804,7 +804,7 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
 
 /* The side's candidate-vertex distances and plane masks (see above RD_FAR_BANDS), a non-convex
  * owner's vertices read from rd_sim.cv_world, a convex one's from rd_sim.wv. */
-static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
+RD_HOT static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
 {
     const int k0 = s->cv0[c->o], ncv_all = s->cv0[s->nb];
     if (!s->convex[c->o]) {
@@ -942,7 +942,7 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
     *active_steps += na;
 }
 
-static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, double nsum[3])
+RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_active, double nsum[3])
 {
     const rd_joint *j = &s->joint[pr->joint];
     side_ctx c;

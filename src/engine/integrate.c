@@ -21,8 +21,9 @@ static void omega_from(const double R[9], const double I[3], const double L[3], 
     rd_mat_vec(R, lb, w);
 }
 
-/* Rotation matrix, world vertices and world face planes of body i. */
-void rd_body_refresh(rd_sim *s, int i)
+/* Rotation matrix, world vertices and world face planes of body i (rd_body_refresh; static, so
+ * that its two copies stay in this file: RD_HOT). */
+RD_HOT static void body_geometry(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
     const rd_poly *p = &s->poly[i];
@@ -40,12 +41,17 @@ void rd_body_refresh(rd_sim *s, int i)
     }
 }
 
+void rd_body_refresh(rd_sim *s, int i)
+{
+    body_geometry(s, i);
+}
+
 /* n points' ground-frame coordinates: w[c][k] = R's row c . (bx, by, bz)[k] + x[c], rd_mat_vec's
  * rows then rd_axpy's 1.0 * x (the same expressions: the same bits); over contiguous coordinates
  * the loop vectorises, and each body-frame coordinate is loaded once for the three rows. */
-static void transform_points(int n, const double *restrict bx, const double *restrict by,
-                             const double *restrict bz, const double R[9], const double x[3], double *restrict wx,
-                             double *restrict wy, double *restrict wz)
+RD_HOT static void transform_points(int n, const double *restrict bx, const double *restrict by,
+                                    const double *restrict bz, const double R[9], const double x[3],
+                                    double *restrict wx, double *restrict wy, double *restrict wz)
 {
     const double r0 = R[0], r1 = R[1], r2 = R[2], r3 = R[3], r4 = R[4], r5 = R[5], r6 = R[6], r7 = R[7], r8 = R[8];
     const double x0 = x[0], x1 = x[1], x2 = x[2];

@@ -17,6 +17,23 @@
 #include <stdatomic.h>
 #include <stdint.h>
 
+/* The step's hot functions (contact.c: side_step, with the laws it inlines, and
+ * vertex_distances; integrate.c: body_geometry and transform_points) are compiled twice, for the
+ * build's target (the Makefile's x86-64-v2) and with AVX2, and the AVX2 copy runs where the CPU
+ * has it (a GNU ifunc, chosen once at load; GCC 6+ with glibc on x86-64). AVX2 without FMA: each
+ * operation is the x86-64-v2 copy's on the same operands in the same order (VEX's three-operand
+ * forms need no register copies, and the distance and transform loops run four lanes, not two),
+ * so both copies give the same bits on every machine (tests/cli/determinism.sh). Static
+ * functions only, so the copies stay private to their file. Clang (14 exports its resolvers from
+ * the shared library: tests/cli/symbols.sh), other systems and -DRD_NO_CLONES build the one
+ * copy. */
+#if defined(__x86_64__) && defined(__GLIBC__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 6 && \
+    !defined(RD_NO_CLONES)
+#define RD_HOT __attribute__((target_clones("avx2", "default")))
+#else
+#define RD_HOT
+#endif
+
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_MASK_WORDS ((RD_MAX_PLANES + 63) / 64) /* 64-bit words of a one-bit-per-plane mask */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
