@@ -317,8 +317,8 @@ static double touch_speed(const rd_sim *s, const rd_pair *pr)
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
-static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
-                                                side_sums *a)
+RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt,
+                                                       int st, side_sums *a)
 {
     unsigned char *fl = &s->pstate[st];
     const double *p = s->pl[pt];
@@ -930,7 +930,10 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
             continue;
         }
         a.area = 0;
-        nactive[k] = face_points(s, c, j, pt0[k], pt0[k + 1], dst, &fr, &a, &na, &nslip, nw, t_free);
+        /* a mesh's face carries about one point: a copy of face_points for it, with no loop */
+        const int p0 = pt0[k], p1 = pt0[k + 1];
+        nactive[k] = p1 - p0 == 1 ? face_points(s, c, j, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, t_free)
+                                  : face_points(s, c, j, p0, p1, dst, &fr, &a, &na, &nslip, nw, t_free);
         area += a.area;
         touch |= a.area > 0;
     }

@@ -17,7 +17,7 @@
 #include <stdatomic.h>
 #include <stdint.h>
 
-/* The step's hot functions (contact.c: side_step, with the laws it inlines, and
+/* The step's hot functions (contact.c: side_step, with the laws it inlines, subcontact and
  * vertex_distances; integrate.c: body_geometry and transform_points) are compiled twice, for the
  * build's target (the Makefile's x86-64-v2) and with AVX2, and the AVX2 copy runs where the CPU
  * has it (a GNU ifunc, chosen once at load; GCC 6+ with glibc on x86-64). AVX2 without FMA: each
