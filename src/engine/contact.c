@@ -162,6 +162,15 @@ static inline __attribute__((always_inline)) void relative_velocity(const side_f
     rd_law_relative_velocity_of(fr->vo, fr->wo, fr->vt, fr->wt, t_free, ro, rt, vr);
 }
 
+/* Point p's (owner frame) offsets from the owner's and the other's centre and its relative
+ * velocity, from the frame fr: k = (ro, rt, vr), 9 values. */
+static inline __attribute__((always_inline)) void frame_kinematics(const side_frame *fr, int t_free,
+                                                                   const double p[3], double k[9])
+{
+    rd_mat_vec(fr->R, p, k);
+    relative_velocity(fr, t_free, k, k + 3, k + 6);
+}
+
 /* rd_sim's frame of the side's two bodies (side_frame). */
 static void side_frame_of(const rd_sim *s, int o, int t, side_frame *fr)
 {
@@ -181,8 +190,7 @@ static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, co
     int q = s->pkin[pt];
     double *sk = s->kin[q];
     if (s->kin_stamp[q] != s->kin_epoch) {
-        rd_mat_vec(c->fr.R, s->pl[pt], k);
-        relative_velocity(&c->fr, c->t_free, k, k + 3, k + 6);
+        frame_kinematics(&c->fr, c->t_free, s->pl[pt], k);
         for (int i = 0; i < 9; i++) sk[i] = k[i];
         s->kin_stamp[q] = s->kin_epoch;
     } else {
@@ -502,8 +510,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         if (c->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
             double kin[9];
-            rd_mat_vec(fr->R, p, kin);
-            relative_velocity(fr, t_free, kin, kin + 3, kin + 6);
+            frame_kinematics(fr, t_free, p, kin);
             double reach = -0.5 * fabs(rd_dot(kin + 6, u)) * s->dt;
             if ((depth <= 0 ? depth : depth - s->pset[st]) > reach) return STEADY_NONE;
         }
@@ -520,8 +527,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
         return STEADY_NONE;
     double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
-    rd_mat_vec(fr->R, p, ro);
-    relative_velocity(fr, t_free, ro, rt, vr);
+    frame_kinematics(fr, t_free, p, kin);
     double vn = rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return STEADY_NONE; /* its impact loss: subcontact */
     if (c->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
