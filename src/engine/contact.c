@@ -77,20 +77,25 @@
 #define RD_STEADY_PATH 1
 #endif
 
-/* The owner's and the other body's pose and motion this step (rd_sim's R, x, v, w), copied
- * once per side (side_ctx.fr, and a local of side_faces that no store into rd_sim can reach). */
+/* The motion of the owner relative to the other body this step, found once per side from
+ * rd_sim's R, x, v, w (side_ctx.fr, and a local of side_faces that no store into rd_sim can
+ * reach). A point at offset ro from the owner's centre moves against the other body's material
+ * point at the same place with vr = v0 + wr x ro: with d = xo - xt, vo + wo x ro - vt - wt x
+ * (ro + d) = (vo - vt - wt x d) + (wo - wt) x ro, one cross product a point (a fixed other body
+ * has no motion: v0 = vo, wr = wo). */
 typedef struct side_frame {
-    double R[9];                /* owner rotation, body -> ground */
-    double xo[3], vo[3], wo[3]; /* owner centre (m), velocity (m/s), angular velocity (rad/s) */
-    double xt[3], vt[3], wt[3]; /* the other body's (read only when it is free) */
+    double R[9];  /* owner rotation, body -> ground */
+    double v0[3]; /* relative velocity of the owner's centre, m/s */
+    double wr[3]; /* relative angular velocity, rad/s */
 } side_frame;
 
-/* A side's force sums: the owner's and a free other body's force (N) and torque (N m), fn u
- * summed (N), KN A' summed over active points (N/m), and the current face's bearing area A'
- * (m^2). side_faces keeps them in a local that no rd_sim store can reach (the same sums in the
- * same order, but off the store-to-load chains of a struct behind a pointer). */
+/* A side's force sums: the force F (N) and torque ro x F (N m) on the owner summed over its
+ * subcontacts, fn u summed (N), KN A' summed over active points (N/m), and the current face's
+ * bearing area A' (m^2). A free other body takes -F at rt = ro + d each: -sum F and -(sum ro x F
+ * + d x sum F), applied once per side (side_step). side_faces keeps them in a local that no
+ * rd_sim store can reach (off the store-to-load chains of a struct behind a pointer). */
 typedef struct side_sums {
-    double f_o[3], tq_o[3], f_t[3], tq_t[3];
+    double f_o[3], tq_o[3];
     double nsum[3];
     double k_active;
     double area;
@@ -150,51 +155,50 @@ static inline double plane_dist(const double *pl, const double p[3])
     return pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] - pl[3];
 }
 
-/* Relative velocity of owner point ro (offset from the owner's centre, ground frame) against
- * the other body, m/s (rd_law_relative_velocity_of, from the frame fr); rt receives the point's
- * offset from the other body's centre when that body is free (t_free), else 0 (a fixed body
- * takes no torque and has no velocity: rt is not used). */
-static inline __attribute__((always_inline)) void relative_velocity(const side_frame *fr, int t_free,
-                                                                    const double ro[3], double rt[3],
-                                                                    double vr[3])
-{
-    for (int k = 0; k < 3; k++) rt[k] = t_free ? ro[k] + fr->xo[k] - fr->xt[k] : 0.0;
-    rd_law_relative_velocity_of(fr->vo, fr->wo, fr->vt, fr->wt, t_free, ro, rt, vr);
-}
-
-/* Point p's (owner frame) offsets from the owner's and the other's centre and its relative
- * velocity, from the frame fr: k = (ro, rt, vr), 9 values. */
-static inline __attribute__((always_inline)) void frame_kinematics(const side_frame *fr, int t_free,
-                                                                   const double p[3], double k[9])
+/* Point p's (owner frame) offset ro from the owner's centre (ground frame) and its relative
+ * velocity vr = v0 + wr x ro, from the frame fr: k = (ro, vr), 6 values. */
+static inline __attribute__((always_inline)) void frame_kinematics(const side_frame *fr, const double p[3],
+                                                                   double k[6])
 {
     rd_mat_vec(fr->R, p, k);
-    relative_velocity(fr, t_free, k, k + 3, k + 6);
+    rd_cross(fr->wr, k, k + 3);
+    rd_axpy(1.0, fr->v0, k + 3);
 }
 
-/* rd_sim's frame of the side's two bodies (side_frame). */
-static void side_frame_of(const rd_sim *s, int o, int t, side_frame *fr)
+/* rd_sim's frame of the side's two bodies (side_frame); d receives xo - xt (0 when the other
+ * body is fixed), m. */
+static void side_frame_of(const rd_sim *s, int o, int t, side_frame *fr, double d[3])
 {
     for (int k = 0; k < 9; k++) fr->R[k] = s->R[o][k];
-    rd_copy3(s->x[o], fr->xo); rd_copy3(s->v[o], fr->vo); rd_copy3(s->w[o], fr->wo);
-    rd_copy3(s->x[t], fr->xt); rd_copy3(s->v[t], fr->vt); rd_copy3(s->w[t], fr->wt);
+    rd_copy3(s->v[o], fr->v0);
+    rd_copy3(s->w[o], fr->wr);
+    d[0] = d[1] = d[2] = 0;
+    if (s->fixed[t]) return;
+    double wd[3];
+    for (int k = 0; k < 3; k++) d[k] = s->x[o][k] - s->x[t][k];
+    rd_cross(s->w[t], d, wd);
+    for (int k = 0; k < 3; k++) {
+        fr->v0[k] -= s->v[t][k] + wd[k];
+        fr->wr[k] -= s->w[t][k];
+    }
 }
 
-/* Point pt's offsets from the owner's and the other's centre and its relative velocity (ro, rt,
- * vr: 9 values into k), found once per side step for the points that share its place
+/* Point pt's offset from the owner's centre and its relative velocity (ro, vr: 6 values into
+ * k), found once per side step for the points that share its place
  * (rd_sim.pkin, kept in rd_sim.kin). k is the caller's local: a law that read them back from
  * kin right after these 8-byte stores would stall on store forwarding (16-byte loads).
  * Inlined at both of its calls in subcontact (gcc makes a call of it otherwise: 15 % slower). */
 static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, const side_ctx *c, int pt,
-                                                                   double k[9])
+                                                                   double k[6])
 {
     int q = s->pkin[pt];
     double *sk = s->kin[q];
     if (s->kin_stamp[q] != s->kin_epoch) {
-        frame_kinematics(&c->fr, c->t_free, s->pl[pt], k);
-        for (int i = 0; i < 9; i++) sk[i] = k[i];
+        frame_kinematics(&c->fr, s->pl[pt], k);
+        for (int i = 0; i < 6; i++) sk[i] = k[i];
         s->kin_stamp[q] = s->kin_epoch;
     } else {
-        for (int i = 0; i < 9; i++) k[i] = sk[i];
+        for (int i = 0; i < 6; i++) k[i] = sk[i];
     }
 }
 
@@ -227,9 +231,9 @@ static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, dou
                     double s_now)
 {
     if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
-    double kin[9];
+    double kin[6];
     point_kinematics(s, c, pt, kin);
-    const double *u = c->wn[s->pface[st]], *vr = kin + 6;
+    const double *u = c->wn[s->pface[st]], *vr = kin + 3;
     double vn = rd_dot(vr, u);
     s->e_fric += rd_law_release_energy(kA, last->s, s_now, last->bonded, s->fs[st], u, vr, vn, sA, last->lim,
                                        s->dt);
@@ -297,12 +301,11 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
 }
 
 /* A bearing subcontact's results (A: its area A', m^2; fn: normal force, N; u: its entrance
- * face's outward normal; fs: its shear force, N; ro, rt: its offsets from the owner's and the
- * other's centre, m): its stored shear and normal force, the side's normal and area sums, and
- * the force F = fn u + fs with its torques on the owner and (opposite) on a free other body. */
-static inline __attribute__((always_inline)) void bear(rd_sim *s, side_sums *a, int t_free, int st, double A,
-                                                       double fn, const double u[3], const double fs[3],
-                                                       const double ro[3], const double rt[3])
+ * face's outward normal; fs: its shear force, N; ro: its offset from the owner's centre, m): its
+ * stored shear and normal force, the side's normal and area sums, and the force F = fn u + fs
+ * with its torque ro x F on the owner (side_sums: a free other body's share is the side's). */
+static inline __attribute__((always_inline)) void bear(rd_sim *s, side_sums *a, int st, double A, double fn,
+                                                       const double u[3], const double fs[3], const double ro[3])
 {
     rd_copy3(fs, s->fs[st]);
     s->pj[st][0] = fn;
@@ -311,7 +314,7 @@ static inline __attribute__((always_inline)) void bear(rd_sim *s, side_sums *a, 
     a->area += A;
 
     double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
-    rd_law_apply(F, ro, rt, a->f_o, a->tq_o, t_free, a->f_t, a->tq_t);
+    rd_law_apply(F, ro, NULL, a->f_o, a->tq_o, 0, NULL, NULL);
 }
 
 /* Approach speed above which a new touch of pair pr is an impact, m/s: g sqrt(m_eff / K_active),
@@ -346,12 +349,12 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
 
     /* the point's motion (point_kinematics) is found only when the law needs it: a point that
        idles below needs only its depth */
-    double kin[9];
+    double kin[6];
     int moved = 0;
     if (!(*fl & RD_PT_INSIDE)) {
         point_kinematics(s, c, pt, kin);
         moved = 1;
-        s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 6);
+        s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 3);
         *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
         s->pset[st] = 0;
     }
@@ -370,7 +373,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (c->mean_switch && !(*fl & RD_PT_BONDED)) {
         if (!moved) point_kinematics(s, c, pt, kin);
         moved = 1;
-        w = fabs(rd_dot(kin + 6, u)) * s->dt;
+        w = fabs(rd_dot(kin + 3, u)) * s->dt;
     }
     if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
                                                    touch is a new impact */
@@ -395,7 +398,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         return 0;
     }
     if (!moved) point_kinematics(s, c, pt, kin);
-    const double *ro = kin, *rt = kin + 3, *vr = kin + 6;
+    const double *ro = kin, *vr = kin + 3;
     double vn = rd_dot(vr, u);
     if (c->struck && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_STRUCK)) == RD_PT_ACTIVE && vn < 0) {
         *fl |= RD_PT_STRUCK; /* a bearing point pressed during a new impact of one of its bodies: */
@@ -451,7 +454,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     if ((*fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
-    bear(s, a, c->t_free, st, A, fn, u, fs, ro, rt);
+    bear(s, a, st, A, fn, u, fs, ro);
     return 1;
 }
 
@@ -484,8 +487,7 @@ static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, u
  * Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
  * when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
-                                                             const side_frame *fr, side_sums *a, const int nw,
-                                                             const int t_free)
+                                                             const side_frame *fr, side_sums *a, const int nw)
 {
     const unsigned fl = s->pstate[st];
     const double *p = s->pl[pt];
@@ -509,9 +511,9 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
         if (c->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
-            double kin[9];
-            frame_kinematics(fr, t_free, p, kin);
-            double reach = -0.5 * fabs(rd_dot(kin + 6, u)) * s->dt;
+            double kin[6];
+            frame_kinematics(fr, p, kin);
+            double reach = -0.5 * fabs(rd_dot(kin + 3, u)) * s->dt;
             if ((depth <= 0 ? depth : depth - s->pset[st]) > reach) return STEADY_NONE;
         }
         if (depth <= 0) { /* above its face, within the band */
@@ -526,8 +528,8 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     }
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
         return STEADY_NONE;
-    double kin[9], *ro = kin, *rt = kin + 3, *vr = kin + 6;
-    frame_kinematics(fr, t_free, p, kin);
+    double kin[6], *ro = kin, *vr = kin + 3;
+    frame_kinematics(fr, p, kin);
     double vn = rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return STEADY_NONE; /* its impact loss: subcontact */
     if (c->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
@@ -556,7 +558,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
     if ((fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
     s->pj[st][1] = -depth;
-    bear(s, a, t_free, st, A, fn, u, fs, ro, rt);
+    bear(s, a, st, A, fn, u, fs, ro);
     return STEADY_BEARS;
 }
 
@@ -884,16 +886,15 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
 
 /* The points pt0 .. pt1 - 1 of a candidate face (point pt's subcontact: pt + dst), each by
  * steady_point, else subcontact; their forces into *a, the side's bearing and slipping counts
- * into *na and *nslip. Returns the face's points inside. t_free (a constant at each call): the
- * other body is free. */
+ * into *na and *nslip. Returns the face's points inside. */
 static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j, int pt0,
                                                              int pt1, int dst, const side_frame *fr, side_sums *a,
-                                                             int *na, int *nslip, const int nw, const int t_free)
+                                                             int *na, int *nslip, const int nw)
 {
     int nin = 0;
     for (int pt = pt0; pt < pt1; pt++) {
         const int st = pt + dst;
-        const int found = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw, t_free) : STEADY_NONE;
+        const int found = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw) : STEADY_NONE;
         if (found == STEADY_NONE) {
             if (subcontact(s, c, j, pt, st, a)) {
                 ++*na;
@@ -912,11 +913,11 @@ static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx
  * (face_planes), then its points (steady_point, else subcontact); their forces summed into
  * *sums, the contact tally into *tally and the active point-steps into *active_steps. The tally
  * takes each face's bearing area in face order (a face's own sum first, as the monitor's area
- * always was), its counts and whether it touched once for the side. nw: the mask words in use,
- * t_free: the other body is free (constants at each call: 1 word for most bodies). */
+ * always was), its counts and whether it touched once for the side. nw: the mask words in use
+ * (a constant at each call: 1 word for most bodies). */
 static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd, const rd_joint *j,
                                                              side_sums *sums, rd_watch *tally, long *active_steps,
-                                                             const int nw, const int t_free)
+                                                             const int nw)
 {
     const side_frame fr = c->fr; /* locals no store into rd_sim reaches */
     side_sums a = *sums;
@@ -938,8 +939,8 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
         a.area = 0;
         /* a mesh's face carries about one point: a copy of face_points for it, with no loop */
         const int p0 = pt0[k], p1 = pt0[k + 1];
-        nactive[k] = p1 - p0 == 1 ? face_points(s, c, j, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, t_free)
-                                  : face_points(s, c, j, p0, p1, dst, &fr, &a, &na, &nslip, nw, t_free);
+        nactive[k] = p1 - p0 == 1 ? face_points(s, c, j, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw)
+                                  : face_points(s, c, j, p0, p1, dst, &fr, &a, &na, &nslip, nw);
         area += a.area;
         touch |= a.area > 0;
     }
@@ -977,10 +978,12 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     c.out_band = c.tol + slack + c.raise;
     c.reach = 0.5 * c.tol - c.raise;
     c.t_free = !s->fixed[c.t];
-    side_sums sums = {.nsum = {0, 0, 0}, .k_active = 0, .area = 0};
-    rd_copy3(s->f[c.o], sums.f_o); rd_copy3(s->tq[c.o], sums.tq_o);
-    rd_copy3(s->f[c.t], sums.f_t); rd_copy3(s->tq[c.t], sums.tq_t);
-    side_frame_of(s, c.o, c.t, &c.fr);
+    /* against a fixed body the owner's sums run on from its force and torque so far; a free
+       other body's share needs the side's own sums, which then start at 0 */
+    side_sums sums = {.f_o = {0, 0, 0}, .tq_o = {0, 0, 0}, .nsum = {0, 0, 0}, .k_active = 0, .area = 0};
+    if (!c.t_free) { rd_copy3(s->f[c.o], sums.f_o); rd_copy3(s->tq[c.o], sums.tq_o); }
+    double d[3]; /* xo - xt, m */
+    side_frame_of(s, c.o, c.t, &c.fr, d);
     side_planes(s, &c);
     vertex_distances(s, &c, sd);
     s->kin_epoch++;
@@ -989,17 +992,24 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     rd_watch tally = {0};
     if (watch) { tally.area = watch->area; tally.nactive = watch->nactive; tally.nslip = watch->nslip; tally.touched = watch->touched; }
     long active_steps = 0;
-    if (c.nw == 1 && c.t_free) /* the usual one word of planes (up to 64), as a constant */
-        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1, 1);
-    else if (c.nw == 1)
-        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1, 0);
+    if (c.nw == 1) /* the usual one word of planes (up to 64), as a constant */
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1);
     else
-        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, c.nw, c.t_free);
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, c.nw);
     if (watch) { watch->area = tally.area; watch->nactive = tally.nactive; watch->nslip = tally.nslip; watch->touched = tally.touched; }
     if (c.opens && !s->settling) s->impacting_next[c.o] = s->impacting_next[c.t] = 1;
     if (!s->settling) s->active_point_steps += active_steps;
-    rd_copy3(sums.f_o, s->f[c.o]); rd_copy3(sums.tq_o, s->tq[c.o]);
-    if (c.t_free) { rd_copy3(sums.f_t, s->f[c.t]); rd_copy3(sums.tq_t, s->tq[c.t]); }
+    if (c.t_free) { /* the owner takes the sums; the other -F at ro + d each: -(sum ro x F) - d x sum F */
+        double dt[3];
+        rd_cross(d, sums.f_o, dt);
+        rd_axpy(1.0, sums.f_o, s->f[c.o]);
+        rd_axpy(1.0, sums.tq_o, s->tq[c.o]);
+        rd_axpy(-1.0, sums.f_o, s->f[c.t]);
+        for (int k = 0; k < 3; k++) s->tq[c.t][k] -= sums.tq_o[k] + dt[k];
+    } else {
+        rd_copy3(sums.f_o, s->f[c.o]);
+        rd_copy3(sums.tq_o, s->tq[c.o]);
+    }
     *k_active += sums.k_active;
     rd_axpy(c.to_b, sums.nsum, nsum); /* to_b = +-1: +-(fn u) summed, exactly */
 }

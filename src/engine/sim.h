@@ -227,7 +227,7 @@ struct rd_sim {
                               body's first point) of the first point at the same place. A mesh
                               face carries its vertices, so a vertex is a point of every face
                               around it (5 on average); contact.c finds its motion once */
-    double (*kin)[9];      /* scratch: [most points of a body] one side's ro, rt, vr per slot
+    double (*kin)[6];      /* scratch: [most points of a body] one side's ro, vr per slot
                               (contact.c: point_kinematics) */
     long *kin_stamp;       /* scratch: [most points of a body] the side step that filled kin */
     long kin_epoch;        /* side steps taken (stamps kin) */
