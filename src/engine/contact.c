@@ -302,13 +302,14 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
 
 /* A bearing subcontact's results (A: its area A', m^2; fn: normal force, N; u: its entrance
  * face's outward normal; fs: its shear force, N; ro: its offset from the owner's centre, m): its
- * stored shear and normal force, the side's normal and area sums, and the force F = fn u + fs
+ * stored shear and normal force (into fsa and pj: rd_sim.fs and rd_sim.pj), the side's normal and area sums, and the force F = fn u + fs
  * with its torque ro x F on the owner (side_sums: a free other body's share is the side's). */
-static inline __attribute__((always_inline)) void bear(rd_sim *s, side_sums *a, int st, double A, double fn,
-                                                       const double u[3], const double fs[3], const double ro[3])
+static inline __attribute__((always_inline)) void bear(double (*fsa)[3], double (*pj)[2], side_sums *a, int st,
+                                                       double A, double fn, const double u[3], const double fs[3],
+                                                       const double ro[3])
 {
-    rd_copy3(fs, s->fs[st]);
-    s->pj[st][0] = fn;
+    rd_copy3(fs, fsa[st]);
+    pj[st][0] = fn;
     double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
     for (int k = 0; k < 3; k++) a->nsum[k] += fu[k];
     a->area += A;
@@ -454,8 +455,42 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     if ((*fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
-    bear(s, a, st, A, fn, u, fs, ro);
+    bear(s->fs, s->pj, a, st, A, fn, u, fs, ro);
     return 1;
+}
+
+/* What the steady path reads of rd_sim, the side and the joint: the per-point arrays and the
+ * constants, copied once per side into a local of side_faces (steady_of), with the current face's
+ * plane bits. The point's state bytes that the path stores (unsigned char, which may alias any
+ * object) would otherwise have each pointer and constant loaded again from rd_sim, side_ctx and
+ * rd_joint after every such store. */
+typedef struct steady_ctx {
+    const double (*pl)[3];    /* rd_sim.pl, pa, pface, pset, fs, pj, pstate */
+    const double *pa;
+    const short *pface;
+    double *pset;
+    double (*fs)[3];
+    double (*pj)[2];
+    unsigned char *pstate;
+    const double (*plane)[4]; /* side_ctx.pl, wn */
+    const double (*wn)[3];
+    uint64_t cross[RD_MASK_WORDS]; /* the current face's (side_ctx.cross) */
+    double tol, wa, damp_coef;     /* side_ctx's */
+    double kn, ks, tan_phi;        /* the joint's */
+    double dt;
+    int mean_switch, struck, damped, settling;
+} steady_ctx;
+
+static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, const side_ctx *c, const rd_joint *j,
+                                                            steady_ctx *k)
+{
+    k->pl = (const double (*)[3])s->pl; k->pa = s->pa; k->pface = s->pface; k->pset = s->pset;
+    k->fs = s->fs; k->pj = s->pj; k->pstate = s->pstate;
+    k->plane = (const double (*)[4])c->pl; k->wn = c->wn;
+    k->tol = c->tol; k->wa = c->wa; k->damp_coef = c->damp_coef;
+    k->kn = j->kn; k->ks = j->ks; k->tan_phi = j->tan_phi;
+    k->dt = s->dt;
+    k->mean_switch = c->mean_switch; k->struck = c->struck; k->damped = c->damped; k->settling = s->settling;
 }
 
 /* What steady_point found, with the point's state bits after it (face_points counts them from
@@ -466,12 +501,12 @@ enum { STEADY_NONE = -1, STEADY_OUT, STEADY_IDLE, STEADY_BEARS };
 /* steady_point's point beyond the band (out: its distance beyond the plane, m, more than
  * subcontact's band unbonded, slack 0): one that was already out records its gap; STEADY_OUT,
  * or STEADY_NONE for subcontact. */
-static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, unsigned fl, double out)
+static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k, int st, unsigned fl, double out)
 {
     if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return STEADY_NONE;
-    s->pj[st][0] = 0;
-    s->pj[st][1] = out;
-    s->pset[st] = 0;
+    k->pj[st][0] = 0;
+    k->pj[st][1] = out;
+    k->pset[st] = 0;
     return STEADY_OUT;
 }
 
@@ -486,44 +521,44 @@ static inline __attribute__((always_inline)) int steady_out(rd_sim *s, int st, u
  * on an elastic joint, none within w/2 of its spring's switch (subcontact's mean force).
  * Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
  * when the point needs subcontact. */
-static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const rd_joint *j, int pt, int st,
-                                                             const side_frame *fr, side_sums *a, const int nw)
+static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const steady_ctx *k, int pt,
+                                                             int st, const side_frame *fr, side_sums *a, const int nw)
 {
-    const unsigned fl = s->pstate[st];
-    const double *p = s->pl[pt];
+    const unsigned fl = k->pstate[st];
+    const double *p = k->pl[pt];
     if (fl & RD_PT_BONDED) return STEADY_NONE;
-    for (int w = 0; w < nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
-        double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
-        if (out > c->tol + 0.0) return steady_out(s, st, fl, out);
+    for (int w = 0; w < nw; w++) for (uint64_t m = k->cross[w]; m; m &= m - 1) {
+        double out = plane_dist(k->plane[64 * w + __builtin_ctzll(m)], p);
+        if (out > k->tol + 0.0) return steady_out(k, st, fl, out);
     }
     if (!(fl & RD_PT_INSIDE)) return STEADY_NONE;
-    int e = s->pface[st];
-    double depth = -plane_dist(c->pl[e], p);
-    double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
-    const double *u = c->wn[e];
+    int e = k->pface[st];
+    double depth = -plane_dist(k->plane[e], p);
+    double A = k->wa * k->pa[pt], kA = k->kn * A, sA = k->ks * A;
+    const double *u = k->wn[e];
     if (c->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
             return STEADY_NONE;
-        s->pj[st][0] = 0;
-        s->pj[st][1] = -depth;
+        k->pj[st][0] = 0;
+        k->pj[st][1] = -depth;
         return STEADY_IDLE;
     }
     if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
-        if (c->mean_switch) { /* an elastic joint's spring that touches within this step (as
+        if (k->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
             double kin[6];
             frame_kinematics(fr, p, kin);
-            double reach = -0.5 * fabs(rd_dot(kin + 3, u)) * s->dt;
-            if ((depth <= 0 ? depth : depth - s->pset[st]) > reach) return STEADY_NONE;
+            double reach = -0.5 * fabs(rd_dot(kin + 3, u)) * k->dt;
+            if ((depth <= 0 ? depth : depth - k->pset[st]) > reach) return STEADY_NONE;
         }
         if (depth <= 0) { /* above its face, within the band */
-            s->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
-            s->pset[st] = 0;
-        } else if (!(kA * (depth - s->pset[st]) < 0)) {
+            k->pstate[st] = (unsigned char)(fl | RD_PT_VIRGIN);
+            k->pset[st] = 0;
+        } else if (!(kA * (depth - k->pset[st]) < 0)) {
             return STEADY_NONE; /* touches: subcontact */
         } /* else below its permanent set: idle */
-        s->pj[st][0] = 0;
-        s->pj[st][1] = -depth;
+        k->pj[st][0] = 0;
+        k->pj[st][1] = -depth;
         return STEADY_IDLE;
     }
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
@@ -531,34 +566,34 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double kin[6], *ro = kin, *vr = kin + 3;
     frame_kinematics(fr, p, kin);
     double vn = rd_dot(vr, u);
-    if (fl & RD_PT_VIRGIN && vn > 0 && !s->settling) return STEADY_NONE; /* its impact loss: subcontact */
-    if (c->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
-    double stretch = depth - s->pset[st];
+    if (fl & RD_PT_VIRGIN && vn > 0 && !k->settling) return STEADY_NONE; /* its impact loss: subcontact */
+    if (k->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
+    double stretch = depth - k->pset[st];
     if (!(stretch >= 0)) return STEADY_NONE; /* below its permanent set: subcontact idles it */
-    if (c->mean_switch && !(stretch >= 0.5 * fabs(vn) * s->dt)) return STEADY_NONE; /* it lets go within
+    if (k->mean_switch && !(stretch >= 0.5 * fabs(vn) * k->dt)) return STEADY_NONE; /* it lets go within
                                                                                   this step */
     double fel = kA * stretch;
-    double fn = fel - c->damp_coef * kA * vn;
+    double fn = fel - k->damp_coef * kA * vn;
     if (!(fn >= 0)) return STEADY_NONE;
-    double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]};
-    double lim = fn * j->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion); fn >= 0, so
+    double fs[3] = {k->fs[st][0], k->fs[st][1], k->fs[st][2]};
+    double lim = fn * k->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion); fn >= 0, so
                                            rd_max(fn, 0.0) is fn but for -0, whose product + 0.0
                                            is +0 too */
-    rd_law_shear_trial(fs, u, vr, vn, sA, s->dt);
+    rd_law_shear_trial(fs, u, vr, vn, sA, k->dt);
     if (!(rd_dot(fs, fs) <= lim * lim)) return STEADY_NONE; /* slips: rd_law_shear_cap in subcontact */
     /* the dashpot's work, with last_bore's fd; without a dashpot there is none: fd is exactly 0
        (a bearing point's stored force pj[0] is then its elastic force kA * (depth - set), the
        product repeated here: the tension cap never holds a bearing point's force below it), and
        fn == fel (damp_coef is 0, and a NaN fn went to subcontact above) */
-    if (c->damped) {
-        double fd_prev = s->pj[st][0] - kA * (-s->pj[st][1] - s->pset[st]);
-        if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, s->dt);
+    if (k->damped) {
+        double fd_prev = k->pj[st][0] - kA * (-k->pj[st][1] - k->pset[st]);
+        if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, k->dt);
     }
     a->k_active += kA;
-    s->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
+    k->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
     if ((fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
-    s->pj[st][1] = -depth;
-    bear(s, a, st, A, fn, u, fs, ro);
+    k->pj[st][1] = -depth;
+    bear(k->fs, k->pj, a, st, A, fn, u, fs, ro);
     return STEADY_BEARS;
 }
 
@@ -887,25 +922,28 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap,
 /* The points pt0 .. pt1 - 1 of a candidate face (point pt's subcontact: pt + dst), each by
  * steady_point, else subcontact; their forces into *a, the side's bearing and slipping counts
  * into *na and *nslip. Returns the face's points inside. */
-static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j, int pt0,
-                                                             int pt1, int dst, const side_frame *fr, side_sums *a,
-                                                             int *na, int *nslip, const int nw)
+static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j,
+                                                             const steady_ctx *k, int pt0, int pt1, int dst,
+                                                             const side_frame *fr, side_sums *a, int *na,
+                                                             int *nslip, const int nw)
 {
-    int nin = 0;
+    int nin = 0, nbear = 0, nsl = 0; /* counts in locals: no state byte store reaches them */
     for (int pt = pt0; pt < pt1; pt++) {
         const int st = pt + dst;
-        const int found = RD_STEADY_PATH ? steady_point(s, c, j, pt, st, fr, a, nw) : STEADY_NONE;
+        const int found = RD_STEADY_PATH ? steady_point(s, c, k, pt, st, fr, a, nw) : STEADY_NONE;
         if (found == STEADY_NONE) {
             if (subcontact(s, c, j, pt, st, a)) {
-                ++*na;
-                *nslip += (s->pstate[st] & RD_PT_SLIP) != 0;
+                ++nbear;
+                nsl += (k->pstate[st] & RD_PT_SLIP) != 0;
             }
-            nin += (s->pstate[st] & RD_PT_INSIDE) != 0;
+            nin += (k->pstate[st] & RD_PT_INSIDE) != 0;
         } else { /* its bits as steady_point left them */
-            *na += found == STEADY_BEARS;
+            nbear += found == STEADY_BEARS;
             nin += found != STEADY_OUT;
         }
     }
+    *na += nbear;
+    *nslip += nsl;
     return nin;
 }
 
@@ -921,6 +959,8 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
 {
     const side_frame fr = c->fr; /* locals no store into rd_sim reaches */
     side_sums a = *sums;
+    steady_ctx k;
+    steady_of(s, c, j, &k);
     const int dst = sd->state0 - s->pt0[c->o]; /* a point's subcontact, less its index */
     int na = 0, nslip = 0, touch = 0;
     double area = tally->area;
@@ -928,19 +968,20 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
     const int cf0 = s->cf0[c->o], ncf = s->cf0[c->o + 1] - cf0;
     const int *pt0 = s->cf_pt0 + cf0;
     int *nactive = s->face_nactive + sd->face0;
-    for (int k = 0; k < ncf; k++) {
-        const int cf = cf0 + k;
+    for (int f = 0; f < ncf; f++) {
+        const int cf = cf0 + f;
         double gap;
         if (face_planes(s, c, cf, &gap, nw)) {
-            clear_face(s, c, sd, j, cf, k);
+            clear_face(s, c, sd, j, cf, f);
             rd_joint_face_open(s, sd, cf, gap);
             continue;
         }
         a.area = 0;
+        for (int w = 0; w < nw; w++) k.cross[w] = c->cross[w];
         /* a mesh's face carries about one point: a copy of face_points for it, with no loop */
-        const int p0 = pt0[k], p1 = pt0[k + 1];
-        nactive[k] = p1 - p0 == 1 ? face_points(s, c, j, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw)
-                                  : face_points(s, c, j, p0, p1, dst, &fr, &a, &na, &nslip, nw);
+        const int p0 = pt0[f], p1 = pt0[f + 1];
+        nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw)
+                                  : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw);
         area += a.area;
         touch |= a.area > 0;
     }

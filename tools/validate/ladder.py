@@ -55,7 +55,7 @@ KN_RATIO = 10.0
 # Known gaps (issue numbers refer to the project's tracker). Each key is a row id; the check is
 # made with its derived tolerance and reported XFAIL with the measured gap while it misses.
 XFAILS = {
-    "stack-threshold/undamped-2.5Hz-kn1e+12-3pct": "+3.2 % at KN 1e12 (+1.9 % at the preset's 1e11): the rigid 2.5 Hz threshold is a cliff in the impact loss (0.909 g plastic, 1.745 g with 1.4 % more loss per impact), so a small difference in the loss per impact moves it (docs/CONTACT.md)",
+    "energy/every-run-yade": "the YADE stack at KS 2e10 (twice KN) and 0.6 g, at YADE's fixed 5e-5 s (0.54 of the critical step): the upper block's sliding landing after it overturns (524 J slips away in one impact) leaves 0.6e-3 to 1.6e-3 of the 4 kJ in play, with where its touch falls in the step (two trajectories that differ at round-off); 0.9e-4 to 2.6e-4 at 2.5e-5 s (docs/CONTACT.md section 6)",
     "yade-column/0.4g-d1-tilt": "12-sided drums: point contacts vs volumetric bed, shear stiffness not matched for polygon faces (docs/YADE.md)",
     "block-free/impact2-time": "rigid preset: the plastic drop is placed to within a step of the end of compression; 0.1 %, inside the 1 % asked by issue 10 but above the two-KN bound (docs/CONTACT.md)",
     "other-r/threshold-2Hz": "mid-line layout at the steep 2 Hz region: 1.7 % high at KN 1e12, inside the 2 % asked by issue 11 but above its two-KN bound (1e12, 1e13); its free-rocking r is the same for releases from 0.3 to 0.9 alpha there, so the impact's speed is not the cause (open, docs/CONTACT.md section 2)",
@@ -65,7 +65,7 @@ XFAILS = {
     "stack-history/undamped-upper": "elastic pivots uplift a little later than rigid ones: 0.33 % of the peak, inside the 3 % asked by issue 10 but above the two-KN bound",
     "stack-history/undamped-first-impact-time": "0.014 % at KN 1e11, inside the 1 % asked by issue 10 but above the two-KN bound (the DEM's impact is the zero crossing of an elastic pivot)",
     "stack-history/equal4-stack-uplift-time-1pct": "6.1 % at the rigid preset's KN 1e11: the elastic joints' rocking mode (56 Hz) set off by the pulse onset, inside its bound 1/(omega cos(2 pi f t)); within 1 % at KN 1e13 (docs/CONTACT.md)",
-    "column-walk/4-drum-0.5g/base-walk": "shaken along a vertex (direction 0) each 12-sided drum rocks on a single rim vertex, which has no torsional friction: after the pulse the column turns to wobbling (the bottom drum's axis leans 0.067 rad across the shaking plane by 5 s) and twists about its pivots (up to 13 mrad), so the bottom drum's footprint moves 3.4 mm with 0.017 mm of Coulomb slip, not a compliance or step effect (5.1 mm at KN 1e12, 3.7 mm at half the step); shaken face-on (row 4-drum-0.5g-face-on: rocking on an edge) it moves 0.36 mm (docs/CONTACT.md)",
+    "column-walk/4-drum-0.5g/base-walk": "shaken along a vertex (direction 0) each 12-sided drum rocks on a single rim vertex, which has no torsional friction: after the pulse the column turns to wobbling (the bottom drum's axis leans 0.067 rad across the shaking plane by 5 s) and twists about its pivots (up to 13 mrad), so the bottom drum's footprint moves 2.4-3.4 mm (two trajectories that differ at round-off) with 0.017 mm of Coulomb slip, not a compliance or step effect (5.1 mm at KN 1e12, 3.7 mm at half the step); shaken face-on (row 4-drum-0.5g-face-on: rocking on an edge) it moves 0.36 mm (docs/CONTACT.md)",
     "yade-free/impact-time": "rockdem's edge pivot vs YADE's volumetric wedge: the gap exceeds the wedge estimate",
     "yade-free/amp-after-impact": "undamped impact: DEM point contacts vs YADE volumetric bed keep different energy",
     "yade-overturn/bracket-scenario-ks": "shear stiffness per point, not per face: with the scenario's KS the pivot slides (docs/YADE.md)",
@@ -940,13 +940,15 @@ def case_column_energy(L):
 def case_energy_every_run(L):
     """Issue 10 asks the residual to stay under 1e-3 on every validation scene: per group of
     cases, the largest residual over every DEM run it made (thresholds excepted, whose runs
-    write no file) and how many runs exceed 1e-3 (each printed)."""
+    write no file) and how many runs exceed 1e-3 (each printed). The fast depth makes fewer runs
+    (its rows are named -fast: an expected failure of the full set need not be one of them)."""
+    depth = "" if L.depth == "full" else "-" + L.depth
     for group in sorted({g for _, _, g in L.residuals}):
         res = sorted((r, label) for r, label, g in L.residuals if g == group)[::-1]
         over = [r for r in res if r[0] > RESIDUAL_ASKED]
         for r, label in over:
             print("  residual %.3g: %s" % (r, label))
-        L.check("energy/every-run-%s" % group, "largest energy residual over the %d %s runs (%d above 1e-3); worst: %s" % (
+        L.check("energy/every-run-%s%s" % (group, depth), "largest energy residual over the %d %s runs (%d above 1e-3); worst: %s" % (
             len(res), group, len(over), res[0][1]), 0.0, "energy conservation", res[0][0], res[0][0], RESIDUAL_ASKED,
             "issue 10's bound (1e-3)")
 
