@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Energy a point mass keeps when it bounces once on a compression-only linear spring, integrated
 by leapfrog as rockdem's contact loop does, with the spring's force at t(n) or with its mean force
-over the step (engine/law.h rd_law_switch_stretch). Touches are spread evenly over a step.
+over the step (engine/law.h rd_law_switch_stretch). Touches are spread evenly over a step. Second
+table: what the touch step takes from leapfrog's conserved energy of the bearing spring (a point
+that touches and stays keeps it; a bounce gets it back at the let-go).
 
     /usr/bin/python3 tools/validate/switch_impulse.py        (the table of docs/CONTACT.md section 6)
 
@@ -33,6 +35,22 @@ def bounce(dt, phase, mean):
     raise RuntimeError("no rebound")
 
 
+def deepest(dt, phase, mean):
+    """Leapfrog's conserved energy of the bearing spring, KE(n) + s(n)^2 / 2 with KE(n) = v(n-1/2)
+    v(n+1/2) / 2, at the deepest point of the bounce, less the energy before (1/2): what the touch
+    step changed, which a point that touches and stays keeps."""
+    v, x = -1.0, phase * dt
+    for _ in range(100000):
+        s = -x
+        f = mean_stretch(s, abs(v) * dt) if mean else max(s, 0.0)
+        vn = v + f * dt
+        if v < 0 <= vn:
+            return 0.5 * v * vn + 0.5 * max(s, 0.0) ** 2 - 0.5
+        v = vn
+        x += v * dt
+    raise RuntimeError("no turning point")
+
+
 def main():
     print("| omega dt | force at t(n) | the step's mean force |")
     print("|---|---|---|")
@@ -42,6 +60,16 @@ def main():
             e = np.array([bounce(dt, p, mean) for p in np.linspace(0.001, 0.999, 400)])
             cols.append("%.5f - %.5f" % (e.min(), e.max()))
         print("| %g | %s | %s |" % (dt, cols[0], cols[1]))
+    print()
+    print("energy change of the touch step (kept while the point bears), against -dt^2 / 8:")
+    print("| omega dt | force at t(n) | the step's mean force | -dt^2 / 8 |")
+    print("|---|---|---|---|")
+    for dt in (0.1, 0.2, 0.4):
+        cols = []
+        for mean in (False, True):
+            e = np.array([deepest(dt, p, mean) for p in np.linspace(0.001, 0.999, 400)])
+            cols.append("%.3e - %.3e" % (e.min(), e.max()))
+        print("| %g | %s | %s | %.3e |" % (dt, cols[0], cols[1], -dt * dt / 8))
 
 
 if __name__ == "__main__":
