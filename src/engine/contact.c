@@ -459,12 +459,17 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     return 1;
 }
 
-/* What the steady path reads of rd_sim, the side and the joint: the per-point arrays and the
- * constants, copied once per side into a local of side_faces (steady_of), with the current face's
- * plane bits. The point's state bytes that the path stores (unsigned char, which may alias any
- * object) would otherwise have each pointer and constant loaded again from rd_sim, side_ctx and
- * rd_joint after every such store. */
+/* What the face pass and the steady path read of rd_sim, the side and the joint: the candidate
+ * faces' and the points' arrays and the constants, copied once per side into a local of
+ * side_faces (steady_of), with the current face's plane bits and kind. The point's state bytes
+ * that the path stores (unsigned char, which may alias any object) would otherwise have each
+ * pointer and constant loaded again from rd_sim, side_ctx and rd_joint after every such store. */
 typedef struct steady_ctx {
+    const int *cf_v, *cf_v0;  /* rd_sim.cf_v, cf_v0, cf_facing */
+    const char *cf_facing;
+    const uint64_t *mask;     /* side_ctx.mask, dist (vertex_distances) */
+    const double *dist;
+    int np;                   /* the other body's planes */
     const double (*pl)[3];    /* rd_sim.pl, pa, pface, pset, fs, pj, pstate */
     const double *pa;
     const short *pface;
@@ -475,6 +480,7 @@ typedef struct steady_ctx {
     const double (*plane)[4]; /* side_ctx.pl, wn */
     const double (*wn)[3];
     uint64_t cross[RD_MASK_WORDS]; /* the current face's (side_ctx.cross) */
+    int facing;                    /* the current face is a late one (side_ctx.facing) */
     double tol, wa, damp_coef;     /* side_ctx's */
     double kn, ks, tan_phi;        /* the joint's */
     double dt;
@@ -484,6 +490,8 @@ typedef struct steady_ctx {
 static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, const side_ctx *c, const rd_joint *j,
                                                             steady_ctx *k)
 {
+    k->cf_v = s->cf_v; k->cf_v0 = s->cf_v0; k->cf_facing = s->cf_facing;
+    k->mask = c->mask; k->dist = c->dist; k->np = c->np;
     k->pl = (const double (*)[3])s->pl; k->pa = s->pa; k->pface = s->pface; k->pset = s->pset;
     k->fs = s->fs; k->pj = s->pj; k->pstate = s->pstate;
     k->plane = (const double (*)[4])c->pl; k->wn = c->wn;
@@ -536,7 +544,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double depth = -plane_dist(k->plane[e], p);
     double A = k->wa * k->pa[pt], kA = k->kn * A, sA = k->ks * A;
     const double *u = k->wn[e];
-    if (c->facing) { /* a late face: only its points that stay idle facing away are common */
+    if (k->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
             return STEADY_NONE;
         k->pj[st][0] = 0;
@@ -863,12 +871,12 @@ RD_HOT static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
 /* Word w of candidate face cf's plane masks (its vertices' mask offsets, nv of them): the planes
  * every vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
  * (*cross). Out of line: the common triangle and quadrilateral are face_planes' own. */
-static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *mo, int nv, int w,
+static __attribute__((noinline)) void face_masks(const uint64_t *mask, const int *mo, int nv, int w,
                                                  uint64_t *out, uint64_t *cross)
 {
     uint64_t o = ~(uint64_t)0, x = 0;
     for (int v = 0; v < nv; v++) {
-        const uint64_t *mk = c->mask + mo[v];
+        const uint64_t *mk = mask + mo[v];
         o &= mk[w];
         x |= mk[RD_MASK_WORDS + w];
     }
@@ -880,41 +888,42 @@ static __attribute__((noinline)) void face_masks(const side_ctx *c, const int *m
  * above reach: side_ctx.cross); 0, or 1 when the whole face lies outside one plane (no point can
  * touch), with *gap the face's clearance from the first such plane, m. As a loop over planes of
  * the least and largest vertex distance (NaN skipped) against the bands, from the vertices' plane
- * masks (rd_sim.cf_v: the offsets of the face's vertices' masks). */
-static inline int face_planes(const rd_sim *s, side_ctx *c, int cf, double *gap, const int nw)
+ * masks (rd_sim.cf_v: the offsets of the face's vertices' masks), read through k (steady_ctx);
+ * the face's kind and plane bits into k and c (subcontact reads c's). */
+static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int cf, double *gap, const int nw)
 {
-    const int *mo = s->cf_v + s->cf_v0[cf], nv = s->cf_v0[cf + 1] - s->cf_v0[cf];
-    c->facing = s->cf_facing[cf];
-    if (c->facing) { /* owner_normal: only a late face's points ask for the face's normal */
+    const int *mo = k->cf_v + k->cf_v0[cf], nv = k->cf_v0[cf + 1] - k->cf_v0[cf];
+    k->facing = c->facing = k->cf_facing[cf];
+    if (k->facing) { /* owner_normal: only a late face's points ask for the face's normal */
         c->m = NULL;
         c->mf = s->cf_face[cf];
     }
     for (int w = 0; w < nw; w++) {
         uint64_t out, cross;
         if (nv == 3) { /* a mesh's triangle */
-            const uint64_t *m0 = c->mask + mo[0] + w;
-            const uint64_t *m1 = c->mask + mo[1] + w;
-            const uint64_t *m2 = c->mask + mo[2] + w;
+            const uint64_t *m0 = k->mask + mo[0] + w;
+            const uint64_t *m1 = k->mask + mo[1] + w;
+            const uint64_t *m2 = k->mask + mo[2] + w;
             out = m0[0] & m1[0] & m2[0];
             cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS];
         } else if (nv == 4) { /* a brick's face */
-            const uint64_t *m0 = c->mask + mo[0] + w;
-            const uint64_t *m1 = c->mask + mo[1] + w;
-            const uint64_t *m2 = c->mask + mo[2] + w;
-            const uint64_t *m3 = c->mask + mo[3] + w;
+            const uint64_t *m0 = k->mask + mo[0] + w;
+            const uint64_t *m1 = k->mask + mo[1] + w;
+            const uint64_t *m2 = k->mask + mo[2] + w;
+            const uint64_t *m3 = k->mask + mo[3] + w;
             out = m0[0] & m1[0] & m2[0] & m3[0];
             cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS] | m3[RD_MASK_WORDS];
         } else {
-            face_masks(c, mo, nv, w, &out, &cross);
+            face_masks(k->mask, mo, nv, w, &out, &cross);
         }
         if (out) { /* every vertex beyond plane q */
             int q = 64 * w + __builtin_ctzll(out);
             double emin = DBL_MAX;
-            for (int v = 0; v < nv; v++) emin = rd_min(c->dist[mo[v] / (2 * RD_MASK_WORDS) * c->np + q], emin);
+            for (int v = 0; v < nv; v++) emin = rd_min(k->dist[mo[v] / (2 * RD_MASK_WORDS) * k->np + q], emin);
             *gap = emin - c->raise;
             return 1;
         }
-        c->cross[w] = cross;
+        k->cross[w] = c->cross[w] = cross;
     }
     return 0;
 }
@@ -971,13 +980,12 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
     for (int f = 0; f < ncf; f++) {
         const int cf = cf0 + f;
         double gap;
-        if (face_planes(s, c, cf, &gap, nw)) {
+        if (face_planes(s, c, &k, cf, &gap, nw)) {
             clear_face(s, c, sd, j, cf, f);
             rd_joint_face_open(s, sd, cf, gap);
             continue;
         }
         a.area = 0;
-        for (int w = 0; w < nw; w++) k.cross[w] = c->cross[w];
         /* a mesh's face carries about one point: a copy of face_points for it, with no loop */
         const int p0 = pt0[f], p1 = pt0[f + 1];
         nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw)
