@@ -51,25 +51,24 @@ def deepest(dt, phase, mean):
     raise RuntimeError("no turning point")
 
 
+def spread(f, dt, mean, fmt):
+    """f over touches spread evenly over a step, as "min - max"."""
+    e = np.array([f(dt, p, mean) for p in np.linspace(0.001, 0.999, 400)])
+    return (fmt + " - " + fmt) % (e.min(), e.max())
+
+
 def main():
     print("| omega dt | force at t(n) | the step's mean force |")
     print("|---|---|---|")
     for dt in (0.1, 0.2, 0.4):
-        cols = []
-        for mean in (False, True):
-            e = np.array([bounce(dt, p, mean) for p in np.linspace(0.001, 0.999, 400)])
-            cols.append("%.5f - %.5f" % (e.min(), e.max()))
-        print("| %g | %s | %s |" % (dt, cols[0], cols[1]))
+        print("| %g | %s | %s |" % (dt, spread(bounce, dt, False, "%.5f"), spread(bounce, dt, True, "%.5f")))
     print()
     print("energy change of the touch step (kept while the point bears), against -dt^2 / 8:")
     print("| omega dt | force at t(n) | the step's mean force | -dt^2 / 8 |")
     print("|---|---|---|---|")
     for dt in (0.1, 0.2, 0.4):
-        cols = []
-        for mean in (False, True):
-            e = np.array([deepest(dt, p, mean) for p in np.linspace(0.001, 0.999, 400)])
-            cols.append("%.3e - %.3e" % (e.min(), e.max()))
-        print("| %g | %s | %s | %.3e |" % (dt, cols[0], cols[1], -dt * dt / 8))
+        print("| %g | %s | %s | %.3e |" % (dt, spread(deepest, dt, False, "%.3e"), spread(deepest, dt, True, "%.3e"),
+                                          -dt * dt / 8))
 
 
 if __name__ == "__main__":
