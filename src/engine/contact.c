@@ -302,8 +302,9 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
 
 /* A bearing subcontact's results (A: its area A', m^2; fn: normal force, N; u: its entrance
  * face's outward normal; fs: its shear force, N; ro: its offset from the owner's centre, m): its
- * stored shear and normal force (into fsa and pj: rd_sim.fs and rd_sim.pj), the side's normal and area sums, and the force F = fn u + fs
- * with its torque ro x F on the owner (side_sums: a free other body's share is the side's). */
+ * stored shear and normal force (into fsa and pj: rd_sim.fs and rd_sim.pj), the side's normal
+ * and area sums, and the force F = fn u + fs with its torque ro x F on the owner (side_sums: a
+ * free other body's share is the side's). */
 static inline __attribute__((always_inline)) void bear(double (*fsa)[3], double (*pj)[2], side_sums *a, int st,
                                                        double A, double fn, const double u[3], const double fs[3],
                                                        const double ro[3])
@@ -487,6 +488,7 @@ typedef struct steady_ctx {
     int mean_switch, struck, damped, settling;
 } steady_ctx;
 
+/* The side's steady_ctx (k) from rd_sim, its side_ctx c (after vertex_distances) and joint j. */
 static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, const side_ctx *c, const rd_joint *j,
                                                             steady_ctx *k)
 {
@@ -889,7 +891,8 @@ static __attribute__((noinline)) void face_masks(const uint64_t *mask, const int
  * touch), with *gap the face's clearance from the first such plane, m. As a loop over planes of
  * the least and largest vertex distance (NaN skipped) against the bands, from the vertices' plane
  * masks (rd_sim.cf_v: the offsets of the face's vertices' masks), read through k (steady_ctx);
- * the face's kind and plane bits into k and c (subcontact reads c's). */
+ * the face's kind and plane bits into k and c: subcontact, out of line, reads c's (handed k, its
+ * address would escape, and every state byte the steady path stores would load k's fields again). */
 static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int cf, double *gap, const int nw)
 {
     const int *mo = k->cf_v + k->cf_v0[cf], nv = k->cf_v0[cf + 1] - k->cf_v0[cf];
