@@ -529,10 +529,13 @@ static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k,
  *   new, or not unloading), its face not a late one, below its entrance face, compressed, and
  *   within the Coulomb limit;
  * on an elastic joint, none within w/2 of its spring's switch (subcontact's mean force).
- * Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
+ * plain (a constant at each call): the joint has no dashpot and loses energy at impacts (no mean
+ * force at a switch), the bodies are not settling and the face is not a late one, so those tests
+ * are left out (the bed: 4 % fewer instructions). Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
  * when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const steady_ctx *k, int pt,
-                                                             int st, const side_frame *fr, side_sums *a, const int nw)
+                                                             int st, const side_frame *fr, side_sums *a, const int nw,
+                                                             const int plain)
 {
     const unsigned fl = k->pstate[st];
     const double *p = k->pl[pt];
@@ -546,7 +549,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double depth = -plane_dist(k->plane[e], p);
     double A = k->wa * k->pa[pt], kA = k->kn * A, sA = k->ks * A;
     const double *u = k->wn[e];
-    if (k->facing) { /* a late face: only its points that stay idle facing away are common */
+    if (!plain && k->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
             return STEADY_NONE;
         k->pj[st][0] = 0;
@@ -554,7 +557,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         return STEADY_IDLE;
     }
     if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
-        if (k->mean_switch) { /* an elastic joint's spring that touches within this step (as
+        if (!plain && k->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
             double kin[6];
             frame_kinematics(fr, p, kin);
@@ -576,11 +579,11 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double kin[6], *ro = kin, *vr = kin + 3;
     frame_kinematics(fr, p, kin);
     double vn = rd_dot(vr, u);
-    if (fl & RD_PT_VIRGIN && vn > 0 && !k->settling) return STEADY_NONE; /* its impact loss: subcontact */
+    if (fl & RD_PT_VIRGIN && vn > 0 && (plain || !k->settling)) return STEADY_NONE; /* its impact loss: subcontact */
     if (k->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
     double stretch = depth - k->pset[st];
     if (!(stretch >= 0)) return STEADY_NONE; /* below its permanent set: subcontact idles it */
-    if (k->mean_switch && !(stretch >= 0.5 * fabs(vn) * k->dt)) return STEADY_NONE; /* it lets go within
+    if (!plain && k->mean_switch && !(stretch >= 0.5 * fabs(vn) * k->dt)) return STEADY_NONE; /* it lets go within
                                                                                   this step */
     double fel = kA * stretch;
     double fn = fel - k->damp_coef * kA * vn;
@@ -595,7 +598,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
        (a bearing point's stored force pj[0] is then its elastic force kA * (depth - set), the
        product repeated here: the tension cap never holds a bearing point's force below it), and
        fn == fel (damp_coef is 0, and a NaN fn went to subcontact above) */
-    if (k->damped) {
+    if (!plain && k->damped) {
         double fd_prev = k->pj[st][0] - kA * (-k->pj[st][1] - k->pset[st]);
         if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, k->dt);
     }
@@ -932,17 +935,17 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int c
 }
 
 /* The points pt0 .. pt1 - 1 of a candidate face (point pt's subcontact: pt + dst), each by
- * steady_point, else subcontact; their forces into *a, the side's bearing and slipping counts
+ * steady_point (plain: its), else subcontact; their forces into *a, the side's bearing and slipping counts
  * into *na and *nslip. Returns the face's points inside. */
 static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j,
                                                              const steady_ctx *k, int pt0, int pt1, int dst,
                                                              const side_frame *fr, side_sums *a, int *na,
-                                                             int *nslip, const int nw)
+                                                             int *nslip, const int nw, const int plain)
 {
     int nin = 0, nbear = 0, nsl = 0; /* counts in locals: no state byte store reaches them */
     for (int pt = pt0; pt < pt1; pt++) {
         const int st = pt + dst;
-        const int found = RD_STEADY_PATH ? steady_point(s, c, k, pt, st, fr, a, nw) : STEADY_NONE;
+        const int found = RD_STEADY_PATH ? steady_point(s, c, k, pt, st, fr, a, nw, plain) : STEADY_NONE;
         if (found == STEADY_NONE) {
             if (subcontact(s, c, j, pt, st, a)) {
                 ++nbear;
@@ -980,6 +983,7 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
     const int cf0 = s->cf0[c->o], ncf = s->cf0[c->o + 1] - cf0;
     const int *pt0 = s->cf_pt0 + cf0;
     int *nactive = s->face_nactive + sd->face0;
+    const int plain = !k.mean_switch && !k.damped && !k.settling; /* steady_point's, but for late faces */
     for (int f = 0; f < ncf; f++) {
         const int cf = cf0 + f;
         double gap;
@@ -989,10 +993,15 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
             continue;
         }
         a.area = 0;
-        /* a mesh's face carries about one point: a copy of face_points for it, with no loop */
+        /* a mesh's face carries about one point: a copy of face_points for it, with no loop; and
+           copies for plain faces (steady_point) */
         const int p0 = pt0[f], p1 = pt0[f + 1];
-        nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw)
-                                  : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw);
+        if (plain && !k.facing)
+            nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 1)
+                                      : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 1);
+        else
+            nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 0)
+                                      : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 0);
         area += a.area;
         touch |= a.area > 0;
     }
