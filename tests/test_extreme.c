@@ -156,6 +156,27 @@ static void test_strong_and_fast_motion(void **state)
                "ground-motion stochastic seed 7 pga 0.4g duration 600\nmodel solve time 600\n", ten_s);
 }
 
+/* A grazing landing: without gravity, a block skims a long base at 5 m/s while closing on it
+ * at 2 mm/s, so its corners enter the contact band of the base's top face with an approach of
+ * 4e-4 of their speed (tangential motion: the top face does not count as approached, contact.c
+ * RD_APPROACH_FRACTION), while they lie metres inside the base's trailing side, which they
+ * approach at 5 m/s. That side was their entrance face (a crossing metres and seconds ago): an
+ * 8 m spring, and the run blew up at 1.69 s. A plane counts only if the point crossed it within
+ * the last steps (RD_ENTRY_STEPS), so the corners take the top face they lie on. */
+static void test_grazing_landing(void **state)
+{
+    (void)state;
+    const char *text =
+        "model gravity 0\n"
+        "block create brick size 20 4 0.5 position 0 0 -0.25 fixed name base\n"
+        "block create brick size 0.5 0.5 1.0 position -8 0 0.504 name b\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 spacing vertices\n"
+        "model timestep fixed 5e-5\nmodel settle off\n"
+        "block initial name b velocity 5 0 -0.002\nmodel solve time 2.5\n"
+        "output hdf5 'x.h5' interval 0.01\n";
+    check_case("grazing landing at 5 m/s", text, NULL);
+}
+
 /* A blow-up: a 2e5 m/s^2 rectangular pulse drags the block across its base (friction holds at
  * most tan(40) g) to over 1000 m/s within ~5 ms: the health check must stop the run as
  * UNSTABLE, name the step, the body and the cause, and the file must keep every sample up to
@@ -202,6 +223,7 @@ int main(void)
         cmocka_unit_test(test_mass_ratio_stack),
         cmocka_unit_test(test_friction_limits),
         cmocka_unit_test(test_strong_and_fast_motion),
+        cmocka_unit_test(test_grazing_landing),
         cmocka_unit_test(test_blow_up_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

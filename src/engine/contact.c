@@ -10,8 +10,12 @@
  * plane it approaches (relative velocity into the plane), the time since it crossed is
  * depth / approach speed, and the smallest wins. A point that slid off the other body's top
  * face and comes back from the side is therefore pushed out through the side it crosses, never
- * "re-entering buried" below the top face. With no approach (contact made at rest), the
- * shallowest plane wins, and among planes equally shallow within the contact band, one that
+ * "re-entering buried" below the top face. A plane counts only if the point can have crossed it
+ * within the last RD_ENTRY_STEPS steps (depth <= 2 approach dt): a corner skimming into the band
+ * of a long base's top face, almost parallel to it, lies metres inside the base's trailing side,
+ * which it approaches at its full speed, and taking that side gave it a spring metres deep (a
+ * 4-drum column at 0.6 g gained 66 kJ in one step; tests/test_extreme.c test_grazing_landing).
+ * With no plane crossed (contact made at rest, or that skim), the shallowest plane wins, and among planes equally shallow within the contact band, one that
  * the point's own face looks at (a corner of two equal blocks bears on the top face, not on
  * the side plane it also lies on).
  * Faces that touch only later (a brick's sides, once it topples) carry their vertices as
@@ -70,6 +74,9 @@
 /* A plane counts as approached when the point moves into it faster than this fraction of its
  * relative speed (below, the motion is tangential: round-off must not pick a side face). */
 #define RD_APPROACH_FRACTION 1e-3
+/* A point found inside crossed a plane it approaches only if its depth below it is what it
+ * moved through in this many steps at its approach speed (entrance_face). */
+#define RD_ENTRY_STEPS 2.0
 /* steady_point is a pure shortcut of subcontact. Built with -DRD_STEADY_PATH=0 every point takes
  * subcontact, and every output must be bit-identical: tests/cli/steady_path.sh checks that on
  * scenes that visit every branch (bed, corners, late faces, slip, bonds, dashpots, mesh, drums). */
@@ -289,7 +296,8 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
     for (int k = 0; k < c->np; k++) {
         double depth = rd_max(-plane_dist(c->pl[k], p), 0.0);
         double approach = -rd_dot(vr, wn[k]); /* > 0: moving into plane k */
-        if (approach > RD_APPROACH_FRACTION * speed && approach > 0 && depth / approach < tmin) {
+        if (approach > RD_APPROACH_FRACTION * speed && approach > 0 && depth / approach < tmin &&
+            depth <= RD_ENTRY_STEPS * approach * s->dt) {
             tmin = depth / approach;
             best = k;
         }
