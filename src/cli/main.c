@@ -21,6 +21,20 @@ static void on_signal(int sig)
     rd_sim_request_stop();
 }
 
+/* Free body k left the scene (event "lost") without having met the overturn criterion: it fell
+ * off its support, and the engine counts that as overturned (engine/monitor.c). */
+static int fell_off(const rd_sim *sim, int k)
+{
+    int n;
+    const rd_event *ev = rd_sim_events(sim, &n);
+    for (int e = 0; e < n; e++) {
+        if (ev[e].body != k) continue;
+        if (!strcmp(ev[e].type, "overturn")) return 0;
+        if (!strcmp(ev[e].type, "lost")) return 1;
+    }
+    return 0;
+}
+
 static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
 {
     int invalid = s->status == RD_STATUS_PENETRATED || s->status == RD_STATUS_LOST;
@@ -37,7 +51,9 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
                    b->final_position[2]);
             continue;
         }
-        const char *what = b->overturned ? "OVERTURNED" : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
+        const char *what = b->overturned ? (fell_off(sim, k) ? "OVERTURNED (fell off its support, out of the scene)"
+                                                             : "OVERTURNED")
+                           : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
         printf("%s: %s", b->name, what);
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
         printf("; max tilt %.4g rad = %.3g alpha; max slide %.3g mm%s%s\n", b->max_tilt, b->max_tilt_ratio,

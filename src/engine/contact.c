@@ -15,6 +15,11 @@
  * of a long base's top face, almost parallel to it, lies metres inside the base's trailing side,
  * which it approaches at its full speed, and taking that side gave it a spring metres deep (a
  * 4-drum column at 0.6 g gained 66 kJ in one step; tests/test_extreme.c test_grazing_landing).
+ * A point that comes in level with a face its own face looks at (within the band of its plane)
+ * while that rule picks a plane its face does not look at bears on the level face from where it
+ * is (its depth taken as its set): a block sliding back over its pedestal's edge, its points
+ * crossing the pedestal's side plane at the top face's level, was pushed back by that side
+ * (tests/cli/edge_slide.sh).
  * With no plane crossed (contact made at rest, or that skim), the shallowest plane wins, and among planes equally shallow within the contact band, one that
  * the point's own face looks at (a corner of two equal blocks bears on the top face, not on
  * the side plane it also lies on).
@@ -224,7 +229,10 @@ static inline bore last_bore(const rd_sim *s, const rd_joint *j, int st, double 
     if (!(fl & RD_PT_ACTIVE)) return b;
     b.bonded = (fl & RD_PT_BONDED) != 0;
     b.s = -s->pj[st][1] - s->pset[st]; /* pj: its last normal force and minus its depth */
-    b.fd = s->pj[st][0] - j->kn * A * b.s;
+    /* only a dashpot or a bond's tension cap makes a normal force other than the spring's: the
+       difference is then exactly 0, not the round-off of -pj[1] - pset (an elastic joint's
+       spring that switched within the step stored pj[1] = -(pset + its mean stretch)) */
+    b.fd = j->damping > 0 || b.bonded ? s->pj[st][0] - j->kn * A * b.s : 0.0;
     b.lim = rd_max(s->pj[st][0], 0.0) * j->tan_phi + ((fl & RD_PT_BONDED) ? j->cohesion * A : 0.0);
     return b;
 }
@@ -286,26 +294,33 @@ static const double *owner_normal(const rd_sim *s, side_ctx *c)
 }
 
 /* The entrance face of point pt (at p, owner frame) that has just been found inside (see the
- * header); its own normal (rd_sim.pn: its face's, or a merged point's mean) breaks ties. */
-static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const double p[3], const double vr[3])
+ * header); its own normal (rd_sim.pn: its face's, or a merged point's mean) breaks ties.
+ * *level_set: 1 when the face is the level one the point's face looks at, taken instead of a
+ * crossed plane it does not look at (the point bears from where it is). */
+static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const double p[3], const double vr[3],
+                         int *level_set)
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
     double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX, m[3];
     rd_mat_vec(s->R[c->o], s->pn[pt], m);
-    int best = -1, shallow = -1;
+    int best = -1, shallow = -1, level = -1;
+    double lmin = DBL_MAX;
     for (int k = 0; k < c->np; k++) {
         double depth = rd_max(-plane_dist(c->pl[k], p), 0.0);
         double approach = -rd_dot(vr, wn[k]); /* > 0: moving into plane k */
+        int looks = rd_dot(m, wn[k]) <= -RD_FACING_COS; /* the point's face looks at plane k */
+        if (looks && depth <= c->tol && depth < lmin) { lmin = depth; level = k; }
         if (approach > RD_APPROACH_FRACTION * speed && approach > 0 && depth / approach < tmin &&
             depth <= RD_ENTRY_STEPS * approach * s->dt) {
             tmin = depth / approach;
             best = k;
         }
         /* the shallowest plane; within the contact band, one the point's face looks at */
-        double rank = depth + (rd_dot(m, wn[k]) <= -RD_FACING_COS ? 0.0 : c->tol);
+        double rank = depth + (looks ? 0.0 : c->tol);
         if (rank < dmin) { dmin = rank; shallow = k; }
     }
-    return best >= 0 ? best : shallow;
+    *level_set = level >= 0 && best >= 0 && rd_dot(m, wn[best]) > -RD_FACING_COS;
+    return *level_set ? level : best >= 0 ? best : shallow;
 }
 
 /* A bearing subcontact's results (A: its area A', m^2; fn: normal force, N; u: its entrance
@@ -364,9 +379,10 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (!(*fl & RD_PT_INSIDE)) {
         point_kinematics(s, c, pt, kin);
         moved = 1;
-        s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 3);
+        int level_set;
+        s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 3, &level_set);
         *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
-        s->pset[st] = 0;
+        s->pset[st] = level_set ? rd_max(-plane_dist(c->pl[s->pface[st]], p), 0.0) : 0;
     }
     int e = s->pface[st];
     const double *u = c->wn[e]; /* outward normal of the entrance face */

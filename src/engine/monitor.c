@@ -280,13 +280,25 @@ static int inside_convex(const rd_sim *s, int j, const double c[3])
     return 1;
 }
 
+/* Body k overturned and is now falling out of the scene (or through an edge), or it fell off
+ * the support it rested on: it failed, and that is its verdict (overturned), even if it passed
+ * upright again tumbling down (a "recover" that is no recovery). */
+static void fell_over(rd_sim *s, int k)
+{
+    s->watch[k].over = 1;
+    s->watch[k].sum->overturned = 1;
+}
+
 /* No silent wrong answers: a free body whose centre of mass is inside another (convex) body
  * has passed through its support, and one whose centre of mass has fallen below the scene's
  * floor by more than its own size has left the scene; either ends the run (status
  * RD_STATUS_PENETRATED or RD_STATUS_LOST, the cause in s->errmsg). A body that overturned
- * (by the scenario's criterion) before it fell off is a result, not an error: it gets a "lost"
- * event and the run goes on. Called every few steps, while settling too. Returns 1 when the run
- * must stop. */
+ * (by the scenario's criterion) before it fell off, or that rested on a support when the
+ * shaking began (it bore on it: a capital thrown off a collapsing column falls flat, never
+ * tilting past its criterion; a slab slides off its pad), is a result, not an error: it failed (overturned, at the time it left if it never
+ * met the criterion), gets a "lost" event, and the run goes on. Only a body that never rested on
+ * anything (placed beside its pad) or that left while settling stops the run. Called every few
+ * steps, while settling too. Returns 1 when the run must stop. */
 /* Body i's centre of mass inside convex body j: one error, 1. Only bodies whose boxes overlap
  * (the broad phase's live pairs) can hold each other's centre, so only those are tested: the
  * check costs O(bodies), not O(bodies^2). */
@@ -294,7 +306,8 @@ static int penetrated(rd_sim *s, int i, int j, const char *stage)
 {
     if (s->fixed[i] || !s->convex[j] || !inside_convex(s, j, s->x[i])) return 0;
     int k = s->free_of[i];
-    if (k >= 0 && s->watch[k].sum->overturned) {
+    if (k >= 0 && s->watch[k].over_once) {
+        fell_over(s, k);
         /* it had overturned (the verdict stands) and, falling, crossed the other body edge to
            edge where no subcontact point guards (a documented limit): the run ends there */
         rd_event_add(s, s->t, k, "lost", 0.0);
@@ -319,9 +332,14 @@ int rd_monitor_escape(rd_sim *s)
     for (int k = 0; k < s->nfree; k++) {
         int i = s->free_body[k];
         const double *c = s->x[i];
-        if (c[2] < s->floor_z - s->poly[i].radius && s->watch[k].sum->overturned) {
-            if (!s->watch[k].lost) rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
-            s->watch[k].lost = 1;
+        rd_watch *w = &s->watch[k];
+        if (c[2] < s->floor_z - s->poly[i].radius && !s->settling && (w->over_once || w->rest_area > 0)) {
+            if (!w->lost) {
+                rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
+                if (!w->over_once) w->sum->overturn_time = s->t; /* fell off its support */
+            }
+            w->lost = 1;
+            fell_over(s, k);
         } else if (c[2] < s->floor_z - s->poly[i].radius) {
             snprintf(s->errmsg, sizeof s->errmsg, "body '%s' left the scene%s at t = %.6g s (step %ld): its centre of "
                      "mass is %.3g m below the lowest fixed body (nothing holds it)", s->sc.bodies[i].name, stage,
@@ -529,6 +547,7 @@ static void watch_step(rd_sim *s, int k)
     w->sliding = sliding;
 
     int over = criterion_met(s, k, z);
+    if (over) w->over_once = 1;
     if (over != w->over) {
         double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
         rd_event_add(s, s->t, k, over ? "overturn" : "recover", tilt);

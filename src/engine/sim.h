@@ -149,10 +149,14 @@ typedef struct rd_watch {
     double rock_peak;    /* largest |rocking angle| since the last impact, rad */
     int sliding;         /* currently sliding as a whole (every active point at the Coulomb limit) */
     int over;            /* currently beyond the overturn criterion */
+    int over_once;       /* has met it since shaking began: a body that overturned keeps that
+                            verdict when it then leaves the scene, even if, tumbling as it falls,
+                            it passes upright again (monitor.c: rd_monitor_escape) */
     int touched;         /* 1 once it had contact area while shaking */
     double z_start;      /* height of the centre of mass as placed, m */
     rd_body_summary *sum;/* what the run found: &rd_sim.body_sum[k] */
-    int lost;            /* fell out of the scene after overturning (event "lost" written) */
+    int lost;            /* fell out of the scene after overturning, or after resting on a
+                            support (event "lost" written): the verdict is final */
 } rd_watch;
 
 struct rd_sim {

@@ -7,6 +7,13 @@
 # "lost" and no verdict for either block (seen on a six-drum column at 0.6 g whose upper drums
 # fell off the stylobate). Checks: the run ends "done"; the slender block is overturned, has
 # one "lost" event and no "recover" after it; the stocky block has its verdict.
+# Second case: a body that passes upright again while it is still falling, before it is below
+# the scene: the YADE two-block stack at 1.0 g along 30 deg, whose upper block overturns at
+# 1.80 s, falls off the base tumbling, "recovers" at 2.78 s and leaves the scene at 2.90 s. It
+# had lost its verdict there (status "lost", no verdict for either block). Checks: exit 0, the
+# upper block overturned at 1.80 s with one "lost" event, the lower block's verdict stands, and
+# the case still takes that path (a "recover" before "lost": fails otherwise, so a change of
+# trajectory cannot turn the check into one that passes without exercising it).
 set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/lost_tumble; rm -rf "$T"; mkdir -p "$T"
 cat > "$T/fall.dat" <<'EOS'
@@ -38,4 +45,28 @@ ok = (a["status"] == 0 and a["overturned"][names.index("slender")] == 1 and
       not any(k == "recover" and t > lost[0] for t, k in slender))
 if not ok:
     print("FAIL lost-tumble: the fallen block lost its verdict"); sys.exit(1)
+PY
+
+out=$("$BIN" run tests/data/yade/stack.dat --set motion.amplitude=1.0g --set motion.direction=30 \
+      --set model.duration=4 -o "$T/stack.h5" 2>&1); rc=$?
+[ "$rc" -eq 0 ] || { echo "FAIL lost-tumble (stack): exit $rc"; printf '%s\n' "$out" | tail -5; exit 1; }
+/usr/bin/python3 - "$T/stack.h5" <<'PY' || exit 1
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+a = f["summary"].attrs
+names = [n.decode() for n in f["body"][:]]
+ev = f["events"]
+kinds = {v: k for k, v in h5py.check_enum_dtype(ev["type"].dtype).items()}
+upper = [(float(t), kinds[int(y)]) for t, b, y in zip(ev["time"][:], ev["body"][:], ev["type"][:])
+         if b.decode() == "upper" and kinds[int(y)] in ("overturn", "recover", "lost")]
+print("stack: status %d; overturned %s; upper's events: %s" % (a["status"], list(a["overturned"]),
+      [(round(t, 3), k) for t, k in upper]))
+lost = [t for t, k in upper if k == "lost"]
+if len(lost) != 1 or not any(k == "recover" and t < lost[0] for t, k in upper):
+    print("FAIL lost-tumble (stack): the case no longer passes upright before it leaves the scene; "
+          "pick another that does"); sys.exit(1)
+ok = (a["status"] == 0 and a["overturned"][names.index("upper")] == 1 and
+      a["overturned"][names.index("lower")] == 0)
+if not ok:
+    print("FAIL lost-tumble (stack): the fallen block lost its verdict"); sys.exit(1)
 PY

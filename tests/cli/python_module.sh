@@ -84,8 +84,16 @@ tab = rockdem.sweep(os.path.join(T, "block.dat"), os.path.join(T, "sw.h5"),
                     scales=["%.4gg" % (0.5 * a_th), "%.4gg" % (2 * a_th)], jobs=2)
 assert tab.sizes["case"] == 2 and set(tab["status"].values) <= {"done", "overturned"}
 assert list(tab["overturned"].values) == [0, 1], tab["overturned"].values
-# errors: one line naming the problem
+# errors: one line naming the problem; a run whose energy balance fails (a block dropped at 5 m/s
+# on elastic springs at 0.91 of the stable step) is refused as the command line refuses it
+untrusted = ("block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base\n"
+             "block create brick size 0.5 0.5 1.0 position 0 0 0.6 name b\n"
+             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 restitution 1 spacing vertices\n"
+             "model timestep fixed 1.9e-4\nmodel settle off\nblock initial name b velocity 0 0 -5\n"
+             "model solve time 0.5\noutput hdf5 'x.h5' interval 0.01\n")
 for bad, want in ((lambda: sc2.set("motion.nonsense", "1"), "unknown key"),
+                  (lambda: rockdem.Scenario.from_text(untrusted).run(os.path.join(T, "untrusted.h5"), progress=False),
+                   "energy balance"),
                   (lambda: rockdem.Scenario.from_text("block create brick size -1 1 1\n"), "scenario.dat:1"),
                   (lambda: rockdem.Scenario.load(os.path.join(T, "nope.dat")), "nope.dat")):
     try:

@@ -122,7 +122,7 @@ class Scenario:
             message = (lib.rd_sim_error(sim) or b"").decode("utf-8", "replace")
         finally:
             lib.rd_sim_free(sim)
-        if STATUS[status] in ("unstable", "io_error", "error", "penetrated", "lost"):
+        if STATUS[status] in ("unstable", "io_error", "error", "penetrated", "lost", "untrusted"):
             raise RockdemError("%s: %s" % (self.source, message))
         return Run(os.fspath(output), summary, events)
 

@@ -14,7 +14,8 @@ RD_ERROR_MAX = 512    # include/rockdem/error.h
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 
-STATUS = ("done", "overturned", "interrupted", "unstable", "io_error", "error", "penetrated", "lost")  # rd_status
+STATUS = ("done", "overturned", "interrupted", "unstable", "io_error", "error", "penetrated", "lost",
+          "untrusted")  # rd_status
 
 
 class Error(ctypes.Structure):
