@@ -20,9 +20,9 @@
  * is (its depth taken as its set): a block sliding back over its pedestal's edge, its points
  * crossing the pedestal's side plane at the top face's level, was pushed back by that side
  * (tests/cli/edge_slide.sh).
- * With no plane crossed (contact made at rest, or that skim), the shallowest plane wins, and among planes equally shallow within the contact band, one that
- * the point's own face looks at (a corner of two equal blocks bears on the top face, not on
- * the side plane it also lies on).
+ * With no plane crossed (contact made at rest, or that skim), the shallowest plane wins, and
+ * among planes equally shallow within the contact band, one that the point's own face looks at
+ * (a corner of two equal blocks bears on the top face, not on the side plane it also lies on).
  * Faces that touch only later (a brick's sides, once it topples) carry their vertices as
  * points that take part only while their face looks at the entrance face (outward normals at
  * more than 135 deg, RD_FACING_COS): a brick's corner belongs to its base while it rocks, and
@@ -555,8 +555,8 @@ static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k,
  * on an elastic joint, none within w/2 of its spring's switch (subcontact's mean force).
  * plain (a constant at each call): the joint has no dashpot and loses energy at impacts (no mean
  * force at a switch), the bodies are not settling and the face is not a late one, so those tests
- * are left out (the bed: 4 % fewer instructions). Returns what it found (STEADY_OUT, STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored)
- * when the point needs subcontact. */
+ * are left out (the bed: 4 % fewer instructions). Returns what it found (STEADY_OUT,
+ * STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored) when the point needs subcontact. */
 static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const steady_ctx *k, int pt,
                                                              int st, const side_frame *fr, side_sums *a, const int nw,
                                                              const int plain)
@@ -959,8 +959,8 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int c
 }
 
 /* The points pt0 .. pt1 - 1 of a candidate face (point pt's subcontact: pt + dst), each by
- * steady_point (plain: its), else subcontact; their forces into *a, the side's bearing and slipping counts
- * into *na and *nslip. Returns the face's points inside. */
+ * steady_point (plain: its), else subcontact; their forces into *a, the side's bearing and
+ * slipping counts into *na and *nslip. Returns the face's points inside. */
 static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j,
                                                              const steady_ctx *k, int pt0, int pt1, int dst,
                                                              const side_frame *fr, side_sums *a, int *na,

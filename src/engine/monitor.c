@@ -293,12 +293,12 @@ static void fell_over(rd_sim *s, int k)
  * has passed through its support, and one whose centre of mass has fallen below the scene's
  * floor by more than its own size has left the scene; either ends the run (status
  * RD_STATUS_PENETRATED or RD_STATUS_LOST, the cause in s->errmsg). A body that overturned
- * (by the scenario's criterion) before it fell off, or that rested on a support when the
- * shaking began (it bore on it: a capital thrown off a collapsing column falls flat, never
- * tilting past its criterion; a slab slides off its pad), is a result, not an error: it failed (overturned, at the time it left if it never
- * met the criterion), gets a "lost" event, and the run goes on. Only a body that never rested on
- * anything (placed beside its pad) or that left while settling stops the run. Called every few
- * steps, while settling too. Returns 1 when the run must stop. */
+ * (by the scenario's criterion) before it fell off, or that bore on a support when the shaking
+ * began (a capital thrown off a collapsing column falls flat, never tilting past its criterion;
+ * a block slides off its pad), is a result, not an error: it failed (overturned, at the time it
+ * left if it never met the criterion), gets a "lost" event, and the run goes on. Only a body
+ * that never bore on anything (placed beside its pad) or that left while settling stops the
+ * run. Called every few steps, while settling too. Returns 1 when the run must stop. */
 /* Body i's centre of mass inside convex body j: one error, 1. Only bodies whose boxes overlap
  * (the broad phase's live pairs) can hold each other's centre, so only those are tested: the
  * check costs O(bodies), not O(bodies^2). */
