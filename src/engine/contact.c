@@ -295,15 +295,16 @@ static const double *owner_normal(const rd_sim *s, side_ctx *c)
 
 /* The entrance face of point pt (at p, owner frame) that has just been found inside (see the
  * header); its own normal (rd_sim.pn: its face's, or a merged point's mean) breaks ties.
- * *level_set: 1 when the face is the level one the point's face looks at, taken instead of a
- * crossed plane it does not look at (the point bears from where it is). */
+ * *set: the point's permanent set, m: its depth below the face when that is the level one its
+ * face looks at, taken instead of a crossed plane it does not look at (it bears from where it
+ * is), else 0. */
 static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const double p[3], const double vr[3],
-                         int *level_set)
+                         double *set)
 {
     const double (*wn)[3] = s->wn + s->face0[c->t];
     double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX, m[3];
     rd_mat_vec(s->R[c->o], s->pn[pt], m);
-    int best = -1, shallow = -1, level = -1;
+    int best = -1, shallow = -1, level = -1, best_looks = 0;
     double lmin = DBL_MAX;
     for (int k = 0; k < c->np; k++) {
         double depth = rd_max(-plane_dist(c->pl[k], p), 0.0);
@@ -314,13 +315,15 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
             depth <= RD_ENTRY_STEPS * approach * s->dt) {
             tmin = depth / approach;
             best = k;
+            best_looks = looks;
         }
         /* the shallowest plane; within the contact band, one the point's face looks at */
         double rank = depth + (looks ? 0.0 : c->tol);
         if (rank < dmin) { dmin = rank; shallow = k; }
     }
-    *level_set = level >= 0 && best >= 0 && rd_dot(m, wn[best]) > -RD_FACING_COS;
-    return *level_set ? level : best >= 0 ? best : shallow;
+    const int level_set = level >= 0 && best >= 0 && !best_looks;
+    *set = level_set ? lmin : 0;
+    return level_set ? level : best >= 0 ? best : shallow;
 }
 
 /* A bearing subcontact's results (A: its area A', m^2; fn: normal force, N; u: its entrance
@@ -379,10 +382,8 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (!(*fl & RD_PT_INSIDE)) {
         point_kinematics(s, c, pt, kin);
         moved = 1;
-        int level_set;
-        s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 3, &level_set);
+        s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 3, &s->pset[st]);
         *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
-        s->pset[st] = level_set ? rd_max(-plane_dist(c->pl[s->pface[st]], p), 0.0) : 0;
     }
     int e = s->pface[st];
     const double *u = c->wn[e]; /* outward normal of the entrance face */

@@ -28,39 +28,34 @@ output hdf5 'fall.h5' interval 0.01
 EOS
 out=$("$BIN" run "$T/fall.dat" -o "$T/fall.h5" 2>&1); rc=$?
 [ "$rc" -eq 0 ] || { echo "FAIL lost-tumble: exit $rc"; printf '%s\n' "$out" | tail -5; exit 1; }
-/usr/bin/python3 - "$T/fall.h5" <<'PY' || exit 1
+out=$("$BIN" run tests/data/yade/stack.dat --set motion.amplitude=1.0g --set motion.direction=30 \
+      --set model.duration=4 -o "$T/stack.h5" 2>&1); rc=$?
+[ "$rc" -eq 0 ] || { echo "FAIL lost-tumble (stack): exit $rc"; printf '%s\n' "$out" | tail -5; exit 1; }
+/usr/bin/python3 - "$T/fall.h5" "$T/stack.h5" <<'PY' || exit 1
 import sys, h5py
-f = h5py.File(sys.argv[1], "r")
-a = f["summary"].attrs
-names = [n.decode() for n in f["body"][:]]
-ev = f["events"]
-kinds = h5py.check_enum_dtype(ev["type"].dtype)
-slender = [(float(t), {v: k for k, v in kinds.items()}[int(y)]) for t, b, y in
-           zip(ev["time"][:], ev["body"][:], ev["type"][:]) if b.decode() == "slender"]
+
+def run(path, body):
+    """The run's summary attributes, its body names, and body's overturn, recover and lost
+    events as (time, kind)."""
+    f = h5py.File(path, "r")
+    ev = f["events"]
+    kinds = {v: k for k, v in h5py.check_enum_dtype(ev["type"].dtype).items()}
+    mine = [(float(t), kinds[int(y)]) for t, b, y in zip(ev["time"][:], ev["body"][:], ev["type"][:])
+            if b.decode() == body and kinds[int(y)] in ("overturn", "recover", "lost")]
+    a = f["summary"].attrs
+    print("%s: status %d; overturned %s; %s's events: %s" % (path.rsplit("/", 1)[-1], a["status"],
+          list(a["overturned"]), body, [(round(t, 3), k) for t, k in mine]))
+    return a, [n.decode() for n in f["body"][:]], mine
+
+a, names, slender = run(sys.argv[1], "slender")
 lost = [t for t, k in slender if k == "lost"]
-print("status %d; overturned %s; slender's events: %s" % (a["status"], list(a["overturned"]),
-      [(round(t, 3), k) for t, k in slender if k in ("overturn", "recover", "lost")]))
 ok = (a["status"] == 0 and a["overturned"][names.index("slender")] == 1 and
       a["overturned"][names.index("stocky")] == 0 and len(lost) == 1 and
       not any(k == "recover" and t > lost[0] for t, k in slender))
 if not ok:
     print("FAIL lost-tumble: the fallen block lost its verdict"); sys.exit(1)
-PY
 
-out=$("$BIN" run tests/data/yade/stack.dat --set motion.amplitude=1.0g --set motion.direction=30 \
-      --set model.duration=4 -o "$T/stack.h5" 2>&1); rc=$?
-[ "$rc" -eq 0 ] || { echo "FAIL lost-tumble (stack): exit $rc"; printf '%s\n' "$out" | tail -5; exit 1; }
-/usr/bin/python3 - "$T/stack.h5" <<'PY' || exit 1
-import sys, h5py
-f = h5py.File(sys.argv[1], "r")
-a = f["summary"].attrs
-names = [n.decode() for n in f["body"][:]]
-ev = f["events"]
-kinds = {v: k for k, v in h5py.check_enum_dtype(ev["type"].dtype).items()}
-upper = [(float(t), kinds[int(y)]) for t, b, y in zip(ev["time"][:], ev["body"][:], ev["type"][:])
-         if b.decode() == "upper" and kinds[int(y)] in ("overturn", "recover", "lost")]
-print("stack: status %d; overturned %s; upper's events: %s" % (a["status"], list(a["overturned"]),
-      [(round(t, 3), k) for t, k in upper]))
+a, names, upper = run(sys.argv[2], "upper")
 lost = [t for t, k in upper if k == "lost"]
 if len(lost) != 1 or not any(k == "recover" and t < lost[0] for t, k in upper):
     print("FAIL lost-tumble (stack): the case no longer passes upright before it leaves the scene; "
