@@ -124,7 +124,7 @@ static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double 
         s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     }
     s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
-    s->edepth[e][0] = s->edepth[e][1] = 0;
+    s->edepth[e][0] = s->edepth[e][1] = s->edepth[e][2] = 0;
     s->eon[e] = 0;
 }
 
@@ -199,20 +199,93 @@ static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, de
     }
 }
 
+/* The lower envelope of an edge's depth lines: piece i is plane k[i], active from u0[i] to the
+ * next piece's u0 (the last one to u = 1). Each next piece's line is less steep, so a plane
+ * comes at most once. */
+typedef struct envelope {
+    int n;
+    int k[RD_MAX_PLANES];
+    double u0[RD_MAX_PLANES];
+} envelope;
+
+static void walk(const edge_lines *L, envelope *E)
+{
+    const double *c = L->c, *sl = L->sl;
+    int act = 0;
+    for (int k = 1; k < L->np; k++) /* the nearest plane at u = 0, the least rising of ties */
+        if (c[k] < c[act] || (c[k] == c[act] && sl[k] < sl[act])) act = k;
+    double u = 0;
+    E->n = 0;
+    for (;;) {
+        E->k[E->n] = act;
+        E->u0[E->n++] = u;
+        double gn = 1, rn = 0; /* the next breakpoint, as deepest's */
+        int next = -1;
+        for (int k = 0; k < L->np; k++) {
+            double rate = sl[act] - sl[k];
+            if (!(rate > 0)) continue;
+            double gap = c[k] - c[act], lhs = gap * rn, rhs = gn * rate;
+            if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) { gn = gap; rn = rate; next = k; }
+        }
+        if (next < 0 || gn / rn >= 1 || E->n == RD_MAX_PLANES) return;
+        act = next;
+        u = fmax(u, gn / rn);
+    }
+}
+
+/* The two ends of an edge's bearing part, where the other body carries no points (a fixed
+ * pedestal's edge in a block's base): the piece of the envelope at its deepest point whose
+ * line is the more level of the two there (the plane the edge lies on: the block's base), and
+ * its two ends, each a spring as 3DEC's corners of the polygon where the faces overlap. An end
+ * of the edge has that plane's normal as its depth gradient; a kink with a piece sloping the
+ * other way (an edge across a ridge) the kink's (see the header), bounded by both normals; a
+ * kink with a steeper piece sloping the same way (the side of the block the edge runs out
+ * through) the plane's normal, the kink's gradient there being ill-conditioned when the two
+ * slopes come close (its error is the ratio of the slopes, 0 for an edge across a side). A
+ * level edge in the face thus bears at both ends, not at its middle: the depth's largest point
+ * jumped from end to end as it tilted by a hair, a kink in the potential at the rest pose, and
+ * the shaken slab on a smaller pad that bore on those points made energy (0.8 of its energy
+ * scale in 3 s at 0.6 g). */
+static void plateau(const rd_sim *s, int o, const edge_lines *L, deep end[2])
+{
+    const double (*n)[3] = s->wn + s->face0[o];
+    envelope E;
+    walk(L, &E);
+    int top = 0; /* the first falling piece: the deepest point is its start */
+    while (top < E.n && !(L->sl[E.k[top]] < 0)) top++;
+    int p = top == E.n ? E.n - 1 : top == 0 ? 0 : fabs(L->sl[E.k[top - 1]]) <= fabs(L->sl[E.k[top]]) ? top - 1 : top;
+    const int kp = E.k[p];
+    const double sp = L->sl[kp];
+    for (int j = 0; j < 2; j++) {
+        int m = j ? (p + 1 < E.n ? p + 1 : -1) : p - 1; /* the neighbouring piece at this end */
+        deep *d = &end[j];
+        d->u = j ? (m >= 0 ? E.u0[m] : 1.0) : E.u0[p];
+        d->d = L->c[kp] + sp * d->u;
+        double sm = m >= 0 ? L->sl[E.k[m]] : 0;
+        if (m >= 0 && sp * sm < 0) {
+            const double *nm = n[E.k[m]];
+            for (int i = 0; i < 3; i++) d->g[i] = (sp * nm[i] - sm * n[kp][i]) / (sp - sm);
+        } else {
+            rd_copy3(n[kp], d->g);
+        }
+    }
+}
+
 /* Force of edge slot e at world point q: the normal spring fn = kA * stretch against the depth
  * gradient g, and the Coulomb shear on the plane normal to g. */
-static void edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double q[3],
-                       const double g[3], double stretch, double kA, double sA)
+static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double q[3],
+                      const double g[3], double stretch, double kA, double sA)
 {
     const int o = sd->owner, t = sd->other;
     double ro[3], rt[3], vr[3], gn = rd_norm(g), n[3];
     for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
     rd_law_relative_velocity(s, o, t, ro, rt, vr);
     double *fs = s->efs[e], fn = kA * stretch;
-    rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
+    int slips = rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
     double F[3] = {-fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2]};
     rd_law_apply(F, ro, rt, s->f[o], s->tq[o], !s->fixed[t], s->f[t], s->tq[t]);
     s->edepth[e][0] = stretch;
+    return slips;
 }
 
 /* Per vertex of t, found once per side and step when an edge needs it: its distances to o's
@@ -409,6 +482,35 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
     return top > floor;
 }
 
+/* Slot e's spring at point dp of edge a-b (world): it starts once dp lies deeper than floor,
+ * from depth d0 (its set), bears while stretched and is let go at zero stretch. Its area A'
+ * (m^2) joins the monitor's tally w (may be NULL) while it bears, as a vertex subcontact's. */
+static void edge_spring(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double *a, const double *b,
+                        const deep *dp, double floor, double d0, double A, rd_watch *w)
+{
+    double kA = j->kn * A, sA = j->ks * A;
+    int fresh = !s->eon[e];
+    if (fresh) {
+        if (!(dp->d > floor)) return;
+        s->eon[e] = 1;
+        s->edepth[e][1] = d0;
+    }
+    double q[3], stretch = dp->d - s->edepth[e][1];
+    for (int c = 0; c < 3; c++) q[c] = a[c] + dp->u * (b[c] - a[c]);
+    if (!(stretch > 0) && !fresh) {
+        edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp->g);
+        return;
+    }
+    int slips = edge_force(s, sd, j, e, q, dp->g, stretch > 0 ? stretch : 0, kA, sA);
+    s->edepth[e][2] = dp->u;
+    if (w && stretch > 0) {
+        w->area += A;
+        w->nactive++;
+        w->nslip += slips;
+        w->touched |= s->shaking;
+    }
+}
+
 void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist, const uint64_t *mask)
 {
     if (sd->nedge == 0) return;
@@ -419,9 +521,10 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     const rd_poly *pt = &s->poly[t];
     if (pt->nv > RD_EDGE_MAX_VERTS || sd->nedge > RD_EDGE_MAX_EDGES) return;
     const rd_joint *j = &s->joint[pr->joint];
-    double A = sd->weight * sd->edge_area, kA = j->kn * A, sA = j->ks * A;
+    const int ends = sd->edge_ends;
+    double A = sd->weight * sd->edge_area / ends, kA = j->kn * A, sA = j->ks * A; /* per spring */
     double flat = RD_EDGE_FLAT * RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
-    int t_points = pr->nside == 2; /* t's vertices are subcontact points against o */
+    int t_points = ends == 1; /* t's vertices are subcontact points against o */
     vinfo vi;
     vi.dist = dist;
     vi.mask = mask;
@@ -442,6 +545,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     }
     if (!held) sure_codes(&vi, pt->nv);
     edge_lines L;
+    rd_watch *w = rd_monitor_contact_watch(s, o, t);
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
     int cand[RD_EDGE_MAX_EDGES], nc = 0, clear = !held;
@@ -451,48 +555,43 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
         const int loose_out = !held && (vi.sure[a] & vi.sure[b]);
         int keep = held ? (vi.word[a] | vi.word[b]) && !(vi.word[a] & vi.word[b])
                         : !loose_out && !(vertex_code(&vi, a) & vertex_code(&vi, b));
+        int bears = on[ends * i] | on[ends * i + ends - 1];
         cand[nc] = i;
-        nc += on[i] | keep;
-        clear &= loose_out && !on[i];
+        nc += bears | keep;
+        clear &= loose_out && !bears;
     }
     sd->edges_clear = clear && s->fixed[t] ? s->box_builds[o] + 1 : 0;
     for (int c = 0; c < nc; c++) {
-        int i = cand[c], e = sd->edge0 + i, va = ev[i][0], vb = ev[i][1];
-        if (s->eon[e] ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {
-            edge_release(s, sd, e, kA, sA, j->tan_phi, NULL, NULL); /* bearing: wholly beyond one side of
-                                                           o's box; else: cannot start */
+        int i = cand[c], e = sd->edge0 + ends * i, va = ev[i][0], vb = ev[i][1];
+        int bears = s->eon[e] | s->eon[e + ends - 1];
+        if (bears ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {
+            for (int k = 0; k < ends; k++) /* bearing: wholly beyond one side of o's box; else:
+                                              cannot start */
+                edge_release(s, sd, e + k, kA, sA, j->tan_phi, NULL, NULL);
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
         lines(s, o, a, b, vertex_row(&vi, va), vertex_row(&vi, vb), &L);
-        deep dp;
-        deepest(s, o, &L, flat, &dp);
-        int fresh = !s->eon[e];
-        if (fresh) {
-            /* onset where the edge lies deeper than both ends (points) or enters o (no points):
-               the spring starts from here (from 0 where t carries no points: its edge starts
-               bearing as it enters o) */
-            double floor = t_points ? (vi.d[va] > vi.d[vb] ? vi.d[va] : vi.d[vb]) : 0;
-            if (!(dp.d > (floor > 0 ? floor : 0))) continue;
-            s->eon[e] = 1;
-            s->edepth[e][1] = t_points ? dp.d : 0;
+        if (t_points) {
+            /* onset where the edge lies deeper than both ends: the spring starts from here */
+            deep dp;
+            deepest(s, o, &L, flat, &dp);
+            double floor = vi.d[va] > vi.d[vb] ? vi.d[va] : vi.d[vb];
+            edge_spring(s, sd, j, e, a, b, &dp, floor > 0 ? floor : 0, dp.d, A, w);
+        } else {
+            /* each end of the bearing part from its entry into o (from depth 0) */
+            deep dp[2];
+            plateau(s, o, &L, dp);
+            for (int k = 0; k < 2; k++) edge_spring(s, sd, j, e + k, a, b, &dp[k], 0, 0, A, w);
         }
-        /* the episode lasts while the spring is compressed: it ends at zero stretch */
-        double q[3], stretch = dp.d - s->edepth[e][1];
-        for (int c = 0; c < 3; c++) q[c] = a[c] + dp.u * (b[c] - a[c]);
-        if (!(stretch > 0) && !fresh) {
-            edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp.g);
-            continue;
-        }
-        edge_force(s, sd, j, e, q, dp.g, stretch > 0 ? stretch : 0, kA, sA);
     }
 }
 
 void rd_edge_reset(rd_sim *s, const rd_side *sd)
 {
-    for (int e = sd->edge0; e < sd->edge0 + sd->nedge; e++) {
+    for (int e = sd->edge0; e < sd->edge0 + sd->edge_ends * sd->nedge; e++) {
         s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
-        s->edepth[e][0] = s->edepth[e][1] = 0;
+        s->edepth[e][0] = s->edepth[e][1] = s->edepth[e][2] = 0;
         s->eon[e] = 0;
     }
 }
@@ -500,8 +599,8 @@ void rd_edge_reset(rd_sim *s, const rd_side *sd)
 double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd)
 {
     const rd_joint *j = &s->joint[pr->joint];
-    double A = sd->weight * sd->edge_area, kA = j->kn * A, sA = j->ks * A, en = 0;
-    for (int e = sd->edge0; e < sd->edge0 + sd->nedge; e++)
+    double A = sd->weight * sd->edge_area / sd->edge_ends, kA = j->kn * A, sA = j->ks * A, en = 0;
+    for (int e = sd->edge0; e < sd->edge0 + sd->edge_ends * sd->nedge; e++)
         if (s->eon[e]) en += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     return en;
 }

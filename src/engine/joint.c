@@ -10,7 +10,7 @@
  *   normal force   sum of the normal forces of the joint's active subcontacts, N
  *   shear force    vector sum of their shear forces, on the pair's second body, N
  *   area           active contact area, m^2 (half-weight sets summed where both bodies carry
- *                  points)
+ *                  points); these three count the bearing edge springs too (edge.c)
  *   centre of pressure   normal-force weighted mean of their positions, m
  *   opening        the largest gap among the subcontacts evaluated this step on the faces
  *                  turned towards the other body and lying over the other body's face (within
@@ -176,6 +176,31 @@ static int over_face(const rd_sim *s, int t, const double n[3], const double p[3
     return 1;
 }
 
+/* The bearing edge springs of side sd (edge.c; kn: the joint's KN, Pa/m) into m's normal force
+ * and area, the centre of pressure's sums (cop, fsum) and the shear on the second body (fs_b;
+ * sign: +1 where the owner is the second body, as the points'). A spring lies at its place
+ * along its edge of the other body t. */
+static void edge_measure(const rd_sim *s, const rd_side *sd, int t, double kn, double sign, rd_joint_state *m,
+                         double *fsum, double fs_b[3])
+{
+    const int (*ev)[2] = s->edge_v + s->edge_v0[t];
+    const double A = sd->weight * sd->edge_area / sd->edge_ends; /* per spring, m^2 */
+    for (int i = 0; i < sd->nedge; i++)
+        for (int k = 0; k < sd->edge_ends; k++) {
+            int e = sd->edge0 + sd->edge_ends * i + k;
+            if (!s->eon[e] || !(s->edepth[e][0] > 0)) continue;
+            const double *a = s->wv[s->vert0[t] + ev[i][0]], *b = s->wv[s->vert0[t] + ev[i][1]];
+            double fn = kn * A * s->edepth[e][0], u = s->edepth[e][2];
+            m->fn += fn;
+            m->area += A;
+            *fsum += fn;
+            for (int c = 0; c < 3; c++) {
+                m->cop[c] += fn * (a[c] + u * (b[c] - a[c]));
+                fs_b[c] += sign * s->efs[e][c];
+            }
+        }
+}
+
 void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
 {
     memset(m, 0, sizeof *m);
@@ -213,6 +238,7 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
                 }
             }
         }
+        edge_measure(s, sd, t, jt->kn, sign, m, &fsum, fs_b);
     }
     m->opening = live ? open : INFINITY;
     rd_copy3(fs_b, m->fs);

@@ -93,12 +93,15 @@ static int pair_create(rd_sim *s, int a, int b)
         reserve((void **)&s->fs, &s->cap_state, s->nstate + ns, sizeof *s->fs) ||
         reserve((void **)&s->face_nactive, &s->cap_face_state, s->nface_state + nf, sizeof *s->face_nactive))
         return -1;
-    /* edge subcontacts (edge.c): the other body's edges, where both bodies are convex */
+    /* edge subcontacts (edge.c): the other body's edges, where both bodies are convex; one
+       spring slot per edge where the other body carries points too, else two */
+    const int ends = pa && pb ? 1 : 2;
     int ea = pa && s->convex[a] ? rd_edge_count(&s->poly[b]) : 0;
     int eb = pb && s->convex[b] ? rd_edge_count(&s->poly[a]) : 0;
-    if (reserve((void **)&s->efs, &s->cap_efs, s->nedge_state + ea + eb, sizeof *s->efs) ||
-        reserve((void **)&s->edepth, &s->cap_edepth, s->nedge_state + ea + eb, sizeof *s->edepth) ||
-        reserve((void **)&s->eon, &s->cap_eon, s->nedge_state + ea + eb, sizeof *s->eon))
+    int nslot = ends * (ea + eb);
+    if (reserve((void **)&s->efs, &s->cap_efs, s->nedge_state + nslot, sizeof *s->efs) ||
+        reserve((void **)&s->edepth, &s->cap_edepth, s->nedge_state + nslot, sizeof *s->edepth) ||
+        reserve((void **)&s->eon, &s->cap_eon, s->nedge_state + nslot, sizeof *s->eon))
         return -1;
     int cap = s->cap_state_flags;
     if (reserve((void **)&s->pstate, &cap, s->nstate + ns, sizeof *s->pstate) ||
@@ -125,8 +128,8 @@ static int pair_create(rd_sim *s, int a, int b)
         sd->state0 = s->nstate; sd->face0 = s->nface_state;
         s->nstate += s->pt0[o + 1] - s->pt0[o];
         s->nface_state += s->cf0[o + 1] - s->cf0[o];
-        sd->edge0 = s->nedge_state; sd->nedge = k ? eb : ea;
-        s->nedge_state += sd->nedge;
+        sd->edge0 = s->nedge_state; sd->nedge = k ? eb : ea; sd->edge_ends = ends;
+        s->nedge_state += ends * sd->nedge;
         double area = 0;
         int npt = 0; /* points before merging (merge.c) */
         for (int q = s->pt0[o]; q < s->pt0[o + 1]; q++) { area += s->pa[q]; npt += s->pmult[q]; }

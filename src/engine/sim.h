@@ -88,6 +88,8 @@ typedef struct rd_side {
     int face0;        /* index of the owner's first candidate face in rd_sim.face_nactive */
     int edge0, nedge; /* the other body's edges as edge subcontacts (edge.c): first slot in
                          rd_sim.efs / edepth / eon, count (0: none) */
+    int edge_ends;    /* spring slots per edge: 1 where the other body carries points (its
+                         deepest point), 2 where it does not (the ends of its bearing part) */
     double edge_area; /* tributary area of an edge subcontact: the owner's mean point area, m^2 */
     uint64_t far[RD_MASK_WORDS]; /* planes of a fixed other body that the owner's candidate
                                     vertices clear (contact.c: vertex_distances skips them) */
@@ -288,8 +290,9 @@ struct rd_sim {
     /* edge subcontacts (edge.c), grown with the pairs */
     int nedge_state, cap_efs, cap_edepth, cap_eon;
     double (*efs)[3];      /* shear force on the owner, ground frame, N */
-    double (*edepth)[2];   /* while bearing: elastic stretch (depth less the set) and the set
-                              taken at the contact's onset, m */
+    double (*edepth)[3];   /* while bearing: elastic stretch (depth less the set) and the set
+                              taken at the contact's onset, m; the spring's place along its
+                              edge (0 to 1, from its first vertex; joint.c's measures) */
     unsigned char *eon;    /* 1 while bearing */
 
     /* time */

@@ -59,7 +59,7 @@ int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS])
     a[n++] = (rd_state_array){"state/events", RD_STATE_BYTE, s->event, (long)(s->nevent * sizeof *s->event)};
     a[n++] = (rd_state_array){"state/rest_area", RD_STATE_DOUBLE, s->rest_area, s->nfree};
     a[n++] = (rd_state_array){"state/edge_shear_force", RD_STATE_DOUBLE, s->efs, 3L * s->nedge_state};
-    a[n++] = (rd_state_array){"state/edge_depth", RD_STATE_DOUBLE, s->edepth, 2L * s->nedge_state};
+    a[n++] = (rd_state_array){"state/edge_depth", RD_STATE_DOUBLE, s->edepth, 3L * s->nedge_state};
     a[n++] = (rd_state_array){"state/edge_bearing", RD_STATE_BYTE, s->eon, s->nedge_state};
     return n;
 }
