@@ -128,7 +128,7 @@ typedef struct side_ctx {
     int mean_switch;            /* an elastic joint (restitution 1): an unbonded spring that
                                    switches on or off within the step bears its mean force over
                                    the step (rd_law_switch_stretch) */
-    const rd_pair *pr;          /* the pair (its m_eff and last K_active: touch_speed) */
+    const rd_pair *pr;          /* the pair (its m_eff and last K_active: rd_law_touch_speed) */
     side_frame fr;              /* the two bodies' pose and motion */
     double tol;                 /* contact band: a point this far outside a plane still counts as
                                    inside, m */
@@ -345,14 +345,6 @@ static inline __attribute__((always_inline)) void bear(double (*fsa)[3], double 
     rd_law_apply(F, ro, NULL, a->f_o, a->tq_o, 0, NULL, NULL);
 }
 
-/* Approach speed above which a new touch of pair pr is an impact, m/s: g sqrt(m_eff / K_active),
- * the speed the pair's weight reaches settling onto its bearing springs from rest (0 while none
- * bore last step: any touch then is an impact). Found only at a point's first bearing step. */
-static double touch_speed(const rd_sim *s, const rd_pair *pr)
-{
-    return pr->k_active > 0 ? s->sc.gravity * sqrt(pr->m_eff / pr->k_active) : 0.0;
-}
-
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
@@ -476,7 +468,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
     double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
     if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == RD_PT_VIRGIN) /* its first bearing step */
-        *fl = (unsigned char)(-vn > touch_speed(s, c->pr) ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
+        *fl = (unsigned char)(-vn > rd_law_touch_speed(s, c->pr) ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
         *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
@@ -661,6 +653,7 @@ void rd_contact_reset_body(rd_sim *s, int body)
 void rd_contact_seat(rd_sim *s)
 {
     for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
+    rd_edge_seat(s);
     memset(s->impacting, 0, (size_t)s->nb);
 }
 

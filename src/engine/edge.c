@@ -27,10 +27,12 @@
  * energy is made when an edge starts or stops bearing, nor when one of its ends enters and
  * becomes a vertex subcontact (that vertex starts from its own entrance, contact.c); what the
  * spring holds when the edge stops bearing (its deepest point becomes an end) is released and
- * booked as friction, as 3DEC drops a contact's forces. Where t carries no points (a fixed
- * pedestal or base) floor and d0 are 0 and an end inside bears too. The contact is elastic (no
- * impact set, no dashpot), bonds never form on it, and its spring energy is in the balance
- * (rd_edge_elastic_energy).
+ * booked as friction, as 3DEC drops a contact's forces; such a contact is elastic.
+ * Where t carries no points (a fixed pedestal or base) floor and d0 are 0, and the edge bears at
+ * the two ends of its part inside o (plateau), each a spring of area A'/2 that takes the joint's
+ * impact loss at its first unloading, as a vertex subcontact does (edge_spring).
+ * No dashpot acts on edge subcontacts and bonds never form on them; their spring energy is in
+ * the balance (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
  * cv_dist, already found) where t carries points; an edge wholly beyond one side of o's box is
  * skipped first (where o's planes fit one mask word, one that may_bear's mask tests reject
@@ -53,6 +55,10 @@
 /* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
 #define RD_EDGE_MAX_VERTS 512
 #define RD_EDGE_MAX_EDGES 1024
+/* rd_sim.eon's bits: the slot bears (or holds its set, below); it has not unloaded since its
+   onset (its first unloading takes the joint's impact loss) */
+#define RD_EDGE_ON 1
+#define RD_EDGE_VIRGIN 2
 /* a vertex's box outcode not yet found (outcodes use 6 bits) */
 #define RD_EDGE_NO_CODE 0xFF
 
@@ -482,24 +488,56 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
     return top > floor;
 }
 
+/* Whether an edge spring that starts at point q (world, m) with depth gradient g strikes: its
+ * depth grows at vr . g / |g| (vr: the owner's velocity against the other body's at q), faster
+ * than the pair's touch speed. */
+static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double q[3], const double g[3])
+{
+    const int o = sd->owner, t = sd->other;
+    double ro[3], rt[3], vr[3], gn = rd_norm(g);
+    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; }
+    rd_law_relative_velocity(s, o, t, ro, rt, vr);
+    return gn > 0 && rd_dot(vr, g) / gn > rd_law_touch_speed(s, pr);
+}
+
 /* Slot e's spring at point dp of edge a-b (world): it starts once dp lies deeper than floor,
  * from depth d0 (its set), bears while stretched and is let go at zero stretch. Its area A'
- * (m^2) joins the monitor's tally w (may be NULL) while it bears, as a vertex subcontact's. */
-static void edge_spring(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double *a, const double *b,
-                        const deep *dp, double floor, double d0, double A, rd_watch *w)
+ * (m^2) joins the monitor's tally w (may be NULL) while it bears, as a vertex subcontact's.
+ * held (t carries no points, d0 = 0): a touch that is an impact (its depth grows faster than
+ * the pair's touch speed, rd_law_touch_speed) takes the joint's impact loss at its first
+ * unloading as a vertex subcontact does (contact.c): a permanent set (1 - e) times its stretch,
+ * the drop of the scheme's spring energy 1/2 KN A' set (s(n) + s(n-1) - set) booked as damping;
+ * it then holds the set, idle while shallower, until the edge leaves o (d <= 0), so a block
+ * rocking on a smaller pedestal's edges lands on them as on its own corners. A quasi-static
+ * touch stays elastic: a pedestal's edge lying in the side of a block of its own footprint
+ * comes and goes at a depth of round-off about a thousand times a second, and a set at each
+ * moved the block's slide over it by 0.09 mm (tests/cli/edge_slide.sh). */
+static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const rd_joint *j, int e,
+                        const double *a, const double *b, const deep *dp, double floor, double d0, double A,
+                        rd_watch *w, int held)
 {
     double kA = j->kn * A, sA = j->ks * A;
     int fresh = !s->eon[e];
+    double q[3];
+    for (int c = 0; c < 3; c++) q[c] = a[c] + dp->u * (b[c] - a[c]);
     if (fresh) {
         if (!(dp->d > floor)) return;
-        s->eon[e] = 1;
+        s->eon[e] = RD_EDGE_ON;
         s->edepth[e][1] = d0;
+        if (held && impact(s, pr, sd, q, dp->g)) s->eon[e] |= RD_EDGE_VIRGIN;
     }
-    double q[3], stretch = dp->d - s->edepth[e][1];
-    for (int c = 0; c < 3; c++) q[c] = a[c] + dp->u * (b[c] - a[c]);
-    if (!(stretch > 0) && !fresh) {
+    double stretch = dp->d - s->edepth[e][1];
+    if (!(held ? dp->d > 0 : stretch > 0) && !fresh) {
         edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp->g);
         return;
+    }
+    const double last = s->edepth[e][0]; /* the stretch it bore last step (0: none) */
+    if ((s->eon[e] & RD_EDGE_VIRGIN) && last > 0 && stretch < last && !s->settling) {
+        double set = stretch > 0 ? (1.0 - j->restitution) * stretch : 0.0;
+        s->e_damp += 0.5 * kA * set * (stretch + last - set);
+        s->edepth[e][1] += set;
+        stretch -= set;
+        s->eon[e] = RD_EDGE_ON;
     }
     int slips = edge_force(s, sd, j, e, q, dp->g, stretch > 0 ? stretch : 0, kA, sA);
     s->edepth[e][2] = dp->u;
@@ -557,7 +595,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
                         : !loose_out && !(vertex_code(&vi, a) & vertex_code(&vi, b));
         int bears = on[ends * i] | on[ends * i + ends - 1];
         cand[nc] = i;
-        nc += bears | keep;
+        nc += (bears != 0) | keep;
         clear &= loose_out && !bears;
     }
     sd->edges_clear = clear && s->fixed[t] ? s->box_builds[o] + 1 : 0;
@@ -577,14 +615,19 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
             deep dp;
             deepest(s, o, &L, flat, &dp);
             double floor = vi.d[va] > vi.d[vb] ? vi.d[va] : vi.d[vb];
-            edge_spring(s, sd, j, e, a, b, &dp, floor > 0 ? floor : 0, dp.d, A, w);
+            edge_spring(s, pr, sd, j, e, a, b, &dp, floor > 0 ? floor : 0, dp.d, A, w, 0);
         } else {
             /* each end of the bearing part from its entry into o (from depth 0) */
             deep dp[2];
             plateau(s, o, &L, dp);
-            for (int k = 0; k < 2; k++) edge_spring(s, sd, j, e + k, a, b, &dp[k], 0, 0, A, w);
+            for (int k = 0; k < 2; k++) edge_spring(s, pr, sd, j, e + k, a, b, &dp[k], 0, 0, A, w, 1);
         }
     }
+}
+
+void rd_edge_seat(rd_sim *s)
+{
+    for (int e = 0; e < s->nedge_state; e++) s->eon[e] &= (unsigned char)~RD_EDGE_VIRGIN;
 }
 
 void rd_edge_reset(rd_sim *s, const rd_side *sd)

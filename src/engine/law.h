@@ -35,6 +35,15 @@ static inline void rd_law_relative_velocity(const rd_sim *s, int o, int t, const
     rd_law_relative_velocity_of(s->v[o], s->w[o], s->v[t], s->w[t], !s->fixed[t], ro, rt, vr);
 }
 
+/* Approach speed above which a new touch of pair pr is an impact, m/s: g sqrt(m_eff / K_active),
+ * the speed the pair's weight reaches settling onto its bearing springs from rest (0 while none
+ * bore last step: any touch then is an impact). Found only at a subcontact's first bearing
+ * step (contact.c, edge.c). */
+static inline double rd_law_touch_speed(const rd_sim *s, const rd_pair *pr)
+{
+    return pr->k_active > 0 ? s->sc.gravity * sqrt(pr->m_eff / pr->k_active) : 0.0;
+}
+
 /* Force F (N) of a subcontact at offsets ro (from owner o's centre) and rt (from the other body
  * t's centre), m: F and ro x F added to o's force and torque sums (f_o, tq_o), -F and -(rt x F)
  * to t's (f_t, tq_t) when t is free (t_free; a fixed body takes no force). */

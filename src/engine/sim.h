@@ -390,6 +390,7 @@ int rd_edge_init(rd_sim *s, rd_error *err);
 void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
                   const uint64_t *mask);
 void rd_edge_reset(rd_sim *s, const rd_side *sd);
+void rd_edge_seat(rd_sim *s); /* settled: the bearing edges' onsets are no impacts */
 double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd);
 
 /* integrate.c */

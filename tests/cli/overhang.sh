@@ -20,6 +20,15 @@
 #          to half of it (the step's error).
 #   off:   2.5 g at 0.7 Hz slides it off the pad: it counts as overturned (fell off its support),
 #          not as a run that lost a body of unknown fate.
+#   rock:  a 0.4 x 0.4 x 1.2 m block on a fixed 0.3 x 0.3 m pad, released at 6 deg, rocks on the
+#          pad's top edges; a 0.3 x 0.3 x 1.2 m block on a wide pad rocks on its own corners
+#          (vertex subcontacts, whose plastic impacts give Housner's r). Both pivots are 0.3 m
+#          apart at 0.6 m below the centre of mass, so Housner's r differs only by the blocks'
+#          inertia (0.833 and 0.831). Measured: the energy ratio over six impacts from the second
+#          (the peaks' heights of the centre of mass), as a fraction of each block's own r_H; they
+#          must agree within the 0.5 % issue 11 asks of a restitution measure. Before the edge
+#          springs took the joint's impact loss they were elastic: the block bounced on the pad's
+#          edges (ratios 0.71-1.36 from one impact to the next) and slid 19.7 mm.
 # Before (one spring per edge at its deepest point): the level edges' deepest point jumped from
 # end to end as the slab tilted by a hair, a kink in the potential at its rest pose; at rest the
 # run made energy (residual 0.80 of its scale, status untrusted) and reported the slab as having
@@ -68,4 +77,36 @@ out=$("$BIN" run "$T/pad0.6.dat" --set motion.amplitude=2.5g --set motion.freque
 echo "off: $(printf '%s\n' "$out" | grep -E '^slab:|^run:' | head -1)"
 printf '%s\n' "$out" | grep -q 'OVERTURNED (fell off its support' ||
     { echo "FAIL overhang/off: the slab sliding off its pad is not counted as fallen off"; fail=1; }
+for b in 0.4 0.3; do
+    pad=$([ "$b" = 0.4 ] && echo 0.3 || echo 2)
+    cat > "$T/rock$b.dat" <<EOF
+block create brick size $pad $pad 0.4 position 0 0 -0.2 fixed name pad
+block create brick size $b $b 1.2 seat-on pad name b density 2600
+model settle off
+block initial name b tilt 6 direction 0
+model solve time 4
+output hdf5 'x.h5' interval 0.0005
+EOF
+    "$BIN" run "$T/rock$b.dat" -o "$T/rock$b.h5" >/dev/null 2>&1 || { echo "FAIL overhang/rock: the $b m block's run failed"; fail=1; }
+done
+read -r gap ok note < <(/usr/bin/python3 - "$T/rock0.4.h5" "$T/rock0.3.h5" <<'EOF'
+import sys, h5py, numpy as np
+def share(fn, width):  # energy ratio per impact over the first six, over Housner's r
+    f = h5py.File(fn, "r"); th = np.abs(f["rotation"][:, 0, 0]); t = f["time"][:]
+    pk = [i for i in range(1, len(th) - 1)  # the peaks after the release's (t = 0)
+          if th[i] >= th[i - 1] and th[i] > th[i + 1] and th[i] > 1e-3 and t[i] > 0.05]
+    b, h = 0.15, 0.6  # half the pivots' spacing and the height of the centre of mass above them, m
+    R, al = np.hypot(b, h), np.arctan(b / h)
+    E = np.array([R * np.cos(al - th[i]) - h for i in pk])  # rise of the centre of mass at a peak
+    if len(E) < 7: return float("nan")
+    r = (E[6] / E[0]) ** (1 / 6)
+    rH = (1 - 2 * b * b / ((width ** 2 + 1.2 ** 2) / 12 + R * R)) ** 2
+    return r / rH
+a, c = share(sys.argv[1], 0.4), share(sys.argv[2], 0.3)
+g = abs(a / c - 1)
+print("%.4g %d r/r_H:_pad_edges_%.4f_own_corners_%.4f" % (g, g <= 5e-3, a, c))
+EOF
+)
+echo "rock: ${note//_/ }, gap $gap (tolerance 5e-3)"
+verdict "overhang/rock (r/r_H on the pad's edges against own corners)" "${ok:-0}" "${gap:-nan}" 5e-3 strict || fail=1
 exit $fail
