@@ -29,8 +29,9 @@
  * spring holds when the edge stops bearing (its deepest point becomes an end) is released and
  * booked as friction, as 3DEC drops a contact's forces; such a contact is elastic.
  * Where t carries no points (a fixed pedestal or base) floor and d0 are 0, and the edge bears at
- * the two ends of its part inside o (plateau), each a spring of area A'/2 that takes the joint's
- * impact loss at its first unloading, as a vertex subcontact does (edge_spring).
+ * the two ends of its part inside o (plateau), each a spring of area A'/2 that, where its touch
+ * is an impact, takes the joint's impact loss at its first unloading, as a vertex subcontact
+ * does (edge_spring).
  * No dashpot acts on edge subcontacts and bonds never form on them; their spring energy is in
  * the balance (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.

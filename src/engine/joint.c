@@ -10,7 +10,8 @@
  *   normal force   sum of the normal forces of the joint's active subcontacts, N
  *   shear force    vector sum of their shear forces, on the pair's second body, N
  *   area           active contact area, m^2 (half-weight sets summed where both bodies carry
- *                  points); these three count the bearing edge springs too (edge.c)
+ *                  points); these, the centre of pressure and the slip count the bearing edge
+ *                  springs too (edge.c)
  *   centre of pressure   normal-force weighted mean of their positions, m
  *   opening        the largest gap among the subcontacts evaluated this step on the faces
  *                  turned towards the other body and lying over the other body's face (within
