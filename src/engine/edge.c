@@ -160,13 +160,39 @@ typedef struct deep {
     double u, d, g[3];
 } deep;
 
+/* The plane of L active at u = 0: the nearest, the least rising of ties. */
+static int first_plane(const edge_lines *L)
+{
+    const double *c = L->c, *sl = L->sl;
+    int act = 0;
+    for (int k = 1; k < L->np; k++)
+        if (c[k] < c[act] || (c[k] == c[act] && sl[k] < sl[act])) act = k;
+    return act;
+}
+
+/* The breakpoint after active plane act: the first plane of smaller slope to cross it, at u =
+ * gap / rate (*un; compared as cross products: rates are positive); -1 (*un = INFINITY) when
+ * none. */
+static int next_plane(const edge_lines *L, int act, double *un)
+{
+    const double *c = L->c, *sl = L->sl;
+    double gn = 1, rn = 0;
+    int next = -1;
+    for (int k = 0; k < L->np; k++) {
+        double rate = sl[act] - sl[k];
+        if (!(rate > 0)) continue;
+        double gap = c[k] - c[act], lhs = gap * rn, rhs = gn * rate;
+        if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) { gn = gap; rn = rate; next = k; }
+    }
+    *un = next >= 0 ? gn / rn : INFINITY;
+    return next;
+}
+
 static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, deep *dp)
 {
     const double (*n)[3] = s->wn + s->face0[o];
     const double *c = L->c, *sl = L->sl;
-    int act = 0, prev = -1;
-    for (int k = 1; k < L->np; k++) /* the nearest plane at u = 0, the least rising of ties */
-        if (c[k] < c[act] || (c[k] == c[act] && sl[k] < sl[act])) act = k;
+    int act = first_plane(L), prev = -1;
     double u = 0;
     for (;;) {
         if (sl[act] < -flat) { /* falling: the maximum is here */
@@ -177,17 +203,8 @@ static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, de
             for (int i = 0; i < 3; i++) dp->g[i] = (sp * n[act][i] - sm * n[prev][i]) / (sp - sm);
             return;
         }
-        /* the next breakpoint: the first plane of smaller slope to cross the active one, at
-           u = gap / rate (compared as cross products: rates are positive) */
-        double gn = 1, rn = 0, un = INFINITY;
-        int next = -1;
-        for (int k = 0; k < L->np; k++) {
-            double rate = sl[act] - sl[k];
-            if (!(rate > 0)) continue;
-            double gap = c[k] - c[act], lhs = gap * rn, rhs = gn * rate;
-            if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) { gn = gap; rn = rate; next = k; }
-        }
-        if (next >= 0) un = gn / rn;
+        double un;
+        int next = next_plane(L, act, &un);
         if (sl[act] <= flat) { /* level: the middle of the level part */
             dp->u = 0.5 * (u + fmin(un, 1.0));
             dp->d = c[act] + sl[act] * dp->u;
@@ -217,26 +234,17 @@ typedef struct envelope {
 
 static void walk(const edge_lines *L, envelope *E)
 {
-    const double *c = L->c, *sl = L->sl;
-    int act = 0;
-    for (int k = 1; k < L->np; k++) /* the nearest plane at u = 0, the least rising of ties */
-        if (c[k] < c[act] || (c[k] == c[act] && sl[k] < sl[act])) act = k;
+    int act = first_plane(L);
     double u = 0;
     E->n = 0;
     for (;;) {
         E->k[E->n] = act;
         E->u0[E->n++] = u;
-        double gn = 1, rn = 0; /* the next breakpoint, as deepest's */
-        int next = -1;
-        for (int k = 0; k < L->np; k++) {
-            double rate = sl[act] - sl[k];
-            if (!(rate > 0)) continue;
-            double gap = c[k] - c[act], lhs = gap * rn, rhs = gn * rate;
-            if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) { gn = gap; rn = rate; next = k; }
-        }
-        if (next < 0 || gn / rn >= 1 || E->n == RD_MAX_PLANES) return;
+        double un;
+        int next = next_plane(L, act, &un);
+        if (next < 0 || un >= 1 || E->n == RD_MAX_PLANES) return;
         act = next;
-        u = fmax(u, gn / rn);
+        u = fmax(u, un);
     }
 }
 

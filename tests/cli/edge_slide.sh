@@ -30,7 +30,5 @@ slide() { # scene [step]: the block's final slide, mm
 ped=$(slide pad0.4); ped_fine=$(slide pad0.4 5e-6); wide=$(slide pad2); wide_fine=$(slide pad2 5e-6)
 echo "final slide: pedestal $ped mm ($ped_fine at 5e-6 s), wide pad $wide mm ($wide_fine at 5e-6 s)"
 [ -n "$ped" ] && [ -n "$ped_fine" ] && [ -n "$wide" ] && [ -n "$wide_fine" ] || { echo "FAIL edge-slide: a run printed no slip"; exit 1; }
-read -r gap tol ok < <(awk -v p="$ped" -v pf="$ped_fine" -v w="$wide" -v wf="$wide_fine" 'BEGIN {
-    g = p - w; if (g < 0) g = -g; a = p - pf; if (a < 0) a = -a; b = w - wf; if (b < 0) b = -b
-    printf "%.4g %.4g %d\n", g, a + b, g <= a + b }')
+read -r gap tol ok < <(step_gap "$ped" "$ped_fine" "$wide" "$wide_fine")
 verdict "edge-slide/final-slide (mm, pedestal against wide pad)" "$ok" "$gap" "$tol" strict || exit 1

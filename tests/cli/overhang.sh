@@ -63,10 +63,9 @@ slide() { # scene step: the slab's largest slide at ten times the default stiffn
 o=$(slide pad0.6 2.8e-6); of=$(slide pad0.6 1.4e-6); w=$(slide pad1.0 2.8e-6); wf=$(slide pad1.0 1.4e-6)
 echo "largest slide at 1.2 g: overhang $o m ($of at half the step), wide pad $w m ($wf)"
 if [ -n "$o" ] && [ -n "$of" ] && [ -n "$w" ] && [ -n "$wf" ]; then
-    read -r gap tol ok < <(awk -v p="$o" -v pf="$of" -v w="$w" -v wf="$wf" 'BEGIN {
-        g = p - w; if (g < 0) g = -g; a = p - pf; if (a < 0) a = -a; b = w - wf; if (b < 0) b = -b
-        m = 0.8 * 0.8 * 0.2 * 2600; A = 0.64; W = m * 9.81; el = W / (1e11 * A) + W * sin(40 * atan2(0, -1) / 180) / cos(40 * atan2(0, -1) / 180) / (1e12 * A)
-        printf "%.4g %.4g %d\n", g, 2 * el + a + b, g <= 2 * el + a + b }')
+    el=$(awk 'BEGIN { m = 0.8 * 0.8 * 0.2 * 2600; A = 0.64; W = m * 9.81; phi = 40 * atan2(0, -1) / 180
+        printf "%.6g", 2 * (W / (1e11 * A) + W * sin(phi) / cos(phi) / (1e12 * A)) }') # both scenes' scales, m
+    read -r gap tol ok < <(step_gap "$o" "$of" "$w" "$wf" "$el")
     echo "slide gap $gap m, tolerance $tol m"
     verdict "overhang/slide (m, overhang against wide pad)" "$ok" "$gap" "$tol" strict || fail=1
 else

@@ -30,6 +30,15 @@ check_residual() {
     verdict "$1 (energy residual)" "$(awk -v r="$2" 'BEGIN { print (r <= 1e-3) ? 1 : 0 }')" "$2" 1e-3 strict
 }
 
+# step_gap A A_FINE B B_FINE [EXTRA]: prints "gap tol ok": gap = |A - B|, tol = EXTRA (default 0)
+# plus each scene's own change at a finer step, |A - A_FINE| + |B - B_FINE| (its step error),
+# ok = 1 if gap <= tol
+step_gap() {
+    awk -v p="$1" -v pf="$2" -v w="$3" -v wf="$4" -v x="${5:-0}" 'BEGIN {
+        g = p - w; if (g < 0) g = -g; a = p - pf; if (a < 0) a = -a; b = w - wf; if (b < 0) b = -b
+        printf "%.4g %.4g %d\n", g, x + a + b, g <= x + a + b }'
+}
+
 # check_order WHAT A B: the residual A at a step falls to B at half of it by at least 2^1.5 = 2.83
 # (order >= 1.5: between a first-order booking error's 2 and leapfrog's own second order's 4)
 check_order() {
