@@ -109,6 +109,19 @@ static unsigned outcode(const double box[6], const double x[3])
     return code;
 }
 
+/* An edge spring's point q (world, m) with depth gradient g: its offsets ro, rt from the owner's
+ * and the other body's centres, the owner's velocity against the other's there (vr, m/s) and
+ * the unit normal n = g / |g|; returns |g|. */
+static double edge_point(const rd_sim *s, const rd_side *sd, const double q[3], const double g[3], double ro[3],
+                         double rt[3], double vr[3], double n[3])
+{
+    const int o = sd->owner, t = sd->other;
+    double gn = rd_norm(g);
+    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
+    rd_law_relative_velocity(s, o, t, ro, rt, vr);
+    return gn;
+}
+
 /* The slot stops bearing: its spring energy is released into friction (3DEC drops the forces
  * of a contact that ends). Where its deepest point q (world, m) and depth gradient g are known
  * (its spring has come back to zero stretch), the springs are let go at mid-step as a vertex
@@ -121,10 +134,7 @@ static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double 
 {
     if (!s->eon[e]) return;
     if (q) {
-        const int o = sd->owner, t = sd->other;
-        double ro[3], rt[3], vr[3], gn = rd_norm(g), n[3];
-        for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
-        rd_law_relative_velocity(s, o, t, ro, rt, vr);
+        double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
         double lim = kA * s->edepth[e][0] * gn * tan_phi;
         s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, 0, s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
     } else {
@@ -292,9 +302,7 @@ static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, co
                       const double g[3], double stretch, double kA, double sA)
 {
     const int o = sd->owner, t = sd->other;
-    double ro[3], rt[3], vr[3], gn = rd_norm(g), n[3];
-    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = g[i] / gn; }
-    rd_law_relative_velocity(s, o, t, ro, rt, vr);
+    double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
     double *fs = s->efs[e], fn = kA * stretch;
     int slips = rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
     double F[3] = {-fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2]};
@@ -502,10 +510,7 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
  * than the pair's touch speed. */
 static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double q[3], const double g[3])
 {
-    const int o = sd->owner, t = sd->other;
-    double ro[3], rt[3], vr[3], gn = rd_norm(g);
-    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; }
-    rd_law_relative_velocity(s, o, t, ro, rt, vr);
+    double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
     return gn > 0 && rd_dot(vr, g) / gn > rd_law_touch_speed(s, pr);
 }
 

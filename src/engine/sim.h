@@ -293,7 +293,7 @@ struct rd_sim {
     double (*edepth)[3];   /* while bearing: elastic stretch (depth less the set) and the set
                               taken at the contact's onset, m; the spring's place along its
                               edge (0 to 1, from its first vertex; joint.c's measures) */
-    unsigned char *eon;    /* 1 while bearing */
+    unsigned char *eon;    /* non-zero while bearing or holding its set (edge.c's RD_EDGE_ bits) */
 
     /* time */
     double t;              /* s, 0 at the start of shaking */
