@@ -31,7 +31,16 @@
  * Where t carries no points (a fixed pedestal or base) floor and d0 are 0, and the edge bears at
  * the two ends of its part inside o (plateau), each a spring of area A'/2 that, where its touch
  * is an impact, takes the joint's impact loss at its first unloading, as a vertex subcontact
- * does (edge_spring).
+ * does (edge_spring). So does an edge between two free bodies that starts as a crossing with
+ * no vertex to hold it: both its ends lie beyond o's contact band, its part inside o lies level
+ * in one face of o (within the band) and it leaves o through planes it crosses, not grazes
+ * (plateau's answer). A block turned 45 deg on a free pedestal of its own footprint rests on
+ * such edges only; at their deepest points, which jumped across its base as it tilted by a
+ * hair, it made energy at rest (residual 5.8e-2 of its scale at 0.3 g, untrusted). Its ends
+ * bear until both have let go. An edge that runs along one of o's edges (equal blocks stacked,
+ * one turned by a hair) is no crossing: the more level piece of its envelope changes between
+ * the two faces it lies near, and an end spring then started at a depth of 7e-5 m (the YADE
+ * stack's residual at 0.3 g rose from 4.2e-4 to 1.46e-3); it bears at its deepest point.
  * No dashpot acts on edge subcontacts and bonds never form on them; their spring energy is in
  * the balance (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
@@ -53,13 +62,18 @@
 /* slopes of a plane's depth along an edge below this fraction of the contact band are level
  * (round-off of a 1 m body is 1e-16 m; 1e-9 of the 1 mm band is 1e-12 m) */
 #define RD_EDGE_FLAT 1e-9
+/* an edge crosses a plane of the other body, rather than grazing it, when its depth below the
+ * plane changes by more than this many contact bands along it (plateau) */
+#define RD_EDGE_CROSS 10.0
 /* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
 #define RD_EDGE_MAX_VERTS 512
 #define RD_EDGE_MAX_EDGES 1024
 /* rd_sim.eon's bits: the slot bears (or holds its set, below); it has not unloaded since its
-   onset (its first unloading takes the joint's impact loss) */
+   onset (its first unloading takes the joint's impact loss); it is an end of the edge's part
+   inside the other body (plateau; area A'/2), not its deepest point */
 #define RD_EDGE_ON 1
 #define RD_EDGE_VIRGIN 2
+#define RD_EDGE_END 4
 /* a vertex's box outcode not yet found (outcodes use 6 bits) */
 #define RD_EDGE_NO_CODE 0xFF
 
@@ -270,9 +284,12 @@ static void walk(const edge_lines *L, envelope *E)
  * level edge in the face thus bears at both ends, not at its middle: the depth's largest point
  * jumped from end to end as it tilted by a hair, a kink in the potential at the rest pose, and
  * the shaken slab on a smaller pad that bore on those points made energy (0.8 of its energy
- * scale in 3 s at 0.6 g). */
-static void plateau(const rd_sim *s, int o, const edge_lines *L, deep end[2])
+ * scale in 3 s at 0.6 g). Returns whether the edge crosses o there: its bearing piece is level
+ * within the contact band tol (m) over the edge, and at both ends of it the edge leaves o
+ * through a plane it crosses (its depth below it changes by at least RD_EDGE_CROSS bands). */
+static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep end[2])
 {
+    int crossing = 1;
     const double (*n)[3] = s->wn + s->face0[o];
     envelope E;
     walk(L, &E);
@@ -287,6 +304,7 @@ static void plateau(const rd_sim *s, int o, const edge_lines *L, deep end[2])
         d->u = j ? (m >= 0 ? E.u0[m] : 1.0) : E.u0[p];
         d->d = L->c[kp] + sp * d->u;
         double sm = m >= 0 ? L->sl[E.k[m]] : 0;
+        crossing &= m >= 0 && fabs(sm) >= RD_EDGE_CROSS * tol;
         if (m >= 0 && sp * sm < 0) {
             const double *nm = n[E.k[m]];
             for (int i = 0; i < 3; i++) d->g[i] = (sp * nm[i] - sm * n[kp][i]) / (sp - sm);
@@ -294,6 +312,7 @@ static void plateau(const rd_sim *s, int o, const edge_lines *L, deep end[2])
             rd_copy3(n[kp], d->g);
         }
     }
+    return crossing && fabs(sp) <= tol;
 }
 
 /* Force of edge slot e at world point q: the normal spring fn = kA * stretch against the depth
@@ -517,7 +536,7 @@ static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const d
 /* Slot e's spring at point dp of edge a-b (world): it starts once dp lies deeper than floor,
  * from depth d0 (its set), bears while stretched and is let go at zero stretch. Its area A'
  * (m^2) joins the monitor's tally w (may be NULL) while it bears, as a vertex subcontact's.
- * held (t carries no points, d0 = 0): a touch that is an impact (its depth grows faster than
+ * held (an end spring of plateau, d0 = 0): a touch that is an impact (its depth grows faster than
  * the pair's touch speed, rd_law_touch_speed) takes the joint's impact loss at its first
  * unloading as a vertex subcontact does (contact.c): a permanent set (1 - e) times its stretch,
  * the drop of the scheme's spring energy 1/2 KN A' set (s(n) + s(n-1) - set) booked as damping;
@@ -536,7 +555,7 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
     for (int c = 0; c < 3; c++) q[c] = a[c] + dp->u * (b[c] - a[c]);
     if (fresh) {
         if (!(dp->d > floor)) return;
-        s->eon[e] = RD_EDGE_ON;
+        s->eon[e] = held ? RD_EDGE_ON | RD_EDGE_END : RD_EDGE_ON;
         s->edepth[e][1] = d0;
         if (held && impact(s, pr, sd, q, dp->g)) s->eon[e] |= RD_EDGE_VIRGIN;
     }
@@ -551,7 +570,7 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
         s->e_damp += 0.5 * kA * set * (stretch + last - set);
         s->edepth[e][1] += set;
         stretch -= set;
-        s->eon[e] = RD_EDGE_ON;
+        s->eon[e] &= (unsigned char)~RD_EDGE_VIRGIN;
     }
     int slips = edge_force(s, sd, j, e, q, dp->g, stretch > 0 ? stretch : 0, kA, sA);
     s->edepth[e][2] = dp->u;
@@ -573,10 +592,10 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     const rd_poly *pt = &s->poly[t];
     if (pt->nv > RD_EDGE_MAX_VERTS || sd->nedge > RD_EDGE_MAX_EDGES) return;
     const rd_joint *j = &s->joint[pr->joint];
-    const int ends = sd->edge_ends;
-    double A = sd->weight * sd->edge_area / ends, kA = j->kn * A, sA = j->ks * A; /* per spring */
+    const int ends = RD_EDGE_SLOTS;
+    const double A = sd->weight * sd->edge_area; /* an edge's spring area A', m^2 */
     double flat = RD_EDGE_FLAT * RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
-    int t_points = ends == 1; /* t's vertices are subcontact points against o */
+    int t_points = pr->nside == 2; /* t's vertices are subcontact points against o */
     vinfo vi;
     vi.dist = dist;
     vi.mask = mask;
@@ -615,16 +634,24 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     sd->edges_clear = clear && s->fixed[t] ? s->box_builds[o] + 1 : 0;
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + ends * i, va = ev[i][0], vb = ev[i][1];
-        int bears = s->eon[e] | s->eon[e + ends - 1];
+        int bears = s->eon[e] | s->eon[e + 1];
         if (bears ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {
             for (int k = 0; k < ends; k++) /* bearing: wholly beyond one side of o's box; else:
                                               cannot start */
-                edge_release(s, sd, e + k, kA, sA, j->tan_phi, NULL, NULL);
+                edge_release(s, sd, e + k, j->kn * rd_edge_slot_area(s, sd, e + k),
+                             j->ks * rd_edge_slot_area(s, sd, e + k), j->tan_phi, NULL, NULL);
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
         lines(s, o, a, b, vertex_row(&vi, va), vertex_row(&vi, vb), &L);
-        if (t_points) {
+        /* where t carries points, an edge whose ends both lie beyond o's contact band when it
+           starts, and that crosses o (plateau), bears at its two ends as against a fixed body
+           until both have let go; any other at its deepest point (may_bear has found both
+           ends' depths where nothing bore) */
+        deep end[2];
+        int ends_beyond = t_points && !bears && vi.d[va] < -vi.tol && vi.d[vb] < -vi.tol;
+        int cross = !t_points || (bears & RD_EDGE_END) || ends_beyond ? plateau(s, o, &L, vi.tol, end) : 0;
+        if (t_points && !(bears ? bears & RD_EDGE_END : ends_beyond && cross)) {
             /* onset where the edge lies deeper than both ends: the spring starts from here */
             deep dp;
             deepest(s, o, &L, flat, &dp);
@@ -632,11 +659,16 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
             edge_spring(s, pr, sd, j, e, a, b, &dp, floor > 0 ? floor : 0, dp.d, A, w, 0);
         } else {
             /* each end of the bearing part from its entry into o (from depth 0) */
-            deep dp[2];
-            plateau(s, o, &L, dp);
-            for (int k = 0; k < 2; k++) edge_spring(s, pr, sd, j, e + k, a, b, &dp[k], 0, 0, A, w, 1);
+            for (int k = 0; k < 2; k++) edge_spring(s, pr, sd, j, e + k, a, b, &end[k], 0, 0, 0.5 * A, w, 1);
         }
     }
+}
+
+/* Slot e's spring area of side sd, m^2: A' (the weighted mean point area of the owner), or
+ * half of it at an end of the edge's part inside the other body. */
+double rd_edge_slot_area(const rd_sim *s, const rd_side *sd, int e)
+{
+    return sd->weight * sd->edge_area * ((s->eon[e] & RD_EDGE_END) ? 0.5 : 1.0);
 }
 
 void rd_edge_seat(rd_sim *s)
@@ -646,7 +678,7 @@ void rd_edge_seat(rd_sim *s)
 
 void rd_edge_reset(rd_sim *s, const rd_side *sd)
 {
-    for (int e = sd->edge0; e < sd->edge0 + sd->edge_ends * sd->nedge; e++) {
+    for (int e = sd->edge0; e < sd->edge0 + RD_EDGE_SLOTS * sd->nedge; e++) {
         s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
         s->edepth[e][0] = s->edepth[e][1] = s->edepth[e][2] = 0;
         s->eon[e] = 0;
@@ -656,8 +688,11 @@ void rd_edge_reset(rd_sim *s, const rd_side *sd)
 double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd)
 {
     const rd_joint *j = &s->joint[pr->joint];
-    double A = sd->weight * sd->edge_area / sd->edge_ends, kA = j->kn * A, sA = j->ks * A, en = 0;
-    for (int e = sd->edge0; e < sd->edge0 + sd->edge_ends * sd->nedge; e++)
-        if (s->eon[e]) en += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+    double en = 0;
+    for (int e = sd->edge0; e < sd->edge0 + RD_EDGE_SLOTS * sd->nedge; e++)
+        if (s->eon[e]) {
+            double A = rd_edge_slot_area(s, sd, e), kA = j->kn * A, sA = j->ks * A;
+            en += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+        }
     return en;
 }

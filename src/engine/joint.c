@@ -185,13 +185,12 @@ static void edge_measure(const rd_sim *s, const rd_side *sd, int t, double kn, d
                          double *fsum, double fs_b[3])
 {
     const int (*ev)[2] = s->edge_v + s->edge_v0[t];
-    const double A = sd->weight * sd->edge_area / sd->edge_ends; /* per spring, m^2 */
     for (int i = 0; i < sd->nedge; i++)
-        for (int k = 0; k < sd->edge_ends; k++) {
-            int e = sd->edge0 + sd->edge_ends * i + k;
+        for (int k = 0; k < RD_EDGE_SLOTS; k++) {
+            int e = sd->edge0 + RD_EDGE_SLOTS * i + k;
             if (!s->eon[e] || !(s->edepth[e][0] > 0)) continue;
             const double *a = s->wv[s->vert0[t] + ev[i][0]], *b = s->wv[s->vert0[t] + ev[i][1]];
-            double fn = kn * A * s->edepth[e][0], u = s->edepth[e][2];
+            double A = rd_edge_slot_area(s, sd, e), fn = kn * A * s->edepth[e][0], u = s->edepth[e][2];
             m->fn += fn;
             m->area += A;
             *fsum += fn;

@@ -93,9 +93,8 @@ static int pair_create(rd_sim *s, int a, int b)
         reserve((void **)&s->fs, &s->cap_state, s->nstate + ns, sizeof *s->fs) ||
         reserve((void **)&s->face_nactive, &s->cap_face_state, s->nface_state + nf, sizeof *s->face_nactive))
         return -1;
-    /* edge subcontacts (edge.c): the other body's edges, where both bodies are convex; one
-       spring slot per edge where the other body carries points too, else two */
-    const int ends = pa && pb ? 1 : 2;
+    /* edge subcontacts (edge.c): the other body's edges, where both bodies are convex */
+    const int ends = RD_EDGE_SLOTS;
     int ea = pa && s->convex[a] ? rd_edge_count(&s->poly[b]) : 0;
     int eb = pb && s->convex[b] ? rd_edge_count(&s->poly[a]) : 0;
     int nslot = ends * (ea + eb);
@@ -128,7 +127,7 @@ static int pair_create(rd_sim *s, int a, int b)
         sd->state0 = s->nstate; sd->face0 = s->nface_state;
         s->nstate += s->pt0[o + 1] - s->pt0[o];
         s->nface_state += s->cf0[o + 1] - s->cf0[o];
-        sd->edge0 = s->nedge_state; sd->nedge = k ? eb : ea; sd->edge_ends = ends;
+        sd->edge0 = s->nedge_state; sd->nedge = k ? eb : ea;
         s->nedge_state += ends * sd->nedge;
         double area = 0;
         int npt = 0; /* points before merging (merge.c) */

@@ -34,6 +34,8 @@
 #define RD_HOT
 #endif
 
+#define RD_EDGE_SLOTS 2 /* spring slots per edge subcontact: its deepest point, or the two ends of
+                           its part inside the other body (edge.c) */
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_MASK_WORDS ((RD_MAX_PLANES + 63) / 64) /* 64-bit words of a one-bit-per-plane mask */
 #define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
@@ -88,8 +90,6 @@ typedef struct rd_side {
     int face0;        /* index of the owner's first candidate face in rd_sim.face_nactive */
     int edge0, nedge; /* the other body's edges as edge subcontacts (edge.c): first slot in
                          rd_sim.efs / edepth / eon, count (0: none) */
-    int edge_ends;    /* spring slots per edge: 1 where the other body carries points (its
-                         deepest point), 2 where it does not (the ends of its bearing part) */
     double edge_area; /* tributary area of an edge subcontact: the owner's mean point area, m^2 */
     uint64_t far[RD_MASK_WORDS]; /* planes of a fixed other body that the owner's candidate
                                     vertices clear (contact.c: vertex_distances skips them) */
@@ -390,6 +390,7 @@ int rd_edge_init(rd_sim *s, rd_error *err);
 void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
                   const uint64_t *mask);
 void rd_edge_reset(rd_sim *s, const rd_side *sd);
+double rd_edge_slot_area(const rd_sim *s, const rd_side *sd, int e);
 void rd_edge_seat(rd_sim *s); /* settled: the bearing edges' onsets are no impacts */
 double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side *sd);
 

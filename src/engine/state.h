@@ -12,7 +12,7 @@
 
 #include <stddef.h>
 
-#define RD_STATE_VERSION 4 /* bump when the image's arrays or their meaning change */
+#define RD_STATE_VERSION 5 /* bump when the image's arrays or their meaning change */
 #define RD_STATE_ARRAYS 32 /* room for the arrays of an image */
 
 typedef enum rd_state_type { RD_STATE_DOUBLE = 0, RD_STATE_INT = 1, RD_STATE_BYTE = 2 } rd_state_type;
