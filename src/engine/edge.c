@@ -31,16 +31,23 @@
  * Where t carries no points (a fixed pedestal or base) floor and d0 are 0, and the edge bears at
  * the two ends of its part inside o (plateau), each a spring of area A'/2 that, where its touch
  * is an impact, takes the joint's impact loss at its first unloading, as a vertex subcontact
- * does (edge_spring). So does an edge between two free bodies that starts as a crossing with
- * no vertex to hold it: both its ends lie beyond o's contact band, its part inside o lies level
- * in one face of o (within the band) and it leaves o through planes it crosses, not grazes
- * (plateau's answer). A block turned 45 deg on a free pedestal of its own footprint rests on
- * such edges only; at their deepest points, which jumped across its base as it tilted by a
- * hair, it made energy at rest (residual 5.8e-2 of its scale at 0.3 g, untrusted). Its ends
- * bear until both have let go. An edge that runs along one of o's edges (equal blocks stacked,
- * one turned by a hair) is no crossing: the more level piece of its envelope changes between
- * the two faces it lies near, and an end spring then started at a depth of 7e-5 m (the YADE
- * stack's residual at 0.3 g rose from 4.2e-4 to 1.46e-3); it bears at its deepest point.
+ * does (edge_spring). So does an edge between two free bodies that crosses o at rest: its part
+ * inside o lies level in one face of o (within the contact band) and, at one end of that part
+ * at least, the edge runs on beyond the plane it leaves through by ten bands or more (plateau's
+ * answer): a corner of the polygon where the two faces overlap that is no vertex of either
+ * body (a block offset on, or turned on, a free pedestal of about its own size; every other
+ * drum of a column turned by half a sector). At their deepest points, which jumped across
+ * the base as it tilted by a hair, such scenes made energy at rest (a block offset by 8 and 4
+ * cm on a free pedestal of its size: residual 0.99 of its energy scale at 0.3 g). Between free
+ * bodies each end spring starts from the depth where it starts (zero stretch: the rule may
+ * first hold where the edge is already inside), an end that is the edge's own vertex bears as
+ * a vertex subcontact too (its spring adds A'/2 there), and the two let go (release_deep) once
+ * an end lies deeper than the band: the contact is no longer a resting one, and pieces of the
+ * envelope coming and going move its ends along the edge at a jump (a 4-drum column falling at
+ * 1.6 g made 1.5e-3 of its energy scale so); the edge then bears at its deepest point. The
+ * ten bands keep out an edge lying along one of o's edges a few mm off (equal blocks stacked,
+ * one slid or turned by a hair), whose bearing piece changes between the two faces it lies
+ * near: the YADE stack's residual rose past 1e-3.
  * No dashpot acts on edge subcontacts and bonds never form on them; their spring energy is in
  * the balance (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
@@ -62,8 +69,8 @@
 /* slopes of a plane's depth along an edge below this fraction of the contact band are level
  * (round-off of a 1 m body is 1e-16 m; 1e-9 of the 1 mm band is 1e-12 m) */
 #define RD_EDGE_FLAT 1e-9
-/* an edge crosses a plane of the other body, rather than grazing it, when its depth below the
- * plane changes by more than this many contact bands along it (plateau) */
+/* an edge crosses o's plane at an end of its part inside o when it runs on beyond that plane by
+ * at least this many contact bands (plateau) */
 #define RD_EDGE_CROSS 10.0
 /* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
 #define RD_EDGE_MAX_VERTS 512
@@ -138,19 +145,21 @@ static double edge_point(const rd_sim *s, const rd_side *sd, const double q[3], 
 
 /* The slot stops bearing: its spring energy is released into friction (3DEC drops the forces
  * of a contact that ends). Where its deepest point q (world, m) and depth gradient g are known
- * (its spring has come back to zero stretch), the springs are let go at mid-step as a vertex
- * subcontact's (law.h, rd_law_release_energy): the normal one at zero stretch, the shear one
+ * (its spring has come back to zero stretch, s_now = 0; or, release_deep, it is let go at its
+ * stretch s_now, m), the springs are let go at mid-step as a vertex subcontact's (law.h,
+ * rd_law_release_energy): the normal one between its last and present stretch, the shear one
  * taken through half the step's displacement at q under its last Coulomb limit (its last
  * stretch's force along g times tan_phi, as edge_force). Else (q NULL: the edge has left o's
  * box in one step) their stored energy. */
 static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double sA, double tan_phi,
-                         const double *q, const double *g)
+                         const double *q, const double *g, double s_now)
 {
     if (!s->eon[e]) return;
     if (q) {
         double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
         double lim = kA * s->edepth[e][0] * gn * tan_phi;
-        s->e_fric += rd_law_release_energy(kA, 0.0, 0.0, 0, s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
+        s->e_fric += rd_law_release_energy(kA, s_now > 0 ? s->edepth[e][0] : 0.0, s_now, 0, s->efs[e], n, vr,
+                                           rd_dot(vr, n), sA, lim, s->dt);
     } else {
         s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     }
@@ -285,11 +294,11 @@ static void walk(const edge_lines *L, envelope *E)
  * jumped from end to end as it tilted by a hair, a kink in the potential at the rest pose, and
  * the shaken slab on a smaller pad that bore on those points made energy (0.8 of its energy
  * scale in 3 s at 0.6 g). Returns whether the edge crosses o there: its bearing piece is level
- * within the contact band tol (m) over the edge, and at both ends of it the edge leaves o
- * through a plane it crosses (its depth below it changes by at least RD_EDGE_CROSS bands). */
+ * within the contact band tol (m) over the edge, and at one end of it at least the edge leaves
+ * o through a plane beyond which its own end lies RD_EDGE_CROSS bands or more. */
 static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep end[2])
 {
-    int crossing = 1;
+    int crossing = 0;
     const double (*n)[3] = s->wn + s->face0[o];
     envelope E;
     walk(L, &E);
@@ -304,7 +313,7 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
         d->u = j ? (m >= 0 ? E.u0[m] : 1.0) : E.u0[p];
         d->d = L->c[kp] + sp * d->u;
         double sm = m >= 0 ? L->sl[E.k[m]] : 0;
-        crossing &= m >= 0 && fabs(sm) >= RD_EDGE_CROSS * tol;
+        crossing |= m >= 0 && -(L->c[E.k[m]] + L->sl[E.k[m]] * j) >= RD_EDGE_CROSS * tol;
         if (m >= 0 && sp * sm < 0) {
             const double *nm = n[E.k[m]];
             for (int i = 0; i < 3; i++) d->g[i] = (sp * nm[i] - sm * n[kp][i]) / (sp - sm);
@@ -561,7 +570,7 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
     }
     double stretch = dp->d - s->edepth[e][1];
     if (!(held ? dp->d > 0 : stretch > 0) && !fresh) {
-        edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp->g);
+        edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp->g, 0.0);
         return;
     }
     const double last = s->edepth[e][0]; /* the stretch it bore last step (0: none) */
@@ -579,6 +588,20 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
         w->nactive++;
         w->nslip += slips;
         w->touched |= s->shaking;
+    }
+}
+
+/* Edge e's two end springs (ends: their points along edge a-b) let go once an end lies deeper
+ * than the contact band: no longer a resting contact, its ends can jump along the edge as the
+ * envelope's pieces come and go. Their springs are released at their stretch now (booked as
+ * friction, edge_release), and the edge bears at its deepest point from there. */
+static void release_deep(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double *a,
+                         const double *b, const deep end[2])
+{
+    for (int k = 0; k < RD_EDGE_SLOTS; k++) {
+        double q[3], A = rd_edge_slot_area(s, sd, e + k);
+        for (int c = 0; c < 3; c++) q[c] = a[c] + end[k].u * (b[c] - a[c]);
+        edge_release(s, sd, e + k, j->kn * A, j->ks * A, j->tan_phi, q, end[k].g, end[k].d - s->edepth[e + k][1]);
     }
 }
 
@@ -639,27 +662,34 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
             for (int k = 0; k < ends; k++) /* bearing: wholly beyond one side of o's box; else:
                                               cannot start */
                 edge_release(s, sd, e + k, j->kn * rd_edge_slot_area(s, sd, e + k),
-                             j->ks * rd_edge_slot_area(s, sd, e + k), j->tan_phi, NULL, NULL);
+                             j->ks * rd_edge_slot_area(s, sd, e + k), j->tan_phi, NULL, NULL, 0.0);
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
         lines(s, o, a, b, vertex_row(&vi, va), vertex_row(&vi, vb), &L);
-        /* where t carries points, an edge whose ends both lie beyond o's contact band when it
-           starts, and that crosses o (plateau), bears at its two ends as against a fixed body
-           until both have let go; any other at its deepest point (may_bear has found both
-           ends' depths where nothing bore) */
+        /* its two ends bear (as 3DEC's corners of the faces' overlap) while they lie within the
+           contact band, where t carries no points or the edge crosses o (plateau); any other
+           edge at its deepest point (may_bear has found both ends' depths where nothing bore) */
         deep end[2];
-        int ends_beyond = t_points && !bears && vi.d[va] < -vi.tol && vi.d[vb] < -vi.tol;
-        int cross = !t_points || (bears & RD_EDGE_END) || ends_beyond ? plateau(s, o, &L, vi.tol, end) : 0;
-        if (t_points && !(bears ? bears & RD_EDGE_END : ends_beyond && cross)) {
+        int cross = !bears || (bears & RD_EDGE_END) ? plateau(s, o, &L, vi.tol, end) : 0;
+        int two = bears ? (bears & RD_EDGE_END) != 0 : !t_points || cross;
+        if (t_points && two && (end[0].d > vi.tol || end[1].d > vi.tol)) {
+            if (bears) release_deep(s, sd, j, e, a, b, end);
+            two = 0;
+            vertex_depth(s, o, t, &vi, va); /* the deepest point's floor (may_bear found none for a */
+            vertex_depth(s, o, t, &vi, vb); /* bearing edge) */
+        }
+        if (!two) {
             /* onset where the edge lies deeper than both ends: the spring starts from here */
             deep dp;
             deepest(s, o, &L, flat, &dp);
             double floor = vi.d[va] > vi.d[vb] ? vi.d[va] : vi.d[vb];
             edge_spring(s, pr, sd, j, e, a, b, &dp, floor > 0 ? floor : 0, dp.d, A, w, 0);
         } else {
-            /* each end of the bearing part from its entry into o (from depth 0) */
-            for (int k = 0; k < 2; k++) edge_spring(s, pr, sd, j, e + k, a, b, &end[k], 0, 0, 0.5 * A, w, 1);
+            /* each end of the bearing part from its entry into o (from depth 0 where t is fixed,
+               from where it starts where t is free) */
+            for (int k = 0; k < 2; k++)
+                edge_spring(s, pr, sd, j, e + k, a, b, &end[k], 0, t_points ? end[k].d : 0, 0.5 * A, w, 1);
         }
     }
 }

@@ -11,6 +11,13 @@
 #          overlap is 0.25 m from its centre at its nearest sides). Both must stay seated, the
 #          run must be trusted, and its energy residual within issue 10's 1e-3.
 #   rocks: 0.8 g along 45 deg, where both rock, uplift and slide: residual within 1e-3.
+# A 0.6 x 0.5 x 0.6 m block offset by (-0.08, -0.04) m on a free 0.6 x 0.5 x 0.45 m pedestal of
+# its footprint: each has one corner inside the other, and the other two corners of the
+# rectangle where they overlap are crossings of their edges, no vertex of either.
+#   offset-rest:  0.3 g along 0 deg, below every uplift (the two together at 0.25 / 0.53 =
+#                 0.48 g: their centre of mass 0.046 m off the pedestal's centre, 0.53 m up; the
+#                 block on the pedestal at 0.22 / 0.3 = 0.73 g): both seated, residual within 1e-3.
+#   offset-rocks: 0.8 g, where both rock: residual within 1e-3.
 # And a column of four 12-sided drums (circumradius 0.3 m, height 0.6 m, default contact) on a
 # fixed plinth, every other drum turned by half a sector (15 deg): each drum's corners stick out
 # of the rim of the drums next to it, so every drum-drum joint rests on crossing rim edges.
@@ -19,7 +26,8 @@
 #   column-rocks: 0.3 g, where the drums rock: residual within 1e-3.
 # Before (each such edge borne at its deepest point, which jumped across the base as it tilted
 # by a hair): residual 5.8e-2 and 9.2e-2 at 0.3 g (status untrusted), 4.3e-3 at 0.8 g; the
-# column 6.2e-2 (untrusted) at 0.1 g and 3.0e-3 at 0.3 g.
+# column 6.2e-2 (untrusted) at 0.1 g and 3.0e-3 at 0.3 g; the offset block 0.99 and 3.8e-2
+# (both untrusted).
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/edge_twist; rm -rf "$T"; mkdir -p "$T"
@@ -27,6 +35,14 @@ cat > "$T/twist.dat" <<'EOF'
 block create brick size 3 3 0.4 position 0 0 -0.2 fixed name floor
 block create brick size 0.5 0.5 0.6 seat-on floor name ped density 2600
 block create brick size 0.5 0.5 0.8 seat-on ped name b density 2600 rotation 0 0 45
+ground-motion pulse one-sine amplitude 0.3g frequency 2 direction 0
+model solve time 3
+output hdf5 'x.h5' interval 0.01
+EOF
+cat > "$T/offset.dat" <<'EOF'
+block create brick size 3 3 0.4 position 0 0 -0.2 fixed name floor
+block create brick size 0.6 0.5 0.45 seat-on floor name ped density 2600
+block create brick size 0.6 0.5 0.6 seat-on ped at -0.08 -0.04 name b density 2600
 ground-motion pulse one-sine amplitude 0.3g frequency 2 direction 0
 model solve time 3
 output hdf5 'x.h5' interval 0.01
@@ -43,8 +59,8 @@ model solve time 3
 output hdf5 'x.h5' interval 0.01
 EOF
 fail=0
-for case in "rest-0 twist 0.3g 0" "rest-45 twist 0.3g 45" "rocks-45 twist 0.8g 45" "column-rest column 0.1g 0" \
-    "column-rocks column 0.3g 0"; do
+for case in "rest-0 twist 0.3g 0" "rest-45 twist 0.3g 45" "rocks-45 twist 0.8g 45" "offset-rest offset 0.3g 0" \
+    "offset-rocks offset 0.8g 0" "column-rest column 0.1g 0" "column-rocks column 0.3g 0"; do
     read -r name scene amp dir <<< "$case"
     out=$("$BIN" run "$T/$scene.dat" --set motion.amplitude="$amp" --set motion.direction="$dir" -o "$T/$name.h5" 2>&1)
     rc=$?
