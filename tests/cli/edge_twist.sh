@@ -31,22 +31,18 @@
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/edge_twist; rm -rf "$T"; mkdir -p "$T"
-cat > "$T/twist.dat" <<'EOF'
+pedestal() { # pedestal NAME PEDESTAL_SIZE BLOCK_SIZE BLOCK_PLACE: a brick on a free pedestal, 3 s
+    cat > "$T/$1.dat" <<EOF
 block create brick size 3 3 0.4 position 0 0 -0.2 fixed name floor
-block create brick size 0.5 0.5 0.6 seat-on floor name ped density 2600
-block create brick size 0.5 0.5 0.8 seat-on ped name b density 2600 rotation 0 0 45
+block create brick size $2 seat-on floor name ped density 2600
+block create brick size $3 seat-on ped $4 name b density 2600 ${5:-}
 ground-motion pulse one-sine amplitude 0.3g frequency 2 direction 0
 model solve time 3
 output hdf5 'x.h5' interval 0.01
 EOF
-cat > "$T/offset.dat" <<'EOF'
-block create brick size 3 3 0.4 position 0 0 -0.2 fixed name floor
-block create brick size 0.6 0.5 0.45 seat-on floor name ped density 2600
-block create brick size 0.6 0.5 0.6 seat-on ped at -0.08 -0.04 name b density 2600
-ground-motion pulse one-sine amplitude 0.3g frequency 2 direction 0
-model solve time 3
-output hdf5 'x.h5' interval 0.01
-EOF
+}
+pedestal twist "0.5 0.5 0.6" "0.5 0.5 0.8" "" "rotation 0 0 45"
+pedestal offset "0.6 0.5 0.45" "0.6 0.5 0.6" "at -0.08 -0.04"
 cat > "$T/column.dat" <<'EOF'
 block create brick size 2 2 0.5 position 0 0 -0.25 fixed name plinth
 block create prism sides 12 radius 0.3 height 0.6 seat-on plinth name d1

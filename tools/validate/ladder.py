@@ -55,7 +55,6 @@ KN_RATIO = 10.0
 # Known gaps (issue numbers refer to the project's tracker). Each key is a row id; the check is
 # made with its derived tolerance and reported XFAIL with the measured gap while it misses.
 XFAILS = {
-    "energy/every-run-yade": "the YADE stack at KS 2e10 (twice KN) and 0.6 g, at YADE's fixed 5e-5 s (0.54 of the critical step): the upper block's sliding landing after it overturns (524 J slips away in one impact) leaves 0.6e-3 to 1.6e-3 of the 4 kJ in play, with where its touch falls in the step (two trajectories that differ at round-off): a touch takes up to KN A' (|vn| dt)^2 / 8 from leapfrog's conserved energy, exactly that with the mean force, given back only at the let-go, and the landing face stays down; 0.9e-4 to 2.6e-4 at 2.5e-5 s (docs/CONTACT.md section 6)",
     "block-free/impact2-time": "rigid preset: the plastic drop is placed to within a step of the end of compression; 0.1 %, inside the 1 % asked by issue 10 but above the two-KN bound (docs/CONTACT.md)",
     "other-r/threshold-2Hz": "mid-line layout at the steep 2 Hz region: 1.7 % high at KN 1e12, inside the 2 % asked by issue 11 but above its two-KN bound (1e12, 1e13); its free-rocking r is the same for releases from 0.3 to 0.9 alpha there, so the impact's speed is not the cause (open, docs/CONTACT.md section 2)",
     "other-r/rigid-0.9": "with a knife-edge pivot transfer (the rigid preset) r cannot exceed ~0.76 without the block bouncing on its new edge; r = 0.9 for h/b = 2 lies above what a plastic multi-point base keeps too (docs/CONTACT.md)",
