@@ -151,10 +151,11 @@ static double edge_point(const rd_sim *s, const rd_side *sd, const double q[3], 
  * taken through half the step's displacement at q under its last Coulomb limit (its last
  * stretch's force along g times tan_phi, as edge_force). Else (q NULL: the edge has left o's
  * box in one step) their stored energy. */
-static void edge_release(rd_sim *s, const rd_side *sd, int e, double kA, double sA, double tan_phi,
-                         const double *q, const double *g, double s_now)
+static void edge_release(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double *q,
+                         const double *g, double s_now)
 {
     if (!s->eon[e]) return;
+    const double A = rd_edge_slot_area(s, sd, e), kA = j->kn * A, sA = j->ks * A, tan_phi = j->tan_phi;
     if (q) {
         double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
         double lim = kA * s->edepth[e][0] * gn * tan_phi;
@@ -570,7 +571,7 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
     }
     double stretch = dp->d - s->edepth[e][1];
     if (!(held ? dp->d > 0 : stretch > 0) && !fresh) {
-        edge_release(s, sd, e, kA, sA, j->tan_phi, q, dp->g, 0.0);
+        edge_release(s, sd, j, e, q, dp->g, 0.0);
         return;
     }
     const double last = s->edepth[e][0]; /* the stretch it bore last step (0: none) */
@@ -599,9 +600,9 @@ static void release_deep(rd_sim *s, const rd_side *sd, const rd_joint *j, int e,
                          const double *b, const deep end[2])
 {
     for (int k = 0; k < RD_EDGE_SLOTS; k++) {
-        double q[3], A = rd_edge_slot_area(s, sd, e + k);
+        double q[3];
         for (int c = 0; c < 3; c++) q[c] = a[c] + end[k].u * (b[c] - a[c]);
-        edge_release(s, sd, e + k, j->kn * A, j->ks * A, j->tan_phi, q, end[k].g, end[k].d - s->edepth[e + k][1]);
+        edge_release(s, sd, j, e + k, q, end[k].g, end[k].d - s->edepth[e + k][1]);
     }
 }
 
@@ -649,7 +650,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
         const int loose_out = !held && (vi.sure[a] & vi.sure[b]);
         int keep = held ? (vi.word[a] | vi.word[b]) && !(vi.word[a] & vi.word[b])
                         : !loose_out && !(vertex_code(&vi, a) & vertex_code(&vi, b));
-        int bears = on[ends * i] | on[ends * i + ends - 1];
+        int bears = on[ends * i] | on[ends * i + 1];
         cand[nc] = i;
         nc += (bears != 0) | keep;
         clear &= loose_out && !bears;
@@ -661,8 +662,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
         if (bears ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {
             for (int k = 0; k < ends; k++) /* bearing: wholly beyond one side of o's box; else:
                                               cannot start */
-                edge_release(s, sd, e + k, j->kn * rd_edge_slot_area(s, sd, e + k),
-                             j->ks * rd_edge_slot_area(s, sd, e + k), j->tan_phi, NULL, NULL, 0.0);
+                edge_release(s, sd, j, e + k, NULL, NULL, 0.0);
             continue;
         }
         const double *a = s->wv[s->vert0[t] + va], *b = s->wv[s->vert0[t] + vb];
