@@ -60,6 +60,17 @@
  * step, and a bounce keeps its energy wherever the touch fell in the step (with KN A' s, up to
  * (omega dt)^2 / 4 of it was gained or lost). A joint with e < 1 takes the set at the first
  * unloading step, booked for the force at t(n), and keeps KN A' s.
+ * The face law. Against a fixed body (a pedestal, a base), a point's law runs in the frame of its
+ * entrance face: axes t1, t2 along the face (rd_sim.wt) and its outward normal u, t1 x t2 = u.
+ * Its offset and relative velocity there are ro' = B ro and vr' = B vr (B: rows t1, t2, u), so
+ * its normal speed is vr'_z, its tangential velocity (vr'_x, vr'_y) and its shear spring the
+ * plane vector (t1 . fs, t2 . fs): the law of a point on the plane z = 0, as the reference
+ * kernel's (bench/kernel.c), with no projection of vr and no turn of the spring (a fixed face
+ * does not turn). The forces are summed per face in its frame and turned back once per side
+ * step. It is the same law: results differ from the ground frame's at round-off (the stored
+ * spring loses the round-off part along u that the turn kept), and a bearing point costs less
+ * (docs/PERFORMANCE.md). Between two free bodies the entrance face turns, and the law runs in
+ * the ground frame with the turn.
  * An exiting subcontact drops its forces; the first slip or opening breaks its bond (c, T -> 0).
  * Optional normal dashpot: Fd = -2 zeta KN A' sqrt(m_eff / K_active) vn.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
@@ -113,6 +124,19 @@ typedef struct side_sums {
     double area;
 } side_sums;
 
+/* A face of a fixed other body as the frame of the face law (see the header): axes t1, t2 along
+ * the face (rd_sim.wt) and its outward normal u, t1 x t2 = u; B has rows t1, t2, u. Found when a
+ * point first needs it in a side step (face_frame_at). */
+typedef struct face_frame {
+    const double (*t)[3];/* t1, t2, ground frame (rd_sim.wt) */
+    double r[2][3];     /* t1, t2 in the owner's frame: a point at p (owner frame) lies at
+                           ro' = (r[0] . p, r[1] . p, its plane distance's u' . p) */
+    double v0[3], wr[3];/* side_frame's v0 (m/s) and wr (rad/s) in the face frame */
+    double f[3], tq[3]; /* the face's points' force (N) and torque about the owner's centre (N m),
+                           face frame */
+    double fn;          /* their normal forces summed, N */
+} face_frame;
+
 /* The other body's face planes expressed in the owner's body frame, so a point's signed
  * distances need no transform: s_k(p) = n_k . p - d_k (> 0: outside plane k). */
 typedef struct side_ctx {
@@ -160,6 +184,11 @@ typedef struct side_ctx {
     int facing;                 /* 1: the face's points act only while it faces the entrance face */
     int t_free;                 /* the other body is free (a fixed one takes no force) */
     double to_b;                /* +1 when the owner is the pair's body b, -1 when it is a */
+    int face_law;               /* the other body is fixed: its points take the face law
+                                   (face_frame), in the frame of their entrance face */
+    const double (*wt)[2][3];   /* the other body's face tangents (rd_sim.wt), when it is fixed */
+    face_frame *ff;             /* [np] the other body's faces as frames, valid where ff_used */
+    uint64_t ff_used[RD_MASK_WORDS]; /* bit e: ff[e] found this side step */
 } side_ctx;
 
 static inline double plane_dist(const double *pl, const double p[3])
@@ -175,6 +204,58 @@ static inline __attribute__((always_inline)) void frame_kinematics(const side_fr
     rd_mat_vec(fr->R, p, k);
     rd_cross(fr->wr, k, k + 3);
     rd_axpy(1.0, fr->v0, k + 3);
+}
+
+/* Face e of the fixed other body as a frame (face_frame), from the side's frame; its sums start
+ * at 0. */
+static __attribute__((noinline)) void face_frame_find(side_ctx *c, int e)
+{
+    face_frame *ff = &c->ff[e];
+    c->ff_used[e >> 6] |= (uint64_t)1 << (e & 63);
+    const double *u = c->wn[e];
+    ff->t = c->wt[e];
+    rd_mat_tvec(c->fr.R, ff->t[0], ff->r[0]);
+    rd_mat_tvec(c->fr.R, ff->t[1], ff->r[1]);
+    const double *b[3] = {ff->t[0], ff->t[1], u};
+    for (int k = 0; k < 3; k++) {
+        ff->v0[k] = rd_dot(b[k], c->fr.v0);
+        ff->wr[k] = rd_dot(b[k], c->fr.wr);
+        ff->f[k] = ff->tq[k] = 0;
+    }
+    ff->fn = 0;
+}
+
+/* Face e's frame, found at its first use in this side step (face_frame_find). */
+static inline __attribute__((always_inline)) face_frame *face_frame_at(side_ctx *c, int e)
+{
+    if (!(c->ff_used[e >> 6] & ((uint64_t)1 << (e & 63)))) face_frame_find(c, e);
+    return &c->ff[e];
+}
+
+/* Point p's (owner frame) offset ro' and relative velocity vr' = v0' + wr' x ro' in face frame
+ * ff, given ro'_z = dz (the first part of its plane distance): k = (ro', vr'), 6 values. */
+static inline __attribute__((always_inline)) void face_kinematics(const face_frame *ff, const double p[3], double dz,
+                                                                  double k[6])
+{
+    k[0] = rd_dot(ff->r[0], p);
+    k[1] = rd_dot(ff->r[1], p);
+    k[2] = dz;
+    rd_cross(ff->wr, k, k + 3);
+    rd_axpy(1.0, ff->v0, k + 3);
+}
+
+/* The face law's trial shear spring (N): the stored spring fs (ground frame) in the face's plane,
+ * f0 = (t1 . fs, t2 . fs, 0), loaded by -KS A' vr'_t dt (sA = KS A', N/m): into f. */
+static inline __attribute__((always_inline)) void face_shear_trial(const face_frame *ff, const double fs[3],
+                                                                   const double vr[3], double sA, double dt,
+                                                                   double f0[3], double f[3])
+{
+    f0[0] = rd_dot(ff->t[0], fs);
+    f0[1] = rd_dot(ff->t[1], fs);
+    f0[2] = 0;
+    f[0] = f0[0] - sA * vr[0] * dt;
+    f[1] = f0[1] - sA * vr[1] * dt;
+    f[2] = 0;
 }
 
 /* rd_sim's frame of the side's two bodies (side_frame); d receives xo - xt (0 when the other
@@ -212,6 +293,25 @@ static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, co
     } else {
         for (int i = 0; i < 6; i++) k[i] = sk[i];
     }
+}
+
+/* The law's kinematics of point pt at p (owner frame) with entrance face e: under the face law
+ * in that face's frame (dz: the point's ro'_z, face_kinematics), else in the ground frame
+ * (point_kinematics): k = (ro, vr). */
+static inline __attribute__((always_inline)) void law_kinematics(rd_sim *s, side_ctx *c, int pt, int e,
+                                                                 const double p[3], double dz, double k[6])
+{
+    if (c->face_law)
+        face_kinematics(face_frame_at(c, e), p, dz, k);
+    else
+        point_kinematics(s, c, pt, k);
+}
+
+/* The normal relative velocity vr . u (m/s, < 0: approaching) of law_kinematics' vr: its z
+ * under the face law. */
+static inline double law_vn(const side_ctx *c, const double vr[3], const double u[3])
+{
+    return c->face_law ? vr[2] : rd_dot(vr, u);
 }
 
 /* A subcontact's last bearing step, as a release needs it: its elastic normal stretch s (m), the
@@ -345,6 +445,43 @@ static inline __attribute__((always_inline)) void bear(double (*fsa)[3], double 
     rd_law_apply(F, ro, NULL, a->f_o, a->tq_o, 0, NULL, NULL);
 }
 
+/* bear for the face law (face frame ff): fs = (fx, fy, 0) and ro in the face frame, the force
+ * F' = (fx, fy, fn) and its torque ro' x F' summed in the frame (turned back by
+ * fold_face_sums), the shear spring stored in the ground frame, fx t1 + fy t2. */
+static inline __attribute__((always_inline)) void bear_face(double (*fsa)[3], double (*pj)[2], side_sums *a,
+                                                            face_frame *ff, int st, double A, double fn,
+                                                            const double fs[3], const double ro[3])
+{
+    for (int k = 0; k < 3; k++) fsa[st][k] = ff->t[0][k] * fs[0] + ff->t[1][k] * fs[1];
+    pj[st][0] = fn;
+    ff->fn += fn;
+    a->area += A;
+    const double F[3] = {fs[0], fs[1], fn};
+    double tq[3];
+    rd_cross(ro, F, tq);
+    for (int k = 0; k < 3; k++) {
+        ff->f[k] += F[k];
+        ff->tq[k] += tq[k];
+    }
+}
+
+/* The face law's sums of each face used in this side step turned to the ground frame (B^T) and
+ * added to the side's: force, torque and fn u. */
+static void fold_face_sums(side_ctx *c, side_sums *a)
+{
+    for (int w = 0; w < RD_MASK_WORDS; w++)
+        for (uint64_t m = c->ff_used[w]; m; m &= m - 1) {
+            const int e = 64 * w + __builtin_ctzll(m);
+            const face_frame *ff = &c->ff[e];
+            const double *u = c->wn[e];
+            for (int k = 0; k < 3; k++) {
+                a->f_o[k] += ff->t[0][k] * ff->f[0] + ff->t[1][k] * ff->f[1] + u[k] * ff->f[2];
+                a->tq_o[k] += ff->t[0][k] * ff->tq[0] + ff->t[1][k] * ff->tq[1] + u[k] * ff->tq[2];
+                a->nsum[k] += u[k] * ff->fn;
+            }
+        }
+}
+
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
@@ -373,13 +510,13 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     int moved = 0;
     if (!(*fl & RD_PT_INSIDE)) {
         point_kinematics(s, c, pt, kin);
-        moved = 1;
+        moved = !c->face_law; /* the face law's kinematics are in its entrance face's frame */
         s->pface[st] = (short)entrance_face(s, c, pt, p, kin + 3, &s->pset[st]);
         *fl |= RD_PT_INSIDE | RD_PT_VIRGIN;
     }
     int e = s->pface[st];
     const double *u = c->wn[e]; /* outward normal of the entrance face */
-    double depth = -plane_dist(c->pl[e], p);
+    const double dz = rd_dot(c->pl[e], p), depth = -(dz - c->pl[e][3]); /* -plane_dist, to the bit */
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
     if (c->facing && rd_dot(owner_normal(s, c), u) > -RD_FACING_COS) {
@@ -390,9 +527,9 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
        m); one within w / 2 of switching bears its mean force over the step (0: a plain switch) */
     double w = 0;
     if (c->mean_switch && !(*fl & RD_PT_BONDED)) {
-        if (!moved) point_kinematics(s, c, pt, kin);
+        if (!moved) law_kinematics(s, c, pt, e, p, dz, kin);
         moved = 1;
-        w = fabs(rd_dot(kin + 3, u)) * s->dt;
+        w = fabs(law_vn(c, kin + 3, u)) * s->dt;
     }
     if (depth <= 0 && !(*fl & RD_PT_BONDED)) { /* above its face, within the band: the next
                                                    touch is a new impact */
@@ -416,9 +553,9 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
-    if (!moved) point_kinematics(s, c, pt, kin);
+    if (!moved) law_kinematics(s, c, pt, e, p, dz, kin);
     const double *ro = kin, *vr = kin + 3;
-    double vn = rd_dot(vr, u);
+    double vn = law_vn(c, vr, u);
     if (c->struck && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_STRUCK)) == RD_PT_ACTIVE && vn < 0) {
         *fl |= RD_PT_STRUCK; /* a bearing point pressed during a new impact of one of its bodies: */
         s->pstrike[st] = depth - s->pset[st]; /* the impact's share is what it gains from here */
@@ -463,17 +600,30 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         s->e_damp += rd_law_dashpot_work(last.fd, fn - fel, vn, s->dt);
     a->k_active += kA;
 
-    /* shear: the incremental Coulomb spring on the plane of the entrance face (law.h) */
-    double fs[3] = {s->fs[st][0], s->fs[st][1], s->fs[st][2]}; /* in registers: stored once */
+    /* shear: the incremental Coulomb spring on the plane of the entrance face (law.h; the face
+       law's in the face's frame) */
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
     double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
     if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == RD_PT_VIRGIN) /* its first bearing step */
         *fl = (unsigned char)(-vn > rd_law_touch_speed(s, c->pr) ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
-    if (rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric))
-        *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
+    double fs[3]; /* in registers: stored once */
+    face_frame *ff = c->face_law ? face_frame_at(c, e) : NULL;
+    int slip;
+    if (ff) {
+        double f0[3];
+        face_shear_trial(ff, s->fs[st], vr, sA, s->dt, f0, fs);
+        slip = rd_law_shear_cap(fs, f0, sA, lim, &s->e_fric);
+    } else {
+        rd_copy3(s->fs[st], fs);
+        slip = rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric);
+    }
+    if (slip) *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     if ((*fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
-    bear(s->fs, s->pj, a, st, A, fn, u, fs, ro);
+    if (ff)
+        bear_face(s->fs, s->pj, a, ff, st, A, fn, fs, ro);
+    else
+        bear(s->fs, s->pj, a, st, A, fn, u, fs, ro);
     return 1;
 }
 
@@ -503,6 +653,7 @@ typedef struct steady_ctx {
     double kn, ks, tan_phi;        /* the joint's */
     double dt;
     int mean_switch, struck, damped, settling;
+    int face_law;                  /* side_ctx's */
 } steady_ctx;
 
 /* The side's steady_ctx (k) from rd_sim, its side_ctx c (after vertex_distances) and joint j. */
@@ -518,6 +669,7 @@ static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, con
     k->kn = j->kn; k->ks = j->ks; k->tan_phi = j->tan_phi;
     k->dt = s->dt;
     k->mean_switch = c->mean_switch; k->struck = c->struck; k->damped = c->damped; k->settling = s->settling;
+    k->face_law = c->face_law;
 }
 
 /* What steady_point found, with the point's state bits after it (face_points counts them from
@@ -563,7 +715,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     }
     if (!(fl & RD_PT_INSIDE)) return STEADY_NONE;
     int e = k->pface[st];
-    double depth = -plane_dist(k->plane[e], p);
+    const double dz = rd_dot(k->plane[e], p), depth = -(dz - k->plane[e][3]); /* subcontact's */
     double A = k->wa * k->pa[pt], kA = k->kn * A, sA = k->ks * A;
     const double *u = k->wn[e];
     if (!plain && k->facing) { /* a late face: only its points that stay idle facing away are common */
@@ -577,8 +729,11 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         if (!plain && k->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
             double kin[6];
-            frame_kinematics(fr, p, kin);
-            double reach = -0.5 * fabs(rd_dot(kin + 3, u)) * k->dt;
+            if (k->face_law)
+                face_kinematics(face_frame_at(c, e), p, dz, kin);
+            else
+                frame_kinematics(fr, p, kin);
+            double reach = -0.5 * fabs(k->face_law ? kin[5] : rd_dot(kin + 3, u)) * k->dt;
             if ((depth <= 0 ? depth : depth - k->pset[st]) > reach) return STEADY_NONE;
         }
         if (depth <= 0) { /* above its face, within the band */
@@ -594,8 +749,14 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
         return STEADY_NONE;
     double kin[6], *ro = kin, *vr = kin + 3;
-    frame_kinematics(fr, p, kin);
-    double vn = rd_dot(vr, u);
+    face_frame *ff = NULL;
+    if (k->face_law) {
+        ff = face_frame_at(c, e);
+        face_kinematics(ff, p, dz, kin);
+    } else {
+        frame_kinematics(fr, p, kin);
+    }
+    double vn = ff ? vr[2] : rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && (plain || !k->settling)) return STEADY_NONE; /* its impact loss: subcontact */
     if (k->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
     double stretch = depth - k->pset[st];
@@ -609,7 +770,12 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     double lim = fn * k->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion); fn >= 0, so
                                            rd_max(fn, 0.0) is fn but for -0, whose product + 0.0
                                            is +0 too */
-    rd_law_shear_trial(fs, u, vr, vn, sA, k->dt);
+    if (ff) {
+        double f0[3];
+        face_shear_trial(ff, k->fs[st], vr, sA, k->dt, f0, fs);
+    } else {
+        rd_law_shear_trial(fs, u, vr, vn, sA, k->dt);
+    }
     if (!(rd_dot(fs, fs) <= lim * lim)) return STEADY_NONE; /* slips: rd_law_shear_cap in subcontact */
     /* the dashpot's work, with last_bore's fd; without a dashpot there is none: fd is exactly 0
        (a bearing point's stored force pj[0] is then its elastic force kA * (depth - set), the
@@ -623,7 +789,10 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     k->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
     if ((fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
     k->pj[st][1] = -depth;
-    bear(k->fs, k->pj, a, st, A, fn, u, fs, ro);
+    if (ff)
+        bear_face(k->fs, k->pj, a, ff, st, A, fn, fs, ro);
+    else
+        bear(k->fs, k->pj, a, st, A, fn, u, fs, ro);
     return STEADY_BEARS;
 }
 
@@ -706,6 +875,7 @@ static void side_planes(const rd_sim *s, side_ctx *c)
     const double *R = s->R[c->o], *xo = s->x[c->o];
     c->np = s->poly[c->t].nf;
     c->wn = s->wn + s->face0[c->t];
+    c->wt = (const double (*)[2][3])s->wt + s->face0[c->t];
     for (int k = 0; k < c->np; k++) {
         const double *n = s->wn[s->face0[c->t] + k];
         double *pl = c->pl[k];
@@ -1023,6 +1193,7 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
         area += a.area;
         touch |= a.area > 0;
     }
+    if (c->face_law) fold_face_sums(c, &a);
     *sums = a;
     tally->area = area;
     tally->nactive += na;
@@ -1057,6 +1228,10 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     c.out_band = c.tol + slack + c.raise;
     c.reach = 0.5 * c.tol - c.raise;
     c.t_free = !s->fixed[c.t];
+    face_frame ffs[RD_MAX_PLANES]; /* found as used (face_frame_at) */
+    c.face_law = !c.t_free;
+    c.ff = ffs;
+    memset(c.ff_used, 0, sizeof c.ff_used);
     /* against a fixed body the owner's sums run on from its force and torque so far; a free
        other body's share needs the side's own sums, which then start at 0 */
     side_sums sums = {.f_o = {0, 0, 0}, .tq_o = {0, 0, 0}, .nsum = {0, 0, 0}, .k_active = 0, .area = 0};

@@ -118,7 +118,8 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
         s->vert0[i + 1] = s->vert0[i] + s->poly[i].nv;
         s->face0[i + 1] = s->face0[i] + s->poly[i].nf;
     }
-    if (!ALLOC(s->wv, s->vert0[nb]) || !ALLOC(s->wn, s->face0[nb]) || !ALLOC(s->wd, s->face0[nb]))
+    if (!ALLOC(s->wv, s->vert0[nb]) || !ALLOC(s->wn, s->face0[nb]) || !ALLOC(s->wd, s->face0[nb]) ||
+        !ALLOC(s->wt, s->face0[nb]))
         return rd_error_set(err, "out of memory");
     /* world geometry of every body, once here (fixed bodies never change), in order, so a
        body can be seated on one defined before it */

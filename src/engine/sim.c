@@ -484,7 +484,7 @@ void rd_sim_free(rd_sim *s)
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex, s->impacting, s->impacting_next,
                       s->f, s->tq, s->v_old, s->L_old, s->df_local, s->free_body, s->free_of, s->vert0, s->face0,
-                      s->wv, s->wn, s->wd, s->hv0, s->hv, s->cv0, s->cv, s->cv_slot, s->edge_v0, s->edge_v, s->cv_dist, s->cv_mask, s->cv_body, s->cv_world, s->pl, s->pa, s->pn, s->pmult, s->pkin, s->kin, s->kin_stamp, s->pt0, s->cf0, s->cf_face, s->cf_pt0, s->cf_v0, s->cf_v,
+                      s->wv, s->wn, s->wd, s->wt, s->hv0, s->hv, s->cv0, s->cv, s->cv_slot, s->edge_v0, s->edge_v, s->cv_dist, s->cv_mask, s->cv_body, s->cv_world, s->pl, s->pa, s->pn, s->pmult, s->pkin, s->kin, s->kin_stamp, s->pt0, s->cf0, s->cf_face, s->cf_pt0, s->cf_v0, s->cf_v,
                       s->pair, s->fs, s->pstate, s->pface, s->pset, s->pstrike, s->efs, s->edepth, s->eon, s->cf_facing, s->face_nactive,
                       s->watch, s->body_sum, s->event, s->obuf, s->aabb, s->box_pose, s->box_rho, s->box_drift, s->box_builds, s->order, s->hkey, s->live, s->live_prev,
                       s->joint, s->pj, s->hist_pair, s->hist_body, s->hist, s->rest_area};

@@ -196,6 +196,8 @@ struct rd_sim {
     int *face0;            /* [nb+1] first world face of each body */
     double (*wn)[3];       /* world face normals */
     double *wd;            /* world face offsets, m */
+    double (*wt)[2][3];    /* a fixed body's world face tangents t1, t2 (t1 x t2 = the face's
+                              normal), the axes of contact.c's face law; unset for free bodies */
     int *hv0;              /* [nb+1] first entry of each body's hull vertices in hv */
     int *hv;               /* hull vertices (world index): a body's box is theirs. A convex body's
                               step (rd_bodies_refresh_step) transforms all its vertices; a
