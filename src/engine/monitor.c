@@ -2,9 +2,10 @@
  *
  * Tilt is the angle between the body's vertical axis at rest and its current one (rad); its
  * lean direction is where that axis points. The static tipping angle alpha in the lean
- * direction is atan(d / h): d is the distance from the centre of mass (projected on the
- * support plane at rest) to the edge of the support polygon along the lean direction, h the
- * height of the centre of mass above the support. Events (per free body):
+ * direction is atan(d / h): d is the horizontal distance from the centre of mass at rest to the
+ * edge of the support polygon along the lean direction, h the height of the centre of mass
+ * above the support plane at that edge (rd_watch.seat: level, or the inclined face of a
+ * pedestal). Events (per free body):
  *   uplift   the area of the joints that support it (with bodies below it) drops below 60 % of
  *            its value at rest (rocking starts; with corner subcontacts, losing one edge halves it)
  *   impact   the signed rocking angle about the axis of the first rocking crosses zero
@@ -92,11 +93,21 @@ static double ray_to_edge(const rd_watch *w, double cx, double cy, double dx, do
     return isfinite(best) ? best : 0.0;
 }
 
+/* Height z (m) of the support plane at rest (rd_watch.seat) at ground (x, y). */
+static double seat_z(const rd_watch *w, double x, double y)
+{
+    return (w->seat[3] - w->seat[0] * x - w->seat[1] * y) / w->seat[2];
+}
+
+/* Static tipping angle towards (dx, dy): atan(d / h), d the distance from the centre of mass's
+ * plan position to the support polygon's edge along (dx, dy), h its height above the support
+ * plane there (on an inclined seat the downhill edge lies lower than the uphill one). */
 static double alpha_toward(const rd_watch *w, double dx, double dy)
 {
     double n = hypot(dx, dy);
     if (n == 0) { dx = 1; dy = 0; } else { dx /= n; dy /= n; }
-    return atan2(ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy), w->h);
+    double d = ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy);
+    return atan2(d, w->x_ref[2] - seat_z(w, w->x_ref[0] + d * dx, w->x_ref[1] + d * dy));
 }
 
 /* Ground-frame xy of the subcontact points pressed between body i and the body `below` it
@@ -228,8 +239,8 @@ static int add_support(rd_sim *s, int i, int j, const double (*base)[2], int nb,
 }
 
 /* Support polygon at rest: a property of the body's geometry and pose, not of the contact
- * stiffness. Its base is the hull of the body's vertices within RD_SUPPORT_BAND of its lowest
- * point; the support is the union, over the bodies that hold it up (their tops level with
+ * stiffness. Its base is the hull of the body's vertices within RD_SUPPORT_BAND of the support
+ * plane (rd_watch.seat: level, or the inclined face it rests on); the support is the union, over the bodies that hold it up (their tops level with
  * that base: a brick in running bond rests on two), of the base clipped to each one's plan
  * (an overhanging block is supported only where the body below is), together with the points
  * pressed against them after settling (which carry an inclined seat). With no body level with
@@ -242,7 +253,11 @@ static void support_polygon(rd_sim *s, int k, double zmin)
     rd_watch *w = &s->watch[k];
     double (*pts)[2] = NULL, (*base)[2] = malloc((size_t)(nv > 0 ? nv : 1) * sizeof *base);
     for (int v = s->vert0[i]; base && v < s->vert0[i + 1]; v++)
-        if (s->wv[v][2] <= zmin + RD_SUPPORT_BAND) { base[nbase][0] = s->wv[v][0]; base[nbase][1] = s->wv[v][1]; nbase++; }
+        if (rd_dot(w->seat, s->wv[v]) <= w->seat[3] + RD_SUPPORT_BAND) {
+            base[nbase][0] = s->wv[v][0];
+            base[nbase][1] = s->wv[v][1];
+            nbase++;
+        }
     if (base) nbase = hull2d(base, nbase);
     for (int l = 0; base && nbase > 0 && n >= 0 && l < s->nlive_prev; l++) {
         const rd_pair *pr = &s->pair[s->live_prev[l]];
@@ -355,6 +370,27 @@ int rd_monitor_escape(rd_sim *s)
     return 0;
 }
 
+/* The support plane of body i at rest (rd_watch.seat) into seat: the face of the body j it
+ * rests on (-1: none) that faces up (normal within 60 degrees of the vertical) and lies
+ * nearest i's lowest vertex, through i's lowest point along its normal; level (e_z, through
+ * i's lowest point) when j has no such face. An inclined pedestal's top face gives an inclined
+ * base: its lowest point alone is not the base. */
+static void seat_plane(const rd_sim *s, int i, int j, double seat[4])
+{
+    const double up[3] = {0, 0, 1};
+    const double *n = up, *low = s->wv[s->vert0[i]];
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
+        if (s->wv[v][2] < low[2]) low = s->wv[v];
+    double best = INFINITY;
+    for (int f = j >= 0 ? s->face0[j] : 0; j >= 0 && f < s->face0[j + 1]; f++) {
+        double gap = fabs(rd_dot(s->wn[f], low) - s->wd[f]);
+        if (s->wn[f][2] >= 0.5 && gap < best) { best = gap; n = s->wn[f]; }
+    }
+    rd_copy3(n, seat);
+    seat[3] = INFINITY;
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) seat[3] = fmin(seat[3], rd_dot(n, s->wv[v]));
+}
+
 /* Rest state of body k: support polygon, height of the centre of mass, tipping angles. */
 static void watch_init(rd_sim *s, int k)
 {
@@ -365,9 +401,10 @@ static void watch_init(rd_sim *s, int k)
     double zmin = INFINITY;
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
     w->rests_on = resting_on(s, i);
+    seat_plane(s, i, w->rests_on, w->seat);
     support_polygon(s, k, zmin);
-    w->h = s->x[i][2] - zmin;
-    double b[3] = {s->x[i][0], s->x[i][1], zmin}, d[3] = {0, 0, zmin - s->x[i][2]};
+    const double zs = seat_z(w, s->x[i][0], s->x[i][1]);
+    double b[3] = {s->x[i][0], s->x[i][1], zs}, d[3] = {0, 0, zs - s->x[i][2]};
     rd_copy3(b, w->base_ref);
     rd_mat_tvec(s->R[i], d, w->base_local);
     w->rest_area = w->area;

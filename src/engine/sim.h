@@ -129,7 +129,10 @@ typedef struct rd_watch {
     double x_ref[3];     /* centre of mass at rest, m */
     double base_local[3];/* point of the support plane below the centre of mass, body frame, m */
     double base_ref[3];  /* same point in the ground frame at rest, m */
-    double h;            /* height of the centre of mass above its support plane at rest, m */
+    double seat[4];      /* the support plane at rest, seat . (x, y, z) = seat[3] (m): its upward
+                            unit normal (the face of the body it rests on that faces up and holds
+                            its lowest point; e_z when it rests on nothing) and the body's lowest
+                            point along it */
     double zb[3];        /* the rest vertical in the body frame */
     double alpha_min;    /* smallest static tipping angle over all lean directions, rad */
     double key_max;      /* tilt key (monitor.c: tilt_key) of the max tilt so far */
