@@ -240,13 +240,13 @@ static int add_support(rd_sim *s, int i, int j, const double (*base)[2], int nb,
 
 /* Support polygon at rest: a property of the body's geometry and pose, not of the contact
  * stiffness. Its base is the hull of the body's vertices within RD_SUPPORT_BAND of the support
- * plane (rd_watch.seat: level, or the inclined face it rests on); the support is the union, over the bodies that hold it up (their tops level with
- * that base: a brick in running bond rests on two), of the base clipped to each one's plan
- * (an overhanging block is supported only where the body below is), together with the points
- * pressed against them after settling (which carry an inclined seat). With no body level with
- * the base, the body it rests on (the lowest partner) holds it. The pressed points alone
- * depended on KN: a stiff contact presses only the few asperity points of a scanned base (a 20
- * degree rock read 3 degrees at KN 1e11). */
+ * plane (rd_watch.seat: level, or the inclined face it rests on); the support is the union,
+ * over the bodies that hold it up (their tops level with that base: a brick in running bond
+ * rests on two), of the base clipped to each one's plan (an overhanging block is supported only
+ * where the body below is), together with the points pressed against them after settling
+ * (which carry an inclined seat). With no body level with the base, the body it rests on (the
+ * lowest partner) holds it. The pressed points alone depended on KN: a stiff contact presses
+ * only the few asperity points of a scanned base (a 20 degree rock read 3 degrees at KN 1e11). */
 static void support_polygon(rd_sim *s, int k, double zmin)
 {
     int i = s->free_body[k], nv = s->vert0[i + 1] - s->vert0[i], n = 0, nbase = 0, nsup = 0;
