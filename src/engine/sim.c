@@ -198,12 +198,17 @@ static void settle(rd_sim *s)
 
 /* The state at rest: from a checkpoint (`model restore`, read by rd_sim_create in
  * io/checkpoint.c), or by settling, or as placed. `model save` is an observer there: its begin
- * writes this state. */
+ * writes this state. As placed, one contact step finds the contact areas at rest for the
+ * monitor, and the contacts it finds pressed are seated, as settling seats its own: a body
+ * placed pressed into its support is not landing on it, and a new contact's impact loss at its
+ * first unloading turned its whole compression into a permanent set at the first round-off
+ * unloading (a cube placed at its static compression dropped to twice it). */
 static void restore_or_settle(rd_sim *s)
 {
     if (s->restored) return;
     if (s->sc.settle.enabled) settle(s);
-    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR; /* contact areas at rest for the monitor */
+    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR;
+    else rd_contact_seat(s);
 }
 
 /* Rotate body k about the edge of its support on the side it leans to. */
