@@ -21,22 +21,8 @@ static void omega_from(const double R[9], const double I[3], const double L[3], 
     rd_mat_vec(R, lb, w);
 }
 
-/* Tangents t1, t2 of a face of outward unit normal u, ground frame, t1 x t2 = u: t1 along
- * e_a x u for the axis e_a least along u, t2 = u x t1 (a level face's are exact: -e_y and e_x). */
-static void face_tangents(const double u[3], double t[2][3])
-{
-    const double a0 = fabs(u[0]), a1 = fabs(u[1]), a2 = fabs(u[2]);
-    const int a = a0 <= a1 && a0 <= a2 ? 0 : a1 <= a2 ? 1 : 2;
-    double e[3] = {0, 0, 0};
-    e[a] = 1;
-    rd_cross(e, u, t[0]);
-    double n = rd_norm(t[0]);
-    for (int k = 0; k < 3; k++) t[0][k] /= n;
-    rd_cross(u, t[0], t[1]);
-}
-
-/* Rotation matrix, world vertices and world face planes of body i, and a fixed body's face
- * tangents (rd_body_refresh; static, so that its two copies stay in this file: RD_HOT). */
+/* Rotation matrix, world vertices and world face planes of body i (rd_body_refresh; static, so
+ * that its two copies stay in this file: RD_HOT). */
 RD_HOT static void body_geometry(rd_sim *s, int i)
 {
     rd_quat_to_mat(s->q[i], s->R[i]);
@@ -53,8 +39,6 @@ RD_HOT static void body_geometry(rd_sim *s, int i)
         rd_mat_vec(R, p->fn[f], wn[f]);
         wd[f] = p->fd[f] + rd_dot(wn[f], x);
     }
-    if (s->fixed[i])
-        for (int f = 0; f < p->nf; f++) face_tangents(wn[f], s->wt[s->face0[i] + f]);
 }
 
 void rd_body_refresh(rd_sim *s, int i)

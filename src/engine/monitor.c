@@ -372,15 +372,13 @@ int rd_monitor_escape(rd_sim *s)
 
 /* The support plane of body i at rest (rd_watch.seat) into seat: the face of the body j it
  * rests on (-1: none) that faces up (normal within 60 degrees of the vertical) and lies
- * nearest i's lowest vertex, through i's lowest point along its normal; level (e_z, through
+ * nearest i's lowest vertex low, through i's lowest point along its normal; level (e_z, through
  * i's lowest point) when j has no such face. An inclined pedestal's top face gives an inclined
  * base: its lowest point alone is not the base. */
-static void seat_plane(const rd_sim *s, int i, int j, double seat[4])
+static void seat_plane(const rd_sim *s, int i, int j, const double low[3], double seat[4])
 {
     const double up[3] = {0, 0, 1};
-    const double *n = up, *low = s->wv[s->vert0[i]];
-    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
-        if (s->wv[v][2] < low[2]) low = s->wv[v];
+    const double *n = up;
     double best = INFINITY;
     for (int f = j >= 0 ? s->face0[j] : 0; j >= 0 && f < s->face0[j + 1]; f++) {
         double gap = fabs(rd_dot(s->wn[f], low) - s->wd[f]);
@@ -398,10 +396,12 @@ static void watch_init(rd_sim *s, int k)
     rd_watch *w = &s->watch[k];
     memcpy(w->q_ref, s->q[i], sizeof w->q_ref);
     rd_copy3(s->x[i], w->x_ref);
-    double zmin = INFINITY;
-    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) zmin = fmin(zmin, s->wv[v][2]);
+    const double *low = s->wv[s->vert0[i]]; /* the lowest vertex */
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
+        if (s->wv[v][2] < low[2]) low = s->wv[v];
+    const double zmin = low[2];
     w->rests_on = resting_on(s, i);
-    seat_plane(s, i, w->rests_on, w->seat);
+    seat_plane(s, i, w->rests_on, low, w->seat);
     support_polygon(s, k, zmin);
     const double zs = seat_z(w, s->x[i][0], s->x[i][1]);
     double b[3] = {s->x[i][0], s->x[i][1], zs}, d[3] = {0, 0, zs - s->x[i][2]};

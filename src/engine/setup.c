@@ -101,6 +101,20 @@ static int seat_body(rd_sim *s, int i, rd_error *err)
     return 0;
 }
 
+/* Tangents t1, t2 of a face of outward unit normal u, ground frame, t1 x t2 = u: t1 along
+ * e_a x u for the axis e_a least along u, t2 = u x t1 (a level face's are exact: -e_y and e_x). */
+static void face_tangents(const double u[3], double t[2][3])
+{
+    const double a0 = fabs(u[0]), a1 = fabs(u[1]), a2 = fabs(u[2]);
+    const int a = a0 <= a1 && a0 <= a2 ? 0 : a1 <= a2 ? 1 : 2;
+    double e[3] = {0, 0, 0};
+    e[a] = 1;
+    rd_cross(e, u, t[0]);
+    double n = rd_norm(t[0]);
+    for (int k = 0; k < 3; k++) t[0][k] /= n;
+    rd_cross(u, t[0], t[1]);
+}
+
 int rd_setup_bodies(rd_sim *s, rd_error *err)
 {
     int nb = s->nb = s->sc.nbodies;
@@ -127,6 +141,9 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
         rd_body_refresh(s, i);
         if (s->sc.bodies[i].seat_on[0] && seat_body(s, i, err)) return -1;
     }
+    /* a fixed body's face tangents, the axes of contact.c's face law (placed: it never moves) */
+    for (int i = 0; i < nb; i++)
+        for (int f = s->face0[i]; s->fixed[i] && f < s->face0[i + 1]; f++) face_tangents(s->wn[f], s->wt[f]);
     return 0;
 }
 
