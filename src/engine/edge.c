@@ -34,9 +34,10 @@
  * does (edge_spring). So does an edge between two free bodies that crosses o at rest: its part
  * inside o lies level in one face of o (within the contact band) and, at one end of that part
  * at least, the edge runs on beyond the plane it leaves through by ten bands or more (plateau's
- * answer): a corner of the polygon where the two faces overlap that is no vertex of either
- * body (a block offset on, or turned on, a free pedestal of about its own size; every other
- * drum of a column turned by half a sector). At their deepest points, which jumped across
+ * answer), or at both ends beyond the band (neither end is then held by the edge's own vertex):
+ * a corner of the polygon where the two faces overlap that is no vertex of either body (a block
+ * offset on, or turned on, a free pedestal of about its own size; every other drum of a column
+ * turned by a fraction of a degree to half a sector). At their deepest points, which jumped across
  * the base as it tilted by a hair, such scenes made energy at rest (a block offset by 8 and 4
  * cm on a free pedestal of its size: residual 0.99 of its energy scale at 0.3 g). Between free
  * bodies each end spring starts from the depth where it starts (zero stretch: the rule may
@@ -45,9 +46,18 @@
  * an end lies deeper than the band: the contact is no longer a resting one, and pieces of the
  * envelope coming and going move its ends along the edge at a jump (a 4-drum column falling at
  * 1.6 g made 1.5e-3 of its energy scale so); the edge then bears at its deepest point. The
- * ten bands keep out an edge lying along one of o's edges a few mm off (equal blocks stacked,
- * one slid or turned by a hair), whose bearing piece changes between the two faces it lies
- * near: the YADE stack's residual rose past 1e-3.
+ * ten bands at one end keep out an edge lying along one of o's edges a few mm off (equal blocks
+ * stacked, one slid or turned by a hair; equal drums rocking on each other), whose bearing piece
+ * changes between the two faces it lies near: it crosses at one end only, its other end held by
+ * its own vertex (the YADE 4-drum column at 0.7 g made 1.9e-3 of its energy scale with one band
+ * at one end, 5.0e-4 with ten). A block or drum turned by up to a few degrees on one of its own
+ * footprint crosses at both ends by less than ten bands (a 0.5 m block turned 1 degree: 9
+ * bands); at their deepest points those edges made a third of the energy scale at rest.
+ * An end spring whose end leaves o while its last stretch is more than two steps of its point's
+ * normal speed has left by a jump of its point (the envelope's pieces changed under it), not by
+ * the bodies' motion: its stored energy is released and booked as friction (end_jumped), where
+ * returned to the bodies as a spring opening by itself it went missing from the balance (0.35 J
+ * in one step for a block turned 0.3 degrees rocking at 0.5 g).
  * No dashpot acts on edge subcontacts and bonds never form on them; their spring energy is in
  * the balance (rd_edge_elastic_energy).
  * Cost: the depths of t's vertices below o's planes come from contact.c's side of t (rd_sim.
@@ -72,6 +82,12 @@
 /* an edge crosses o's plane at an end of its part inside o when it runs on beyond that plane by
  * at least this many contact bands (plateau) */
 #define RD_EDGE_CROSS 10.0
+/* ... or, at both ends, by at least this many bands: neither end is then held by the edge's own
+ * vertex (a vertex within the band of o bears as a vertex subcontact) (plateau) */
+#define RD_EDGE_CROSS_BOTH 1.0
+/* an end spring whose last stretch exceeds this many steps of its point's normal speed when its
+ * end leaves o has left by a jump of the point, not by the bodies' motion (end_jumped) */
+#define RD_EDGE_JUMP 2.0
 /* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
 #define RD_EDGE_MAX_VERTS 512
 #define RD_EDGE_MAX_EDGES 1024
@@ -296,7 +312,8 @@ static void walk(const edge_lines *L, envelope *E)
  * the shaken slab on a smaller pad that bore on those points made energy (0.8 of its energy
  * scale in 3 s at 0.6 g). Returns whether the edge crosses o there: its bearing piece is level
  * within the contact band tol (m) over the edge, and at one end of it at least the edge leaves
- * o through a plane beyond which its own end lies RD_EDGE_CROSS bands or more. */
+ * o through a plane beyond which its own end lies RD_EDGE_CROSS bands or more, or at both ends
+ * RD_EDGE_CROSS_BOTH bands or more. */
 static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep end[2])
 {
     int crossing = 0;
@@ -308,13 +325,16 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
     int p = top == E.n ? E.n - 1 : top == 0 ? 0 : fabs(L->sl[E.k[top - 1]]) <= fabs(L->sl[E.k[top]]) ? top - 1 : top;
     const int kp = E.k[p];
     const double sp = L->sl[kp];
+    int both = 1;
     for (int j = 0; j < 2; j++) {
         int m = j ? (p + 1 < E.n ? p + 1 : -1) : p - 1; /* the neighbouring piece at this end */
         deep *d = &end[j];
         d->u = j ? (m >= 0 ? E.u0[m] : 1.0) : E.u0[p];
         d->d = L->c[kp] + sp * d->u;
         double sm = m >= 0 ? L->sl[E.k[m]] : 0;
-        crossing |= m >= 0 && -(L->c[E.k[m]] + L->sl[E.k[m]] * j) >= RD_EDGE_CROSS * tol;
+        double over = m >= 0 ? -(L->c[E.k[m]] + L->sl[E.k[m]] * j) : -INFINITY;
+        crossing |= over >= RD_EDGE_CROSS * tol;
+        both &= over >= RD_EDGE_CROSS_BOTH * tol;
         if (m >= 0 && sp * sm < 0) {
             const double *nm = n[E.k[m]];
             for (int i = 0; i < 3; i++) d->g[i] = (sp * nm[i] - sm * n[kp][i]) / (sp - sm);
@@ -322,7 +342,7 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
             rd_copy3(n[kp], d->g);
         }
     }
-    return crossing && fabs(sp) <= tol;
+    return (crossing || both) && fabs(sp) <= tol;
 }
 
 /* Force of edge slot e at world point q: the normal spring fn = kA * stretch against the depth
@@ -543,6 +563,19 @@ static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const d
     return gn > 0 && rd_dot(vr, g) / gn > rd_law_touch_speed(s, pr);
 }
 
+/* Has end slot e, whose end now lies outside o at q (depth gradient g), left by a jump of its
+ * point rather than by the bodies' motion? Its last stretch is more than RD_EDGE_JUMP steps of
+ * the point's normal speed: the pieces of the edge's envelope changed under it. Its spring's
+ * stored energy is then released (edge_release without q: booked as friction), not returned to
+ * the bodies as a spring that opens by itself (that return is the work its force did, which a
+ * jump does not do). */
+static int end_jumped(const rd_sim *s, const rd_side *sd, int e, const double q[3], const double g[3])
+{
+    double ro[3], rt[3], vr[3], n[3];
+    edge_point(s, sd, q, g, ro, rt, vr, n);
+    return s->edepth[e][0] > RD_EDGE_JUMP * fabs(rd_dot(vr, n)) * s->dt;
+}
+
 /* Slot e's spring at point dp of edge a-b (world): it starts once dp lies deeper than floor,
  * from depth d0 (its set), bears while stretched and is let go at zero stretch. Its area A'
  * (m^2) joins the monitor's tally w (may be NULL) while it bears, as a vertex subcontact's.
@@ -571,7 +604,7 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
     }
     double stretch = dp->d - s->edepth[e][1];
     if (!(held ? dp->d > 0 : stretch > 0) && !fresh) {
-        edge_release(s, sd, j, e, q, dp->g, 0.0);
+        edge_release(s, sd, j, e, held && end_jumped(s, sd, e, q, dp->g) ? NULL : q, dp->g, 0.0);
         return;
     }
     const double last = s->edepth[e][0]; /* the stretch it bore last step (0: none) */
