@@ -53,6 +53,14 @@
  * at one end, 5.0e-4 with ten). A block or drum turned by up to a few degrees on one of its own
  * footprint crosses at both ends by less than ten bands (a 0.5 m block turned 1 degree: 9
  * bands); at their deepest points those edges made a third of the energy scale at rest.
+ * Drums laid a few mm off each other rest on rim edges that cross the other drum's side at
+ * one end only, a few bands beyond, their other end their own vertex inside: the signature of
+ * the edge lying along o's edge. Such an end counts too where the edge crosses that plane
+ * steeply (its depth below it changes by RD_EDGE_STEEP bands or more along the edge: 185 for
+ * 12-sided drums' rims, 5-7 for the YADE column's edges that lie along each other) and the edge
+ * rests on o (at_rest: settling, or its ends slower than the pair's touch speed); moving, an
+ * edge lying along o's edge still bears at its deepest point (the YADE stack at KS 2e10 and
+ * 0.3 g made 1.03e-3 of its scale without the rest test).
  * An end spring whose end leaves o while its last stretch is more than two steps of its point's
  * normal speed has left by a jump of its point (the envelope's pieces changed under it), not by
  * the bodies' motion: its stored energy is released and booked as friction (end_jumped), where
@@ -85,6 +93,10 @@
 /* ... or, at both ends, by at least this many bands: neither end is then held by the edge's own
  * vertex (a vertex within the band of o bears as a vertex subcontact) (plateau) */
 #define RD_EDGE_CROSS_BOTH 1.0
+/* ... or, at one end, by at least RD_EDGE_CROSS_BOTH bands through a plane that the edge
+ * crosses steeply: its depth below that plane changes by this many bands along the edge, while
+ * the edge rests on o (at_rest) (plateau) */
+#define RD_EDGE_STEEP 20.0
 /* an end spring whose last stretch exceeds this many steps of its point's normal speed when its
  * end leaves o has left by a jump of the point, not by the bodies' motion (end_jumped) */
 #define RD_EDGE_JUMP 2.0
@@ -313,7 +325,9 @@ static void walk(const edge_lines *L, envelope *E)
  * scale in 3 s at 0.6 g). Returns whether the edge crosses o there: its bearing piece is level
  * within the contact band tol (m) over the edge, and at one end of it at least the edge leaves
  * o through a plane beyond which its own end lies RD_EDGE_CROSS bands or more, or at both ends
- * RD_EDGE_CROSS_BOTH bands or more. */
+ * RD_EDGE_CROSS_BOTH bands or more (1); or, at one end, RD_EDGE_CROSS_BOTH bands or more beyond a
+ * plane it crosses steeply (RD_EDGE_STEEP) (2: the caller's crossing only while the edge rests
+ * on o, at_rest); else 0. */
 static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep end[2])
 {
     int crossing = 0;
@@ -325,7 +339,7 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
     int p = top == E.n ? E.n - 1 : top == 0 ? 0 : fabs(L->sl[E.k[top - 1]]) <= fabs(L->sl[E.k[top]]) ? top - 1 : top;
     const int kp = E.k[p];
     const double sp = L->sl[kp];
-    int both = 1;
+    int both = 1, steep = 0;
     for (int j = 0; j < 2; j++) {
         int m = j ? (p + 1 < E.n ? p + 1 : -1) : p - 1; /* the neighbouring piece at this end */
         deep *d = &end[j];
@@ -335,6 +349,7 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
         double over = m >= 0 ? -(L->c[E.k[m]] + L->sl[E.k[m]] * j) : -INFINITY;
         crossing |= over >= RD_EDGE_CROSS * tol;
         both &= over >= RD_EDGE_CROSS_BOTH * tol;
+        steep |= over >= RD_EDGE_CROSS_BOTH * tol && m >= 0 && fabs(L->sl[E.k[m]]) >= RD_EDGE_STEEP * tol;
         if (m >= 0 && sp * sm < 0) {
             const double *nm = n[E.k[m]];
             for (int i = 0; i < 3; i++) d->g[i] = (sp * nm[i] - sm * n[kp][i]) / (sp - sm);
@@ -342,7 +357,8 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
             rd_copy3(n[kp], d->g);
         }
     }
-    return (crossing || both) && fabs(sp) <= tol;
+    if (!(fabs(sp) <= tol)) return 0;
+    return crossing || both ? 1 : steep ? 2 : 0;
 }
 
 /* Force of edge slot e at world point q: the normal spring fn = kA * stretch against the depth
@@ -563,6 +579,24 @@ static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const d
     return gn > 0 && rd_dot(vr, g) / gn > rd_law_touch_speed(s, pr);
 }
 
+/* Does edge a-b rest on o: the bodies are settling, or both ends of its part inside o (end) move
+ * relative to o slower than the pair's touch speed (rd_law_touch_speed: a touch no faster is no
+ * impact), or, before the pair has borne (no touch speed yet: the contact found as placed with
+ * `model settle off`), than gravity's speed in one step? */
+static int at_rest(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *a, const double *b,
+                   const deep end[2])
+{
+    if (s->settling) return 1;
+    const double vt = pr->k_active > 0 ? rd_law_touch_speed(s, pr) : s->sc.gravity * s->dt;
+    for (int k = 0; k < 2; k++) {
+        double q[3], ro[3], rt[3], vr[3], n[3];
+        for (int c = 0; c < 3; c++) q[c] = a[c] + end[k].u * (b[c] - a[c]);
+        edge_point(s, sd, q, end[k].g, ro, rt, vr, n);
+        if (!(rd_norm(vr) < vt)) return 0;
+    }
+    return 1;
+}
+
 /* Has end slot e, whose end now lies outside o at q (depth gradient g), left by a jump of its
  * point rather than by the bodies' motion? Its last stretch is more than RD_EDGE_JUMP steps of
  * the point's normal speed: the pieces of the edge's envelope changed under it. Its spring's
@@ -705,6 +739,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
            edge at its deepest point (may_bear has found both ends' depths where nothing bore) */
         deep end[2];
         int cross = !bears || (bears & RD_EDGE_END) ? plateau(s, o, &L, vi.tol, end) : 0;
+        if (cross == 2) cross = t_points && !bears && at_rest(s, pr, sd, a, b, end);
         int two = bears ? (bears & RD_EDGE_END) != 0 : !t_points || cross;
         if (t_points && two && (end[0].d > vi.tol || end[1].d > vi.tol)) {
             if (bears) release_deep(s, sd, j, e, a, b, end);

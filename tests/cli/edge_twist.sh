@@ -35,12 +35,25 @@
 #   turn03-rocks:             0.5 g, where both rock and slide: residual within 1e-3.
 #   column-turn1-rest:        0.1 g: every drum seated, residual within 1e-3.
 #   column-turn1-rocks:       0.3 g: residual within 1e-3.
+# And a column as built, its four 16-sided drums (circumradius 0.35 m, height 0.5 m) turned
+# 0.7, -1.3, 2.1 and 0.2 deg:
+#   column-irregular-rest:    0.1 g along 30 deg, below its uplift (apothem / centre height =
+#                             0.343 / 1.0 = 0.34 g): every drum seated, residual within 1e-3.
+# Offset by a few mm: the 12-sided drum column with its second drum (and the two on it) set 3 mm
+# off the first along x. The drums' rim edges cross each other's sides steeply, each at one end
+# only (its other end its own vertex, inside), 1.5-3 mm (3.6-7 bands) beyond the plane it leaves
+# through: a crossing while the edge rests on the other drum (edge.c, at_rest).
+#   column-offset-rest:       0.1 g: every drum seated, residual within 1e-3.
+#   column-offset-placed:     the same with `model settle off` (the contacts found as placed,
+#                             before the pair has a touch speed): as column-offset-rest.
 # Before (each such edge borne at its deepest point, which jumped across the base as it tilted
 # by a hair): residual 5.8e-2 and 9.2e-2 at 0.3 g (status untrusted), 4.3e-3 at 0.8 g; the
 # column 6.2e-2 (untrusted) at 0.1 g and 3.0e-3 at 0.3 g; the offset block 0.99 and 3.8e-2
 # (both untrusted). The blocks turned by a hair (crossing by less than ten bands) still bore
 # so on 96b3889: 0.37 and 0.30 at rest (untrusted), 9.5e-3 rocking; the column 9.8e-2 at rest
-# (untrusted), 3.8e-3 at 0.3 g. Bearing at both ends but returning a jumping end spring's energy
+# (untrusted), 3.8e-3 at 0.3 g; the irregular column 1.2e-2 (untrusted); the offset column
+# 3.8e-2 (untrusted) on 96b3889 and on f737aed, which bore the turned ones at both ends; placed,
+# 1.3e-2 (untrusted) where the rest test knew only settling and the touch speed. Bearing at both ends but returning a jumping end spring's energy
 # to the bodies (edge.c, end_jumped) left turn03-rocks at 1.6e-3.
 set -u
 . "$(dirname "$0")/lib/check.sh"
@@ -74,11 +87,26 @@ EOF
 }
 column column 15
 column column1 1
+sed 's/seat-on d1 name d2 rotation 0 0 15/seat-on d1 at 0.003 0 name d2/; s/name d4 rotation 0 0 15/name d4/' \
+    "$T/column.dat" > "$T/offset3.dat"
+{ cat "$T/offset3.dat"; echo "model settle off"; } > "$T/offset3p.dat"
+cat > "$T/irregular.dat" <<'EOF'
+block create brick size 2 2 0.5 position 0 0 -0.25 fixed name plinth
+block create prism sides 16 radius 0.35 height 0.5 seat-on plinth name d1 rotation 0 0 0.7
+block create prism sides 16 radius 0.35 height 0.5 seat-on d1 name d2 rotation 0 0 -1.3
+block create prism sides 16 radius 0.35 height 0.5 seat-on d2 name d3 rotation 0 0 2.1
+block create prism sides 16 radius 0.35 height 0.5 seat-on d3 name d4 rotation 0 0 0.2
+ground-motion pulse one-sine amplitude 0.1g frequency 2 direction 30
+model solve time 3
+output hdf5 'x.h5' interval 0.01
+EOF
 fail=0
 for case in "rest-0 twist 0.3g 0" "rest-45 twist 0.3g 45" "rocks-45 twist 0.8g 45" "offset-rest offset 0.3g 0" \
     "offset-rocks offset 0.8g 0" "column-rest column 0.1g 0" "column-rocks column 0.3g 0" \
     "turn03-rest turn03 0.3g 0" "turn1-rest turn1 0.3g 0" "turn03-rocks turn03 0.5g 0" \
-    "column-turn1-rest column1 0.1g 0" "column-turn1-rocks column1 0.3g 0"; do
+    "column-turn1-rest column1 0.1g 0" "column-turn1-rocks column1 0.3g 0" \
+    "column-irregular-rest irregular 0.1g 30" "column-offset-rest offset3 0.1g 0" \
+    "column-offset-placed offset3p 0.1g 0"; do
     read -r name scene amp dir <<< "$case"
     out=$("$BIN" run "$T/$scene.dat" --set motion.amplitude="$amp" --set motion.direction="$dir" -o "$T/$name.h5" 2>&1)
     rc=$?
@@ -86,7 +114,7 @@ for case in "rest-0 twist 0.3g 0" "rest-45 twist 0.3g 45" "rocks-45 twist 0.8g 4
     [ "$rc" -eq 0 ] || { echo "FAIL edge-twist/$name: the run exited $rc"; printf '%s\n' "$out" | tail -3; fail=1; continue; }
     check_residual "edge-twist/$name" "$(energy_residual "$T/$name.h5")" || fail=1
     case $name in *rest*)
-        bodies="ped b"; case $scene in column*) bodies="d1 d2 d3 d4" ;; esac
+        bodies="ped b"; case $scene in column* | irregular | offset3*) bodies="d1 d2 d3 d4" ;; esac
         for b in $bodies; do
             printf '%s\n' "$out" | grep -q "^$b: stayed seated" || { echo "FAIL edge-twist/$name: $b is not reported seated"; fail=1; }
         done ;;
