@@ -42,7 +42,7 @@
 # Offset by a few mm: the 12-sided drum column with its second drum (and the two on it) set 3 mm
 # off the first along x. The drums' rim edges cross each other's sides steeply, each at one end
 # only (its other end its own vertex, inside), 1.5-3 mm (3.6-7 bands) beyond the plane it leaves
-# through: a crossing while the edge rests on the other drum (edge.c, at_rest).
+# through: a crossing where the edge rests on the other drum as built (edge.c, at_rest).
 #   column-offset-rest:       0.1 g: every drum seated, residual within 1e-3.
 #   column-offset-placed:     the same with `model settle off` (the contacts found as placed,
 #                             before the pair has a touch speed): as column-offset-rest.
@@ -53,7 +53,7 @@
 # so on 96b3889: 0.37 and 0.30 at rest (untrusted), 9.5e-3 rocking; the column 9.8e-2 at rest
 # (untrusted), 3.8e-3 at 0.3 g; the irregular column 1.2e-2 (untrusted); the offset column
 # 3.8e-2 (untrusted) on 96b3889 and on f737aed, which bore the turned ones at both ends; placed,
-# 1.3e-2 (untrusted) where the rest test knew only settling and the touch speed. Bearing at both ends but returning a jumping end spring's energy
+# 1.3e-2 (untrusted) where the rest test knew only settling. Bearing at both ends but returning a jumping end spring's energy
 # to the bodies (edge.c, end_jumped) left turn03-rocks at 1.6e-3.
 set -u
 . "$(dirname "$0")/lib/check.sh"
