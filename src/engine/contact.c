@@ -689,6 +689,22 @@ static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k,
     return STEADY_OUT;
 }
 
+/* A steady point's kinematics k = (ro, vr) with entrance face e (dz: its ro'_z): under the face
+ * law in that face's frame, returned; else in the ground frame from the side's frame fr (NULL). */
+static inline __attribute__((always_inline)) face_frame *steady_kinematics(side_ctx *c, const steady_ctx *k,
+                                                                           const side_frame *fr, int e,
+                                                                           const double p[3], double dz,
+                                                                           double kin[6])
+{
+    if (!k->face_law) {
+        frame_kinematics(fr, p, kin);
+        return NULL;
+    }
+    face_frame *ff = face_frame_at(c, e);
+    face_kinematics(ff, p, dz, kin);
+    return ff;
+}
+
 /* subcontact's common cases, with its arithmetic (the same expressions in the same order, so
  * the same bits) and none of its branches on rare state:
  * - a point beyond the band that was already out: only its gap is recorded;
@@ -729,11 +745,8 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
         if (!plain && k->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
             double kin[6];
-            if (k->face_law)
-                face_kinematics(face_frame_at(c, e), p, dz, kin);
-            else
-                frame_kinematics(fr, p, kin);
-            double reach = -0.5 * fabs(k->face_law ? kin[5] : rd_dot(kin + 3, u)) * k->dt;
+            const face_frame *ff = steady_kinematics(c, k, fr, e, p, dz, kin);
+            double reach = -0.5 * fabs(ff ? kin[5] : rd_dot(kin + 3, u)) * k->dt;
             if ((depth <= 0 ? depth : depth - k->pset[st]) > reach) return STEADY_NONE;
         }
         if (depth <= 0) { /* above its face, within the band */
@@ -749,13 +762,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
         return STEADY_NONE;
     double kin[6], *ro = kin, *vr = kin + 3;
-    face_frame *ff = NULL;
-    if (k->face_law) {
-        ff = face_frame_at(c, e);
-        face_kinematics(ff, p, dz, kin);
-    } else {
-        frame_kinematics(fr, p, kin);
-    }
+    face_frame *ff = steady_kinematics(c, k, fr, e, p, dz, kin);
     double vn = ff ? vr[2] : rd_dot(vr, u);
     if (fl & RD_PT_VIRGIN && vn > 0 && (plain || !k->settling)) return STEADY_NONE; /* its impact loss: subcontact */
     if (k->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */

@@ -38,8 +38,8 @@
  * a corner of the polygon where the two faces overlap that is no vertex of either body (a block
  * offset on, or turned on, a free pedestal of about its own size; every other drum of a column
  * turned by a fraction of a degree to half a sector). At their deepest points, which jumped
- * across the base as it tilted by a hair, such scenes made energy at rest (a block offset by 8 and 4
- * cm on a free pedestal of its size: residual 0.99 of its energy scale at 0.3 g). Between free
+ * across the base as it tilted by a hair, such scenes made energy at rest (a block offset by 8
+ * and 4 cm on a free pedestal of its size: residual 0.99 of its energy scale at 0.3 g). Between free
  * bodies each end spring starts from the depth where it starts (zero stretch: the rule may
  * first hold where the edge is already inside), an end that is the edge's own vertex bears as
  * a vertex subcontact too (its spring adds A'/2 there), and the two let go (release_deep) once
@@ -363,6 +363,12 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
     return crossing || both ? 1 : steep ? 2 : 0;
 }
 
+/* The point q at u along edge a-b (world, m): a + u (b - a). */
+static void along(const double *a, const double *b, double u, double q[3])
+{
+    for (int c = 0; c < 3; c++) q[c] = a[c] + u * (b[c] - a[c]);
+}
+
 /* Force of edge slot e at world point q: the normal spring fn = kA * stretch against the depth
  * gradient g, and the Coulomb shear on the plane normal to g. */
 static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, const double q[3],
@@ -593,7 +599,7 @@ static int at_rest(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const 
     const double vt = s->sc.gravity * s->dt;
     for (int k = 0; k < 2; k++) {
         double q[3], ro[3], rt[3], vr[3], n[3];
-        for (int c = 0; c < 3; c++) q[c] = a[c] + end[k].u * (b[c] - a[c]);
+        along(a, b, end[k].u, q);
         edge_point(s, sd, q, end[k].g, ro, rt, vr, n);
         if (!(rd_norm(vr) < vt)) return 0;
     }
@@ -632,7 +638,7 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
     double kA = j->kn * A, sA = j->ks * A;
     int fresh = !s->eon[e];
     double q[3];
-    for (int c = 0; c < 3; c++) q[c] = a[c] + dp->u * (b[c] - a[c]);
+    along(a, b, dp->u, q);
     if (fresh) {
         if (!(dp->d > floor)) return;
         s->eon[e] = held ? RD_EDGE_ON | RD_EDGE_END : RD_EDGE_ON;
@@ -671,7 +677,7 @@ static void release_deep(rd_sim *s, const rd_side *sd, const rd_joint *j, int e,
 {
     for (int k = 0; k < RD_EDGE_SLOTS; k++) {
         double q[3];
-        for (int c = 0; c < 3; c++) q[c] = a[c] + end[k].u * (b[c] - a[c]);
+        along(a, b, end[k].u, q);
         edge_release(s, sd, j, e + k, q, end[k].g, end[k].d - s->edepth[e + k][1]);
     }
 }
