@@ -19,8 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Two faces lie on each other within this distance per metre of (1 m + the body's radius). */
-#define RD_FACE_TOL 1e-6
 #define ALLOC(ptr, n) ((ptr) = calloc((size_t)(n) > 0 ? (size_t)(n) : 1, sizeof *(ptr)))
 
 /* Orientation from rotations about x, then y, then z (extrinsic, rad), times the principal axes. */
@@ -235,7 +233,7 @@ static int face_touches(const rd_sim *s, const neighbours *nb, int i, int f, dou
         for (int g = 0; g < s->poly[j].nf; g++) {
             const double *m = s->wn[s->face0[j] + g];
             double dg = s->wd[s->face0[j] + g];
-            if (rd_dot(n, m) > -0.999) continue;
+            if (rd_dot(n, m) > -RD_ANTIPARALLEL) continue;
             int on = 1;
             for (int k = 0; k < p->flen[f] && on; k++)
                 on = fabs(rd_dot(m, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]]) - dg) < tol;

@@ -43,6 +43,10 @@
 /* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
  * its gap is below a tolerance of the order of 0.1 % of the model's dimension) (contact.c, joint.c). */
 #define RD_CONTACT_BAND 1e-3
+/* Two faces lie on each other within this distance per metre of (1 m + the body's radius) (setup.c:
+ * which faces carry a bed; pairs.c: which side of a joint covers it). */
+#define RD_FACE_TOL 1e-6
+#define RD_ANTIPARALLEL 0.999 /* two faces whose normals' dot product is below minus this face each other */
 #define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left (power of 2) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
