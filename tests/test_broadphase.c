@@ -193,7 +193,7 @@ static void test_sweep_pairs_exact(void **state)
     for (int k = 0; k < 12; k++)
         n += snprintf(text + n, sizeof text - (size_t)n,
                       "block create brick size 0.3 0.3 0.5 position %.4f %.4f 0.25 name b%d\n",
-                      0.55 * cos(k * M_PI / 6), 0.55 * sin(k * M_PI / 6), k);
+                      0.85 * cos(k * M_PI / 6), 0.85 * sin(k * M_PI / 6), k);
     snprintf(text + n, sizeof text - (size_t)n,
              "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\nmodel solve time 0.01\n");
     rd_sim *s = make(text);

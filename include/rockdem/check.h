@@ -19,7 +19,7 @@ typedef struct rd_check_body {
     int rests_on;         /* index of the body it rests on as placed, -1: none */
     int below;            /* index of the nearest body under it, -1: nothing under it */
     double gap;           /* its lowest point above the top of `below`, m (< 0: inside it) */
-    double overlap;       /* deepest penetration of its subcontacts into another body, m */
+    double overlap;       /* deepest overlap with another body as placed (a vertex of one inside the other), m */
     int overlaps;         /* index of the body it penetrates most, -1: none */
 } rd_check_body;
 

@@ -62,7 +62,8 @@ static int warnings(const rd_scenario *sc, const rd_check_report *r)
                    r->body[b->below].name);
             n++;
         }
-        int twice = b->overlaps >= 0 && b->overlaps < i && r->body[b->overlaps].overlaps == i; /* told */
+        int twice = b->overlaps >= 0 && b->overlaps < i && !r->body[b->overlaps].fixed &&
+                    r->body[b->overlaps].overlaps == i; /* told with the free body before it */
         if (b->overlap > RD_OVERLAP_TOL * size_of(b) && !twice) {
             printf("warning: block '%s' overlaps '%s' by %.4g m as placed: the contact springs "
                    "will throw them apart\n", b->name, r->body[b->overlaps].name, b->overlap);

@@ -51,7 +51,7 @@ static int below(const rd_sim *s, int i, double *gap)
 }
 
 /* What body i touches as placed: the lowest partner with active points, and the deepest
- * penetration of its points (or of the points of bodies pressing into it). */
+ * overlap with a body near it (overlap.c: a vertex of one inside the other). */
 static void touching(const rd_sim *s, int i, rd_check_body *cb)
 {
     cb->rests_on = -1; cb->overlaps = -1; cb->overlap = 0;
@@ -59,14 +59,12 @@ static void touching(const rd_sim *s, int i, rd_check_body *cb)
         const rd_pair *pr = &s->pair[p];
         if (pr->a != i && pr->b != i) continue;
         int other = pr->a == i ? pr->b : pr->a, active = 0;
+        double depth = rd_overlap_depth(s, i, other);
+        if (depth > cb->overlap) { cb->overlap = depth; cb->overlaps = other; }
         for (int q = 0; q < pr->nside; q++) {
             const rd_side *sd = &pr->side[q];
             int n = s->pt0[sd->owner + 1] - s->pt0[sd->owner];
-            for (int st = sd->state0; st < sd->state0 + n; st++) {
-                if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
-                active = 1;
-                if (-s->pj[st][1] > cb->overlap) { cb->overlap = -s->pj[st][1]; cb->overlaps = other; }
-            }
+            for (int st = sd->state0; st < sd->state0 + n && !active; st++) active = (s->pstate[st] & RD_PT_ACTIVE) != 0;
         }
         if (active && s->x[other][2] < s->x[i][2] && (cb->rests_on < 0 || s->x[other][2] < s->x[cb->rests_on][2]))
             cb->rests_on = other;
@@ -76,7 +74,7 @@ static void touching(const rd_sim *s, int i, rd_check_body *cb)
 /* The scene as placed, its contacts found once (NULL with err). */
 static rd_sim *placed(const rd_scenario *sc, rd_error *err)
 {
-    rd_sim *s = rd_sim_build(sc, err);
+    rd_sim *s = rd_sim_build_as_placed(sc, err);
     if (!s) return NULL;
     s->settling = 1;
     if (rd_contact_step(s)) { rd_sim_free(s); rd_error_set(err, "out of memory"); return NULL; }

@@ -363,6 +363,9 @@ static int build_points(rd_sim *s, rd_error *err)
             for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)face_role(s, &nb, i, f, zr);
         }
         for (int i = 0; i < s->nb; i++) spacing[i] = body_spacing(s, i, cand);
+        for (int i = 0; i < s->nb; i++)
+            for (int m = nb.start[i]; m < nb.start[i + 1]; m++)
+                if (nb.list[m] > i) rd_overlap_note(s, i, nb.list[m]);
         rc = mesh_candidates(s, cand, spacing, err);
     }
     free(nb.start);

@@ -333,6 +333,16 @@ int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err)
 
 rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err)
 {
+    rd_sim *s = rd_sim_build_as_placed(sc, err);
+    if (s && !sc->restore_path[0] && rd_overlap_refuse(s, err)) { /* a checkpoint's state replaces the placement */
+        rd_sim_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+rd_sim *rd_sim_build_as_placed(const rd_scenario *sc, rd_error *err)
+{
     rd_sim *s = sim_build(sc, err);
     if (!s) return NULL;
     s->watch = calloc((size_t)s->nfree, sizeof *s->watch);

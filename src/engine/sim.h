@@ -344,6 +344,9 @@ struct rd_sim {
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
     double wall;           /* wall seconds of the shaking stage */
     double settle_ratio;   /* unbalanced-force ratio reached by the settle stage */
+    double overlap;        /* deepest overlap of two bodies as placed beyond RD_OVERLAP_FRACTION, m
+                              (0: none; overlap.c) */
+    int overlap_pair[2];   /* the two bodies of that overlap */
     double rest_since;     /* tail: time since which every free body has been at rest, s
                               (-1 while something moves) */
     /* histories (history.c) */
@@ -445,6 +448,21 @@ void rd_observe_release(rd_sim *s);
 /* setup.c */
 int rd_setup_bodies(rd_sim *s, rd_error *err);
 int rd_setup_contacts(rd_sim *s, rd_error *err);
+
+/* rd_sim_build without refusing bodies that overlap as placed (check.c reports them). */
+rd_sim *rd_sim_build_as_placed(const rd_scenario *sc, rd_error *err);
+
+/* Bodies overlapping as placed (overlap.c). */
+#define RD_OVERLAP_FRACTION 1e-3 /* an overlap deeper than this fraction of the smaller body's
+                                    bounding radius cannot be a placement: refused */
+#define RD_OVERLAP_EDGE_DIRS 256 /* edge directions of a body taken as separating axes (a 128-sided drum: 129) */
+#define RD_PARALLEL_SIN 1e-9 /* two unit directions closer than this sine are parallel */
+/* How deep bodies i and j overlap as placed, m (0: apart or touching). */
+double rd_overlap_depth(const rd_sim *s, int i, int j);
+/* Note the overlap of touching bodies i and j as placed, if deeper than any noted before. */
+void rd_overlap_note(rd_sim *s, int i, int j);
+/* -1 with err naming the deepest overlap noted, else 0. */
+int rd_overlap_refuse(const rd_sim *s, rd_error *err);
 
 /* merge.c: co-located points on faces that always act merged into one (summed area); faces left
  * without a point dropped from the candidates. Allocates pn and pmult. 0 or -1. */

@@ -24,6 +24,8 @@ expect() { # scene, warning pattern
 expect unsupported "block 'block' has nothing under it: it falls freely"
 expect overlap "block 'lower' overlaps 'upper' by 0.05 m"
 [ "$(grep -c '^warning:' "$T/check.txt")" -eq 1 ]   # the overlap is told once
+expect overlap_base "block 'block' overlaps 'base' by 0.1 m"
+[ "$(grep -c '^warning:' "$T/check.txt")" -eq 1 ]
 expect hovering "block 'block' starts 2 m above 'base'"
 expect hovering "the time step .* times shorter than the output interval"
 expect short_record "the ground-motion record ends at 2 s but the run asks for 6 s"

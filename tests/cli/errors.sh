@@ -24,7 +24,15 @@ printf "model title 'open\n" > "$T/str.dat"
 printf 'block create brick size 2 2 0.5 position 0 0 -0.25 fixed\nmodel solve time 1\n' > "$T/nofree.dat"
 cp "$good" "$T/dt.dat"; echo 'model timestep fixed 1e-2' >> "$T/dt.dat"
 
+# bodies placed into each other (engine/overlap.c): a block sunk 0.1 m into its pedestal, and
+# two blocks side by side 0.1 m into each other, where no vertex of either lies inside the
+# other (each was run and flung apart: the first 130 m up, ending `done`)
+sed 's/position 0 0 0.8 name b/position 0 0 0.7 name b/' "$good" > "$T/sunk.dat"
+{ cat "$good"; echo 'block create brick size 0.4 0.4 1.6 position 0.3 0 0.8 name c'; } > "$T/side.dat"
+
 expect missing-file "$T/nope.dat: cannot open" -- "$BIN" run "$T/nope.dat"
+expect overlap-sunk "sunk.dat: blocks 'base' and 'b' overlap by 0.1 m as placed" -- "$BIN" run "$T/sunk.dat" -o "$T/x.h5"
+expect overlap-side "side.dat: blocks 'b' and 'c' overlap by 0.1 m as placed" -- "$BIN" run "$T/side.dat" -o "$T/x.h5"
 expect unknown-keyword "kw.dat:2:18: unknown keyword 'frction'" -- "$BIN" run "$T/kw.dat"
 expect bad-number "num.dat:1:" -- "$BIN" run "$T/num.dat"
 expect unterminated-string "str.dat:1:" -- "$BIN" run "$T/str.dat"

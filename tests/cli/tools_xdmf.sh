@@ -12,7 +12,7 @@ PY=/usr/bin/python3
 cat > "$T/s.dat" <<'DAT'
 model title 'xdmf test: two bricks, tilted start'
 block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base
-block create brick size 0.4 0.3 1.2 position -0.6 0 0.6 rotation 4 3 30 name b1
+block create brick size 0.4 0.3 1.2 position -0.6 0 0.62 rotation 4 3 30 name b1
 block create brick size 0.5 0.5 0.8 position 0.6 0.2 0.4 name b2
 contact property stiffness-normal 1e9 stiffness-shear 1e8 friction 35
 ground-motion pulse one-sine amplitude 0.4g frequency 3 direction 20
