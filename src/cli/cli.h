@@ -21,6 +21,11 @@ typedef int (*rd_cli_option_fn)(void *ctx, int argc, char **argv, int *i);
 int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt, void *ctx,
                     const char **out);
 
+/* Is argv[i] one of the options `names` (NULL-terminated) that take a value? 1 when it is not
+ * one of them; -1 when the value is missing (after printing which option needs one); 0 with
+ * *v = argv[i + 1]. */
+int rd_cli_option(int argc, char **argv, int i, const char *const *names, const char **v);
+
 /* Parse a number (optionally with a 'g' suffix: times RD_G_STANDARD = 9.80665 m/s^2) for option `name`. */
 int rd_cli_number(const char *name, const char *text, int accel, double *v);
 

@@ -13,17 +13,26 @@
 #include <string.h>
 
 typedef struct restitution_args {
-    double target; /* < 0: Housner's r */
-    double theta0; /* < 0: half of alpha */
+    double target; /* 0: Housner's r */
+    double theta0; /* rad; 0: half of alpha */
 } restitution_args;
 
 static int restitution_option(void *ctx, int argc, char **argv, int *i)
 {
+    static const char *const names[] = {"--target", "--theta0", NULL};
     restitution_args *a = ctx;
-    if (*i + 1 >= argc) return 1;
-    double *dst = !strcmp(argv[*i], "--target") ? &a->target : !strcmp(argv[*i], "--theta0") ? &a->theta0 : NULL;
-    if (!dst) return 1;
-    if (rd_cli_number(argv[*i], argv[*i + 1], 0, dst)) return -1;
+    const char *o = argv[*i], *v;
+    int rc = rd_cli_option(argc, argv, *i, names, &v);
+    if (rc) return rc;
+    int target = !strcmp(o, "--target");
+    double x;
+    if (rd_cli_number(o, v, 0, &x)) return -1;
+    if (!(x > 0) || (target && x > 1)) {
+        fprintf(stderr, "rockdem: %s expects %s, got '%s'\n", o,
+                target ? "a restitution above 0, at most 1" : "an initial tilt above 0 (rad)", v);
+        return -1;
+    }
+    *(target ? &a->target : &a->theta0) = x;
     (*i)++;
     return 0;
 }
@@ -77,13 +86,19 @@ static void print_check(const rd_restitution *m)
 int rd_cli_restitution(int argc, char **argv)
 {
     rd_scenario sc;
-    restitution_args a = {-1, -1};
+    restitution_args a = {0, 0};
     if (rd_cli_scenario(&sc, argc, argv, restitution_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
     rd_error err;
     rd_refscene rs;
     if (rd_refscene_map(&sc, &rs, &err) || rs.model != RD_REFMODEL_HOUSNER) {
         fprintf(stderr, "%s\n", rs.model == RD_REFMODEL_KOUNADIS ? "restitution: needs one free "
                 "block on a fixed base (this is a stack)" : err.msg);
+        rd_scenario_free(&sc);
+        return 2;
+    }
+    if (a.theta0 >= rs.alpha) {
+        fprintf(stderr, "rockdem: --theta0 expects an initial tilt below the block's alpha = %.6g rad, "
+                "got %g\n", rs.alpha, a.theta0);
         rd_scenario_free(&sc);
         return 2;
     }

@@ -16,6 +16,7 @@
 
 #define RD_MAX_FREQS 64
 #define RD_MAX_JOBS 256 /* -j: the scan's own cap (src/ensembles/threshold.c) */
+#define RD_MAX_SCAN_STEPS 1000 /* --steps: coarse scan steps (each one run; the default 24) */
 
 typedef struct threshold_args {
     rd_engine engine;
@@ -24,28 +25,63 @@ typedef struct threshold_args {
     double freq[RD_MAX_FREQS]; /* Hz */
 } threshold_args;
 
-/* "f1,f2,..." into a->freq; 0, or -1 with a message. */
+/* "f1,f2,..." into a->freq (Hz, each positive, none empty); 0, or -1 with a message. */
 static int read_frequencies(threshold_args *a, const char *v)
 {
-    char buf[1024];
-    snprintf(buf, sizeof buf, "%s", v);
-    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+    for (const char *tok = v;; tok++) {
+        size_t len = strcspn(tok, ",");
+        char item[64];
+        if (len == 0 || len >= sizeof item) {
+            fprintf(stderr, "rockdem: --frequencies expects positive numbers (Hz) separated by "
+                    "commas, got '%s' (%s item)\n", v, len ? "an overlong" : "an empty");
+            return -1;
+        }
         if (a->nfreq == RD_MAX_FREQS) {
             fprintf(stderr, "rockdem: --frequencies: at most %d values\n", RD_MAX_FREQS);
             return -1;
         }
-        if (rd_cli_number("--frequencies", tok, 1, &a->freq[a->nfreq])) return -1;
-        a->nfreq++;
+        snprintf(item, sizeof item, "%.*s", (int)len, tok);
+        double *f = &a->freq[a->nfreq++];
+        if (rd_cli_number("--frequencies", item, 0, f)) return -1;
+        if (!(*f > 0)) {
+            fprintf(stderr, "rockdem: --frequencies expects positive frequencies (Hz), got '%s'\n", item);
+            return -1;
+        }
+        tok += len;
+        if (!*tok) return 0;
     }
+}
+
+/* --lo / --hi A: an amplitude above zero (m/s^2, or with a g suffix); 0, or -1 with a message. */
+static int read_amplitude(const char *o, const char *v, double *a)
+{
+    if (rd_cli_number(o, v, 1, a)) return -1;
+    if (*a > 0) return 0;
+    fprintf(stderr, "rockdem: %s expects an amplitude above 0 (m/s^2, or with a g suffix), got '%s'\n", o, v);
+    return -1;
+}
+
+/* A whole number from 1 to max for option o; 0, or -1 with a message naming what it counts. */
+static int read_count(const char *o, const char *v, int max, const char *what, int *n)
+{
+    double x;
+    if (rd_cli_number(o, v, 0, &x)) return -1;
+    if (!(x >= 1 && x <= max) || x != floor(x)) {
+        fprintf(stderr, "rockdem: %s expects a number of %s (1 to %d), got '%s'\n", o, what, max, v);
+        return -1;
+    }
+    *n = (int)x;
     return 0;
 }
 
 static int threshold_option(void *ctx, int argc, char **argv, int *i)
 {
+    static const char *const names[] = {"--engine", "--lo", "--hi", "--rtol", "--frequencies", "--steps",
+                                        "-j", NULL};
     threshold_args *a = ctx;
-    if (*i + 1 >= argc) return 1;
-    const char *o = argv[*i], *v = argv[*i + 1];
-    double x;
+    const char *o = argv[*i], *v;
+    int rc = rd_cli_option(argc, argv, *i, names, &v);
+    if (rc) return rc;
     if (!strcmp(o, "--engine")) {
         if (strcmp(v, "dem") && strcmp(v, "reference")) {
             fprintf(stderr, "rockdem: --engine expects dem or reference, got '%s'\n", v);
@@ -53,28 +89,18 @@ static int threshold_option(void *ctx, int argc, char **argv, int *i)
         }
         a->engine = strcmp(v, "dem") ? RD_ENGINE_REFERENCE : RD_ENGINE_DEM;
     } else if (!strcmp(o, "--lo") || !strcmp(o, "--hi")) {
-        if (rd_cli_number(o, v, 1, &x)) return -1;
-        *(o[2] == 'l' ? &a->opts.lo : &a->opts.hi) = x;
+        rc = read_amplitude(o, v, o[2] == 'l' ? &a->opts.lo : &a->opts.hi);
     } else if (!strcmp(o, "--rtol")) {
-        if (rd_cli_number(o, v, 0, &a->opts.rtol)) return -1;
+        rc = rd_cli_number(o, v, 0, &a->opts.rtol);
     } else if (!strcmp(o, "--frequencies")) {
-        if (read_frequencies(a, v)) return -1;
+        rc = read_frequencies(a, v);
     } else if (!strcmp(o, "--steps")) {
-        if (rd_cli_number(o, v, 0, &x)) return -1;
-        a->opts.nscan = (int)x;
-    } else if (!strcmp(o, "-j")) {
-        if (rd_cli_number(o, v, 0, &x)) return -1;
-        if (!(x >= 1 && x <= RD_MAX_JOBS) || x != floor(x)) {
-            fprintf(stderr, "rockdem: -j expects a number of worker processes (1 to %d), got '%s'\n",
-                    RD_MAX_JOBS, v);
-            return -1;
-        }
-        a->opts.jobs = (int)x;
+        rc = read_count(o, v, RD_MAX_SCAN_STEPS, "coarse scan steps", &a->opts.nscan);
     } else {
-        return 1;
+        rc = read_count(o, v, RD_MAX_JOBS, "worker processes", &a->opts.jobs);
     }
     (*i)++;
-    return 0;
+    return rc;
 }
 
 /* One row of the minimum-overturning curve at pulse frequency f (Hz). */

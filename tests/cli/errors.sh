@@ -23,6 +23,7 @@ printf 'block create brick size 1 1 position 0 0 0.5\n' > "$T/num.dat"
 printf "model title 'open\n" > "$T/str.dat"
 printf 'block create brick size 2 2 0.5 position 0 0 -0.25 fixed\nmodel solve time 1\n' > "$T/nofree.dat"
 cp "$good" "$T/dt.dat"; echo 'model timestep fixed 1e-2' >> "$T/dt.dat"
+cp "$good" "$T/pulse.dat"; echo 'ground-motion pulse one-sine amplitude 0.2g frequency 2 direction 0' >> "$T/pulse.dat"
 
 # bodies placed into each other (engine/overlap.c): a block sunk 0.1 m into its pedestal, and
 # two blocks side by side 0.1 m into each other, where no vertex of either lies inside the
@@ -42,4 +43,30 @@ expect bad-override "--set contact.stiffnes-normal=1" -- "$BIN" run "$good" --se
 expect bad-override-value "--set contact.friction=abc" -- "$BIN" run "$good" --set contact.friction=abc
 expect unwritable-output "/nonexistent-dir/x.h5" -- "$BIN" run "$good" -o /nonexistent-dir/x.h5
 expect unknown-option "unknown option '--bogus'" -- "$BIN" run "$good" --bogus
+# option values out of range are refused, never replaced by a default (timeout: a run that
+# goes ahead instead fails here rather than hanging the suite)
+TH="timeout 60 $BIN threshold $T/pulse.dat --engine reference"
+expect threshold-lo-negative "--lo expects an amplitude above 0 (m/s^2, or with a g suffix), got '-1'" -- $TH --lo -1
+expect threshold-lo-zero "--lo expects an amplitude above 0" -- $TH --lo 0
+expect threshold-hi-zero "--hi expects an amplitude above 0" -- $TH --hi 0
+expect threshold-hi-negative "--hi expects an amplitude above 0 (m/s^2, or with a g suffix), got '-5'" -- $TH --hi -5
+expect threshold-steps-zero "--steps expects a number of coarse scan steps (1 to 1000), got '0'" -- $TH --steps 0
+expect threshold-steps-negative "--steps expects a number of coarse scan steps (1 to 1000), got '-3'" -- $TH --steps -3
+expect threshold-steps-huge "--steps expects a number of coarse scan steps (1 to 1000), got '1e9'" -- $TH --steps 1e9
+expect threshold-steps-fraction "got '2.5'" -- $TH --steps 2.5
+expect threshold-frequencies-empty "--frequencies expects positive numbers (Hz) separated by commas, got '1,,2'" -- $TH --frequencies 1,,2
+expect threshold-frequencies-trailing "got '1,' (an empty item)" -- $TH --frequencies 1,
+expect threshold-frequencies-zero "--frequencies expects positive frequencies (Hz), got '0'" -- $TH --frequencies 0
+RS="timeout 60 $BIN restitution $T/pulse.dat"
+expect restitution-target-negative "--target expects a restitution above 0, at most 1, got '-1'" -- $RS --target -1
+expect restitution-target-zero "--target expects a restitution above 0, at most 1, got '0'" -- $RS --target 0
+expect restitution-target-above-1 "--target expects a restitution above 0, at most 1, got '2'" -- $RS --target 2
+expect restitution-theta0-zero "--theta0 expects an initial tilt above 0 (rad), got '0'" -- $RS --theta0 0
+expect restitution-theta0-negative "--theta0 expects an initial tilt above 0 (rad), got '-5'" -- $RS --theta0 -5
+expect restitution-theta0-past-alpha "--theta0 expects an initial tilt below the block's alpha = 0.244979 rad, got 1" -- $RS --theta0 1
+# an option given last without its value is named as needing one, not as unknown
+expect set-no-value "--set needs a value (see rockdem run --help)" -- "$BIN" run "$good" --set
+expect out-no-value "-o needs a value (see rockdem run --help)" -- "$BIN" run "$good" -o
+expect engine-no-value "--engine needs a value (see rockdem threshold --help)" -- "$BIN" threshold "$T/pulse.dat" --engine
+expect target-no-value "--target needs a value (see rockdem restitution --help)" -- "$BIN" restitution "$T/pulse.dat" --target
 [ "$fails" -eq 0 ]
