@@ -15,7 +15,9 @@
  */
 #include "engine/state.h"
 #include "engine/sim.h"
+#include "base/vec.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -64,13 +66,99 @@ int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS])
     return n;
 }
 
-const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], const char *const *names,
-                              char *buf, size_t n)
+/* Do the k values at a and b agree to RD_STATE_BUILD_RTOL of scale? */
+static int agree(const double *a, const double *b, int k, double scale)
 {
-    if (h[RD_STATE_H_VERSION] != RD_STATE_VERSION || h[RD_STATE_H_PAIR_SIZE] != (long)sizeof(rd_pair) ||
+    for (int j = 0; j < k; j++)
+        if (!(fabs(a[j] - b[j]) <= RD_STATE_BUILD_RTOL * scale)) return 0;
+    return 1;
+}
+
+/* Body i's shape against the saved one (its vertices there at v): NULL, or why not (in buf). */
+static const char *shape_mismatch(const rd_sim *s, int i, const rd_state_build *there, const double *v,
+                                  char *buf, size_t n)
+{
+    const char *name = s->sc.bodies[i].name;
+    const rd_poly *p = &s->poly[i];
+    if (there->nv[i] != p->nv) {
+        snprintf(buf, n, "block '%s' has another shape (%d vertices there, %d here)", name, there->nv[i], p->nv);
+        return buf;
+    }
+    for (int k = 0; k < p->nv; k++)
+        if (!agree(&v[3 * k], p->v[k], 3, p->radius)) {
+            snprintf(buf, n, "block '%s' has another shape (vertex %d at (%.9g, %.9g, %.9g) m there, "
+                     "(%.9g, %.9g, %.9g) m here, in its principal frame)", name, k + 1, v[3 * k],
+                     v[3 * k + 1], v[3 * k + 2], p->v[k][0], p->v[k][1], p->v[k][2]);
+            return buf;
+        }
+    return NULL;
+}
+
+/* Body i's mass and principal moments against the saved ones: NULL, or why not (in buf). */
+static const char *mass_mismatch(const rd_sim *s, int i, const rd_state_build *there, char *buf, size_t n)
+{
+    const char *name = s->sc.bodies[i].name;
+    const double *m = &there->inertia[3 * i], *h = s->inertia[i];
+    if (!agree(&there->mass[i], &s->mass[i], 1, s->mass[i])) {
+        snprintf(buf, n, "block '%s' has another mass (%.9g kg there, %.9g kg here)", name, there->mass[i],
+                 s->mass[i]);
+        return buf;
+    }
+    if (agree(m, h, 3, fmax(fmax(h[0], h[1]), h[2]))) return NULL;
+    snprintf(buf, n, "block '%s' has other principal moments of inertia (%.6g, %.6g, %.6g kg m^2 there, "
+             "%.6g, %.6g, %.6g here)", name, m[0], m[1], m[2], h[0], h[1], h[2]);
+    return buf;
+}
+
+/* Fixed body i's pose as built against the saved one: NULL, or why not (in buf). */
+static const char *pose_mismatch(const rd_sim *s, int i, const rd_state_build *there, char *buf, size_t n)
+{
+    const char *name = s->sc.bodies[i].name;
+    const double *x = &there->x[3 * i], *q = &there->q[4 * i], *h = s->q[i];
+    const double minus_q[4] = {-q[0], -q[1], -q[2], -q[3]}; /* q and -q: the same orientation */
+    if (!agree(x, s->x[i], 3, rd_norm(s->x[i]) + s->poly[i].radius)) {
+        snprintf(buf, n, "fixed block '%s' stands elsewhere (centre of mass at (%.9g, %.9g, %.9g) m there, "
+                 "(%.9g, %.9g, %.9g) m here)", name, x[0], x[1], x[2], s->x[i][0], s->x[i][1], s->x[i][2]);
+        return buf;
+    }
+    if (agree(q, h, 4, 1) || agree(minus_q, h, 4, 1)) return NULL;
+    snprintf(buf, n, "fixed block '%s' is turned otherwise (quaternion (%.6g, %.6g, %.6g, %.6g) there, "
+             "(%.6g, %.6g, %.6g, %.6g) here)", name, q[0], q[1], q[2], q[3], h[0], h[1], h[2], h[3]);
+    return buf;
+}
+
+/* Are the saved blocks (there) this simulation's as built, to RD_STATE_BUILD_RTOL? NULL, or the
+ * first difference naming its block (in buf). Before the image is read. */
+static const char *build_mismatch(const rd_sim *s, const rd_state_build *there, char *buf, size_t n)
+{
+    const double *v = there->vertices;
+    for (int i = 0; i < s->nb; i++) {
+        if (there->fixed[i] != s->fixed[i]) {
+            snprintf(buf, n, "block '%s' is %s there, %s here", s->sc.bodies[i].name,
+                     there->fixed[i] ? "fixed" : "free", s->fixed[i] ? "fixed" : "free");
+            return buf;
+        }
+        const char *bad = shape_mismatch(s, i, there, v, buf, n);
+        if (!bad) bad = mass_mismatch(s, i, there, buf, n);
+        if (!bad && s->fixed[i]) bad = pose_mismatch(s, i, there, buf, n);
+        if (bad) return bad;
+        v += 3 * there->nv[i];
+    }
+    return NULL;
+}
+
+const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], const char *const *names,
+                              const rd_state_build *there, char *buf, size_t n)
+{
+    if (h[RD_STATE_H_VERSION] != RD_STATE_VERSION) {
+        snprintf(buf, n, "checkpoint version %ld, this rockdem reads version %d (save it again with this build)",
+                 h[RD_STATE_H_VERSION], RD_STATE_VERSION);
+        return buf;
+    }
+    if (h[RD_STATE_H_PAIR_SIZE] != (long)sizeof(rd_pair) ||
         h[RD_STATE_H_JOINT_SIZE] != (long)sizeof(rd_joint) || h[RD_STATE_H_EVENT_SIZE] != (long)sizeof(rd_event))
         return "written by another rockdem build (checkpoint layout differs)";
-    if (h[RD_STATE_H_NB] != s->nb || !names) {
+    if (h[RD_STATE_H_NB] != s->nb || !names || !there) {
         snprintf(buf, n, "it holds %ld blocks, this scenario %d", h[RD_STATE_H_NB], s->nb);
         return buf;
     }
@@ -79,6 +167,8 @@ const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], co
             snprintf(buf, n, "block %d is '%s' there, '%s' here", i + 1, names[i], s->sc.bodies[i].name);
             return buf;
         }
+    const char *bad = build_mismatch(s, there, buf, n);
+    if (bad) return bad;
     if (h[RD_STATE_H_NPTS] != s->npts) {
         snprintf(buf, n, "it has %ld subcontacts, this scenario %d (other shapes or spacing)",
                  h[RD_STATE_H_NPTS], s->npts);
@@ -131,4 +221,61 @@ void rd_state_restored(rd_sim *s, const double settle[2])
     s->settle_time = settle[0];
     s->settle_ratio = settle[1];
     s->restored = 1;
+}
+
+int rd_state_build_alloc(rd_state_build *b, int nb, long nvert)
+{
+    *b = (rd_state_build){.nb = nb, .nvert = nvert}; /* each array one longer: never a 0-byte calloc */
+    b->fixed = calloc((size_t)nb + 1, sizeof *b->fixed);
+    b->nv = calloc((size_t)nb + 1, sizeof *b->nv);
+    b->mass = calloc((size_t)nb + 1, sizeof *b->mass);
+    b->inertia = calloc(3 * (size_t)nb + 1, sizeof *b->inertia);
+    b->x = calloc(3 * (size_t)nb + 1, sizeof *b->x);
+    b->q = calloc(4 * (size_t)nb + 1, sizeof *b->q);
+    b->vertices = calloc(3 * (size_t)nvert + 1, sizeof *b->vertices);
+    if (b->fixed && b->nv && b->mass && b->inertia && b->x && b->q && b->vertices) return 0;
+    rd_state_build_free(b);
+    return -1;
+}
+
+void rd_state_build_free(rd_state_build *b)
+{
+    free(b->fixed);
+    free(b->nv);
+    free(b->mass);
+    free(b->inertia);
+    free(b->x);
+    free(b->q);
+    free(b->vertices);
+    *b = (rd_state_build){0};
+}
+
+int rd_state_build_of(const rd_sim *s, rd_state_build *b)
+{
+    long nvert = 0;
+    for (int i = 0; i < s->nb; i++) nvert += s->poly[i].nv;
+    if (rd_state_build_alloc(b, s->nb, nvert)) return -1;
+    double *v = b->vertices;
+    for (int i = 0; i < s->nb; i++) {
+        b->fixed[i] = s->fixed[i];
+        b->nv[i] = s->poly[i].nv;
+        b->mass[i] = s->mass[i];
+        memcpy(&b->inertia[3 * i], s->inertia[i], sizeof s->inertia[i]);
+        memcpy(&b->x[3 * i], s->x[i], sizeof s->x[i]);
+        memcpy(&b->q[4 * i], s->q[i], sizeof s->q[i]);
+        memcpy(v, s->poly[i].v, 3 * sizeof *v * (size_t)s->poly[i].nv);
+        v += 3 * s->poly[i].nv;
+    }
+    return 0;
+}
+
+int rd_state_build_arrays(rd_state_build *b, rd_state_array a[RD_STATE_ARRAYS])
+{
+    int n = 0;
+    a[n++] = (rd_state_array){"bodies/fixed", RD_STATE_INT, b->fixed, b->nb};
+    a[n++] = (rd_state_array){"bodies/vertex_count", RD_STATE_INT, b->nv, b->nb};
+    a[n++] = (rd_state_array){"bodies/mass", RD_STATE_DOUBLE, b->mass, b->nb};
+    a[n++] = (rd_state_array){"bodies/inertia", RD_STATE_DOUBLE, b->inertia, 3L * b->nb};
+    a[n++] = (rd_state_array){"bodies/vertices", RD_STATE_DOUBLE, b->vertices, 3 * b->nvert};
+    return n;
 }

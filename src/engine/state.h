@@ -12,8 +12,10 @@
 
 #include <stddef.h>
 
-#define RD_STATE_VERSION 5 /* bump when the image's arrays or their meaning change */
+#define RD_STATE_VERSION 6 /* bump when the image's arrays or their meaning change (6: the blocks' build) */
 #define RD_STATE_ARRAYS 32 /* room for the arrays of an image */
+#define RD_STATE_BUILD_RTOL 1e-9 /* a restored block's shape, mass and fixed pose must be the saved
+                                    one's to this relative tolerance (round-off, not a change) */
 
 typedef enum rd_state_type { RD_STATE_DOUBLE = 0, RD_STATE_INT = 1, RD_STATE_BYTE = 2 } rd_state_type;
 
@@ -46,10 +48,36 @@ void rd_state_capture(rd_sim *s, long h[RD_STATE_HEADER], double settle[2]);
 /* The arrays of the image, as sized now (after capture, or after rd_state_reserve): count. */
 int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS]);
 
-/* Restoring: does an image of header h and block names (NULL when h's nb differs) fit this
- * simulation? NULL, or the difference (in buf, or a constant). */
+/* The blocks as built, stored beside the image so that a restore is refused unless the scene's
+ * blocks are the same: per body, fixed (1) or free, vertex count, mass (kg) and principal
+ * moments (kg m^2), and every body's vertices in its own frame (centre of mass, principal axes;
+ * m), in body order. A fixed body's pose is the image's bodies/position and bodies/quaternion
+ * (it never moves). */
+typedef struct rd_state_build {
+    int nb;
+    long nvert;       /* vertices of all bodies */
+    int *fixed;       /* [nb] */
+    int *nv;          /* [nb] */
+    double *mass;     /* [nb] kg */
+    double *inertia;  /* [3 nb] kg m^2 */
+    double *x;        /* [3 nb] centre of mass, m */
+    double *q;        /* [4 nb] orientation, body -> ground */
+    double *vertices; /* [3 nvert] m */
+} rd_state_build;
+
+/* Room for nb bodies and nvert vertices (zeroed); 0 or -1. rd_state_build_free releases it. */
+int rd_state_build_alloc(rd_state_build *b, int nb, long nvert);
+void rd_state_build_free(rd_state_build *b);
+/* The simulation's blocks (fixed bodies at their pose as built). 0 or -1. */
+int rd_state_build_of(const rd_sim *s, rd_state_build *b);
+/* The arrays of b that a checkpoint stores (not x and q: the image's): count. */
+int rd_state_build_arrays(rd_state_build *b, rd_state_array a[RD_STATE_ARRAYS]);
+
+/* Restoring, before the image is read: does an image of header h, block names and blocks as
+ * built (both NULL when h's version or nb differs) fit this simulation (the same blocks, to
+ * RD_STATE_BUILD_RTOL)? NULL, or the difference, naming the block (in buf, or a constant). */
 const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], const char *const *names,
-                              char *buf, size_t n);
+                              const rd_state_build *there, char *buf, size_t n);
 /* Size the arrays for the image (then rd_state_arrays lists where to read them). 0 or -1. */
 int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER]);
 /* The arrays are read: the run starts from them instead of settling. */

@@ -31,3 +31,29 @@ PY
 printf "block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base\nblock create brick size 1 1 2 seat-on base name b\nmodel solve time 0.1\nmodel restore '%s'\n" "$T/settled.h5" > "$T/other.dat"
 if "$BIN" run "$T/other.dat" -o "$T/other.h5" -q 2> "$T/err"; then exit 1; fi
 grep -q "model restore.*holds 9 blocks, this scenario 2" "$T/err"
+# a checkpoint of the same names but other blocks: one line naming the checkpoint, the block
+# and what differs, never a run from a state that does not belong to the scene
+cat > "$T/b.dat" <<'DAT'
+block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base
+block create brick size 0.4 0.4 1.6 position 0 0 0.8 name b
+ground-motion pulse one-sine amplitude 0.2g frequency 2 direction 0
+model solve time 0.05
+DAT
+{ cat "$T/b.dat"; echo "model save '$T/b.h5'"; } > "$T/b_save.dat"
+"$BIN" run "$T/b_save.dat" -o "$T/b_saved.h5" -q > /dev/null
+refused() { # refused NAME SED-EXPRESSION EXPECTED-SUBSTRING
+    { sed "$2" "$T/b.dat"; echo "model restore '$T/b.h5'"; } > "$T/$1.dat"
+    if "$BIN" run "$T/$1.dat" -o "$T/$1.h5" -q > /dev/null 2> "$T/err"; then
+        echo "checkpoint $1: restored, wanted a refusal"; exit 1
+    fi
+    [ "$(wc -l < "$T/err")" -eq 1 ] && grep -qF -- "model restore '$T/b.h5': $3" "$T/err" ||
+        { echo "checkpoint $1: $(cat "$T/err") (wanted: $3)"; exit 1; }
+}
+refused smaller 's/size 0.4 0.4 1.6/size 0.1 0.1 0.3/' "block 'b' has another shape (vertex 1 at"
+refused taller 's/size 0.4 0.4 1.6/size 0.4 0.4 1.6000001/' "block 'b' has another shape"
+refused denser 's/name b$/density 8000 name b/' "block 'b' has another mass (691.2 kg there, 2048 kg here)"
+refused lower 's/position 0 0 -0.25/position 0 0 -5.25/' "fixed block 'base' stands elsewhere (centre of mass at (0, 0, -0.25) m there, (0, 0, -5.25) m here)"
+refused turned 's/-0.25 fixed/-0.25 rotation 0 0 10 fixed/' "fixed block 'base' is turned otherwise"
+refused freed 's/ fixed name base/ name base/' "block 'base' is fixed there, free here"
+{ cat "$T/b.dat"; echo "model restore '$T/b.h5'"; } > "$T/b_same.dat"
+"$BIN" run "$T/b_same.dat" -o "$T/b_same.h5" -q > /dev/null   # the same blocks restore
