@@ -175,26 +175,86 @@ double rd_poly_face_area(const rd_poly *p, int f)
     return 0.5 * rd_norm(n);
 }
 
-/* Growable point list used while meshing one face (setup only). */
-typedef struct pts { double (*x)[3]; double *a; int n, cap; double tol2; } pts;
+/* Growable point list used while meshing one face (setup only). A point within tol of an
+ * earlier one merges into it (their areas add); the earlier points are found through a hash of
+ * cells of size tol (the 27 cells around a point hold every point within tol of it), so a face
+ * of a million points meshes in linear time, not quadratic. */
+typedef struct pts {
+    double (*x)[3]; double *a; int n, cap; double tol, tol2;
+    int *head, *next; size_t nbucket; /* hash chains: head[bucket], next[point]; -1 ends */
+} pts;
+
+/* Hash of the cell (ix, iy, iz) into s->nbucket (a power of two) buckets. */
+static size_t pts_bucket(const pts *s, const long long c[3])
+{
+    unsigned long long h = (unsigned long long)c[0] * 73856093ULL ^ (unsigned long long)c[1] * 19349663ULL ^
+                           (unsigned long long)c[2] * 83492791ULL;
+    return (size_t)(h & (s->nbucket - 1));
+}
+
+#define PTS_CELL_MAX 1e18 /* |cell index| kept inside a long long (reached only past 1e9 radii) */
+
+static void pts_cell(const pts *s, const double x[3], long long c[3])
+{
+    for (int k = 0; k < 3; k++) c[k] = (long long)fmax(-PTS_CELL_MAX, fmin(PTS_CELL_MAX, floor(x[k] / s->tol)));
+}
+
+/* First point (lowest index) within tol of x, or -1. */
+static int pts_find(const pts *s, const double x[3])
+{
+    long long c[3], d[3];
+    int best = -1;
+    pts_cell(s, x, c);
+    for (d[0] = c[0] - 1; d[0] <= c[0] + 1; d[0]++)
+        for (d[1] = c[1] - 1; d[1] <= c[1] + 1; d[1]++)
+            for (d[2] = c[2] - 1; d[2] <= c[2] + 1; d[2]++)
+                for (int i = s->head[pts_bucket(s, d)]; i >= 0; i = s->next[i]) {
+                    double e[3] = {s->x[i][0] - x[0], s->x[i][1] - x[1], s->x[i][2] - x[2]};
+                    if (rd_dot(e, e) <= s->tol2 && (best < 0 || i < best)) best = i;
+                }
+    return best;
+}
+
+/* Point i into its bucket's chain. */
+static void pts_link(pts *s, int i)
+{
+    long long c[3];
+    pts_cell(s, s->x[i], c);
+    size_t b = pts_bucket(s, c);
+    s->next[i] = s->head[b];
+    s->head[b] = i;
+}
+
+/* Room for twice the points, the hash rebuilt at twice the buckets. 0 or -1. */
+static int pts_grow(pts *s)
+{
+    int cap = s->cap ? 2 * s->cap : 64;
+    double (*nx)[3] = realloc(s->x, (size_t)cap * sizeof *nx);
+    if (!nx) return -1;
+    s->x = nx;
+    double *na = realloc(s->a, (size_t)cap * sizeof *na);
+    if (!na) return -1;
+    s->a = na;
+    int *nn = realloc(s->next, (size_t)cap * sizeof *nn);
+    if (!nn) return -1;
+    s->next = nn;
+    free(s->head);
+    s->nbucket = 2 * (size_t)cap;
+    if (!(s->head = malloc(s->nbucket * sizeof *s->head))) return -1;
+    for (size_t b = 0; b < s->nbucket; b++) s->head[b] = -1;
+    s->cap = cap;
+    for (int i = 0; i < s->n; i++) pts_link(s, i);
+    return 0;
+}
 
 static int pts_add(pts *s, const double x[3], double area)
 {
-    for (int i = 0; i < s->n; i++) {
-        double d[3] = {s->x[i][0] - x[0], s->x[i][1] - x[1], s->x[i][2] - x[2]};
-        if (rd_dot(d, d) <= s->tol2) { s->a[i] += area; return 0; }
-    }
-    if (s->n == s->cap) {
-        int cap = s->cap ? 2 * s->cap : 64;
-        double (*nx)[3] = realloc(s->x, (size_t)cap * sizeof *nx);
-        if (!nx) return -1;
-        s->x = nx;
-        double *na = realloc(s->a, (size_t)cap * sizeof *na);
-        if (!na) return -1;
-        s->a = na; s->cap = cap;
-    }
+    int i = s->n ? pts_find(s, x) : -1;
+    if (i >= 0) { s->a[i] += area; return 0; }
+    if (s->n == s->cap && pts_grow(s)) return -1;
     rd_copy3(x, s->x[s->n]);
-    s->a[s->n++] = area;
+    s->a[s->n] = area;
+    pts_link(s, s->n++);
     return 0;
 }
 
@@ -299,12 +359,47 @@ static int mesh_polygon(pts *s, const rd_poly *p, int f, double spacing)
     return 0;
 }
 
+static double dist(const double a[3], const double b[3])
+{
+    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    return rd_norm(d);
+}
+
+/* Divisions of an edge of length len at the spacing (1 without spacing), as a double: the
+ * count a spacing far below the face's size asks for may pass any int. */
+static double divisions(double len, double spacing)
+{
+    return spacing > 0 ? fmax(1.0, ceil(len / spacing - 1e-9)) : 1.0;
+}
+
+double rd_poly_face_points_bound(const rd_poly *p, int f, double spacing)
+{
+    const int *ix = p->fidx + p->fstart[f];
+    int n = p->flen[f];
+    double tol = 1e-9 * (p->radius > 0 ? p->radius : 1.0);
+    if (is_parallelogram(p, f, tol)) {
+        double nu = divisions(dist(p->v[ix[0]], p->v[ix[1]]), spacing);
+        double nv = divisions(dist(p->v[ix[0]], p->v[ix[3]]), spacing);
+        return (nu + 1) * (nv + 1);
+    }
+    if (!(spacing > 0)) return n;
+    double c[3], total = 0;
+    face_centroid(p, f, c);
+    for (int k = 0; k < n; k++) {
+        const double *a = p->v[ix[k]], *b = p->v[ix[(k + 1) % n]];
+        double m = divisions(fmax(dist(c, a), fmax(dist(a, b), dist(b, c))), spacing);
+        total += (m + 1) * (m + 2) / 2; /* the nodes of a triangle split m times */
+    }
+    return total;
+}
+
 int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area, int cap)
 {
     const int *ix = p->fidx + p->fstart[f];
-    pts s = {NULL, NULL, 0, 0, 0};
-    double tol = 1e-9 * (p->radius > 0 ? p->radius : 1.0);
-    s.tol2 = tol * tol;
+    pts s = {0};
+    s.tol = 1e-9 * (p->radius > 0 ? p->radius : 1.0);
+    s.tol2 = s.tol * s.tol;
+    double tol = s.tol;
     int rc = 0;
     if (is_parallelogram(p, f, tol))
         rc = mesh_grid(&s, p->v[ix[0]], p->v[ix[1]], p->v[ix[3]], spacing);
@@ -318,6 +413,6 @@ int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3
             memcpy(area, s.a, (size_t)n * sizeof *area);
         }
     }
-    free(s.x); free(s.a);
+    free(s.x); free(s.a); free(s.next); free(s.head);
     return n;
 }
