@@ -62,7 +62,7 @@ static double tip_accel(const char *spacing, const char *perturb)
 static void test_corners_threshold(void **state)
 {
     (void)state;
-    double g = 9.81, corners = tip_accel("0", ""), bed = tip_accel("0.1", "");
+    double g = 9.81, corners = tip_accel("vertices", ""), bed = tip_accel("0.1", "");
     double kept = tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.99 keep-corners on");
     double random = tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.9");
     assert_true(fabs(corners - 0.4 * g) < 1e-3 * g); /* g b/h, b/h = 0.4 */
@@ -119,7 +119,7 @@ static void check_places(rd_sim *s)
 static void test_shared_places(void **state)
 {
     (void)state;
-    rd_sim *a = make("0", ""), *b = make("0.1", "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4");
+    rd_sim *a = make("vertices", ""), *b = make("0.1", "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4");
     check_places(a);
     check_places(b);
     int shared = 0;

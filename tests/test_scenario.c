@@ -477,7 +477,7 @@ static void test_error_out_of_range(void **state)
     parse_fails("model damping viscous 0\n", "run.dat:1:23: 'viscous' must be in (0, 10], got 0");
     parse_fails("model damping local 1\n", "run.dat:1:21: 'local' must be in (0, 1), got 1");
     parse_fails("output hdf5 x.h5 interval 0\n", "run.dat:1:27: 'interval' must be > 0, got 0");
-    parse_fails("contact property spacing -0.1\n", "run.dat:1:26: 'spacing' must be >= 0, got -0.1");
+    parse_fails("contact property spacing -0.1\n", "run.dat:1:26: 'spacing' -0.1 is outside its valid range [1e-06, 10000] m (docs/LIMITS.md)");
 }
 
 static void test_error_unexpected_token(void **state)

@@ -113,11 +113,10 @@ def main():
             for sf in SAFETY:
                 for sp in SPACING:
                     out = os.path.join(tmp, "dem.h5")
-                    spacing = 0 if sp == "vertices" else sp
                     wall = run(exe, scen, ["run", "--set", f"contact.stiffness-normal={kn}",
                                            "--set", f"contact.stiffness-shear={10 * kn}",
                                            "--set", f"model.safety={sf}",
-                                           "--set", f"contact.spacing={spacing}"], out)
+                                           "--set", f"contact.spacing={sp}"], out)
                     td, thd = tilts(out)
                     tend = min(td[-1], tr[-1])
                     mask = tr <= tend

@@ -71,8 +71,9 @@ typedef struct rd_contact_def {
                            stretch when it first unloads (a point mass rebounds with this
                            ratio of speeds); 0 = perfectly plastic impacts (rigid rocking
                            theory), 1 = elastic, no loss (3DEC's joint); in [0, 1] */
-    double spacing;   /* subcontact spacing on contact faces, m; 0 (default) = face vertices
-                         only (3DEC's fewest-triangle layout); < 0 = automatic per body: a
+    double spacing;   /* subcontact spacing on contact faces, m; 0 (default, written
+                         'vertices') = face vertices only (3DEC's fewest-triangle layout),
+                         a number written 0 is refused; < 0 = automatic per body: a
                          tenth of its narrowest contact face (a mesh: its own vertices) */
     rd_perturb_def perturb; /* interface perturbation (default: off) */
 } rd_contact_def;

@@ -344,6 +344,33 @@ static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, r
     return 0;
 }
 
+/* Refuse a scene whose subcontact points would exceed RD_POINT_BUDGET, naming the body with
+ * the most (the bound counts before meshing: a spacing far below the faces' size would take
+ * minutes to mesh and gigabytes to hold). */
+static int check_point_budget(const rd_sim *s, const char *cand, const double *spacing, rd_error *err)
+{
+    double total = 0, most = -1;
+    int big = 0;
+    for (int i = 0; i < s->nb; i++) {
+        double n = 0;
+        for (int f = 0; f < s->poly[i].nf; f++) {
+            int role = cand[s->face0[i] + f];
+            if (role != RD_FACE_NONE)
+                n += rd_poly_face_points_bound(&s->poly[i], f, role == RD_FACE_BED ? spacing[i] : 0.0);
+        }
+        total += n;
+        if (n > most) { most = n; big = i; }
+    }
+    if (!(total > RD_POINT_BUDGET)) return 0;
+    const rd_body_def *b = &s->sc.bodies[big];
+    char at[48] = "on its faces' corners";
+    if (spacing[big] > 0) snprintf(at, sizeof at, "at spacing %g m", spacing[big]);
+    return rd_error_set(err, "%s:%d: body '%s' would carry about %.3g subcontact points %s (the scene %.3g), "
+                             "more than the budget of %.0e; give a coarser 'contact property spacing', or "
+                             "auto or vertices",
+                        s->sc.file, b->line, b->name, most, at, total, RD_POINT_BUDGET);
+}
+
 /* Subcontact points of every body, on its candidate faces (each face judged once). */
 static int build_points(rd_sim *s, rd_error *err)
 {
@@ -366,7 +393,7 @@ static int build_points(rd_sim *s, rd_error *err)
         for (int i = 0; i < s->nb; i++)
             for (int m = nb.start[i]; m < nb.start[i + 1]; m++)
                 if (nb.list[m] > i) rd_overlap_note(s, i, nb.list[m]);
-        rc = mesh_candidates(s, cand, spacing, err);
+        rc = check_point_budget(s, cand, spacing, err) || mesh_candidates(s, cand, spacing, err) ? -1 : 0;
     }
     free(nb.start);
     free(nb.list);

@@ -58,6 +58,10 @@ void rd_poly_free(rd_poly *p);
  * small (call with cap = 0 to learn the count). */
 int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area, int cap);
 
+/* At least as many points as rd_poly_face_points makes on face f at this spacing, cheaply
+ * (nothing is meshed), as a double: what a spacing far below the face's size would ask for. */
+double rd_poly_face_points_bound(const rd_poly *p, int f, double spacing);
+
 /* Area of face f, m^2. */
 double rd_poly_face_area(const rd_poly *p, int f);
 

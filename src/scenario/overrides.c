@@ -159,8 +159,10 @@ static int set_spacing(const setter *S)
     }
     if (parse_number(S->value, strlen(S->value), 0, &v))
         return serr(S, "expected a number, auto or vertices, got '%s'", S->value);
-    if (v < 0)
-        return serr(S, "value must be >= 0");
+    char why[128];
+    const char *bad = spacing_error(v, why, sizeof why);
+    if (bad)
+        return serr(S, "%s %s", S->value, bad);
     S->sc->contact.spacing = v;
     return 0;
 }

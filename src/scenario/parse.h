@@ -51,6 +51,8 @@ const char *range_error(double v, range r);
 /* NULL when v (as written) lies in keyword kw[0..len)'s valid range (values.c's table,
  * docs/LIMITS.md), else the message, written into buf. */
 const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t size);
+/* NULL when a subcontact spacing (m) is valid, else why not: 0, or outside its limits. */
+const char *spacing_error(double v, char *buf, size_t size);
 double unit_scale(unit u);
 int is_periodic(rd_pulse_kind k);
 /* Duration of a pulse, s (one period, cycles periods, 1/frequency or the given duration). */

@@ -164,9 +164,9 @@ static int read_spacing(parser *P, const token *kw, double *v)
     if (parse_number(t->s, (size_t)t->len, 0, v))
         return perr(P, t, "expected a number, auto or vertices after 'spacing', got '%.*s'",
                     t->len, t->s);
-    if (*v < 0)
-        return perr(P, t, "'spacing' must be >= 0, got %.*s", t->len, t->s);
-    return 0;
+    char why[128];
+    const char *bad = spacing_error(*v, why, sizeof why);
+    return bad ? perr(P, t, "'spacing' %.*s %s", t->len, t->s, bad) : 0;
 }
 
 int contact_property(parser *P)

@@ -78,7 +78,7 @@ static const keyword_limit keyword_limits[] = {
     {"upper", 1e-6, 1e4, "m"},
     {"position", -1e7, 1e7, "m"},            /* map coordinates */
     {"at", -1e7, 1e7, "m"},
-    {"spacing", 0, 1e4, "m"},
+    {"spacing", 1e-6, 1e4, "m"},             /* 0 is refused (spacing_error), not taken as vertices */
     {"raise", 0, 1e3, "m"},
     {"scatter", 0, 1e3, "m"},
     {"velocity", -1e3, 1e3, "m/s"},
@@ -105,6 +105,18 @@ const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t 
     if (fabs(v) <= KEYWORD_DEFAULT_MAX) return NULL;
     snprintf(buf, size, "is outside the range of any scenario number, |v| <= %g (docs/LIMITS.md)", KEYWORD_DEFAULT_MAX);
     return buf;
+}
+
+/* NULL when a subcontact spacing v (m) is valid, else why not (in buf). 0 is refused rather
+ * than read as the faces' corners: a spacing is an edge length, and 0 reads as "as fine as can
+ * be", the opposite of the corners, which are written 'vertices'. */
+const char *spacing_error(double v, char *buf, size_t size)
+{
+    if (v == 0) {
+        snprintf(buf, size, "is no edge length: give one in m, or 'vertices' for the faces' corners");
+        return buf;
+    }
+    return limit_error("spacing", strlen("spacing"), v, buf, size);
 }
 
 /* NULL when v (as written: degrees for angles) lies in r, else what it must be. */

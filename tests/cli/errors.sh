@@ -69,4 +69,25 @@ expect set-no-value "--set needs a value (see rockdem run --help)" -- "$BIN" run
 expect out-no-value "-o needs a value (see rockdem run --help)" -- "$BIN" run "$good" -o
 expect engine-no-value "--engine needs a value (see rockdem threshold --help)" -- "$BIN" threshold "$T/pulse.dat" --engine
 expect target-no-value "--target needs a value (see rockdem restitution --help)" -- "$BIN" restitution "$T/pulse.dat" --target
+
+# Subcontact spacing: its range [1e-6, 1e4] m, 0 refused (corners are 'vertices'), and the point
+# budget checked before any face is meshed (1e-4 m and 3e-4 m on a 0.4 m base hung for minutes).
+base="$T/base.dat"
+cat > "$base" <<'DAT'
+block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base
+block create brick size 0.4 0.4 1.6 position 0 0 0.8 name b
+ground-motion pulse one-sine amplitude 0.2g frequency 2 direction 0
+model solve time 0.05
+output hdf5 'base.h5' interval 0.01
+DAT
+spacing() { cp "$base" "$T/sp.dat"; echo "contact property spacing $1" >> "$T/sp.dat"; }
+spacing 1e308; expect spacing-huge "sp.dat:6:26: 'spacing' 1e308 is outside its valid range [1e-06, 10000] m" -- "$BIN" check "$T/sp.dat"
+spacing 1e5; expect spacing-1e5 "sp.dat:6:26: 'spacing' 1e5 is outside its valid range" -- "$BIN" check "$T/sp.dat"
+spacing 0; expect spacing-zero "sp.dat:6:26: 'spacing' 0 is no edge length" -- "$BIN" check "$T/sp.dat"
+spacing 1e-6; expect spacing-1e-6 "sp.dat:2: body 'b' would carry about 1.6e+11 subcontact points at spacing 1e-06 m" -- timeout 20 "$BIN" check "$T/sp.dat"
+spacing 1e-4; expect spacing-1e-4-check "sp.dat:2: body 'b' would carry about 1.6e+07 subcontact points at spacing 0.0001 m" -- timeout 20 "$BIN" check "$T/sp.dat"
+expect spacing-1e-4-run "sp.dat:2: body 'b' would carry about 1.6e+07" -- timeout 20 "$BIN" run "$T/sp.dat" -o "$T/sp.h5"
+spacing 3e-4; expect spacing-3e-4 "more than the budget of 1e+06" -- timeout 20 "$BIN" run "$T/sp.dat" -o "$T/sp.h5"
+expect spacing-set-huge "--set contact.spacing=1e308: 1e308 is outside its valid range" -- "$BIN" check "$base" --set contact.spacing=1e308
+expect spacing-set-zero "--set contact.spacing=0: 0 is no edge length" -- "$BIN" check "$base" --set contact.spacing=0
 [ "$fails" -eq 0 ]
