@@ -333,6 +333,14 @@ static void test_obj_errors(void **state)
     expect_text_error("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 1 3 2\nf 1 2 4\nf 1 4 2\n",
                       "flat.obj:");
     expect_text_error("short.obj", "v 1 2\n", "short.obj:1: expected 3 coordinates after 'v'");
+    /* a coordinate with a junk suffix was read as its numeric prefix (1.5.5 as 1.5, then "face 2
+       is not planar"), or as hexadecimal (0x1) */
+    expect_text_error("suffix.obj", "v 0 0 0\nv 1 1 1x\n", "suffix.obj:2: bad coordinate '1x' after 'v'");
+    expect_text_error("hex.obj", "v 1 1 0x1\n", "hex.obj:1: bad coordinate '0x1' after 'v'");
+    snprintf(buf, sizeof buf, "%sv 1 1 1.5.5\nf 1 3 4 2\n", cube_obj_v);
+    expect_text_error("dots.obj", buf, "dots.obj:9: bad coordinate '1.5.5' after 'v'");
+    expect_text_error("suffix.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 1x\n",
+                      "suffix.stl:5: bad coordinate '1x' after 'vertex'");
     expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "two.obj:3: face 1 has 2 vertices (at least 3 needed)");
     expect_text_error("zero.obj", "v 0 0 0\nf 0 1 1\n", "zero.obj:2: face 1 uses vertex 0 but the file has 1 vertices");
     expect_text_error("empty.obj", "# nothing\n", "empty.obj: empty mesh (0 vertices, 0 faces)");

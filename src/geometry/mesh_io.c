@@ -104,6 +104,21 @@ static int read_all(const char *path, char **buf, size_t *len, rd_error *err)
     return 0;
 }
 
+/* A text coordinate: the token at s (after blanks) up to the next blank or eol, read whole by
+ * strtod as a decimal number ("1x", "1.5.5" and the hexadecimal "0x1" are not). 0 with *end after
+ * it; -1 with [*tok, *end) the bad token (empty at the line's end). */
+static int text_coord(const char *s, const char *eol, double *x, const char **tok, const char **end)
+{
+    while (s < eol && isspace((unsigned char)*s)) s++;
+    const char *e = s;
+    while (e < eol && !isspace((unsigned char)*e)) e++;
+    *tok = s;
+    *end = e;
+    char *stop;
+    *x = strtod(s, &stop);
+    return e > s && stop == e && !memchr(s, 'x', (size_t)(e - s)) && !memchr(s, 'X', (size_t)(e - s)) ? 0 : -1;
+}
+
 /* ---- OBJ: "v x y z", "f a b c ..." with a/b/c tokens and negative (relative) indices ---- */
 
 static int obj_face(mesh *m, const char *s, const char *eol, int line, rd_error *err)
@@ -139,13 +154,12 @@ static int obj_read(mesh *m, const char *buf, rd_error *err)
         while (s < eol && (*s == ' ' || *s == '\t')) s++;
         if (s[0] == 'v' && (s[1] == ' ' || s[1] == '\t')) {
             double x[3];
-            char *end = (char *)s + 1;
-            for (int k = 0; k < 3; k++) {
-                const char *at = end;
-                x[k] = strtod(at, &end);
-                if (end == at || end > eol)
-                    return rd_error_set(err, "%s:%d: expected 3 coordinates after 'v'", m->path, line);
-            }
+            const char *at = s + 1, *tok;
+            for (int k = 0; k < 3; k++)
+                if (text_coord(at, eol, &x[k], &tok, &at))
+                    return tok == at ? rd_error_set(err, "%s:%d: expected 3 coordinates after 'v'", m->path, line)
+                                     : rd_error_set(err, "%s:%d: bad coordinate '%.*s' after 'v'", m->path, line,
+                                                    (int)(at - tok), tok);
             if (add_vertex(m, x, line, err)) return -1;
         } else if (s[0] == 'f' && (s[1] == ' ' || s[1] == '\t')) {
             if (obj_face(m, s + 1, eol, line, err)) return -1;
@@ -466,12 +480,12 @@ static int stl_ascii(mesh *m, const char *buf, rd_error *err)
         size_t n = (size_t)(s - w);
         if (n == 6 && !strncmp(w, "vertex", 6)) {
             double x[3];
-            for (int k = 0; k < 3; k++) {
-                char *end;
-                x[k] = strtod(s, &end);
-                if (end == s) return rd_error_set(err, "%s:%d: expected 3 coordinates after 'vertex'", m->path, line);
-                s = end;
-            }
+            const char *eol = s + strcspn(s, "\n"), *tok;
+            for (int k = 0; k < 3; k++)
+                if (text_coord(s, eol, &x[k], &tok, &s))
+                    return tok == s ? rd_error_set(err, "%s:%d: expected 3 coordinates after 'vertex'", m->path, line)
+                                    : rd_error_set(err, "%s:%d: bad coordinate '%.*s' after 'vertex'", m->path,
+                                                   line, (int)(s - tok), tok);
             if (add_vertex(m, x, line, err)) return -1;
             corners++;
         } else if (n == 8 && !strncmp(w, "endfacet", 8)) {
