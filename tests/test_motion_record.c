@@ -329,6 +329,58 @@ static void test_errors(void **state)
     parse_fails("model solve time 1 tail -1\n", 4, 25, "'tail' must be > 0");
 }
 
+/* A FEMA P695 set (uncompressed) <dir>/<name> whose record 1 has component a only: times t,
+ * accelerations acc (g), n samples. */
+static void write_fema_a(const char *name, const double *t, const double *acc, hsize_t n)
+{
+    char path[RD_PATH_MAX + 80];
+    snprintf(path, sizeof path, "%s/%s", g_dir, name);
+    hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    H5Pset_create_intermediate_group(lcpl, 1);
+    hid_t sp = H5Screate_simple(1, &n, NULL);
+    const char *what[2] = {"/_timeseries/1/a/Time", "/_timeseries/1/a/RecordedAcceleration"};
+    for (int k = 0; k < 2; k++) {
+        hid_t d = H5Dcreate2(f, what[k], H5T_IEEE_F64LE, sp, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+        H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, k ? acc : t);
+        H5Dclose(d);
+    }
+    H5Sclose(sp);
+    H5Pclose(lcpl);
+    H5Fclose(f);
+}
+
+/* The FEMA reader refuses what the AT2 and text readers refuse: a sample that is not finite or
+ * beyond 1e6 m/s^2, a time that is not finite, a step outside [1e-6, 1] s (a step of 1e-9 s
+ * padded the record to 2e9 samples: a hang). */
+static void test_fema_checks(void **state)
+{
+    (void)state;
+    enum { N = 8 };
+    static const struct { const char *name; int index; double t_step, t_bad, a_bad; const char *what; } cases[] = {
+        {"nan.h5", 3, 0.01, 0, NAN, "RecordedAcceleration: acceleration nan g at sample 3 is not a finite number"},
+        {"inf.h5", 3, 0.01, 0, INFINITY, "acceleration inf g at sample 3 is not a finite number"},
+        {"huge.h5", 5, 0.01, 0, 1e308, "acceleration 1e+308 g at sample 5 is outside the valid |acceleration| <= 1e+06"},
+        {"tnan.h5", 4, 0.01, NAN, 0, "/_timeseries/1/a/Time: time nan s at sample 4 is not a finite number"},
+        {"tiny.h5", -1, 1e-9, 0, 0, "/_timeseries/1/a/Time: time step 1e-09 s is outside [1e-06, 1] s"},
+        {"small.h5", -1, 5e-7, 0, 0, "time step 5e-07 s is outside [1e-06, 1] s"},
+        {"long.h5", -1, 100, 0, 0, "time step 100 s is outside [1e-06, 1] s"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        double t[N], a[N];
+        for (int i = 0; i < N; i++) {
+            t[i] = cases[c].t_step * i;
+            a[i] = at2_g[i];
+        }
+        if (cases[c].index >= 0 && cases[c].a_bad != 0) a[cases[c].index] = cases[c].a_bad;
+        if (cases[c].index >= 0 && cases[c].t_bad != 0) t[cases[c].index] = cases[c].t_bad;
+        write_fema_a(cases[c].name, t, a, N);
+        char motion[128];
+        snprintf(motion, sizeof motion, "ground-motion import '%s' record 1\n", cases[c].name);
+        parse_fails(motion, 4, (int)strlen(motion) - 1, cases[c].what);
+    }
+}
+
 static void test_set_errors(void **state)
 {
     (void)state;
@@ -359,6 +411,7 @@ int main(void)
         cmocka_unit_test(test_scale_doubles),
         cmocka_unit_test(test_scale_pga),
         cmocka_unit_test(test_fema_components),
+        cmocka_unit_test(test_fema_checks),
         cmocka_unit_test(test_stochastic_baseline),
         cmocka_unit_test(test_tail_stops_at_rest),
         cmocka_unit_test(test_errors),

@@ -125,6 +125,14 @@ static void test_at2_errors(void **state)
     expect_at2_error("e7.AT2", "PEER\nevent\n", 2, "expected 4 header lines, found 2");
     expect_at2_error("e8.AT2", AT2_HEAD "NPTS= 2.5, DT= .01 SEC\n0.1 0.2\n", 4, "NPTS must be a whole number in [1, 1e+09]");
     expect_at2_error("e9.AT2", AT2_HEAD "NPTS= 2, DT= .01 SEC\n0.1 nan\n", 5, "non-numeric value 'nan'");
+    /* a header number with a junk suffix was read as its prefix */
+    expect_at2_error("e12.AT2", AT2_HEAD "NPTS=  3x, DT=   .0100 SEC\n0.1 0.2 0.3\n", 4, "NPTS '3x' is not a number");
+    expect_at2_error("e13.AT2", AT2_HEAD "NPTS=  3, DT=   .0100x SEC\n0.1 0.2 0.3\n", 4, "DT '.0100x' is not a number");
+    expect_at2_error("e14.AT2", AT2_HEAD "3  .0100x  NPTS, DT\n0.1 0.2 0.3\n", 4, "DT '.0100x' is not a number");
+    /* a sample of 1e308 g was accepted (Arias -nan, then "contact forces blew up") */
+    expect_at2_error("e15.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1\n1e308 0.3\n", 6,
+                     "acceleration '1e308' g is outside the valid |acceleration| <= 1e+06 m/s^2");
+    expect_at2_error("e16.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 -1e200 0.3\n", 5, "acceleration '-1e200' g is outside");
 
     rd_record r;
     rd_error err = {""};
@@ -169,6 +177,12 @@ static void test_text_one_column(void **state)
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_G, 0.02, &err), 0);
     assert_true(r.acc[1] == -1.25 * RD_G_STANDARD);
     rd_record_free(&r);
+    /* the samples' bound is in m/s^2: 2e5 m/s^2 passes, 2e5 g does not */
+    path = write_file("big.txt", "0.5\n2e5\n");
+    assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_M_S2, 0.02, &err), 0);
+    rd_record_free(&r);
+    assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_G, 0.02, &err), -1);
+    assert_error(&err, path, 2, "acceleration '2e5' is outside");
 }
 
 static void expect_text_error(const char *name, const char *text, double dt, long line, const char *what)
@@ -211,6 +225,16 @@ static void test_text_errors(void **state)
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_G, 0.0, &err), -1);
     assert_true(strstr(err.msg, "t11.csv:1: time step 1e+300 s is outside [1e-06, 1] s") != NULL);
     expect_text_error("t10.csv", "0,1\n", 0.0, 1, "one sample cannot define a time step");
+    /* an absurd sample (m/s^2 here) */
+    expect_text_error("t12.txt", "0.1\n1e308\n0.2\n", 0.01, 2,
+                      "acceleration '1e308' is outside the valid |acceleration| <= 1e+06 m/s^2");
+    expect_text_error("t13.csv", "0,0.1\n0.01,2e6\n", 0.0, 2, "acceleration '2e6' is outside");
+    /* a bad first data row was dropped as a header */
+    expect_text_error("t14.txt", "0.1x 0.2\n0.01 0.1\n0.02 0.1\n", 0.0, 1, "non-numeric value '0.1x'");
+    expect_text_error("t15.txt", "O 0.2\n0.01 0.1\n0.02 0.1\n", 0.0, 1,
+                      "non-numeric value 'O' (a row of 2 fields like line 2, not a header)");
+    expect_text_error("t16.txt", "0.1x\n0.1\n0.2\n", 0.01, 1, "non-numeric value '0.1x'");
+    expect_text_error("t17.txt", ".5e\n0.1\n0.2\n", 0.01, 1, "non-numeric value '.5e'");
 }
 
 /* --- integration, evaluation, scaling, resampling, padding ---------------------------------- */

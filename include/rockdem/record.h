@@ -53,7 +53,10 @@ RD_API int rd_record_read_at2(rd_record *r, const char *path, rd_error *err);
 
 /* Read a one- or two-column text/CSV file (separators: commas, semicolons, blanks, tabs).
  * Blank lines and lines starting with '#' are skipped; the first other line is skipped as a
- * header when its first field is not a number. Two columns: time (s), acceleration; the time
+ * header when its first field is not a number and does not start like one (a digit, or a sign
+ * or '.' before one: "0.1x" is an error), unless the rest of it is numbers as many as the first
+ * data row has fields ("O 0.2": an error). Every acceleration must be finite and within
+ * 1e6 m/s^2. Two columns: time (s), acceleration; the time
  * step must be uniform (each step within 1e-3 of the first) and samples are taken from the
  * first time on; when dt > 0 is given it must match. One column: accelerations at step dt
  * (s, > 0 required). `unit` is the unit of the acceleration column. */

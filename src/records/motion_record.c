@@ -11,6 +11,7 @@
  */
 #include "rockdem/motion.h"
 #include "rockdem/record.h"
+#include "records/record_limits.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -88,7 +89,7 @@ static int read_source(const rd_component_def *d, rd_record *r, rd_error *err)
     case RD_SOURCE_AT2:
         return rd_record_read_at2(r, d->path, err);
     case RD_SOURCE_TEXT:
-        if (rd_record_read_text(r, d->path, RD_UNIT_M_S2, d->dt, err))
+        if (rd_record_read_text_as(r, d->path, d->unit, d->dt, err))
             return -1;
         rd_record_scale(r, d->unit);
         return 0;
@@ -178,6 +179,18 @@ static int scale_factor(rd_motion_def *m, rd_error *err)
     return 0;
 }
 
+/* A record with fewer samples than the degree-`degree` baseline has coefficients cannot be
+ * corrected: refused naming its file (or generator) and the count. */
+static int too_short(const rd_component_def *d, int degree, rd_error *err)
+{
+    size_t need = (size_t)degree + 1, n = d->applied->npts;
+    if (n >= need)
+        return 0;
+    return rd_error_set(err, "%s: %zu sample%s, too few for the degree-%d baseline (at least %zu, or 'baseline "
+                             "off')",
+                        d->path[0] ? d->path : d->applied->name, n, n == 1 ? "" : "s", degree, need);
+}
+
 int rd_motion_prepare(rd_motion_def *m, rd_error *err)
 {
     for (int c = 0; c < RD_NCOMPONENTS; c++) {
@@ -188,8 +201,9 @@ int rd_motion_prepare(rd_motion_def *m, rd_error *err)
         d->applied = record_copy(d->raw, err);
         if (!d->applied)
             return -1;
-        if (m->baseline > 0 && d->applied->npts > 2 &&
-            rd_record_baseline(d->applied, m->baseline, err))
+        if (m->baseline > 0 && too_short(d, m->baseline, err))
+            return -1;
+        if (m->baseline > 0 && rd_record_baseline(d->applied, m->baseline, err))
             return -1;
     }
     if (scale_factor(m, err))

@@ -7,7 +7,7 @@
  * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
  * measures, SDOF); it may call base/ only.
  */
-#include "rockdem/record.h"
+#include "records/record_limits.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -22,12 +22,6 @@
 /* Two-column files: each time step may differ from the first by this fraction (times are
  * printed with a few digits; a real change of step is far larger). */
 #define STEP_TOL 1e-3
-/* Valid sample steps, s: strong-motion records are sampled at 1 Hz to 1 MHz; a step outside
- * this range is a misread header (or a unit error), not a record. */
-#define RECORD_DT_MIN 1e-6
-#define RECORD_DT_MAX 1.0
-/* Most samples a record may declare: 1e9 (8 GB of doubles), far beyond any real record. */
-#define RECORD_NPTS_MAX 1e9
 
 /* --- helpers shared by both readers ------------------------------------------------------ */
 
@@ -136,9 +130,9 @@ static void set_name(rd_record *r, const char *path)
     snprintf(r->name, sizeof r->name, "%s", slash ? slash + 1 : path);
 }
 
-/* Move the samples into r (step dt, values in `unit`), converted to m/s^2 and integrated. */
-static int finish(rd_record *r, const values *acc, double dt, rd_accel_unit unit, const char *path,
-                  rd_error *err)
+/* Move the samples into r (step dt), multiplied by scale (m/s^2 per unit of the values) and
+ * integrated. */
+static int finish(rd_record *r, const values *acc, double dt, double scale, const char *path, rd_error *err)
 {
     char source[RD_PATH_MAX];
     snprintf(source, sizeof source, "%s", r->source);
@@ -148,7 +142,7 @@ static int finish(rd_record *r, const values *acc, double dt, rd_accel_unit unit
     memcpy(r->acc, acc->v, acc->n * sizeof *acc->v);
     memcpy(r->source, source, sizeof source);
     set_name(r, path);
-    rd_record_scale(r, rd_accel_unit_factor(unit));
+    rd_record_scale(r, scale);
     rd_record_integrate(r);
     return 0;
 }
@@ -165,33 +159,53 @@ static const char *find_key(const char *s, const char *key)
     return NULL;
 }
 
-/* Value after "key=" (blanks allowed around '='); -1 when missing or not a number. */
-static int keyed_number(const char *line, const char *key, double *x)
+/* Where the value after "key=" starts (blanks allowed around '='); NULL without "key=". */
+static const char *keyed_value(const char *line, const char *key)
 {
     const char *p = find_key(line, key);
     if (!p)
-        return -1;
+        return NULL;
     p += strlen(key);
     while (isspace((unsigned char)*p))
         p++;
-    if (*p != '=')
-        return -1;
-    char *end;
-    *x = strtod(p + 1, &end);
-    return end == p + 1 ? -1 : 0;
+    return *p == '=' ? p + 1 : NULL;
 }
 
-/* NPTS and DT from the 4th header line in either NGA-West2 form. */
-static int parse_npts_dt(const char *line, double *npts, double *dt)
+/* The header number at p into *x, *end after it: 0; -1 when p holds no number; -2 when it runs
+ * on into other characters ("200x", ".0100x"; a number ends at a blank, ',' or the line's end),
+ * with the whole token reported as "file:line: ...". */
+static int header_number(const reader *rd, const char *p, const char *what, double *x, const char **end,
+                         rd_error *err)
 {
-    if (keyed_number(line, "NPTS", npts) == 0 && keyed_number(line, "DT", dt) == 0)
-        return 0;
-    char *end1, *end2;
-    *npts = strtod(line, &end1);
-    *dt = strtod(end1, &end2);
-    if (end1 == line || end2 == end1 || !find_key(end2, "NPTS"))
+    char *e;
+    *x = strtod(p, &e);
+    *end = e;
+    if (e == p)
         return -1;
-    return 0;
+    if (*e == '\0' || isspace((unsigned char)*e) || *e == ',')
+        return 0;
+    p += strspn(p, " \t");
+    reader_fail(rd, err, "%s '%.*s' is not a number", what, (int)strcspn(p, " \t,"), p);
+    return -2;
+}
+
+/* NPTS and DT from the 4th header line in either NGA-West2 form: 0, -1 when absent, -2 when one
+ * is malformed (err filled). */
+static int parse_npts_dt(const reader *rd, const char *line, double *npts, double *dt, rd_error *err)
+{
+    const char *pn = keyed_value(line, "NPTS"), *pd = keyed_value(line, "DT"), *end1, *end2;
+    int rc;
+    if (pn && pd) {
+        if ((rc = header_number(rd, pn, "NPTS", npts, &end1, err)) == -2)
+            return rc;
+        int rc_dt = header_number(rd, pd, "DT", dt, &end2, err);
+        if (rc_dt == -2 || (rc == 0 && rc_dt == 0))
+            return rc_dt;
+    }
+    if ((rc = header_number(rd, line, "NPTS", npts, &end1, err)) ||
+        (rc = header_number(rd, end1, "DT", dt, &end2, err)))
+        return rc;
+    return find_key(end2, "NPTS") ? 0 : -1;
 }
 
 /* Header (4 lines): keeps the event line in r->source, returns NPTS and DT. */
@@ -208,15 +222,18 @@ static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, r
             snprintf(r->source, sizeof r->source, "%s", line);
     }
     double n;
-    if (parse_npts_dt(line, &n, dt))
+    int rc = parse_npts_dt(rd, line, &n, dt, err);
+    if (rc == -2)
+        return -1;
+    if (rc)
         return reader_fail(rd, err,
                            "missing NPTS and DT: expected \"NPTS= <n>, DT= <s> SEC\" or \"<n> <s> NPTS, DT\", "
                            "found \"%s\"",
                            line);
-    if (!(n >= 1.0) || n != floor(n) || n > RECORD_NPTS_MAX)
-        return reader_fail(rd, err, "NPTS must be a whole number in [1, %g], found %g", RECORD_NPTS_MAX, n);
-    if (!(*dt >= RECORD_DT_MIN && *dt <= RECORD_DT_MAX))
-        return reader_fail(rd, err, "DT must be in [%g, %g] s, found %g s", RECORD_DT_MIN, RECORD_DT_MAX, *dt);
+    if (!(n >= 1.0) || n != floor(n) || n > RD_RECORD_NPTS_MAX)
+        return reader_fail(rd, err, "NPTS must be a whole number in [1, %g], found %g", RD_RECORD_NPTS_MAX, n);
+    if (!(*dt >= RD_RECORD_DT_MIN && *dt <= RD_RECORD_DT_MAX))
+        return reader_fail(rd, err, "DT must be in [%g, %g] s, found %g s", RD_RECORD_DT_MIN, RD_RECORD_DT_MAX, *dt);
     *npts = (size_t)n;
     return 0;
 }
@@ -229,8 +246,11 @@ static int read_at2_values(reader *rd, size_t npts, values *acc, rd_error *err)
     while ((line = reader_next(rd))) {
         for (char *tok = strtok_r(line, SEPARATORS, &save); tok; tok = strtok_r(NULL, SEPARATORS, &save)) {
             double x;
+            char why[128];
             if (parse_number(tok, &x))
                 return reader_fail(rd, err, "non-numeric value '%s'", tok);
+            if (rd_record_sample_error(x, RD_G_STANDARD, why, sizeof why))
+                return reader_fail(rd, err, "acceleration '%s' g %s", tok, why);
             if (values_push(acc, x))
                 return reader_fail(rd, err, "out of memory");
             if (acc->n == npts + 1)
@@ -260,7 +280,7 @@ int rd_record_read_at2(rd_record *r, const char *path, rd_error *err)
     if (rd.read_errno)
         status = reader_check(&rd, err);
     if (status == 0)
-        status = finish(r, &acc, dt, RD_UNIT_G, path, err);
+        status = finish(r, &acc, dt, rd_accel_unit_factor(RD_UNIT_G), path, err);
     reader_close(&rd);
     free(acc.v);
     if (status)
@@ -276,7 +296,12 @@ typedef struct text_state {
     long first_line;     /* line of the first data row */
     values t, acc;       /* time (two-column files) and acceleration */
     double step;         /* first time step, s (two-column files) */
+    double unit;         /* m/s^2 per unit of the acceleration column (its samples' check) */
     int header_possible; /* the next content line may be a header */
+    long header_line;    /* the line taken as a header (0: none) */
+    int header_fields;   /* its fields, and whether all but the first are numbers */
+    int header_numeric;
+    char header_first[32]; /* its first field (for the message when it was a data row) */
 } text_state;
 
 /* Time column: steps must be positive and uniform. */
@@ -296,11 +321,15 @@ static int check_time(const reader *rd, text_state *st, double t, rd_error *err)
     return 0;
 }
 
-/* One data row already split into numbers. */
-static int text_row(const reader *rd, text_state *st, const double *x, int n, rd_error *err)
+/* One data row already split into numbers; acc is the acceleration's token. */
+static int text_row(const reader *rd, text_state *st, const double *x, int n, const char *acc, rd_error *err)
 {
+    char why[128];
     if (n > 2)
         return reader_fail(rd, err, "expected 1 or 2 columns (time, acceleration), found %d", n);
+    if (st->ncol == 0 && st->header_numeric && st->header_fields == n)
+        return rd_error_set(err, "%s:%ld: non-numeric value '%s' (a row of %d fields like line %ld, not a header)",
+                            rd->path, st->header_line, st->header_first, n, rd->lineno);
     if (st->ncol == 0) {
         st->ncol = n;
         st->first_line = rd->lineno;
@@ -308,6 +337,8 @@ static int text_row(const reader *rd, text_state *st, const double *x, int n, rd
         return reader_fail(rd, err, "expected %d column%s as on line %ld, found %d", st->ncol,
                            st->ncol == 1 ? "" : "s", st->first_line, n);
     }
+    if (rd_record_sample_error(x[n - 1], st->unit, why, sizeof why))
+        return reader_fail(rd, err, "acceleration '%s' %s", acc, why);
     if (n == 2 && check_time(rd, st, x[0], err))
         return -1;
     if ((n == 2 && values_push(&st->t, x[0])) || values_push(&st->acc, x[n - 1]))
@@ -315,25 +346,56 @@ static int text_row(const reader *rd, text_state *st, const double *x, int n, rd
     return 0;
 }
 
-/* Split a content line; a non-numeric first field on the first content line is a header. */
+/* A field that starts like a number (a digit, or a sign or '.' before one) is a mistyped
+ * value ("0.1x"), never a header's first word. */
+static int starts_like_number(const char *tok)
+{
+    tok += *tok == '+' || *tok == '-';
+    tok += *tok == '.';
+    return isdigit((unsigned char)*tok);
+}
+
+/* Keeps the first content line as a header whose first field is `first`; the rest of its
+ * fields are counted, and if they are all numbers, a first data row with as many fields shows
+ * that the line was a row with one bad value ("O 0.2"), refused by text_row. */
+static void text_header(const reader *rd, text_state *st, const char *first, char **save)
+{
+    st->header_line = rd->lineno;
+    st->header_fields = 1;
+    st->header_numeric = 1;
+    snprintf(st->header_first, sizeof st->header_first, "%s", first);
+    for (char *tok = strtok_r(NULL, SEPARATORS, save); tok; tok = strtok_r(NULL, SEPARATORS, save)) {
+        double v;
+        st->header_fields++;
+        st->header_numeric &= parse_number(tok, &v) == 0;
+    }
+    st->header_numeric &= st->header_fields > 1;
+}
+
+/* Split a content line; on the first content line, a first field that is no number and does
+ * not start like one is a header. */
 static int text_line(const reader *rd, text_state *st, char *line, rd_error *err)
 {
     double x[3];
     int n = 0;
     char *save;
+    const char *acc = NULL;
     int header = st->header_possible;
     st->header_possible = 0;
     for (char *tok = strtok_r(line, SEPARATORS, &save); tok; tok = strtok_r(NULL, SEPARATORS, &save), n++) {
         double v;
         if (parse_number(tok, &v)) {
-            if (header && n == 0)
+            if (header && n == 0 && !starts_like_number(tok)) {
+                text_header(rd, st, tok, &save);
                 return 0;
+            }
             return reader_fail(rd, err, "non-numeric value '%s'", tok);
         }
         if (n < 3)
             x[n] = v;
+        acc = tok;
     }
-    return text_row(rd, st, x, n, err);
+    return text_row(rd, st, x, n, acc, err);
 }
 
 static int is_content(const char *line)
@@ -360,18 +422,21 @@ static int text_step(const reader *rd, const text_state *st, double dt, double *
     if (dt > 0.0 && fabs(*step - dt) > STEP_TOL * dt)
         return rd_error_set(err, "%s:%ld: time step %g s in the file, %g s given", rd->path, st->first_line, *step,
                             dt);
-    if (!(*step >= RECORD_DT_MIN && *step <= RECORD_DT_MAX))
-        return rd_error_set(err, "%s:%ld: time step %g s is outside [%g, %g] s", rd->path, st->first_line, *step,
-                            RECORD_DT_MIN, RECORD_DT_MAX);
+    char why[128];
+    if (rd_record_step_error(*step, why, sizeof why))
+        return rd_error_set(err, "%s:%ld: %s", rd->path, st->first_line, why);
     return 0;
 }
 
-int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, double dt, rd_error *err)
+/* rd_record_read_text with the values scaled by `scale` into m/s^2 and checked as multiples of
+ * `unit` m/s^2. */
+static int read_text(rd_record *r, const char *path, double scale, double unit, double dt, rd_error *err)
 {
     reader rd;
     text_state st;
     memset(&st, 0, sizeof st);
     st.header_possible = 1;
+    st.unit = unit;
     memset(r, 0, sizeof *r);
     if (reader_open(&rd, path, err))
         return -1;
@@ -387,7 +452,7 @@ int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, doub
         status = text_step(&rd, &st, dt, &step, err);
     if (status == 0) {
         snprintf(r->source, sizeof r->source, "%s", path);
-        status = finish(r, &st.acc, step, unit, path, err);
+        status = finish(r, &st.acc, step, scale, path, err);
     }
     reader_close(&rd);
     free(st.t.v);
@@ -395,4 +460,15 @@ int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, doub
     if (status)
         memset(r, 0, sizeof *r);
     return status;
+}
+
+int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, double dt, rd_error *err)
+{
+    double f = rd_accel_unit_factor(unit);
+    return read_text(r, path, f, f, dt, err);
+}
+
+int rd_record_read_text_as(rd_record *r, const char *path, double unit, double dt, rd_error *err)
+{
+    return read_text(r, path, 1.0, unit, dt, err);
 }

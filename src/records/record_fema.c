@@ -8,7 +8,7 @@
  * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
  * measures, SDOF); it may call base/ only.
  */
-#include "rockdem/record.h"
+#include "records/record_limits.h"
 
 #include <hdf5.h>
 #include <math.h>
@@ -28,8 +28,8 @@ static int read_series(hid_t file, const char *path, const char *name, double **
     int rank = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
     int rc = 0;
     *out = NULL;
-    if (rank != 1 || count < 2)
-        rc = rd_error_set(err, "%s: %s must be 1-D with at least 2 samples", path, name);
+    if (rank != 1 || count < 2 || (double)count > RD_RECORD_NPTS_MAX)
+        rc = rd_error_set(err, "%s: %s must be 1-D with 2 to %g samples", path, name, RD_RECORD_NPTS_MAX);
     else if (!(*out = malloc((size_t)count * sizeof **out)))
         rc = rd_error_set(err, "%s: out of memory", path);
     else if (H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out) < 0)
@@ -46,18 +46,35 @@ static int read_series(hid_t file, const char *path, const char *name, double **
     return rc;
 }
 
-/* The uniform step of t[0..n), s: every step within 1e-3 of the first (the files store
- * times rounded to about 1e-15 s). */
+/* The uniform step of t[0..n), s: every time finite, every step within 1e-3 of the first (the
+ * files store times rounded to about 1e-15 s), the step within the records' range (a step of
+ * 1e-9 s would pad the record to billions of samples). */
 static int uniform_step(const double *t, size_t n, const char *path, const char *name,
                         double *dt, rd_error *err)
 {
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(t[i]))
+            return rd_error_set(err, "%s: %s: time %g s at sample %zu is not a finite number", path, name, t[i], i);
     double h = t[1] - t[0];
-    if (!(h > 0) || !isfinite(h))
+    char why[128];
+    if (!(h > 0))
         return rd_error_set(err, "%s: %s: time step %g s must be positive", path, name, h);
+    if (rd_record_step_error(h, why, sizeof why))
+        return rd_error_set(err, "%s: %s: %s", path, name, why);
     for (size_t i = 1; i + 1 < n; i++)
         if (fabs(t[i + 1] - t[i] - h) > 1e-3 * h)
             return rd_error_set(err, "%s: %s: time step not uniform at sample %zu", path, name, i);
     *dt = h;
+    return 0;
+}
+
+/* Every sample of a[0..n) (g) finite and within RD_RECORD_ACC_MAX. */
+static int check_samples(const double *a, size_t n, const char *path, const char *name, rd_error *err)
+{
+    char why[128];
+    for (size_t i = 0; i < n; i++)
+        if (rd_record_sample_error(a[i], RD_G_STANDARD, why, sizeof why))
+            return rd_error_set(err, "%s: %s: acceleration %g g at sample %zu %s", path, name, a[i], i, why);
     return 0;
 }
 
@@ -70,7 +87,7 @@ static int read_component(hid_t file, rd_record *r, const char *path, const char
     snprintf(tname, sizeof tname, "%s/Time", group);
     snprintf(aname, sizeof aname, "%s/RecordedAcceleration", group);
     int rc = read_series(file, path, tname, &t, &nt, err) || read_series(file, path, aname, &a, &na, err) ||
-             uniform_step(t, nt, path, tname, &dt, err);
+             uniform_step(t, nt, path, tname, &dt, err) || check_samples(a, na, path, aname, err);
     if (!rc && nt != na)
         rc = rd_error_set(err, "%s: %s has %zu samples but %s has %zu", path, tname, nt, aname, na);
     if (!rc && !(rc = rd_record_alloc(r, na, dt, err))) {

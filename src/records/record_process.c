@@ -9,13 +9,34 @@
  *   d_{i+1} = d_i + h v_i + h^2 (2 a_i + a_{i+1}) / 6,
  * so acc, vel and disp always describe one consistent motion.
  */
-#include "rockdem/record.h"
+#include "records/record_limits.h"
 
 #include <gsl/gsl_interp.h>
 #include <gsl/gsl_multifit.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+const char *rd_record_step_error(double dt, char *buf, size_t size)
+{
+    if (dt >= RD_RECORD_DT_MIN && dt <= RD_RECORD_DT_MAX)
+        return NULL;
+    snprintf(buf, size, "time step %g s is outside [%g, %g] s", dt, RD_RECORD_DT_MIN, RD_RECORD_DT_MAX);
+    return buf;
+}
+
+const char *rd_record_sample_error(double x, double unit, char *buf, size_t size)
+{
+    if (fabs(x * unit) <= RD_RECORD_ACC_MAX)
+        return NULL;
+    if (!isfinite(x))
+        snprintf(buf, size, "is not a finite number");
+    else
+        snprintf(buf, size, "is outside the valid |acceleration| <= %g m/s^2 (%.4g g; docs/LIMITS.md)",
+                 RD_RECORD_ACC_MAX, RD_RECORD_ACC_MAX / RD_G_STANDARD);
+    return buf;
+}
 
 int rd_record_alloc(rd_record *r, size_t npts, double dt, rd_error *err)
 {

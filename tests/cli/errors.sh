@@ -90,4 +90,20 @@ expect spacing-1e-4-run "sp.dat:2: body 'b' would carry about 1.6e+07" -- timeou
 spacing 3e-4; expect spacing-3e-4 "more than the budget of 1e+06" -- timeout 20 "$BIN" run "$T/sp.dat" -o "$T/sp.h5"
 expect spacing-set-huge "--set contact.spacing=1e308: 1e308 is outside its valid range" -- "$BIN" check "$base" --set contact.spacing=1e308
 expect spacing-set-zero "--set contact.spacing=0: 0 is no edge length" -- "$BIN" check "$base" --set contact.spacing=0
+
+# Records: a sample of 1e308 g passed check ("Arias -nan") and failed run as "contact forces blew
+# up"; a bad first row was dropped as a header; 1-2 samples ran without the baseline, 3-4 were
+# refused without the file's name.
+record() { head -2 "$base" > "$T/rec.dat"; echo "ground-motion import '$1' dt 0.01" >> "$T/rec.dat"; echo "model solve time 0.05" >> "$T/rec.dat"; }
+printf '0.1\n0.2\n1e308\n0.1\n0.1\n0.1\n' > "$T/huge.txt"; record huge.txt
+expect record-huge-check "huge.txt:3: acceleration '1e308' is outside the valid |acceleration| <= 1e+06 m/s^2" -- "$BIN" check "$T/rec.dat"
+expect record-huge-run "huge.txt:3: acceleration '1e308' is outside" -- "$BIN" run "$T/rec.dat" -o "$T/rec.h5"
+{ echo 'O 0.2'; awk 'BEGIN { for (i = 1; i < 200; i++) printf "%.2f 0.1\n", i * 0.01 }'; } > "$T/row.txt"; record row.txt
+sed -i 's/ dt 0.01//' "$T/rec.dat"
+expect record-bad-first-row "row.txt:1: non-numeric value 'O'" -- "$BIN" check "$T/rec.dat"
+for n in 1 2 3; do
+    seq 1 $n | sed 's/.*/0.1/' > "$T/short$n.txt"; record "short$n.txt"
+    expect "record-$n-samples" "short$n.txt: $n sample" -- "$BIN" check "$T/rec.dat"
+    expect "record-$n-samples-baseline" "too few for the degree-4 baseline (at least 5, or 'baseline off')" -- "$BIN" run "$T/rec.dat" -o "$T/rec.h5"
+done
 [ "$fails" -eq 0 ]
