@@ -11,6 +11,7 @@
  */
 #include "engine/sim.h"
 #include "base/constants.h"
+#include "base/path.h"
 #include "base/vec.h"
 
 #include <errno.h>
@@ -287,10 +288,17 @@ static int check_budget(const rd_sim *s, rd_error *err)
 }
 
 /* The output file can be created: its folder exists and is writable (an existing file must
- * be writable too). */
+ * be writable too), and it is neither a device, folder or pipe nor a file the run reads or
+ * its checkpoint; nor is the checkpoint (model save) such a file. */
 static int check_output(const rd_sim *s, rd_error *err)
 {
-    const char *path = s->sc.output.path;
+    const rd_scenario *sc = &s->sc;
+    const char *path = sc->output.path;
+    char why[RD_ERROR_MAX];
+    const char *bad = rd_path_output_conflict(sc, path, sc->save_path, why, sizeof why);
+    if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
+    if (sc->save_path[0] && (bad = rd_path_output_conflict(sc, sc->save_path, NULL, why, sizeof why)))
+        return rd_error_set(err, "%s: model save '%s': %s", sc->file, sc->save_path, bad);
     char dir[RD_PATH_MAX];
     snprintf(dir, sizeof dir, "%s", path);
     char *slash = strrchr(dir, '/');

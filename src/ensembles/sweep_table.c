@@ -16,6 +16,7 @@
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/sweep.h"
+#include "base/path.h"
 #include "io/h5_quiet.h"
 
 #include <errno.h>
@@ -386,6 +387,14 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
 
 static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
 {
+    if (rd_path_same(path, p->path)) {
+        rd_error_set(err, "%s: cannot write the table there: it is the scenario file being read", path);
+        return NULL;
+    }
+    if (rd_path_special(path)) {
+        rd_error_set(err, "%s: cannot write the table there: " RD_PATH_NOT_FILE, path);
+        return NULL;
+    }
     rd_sweep_table *t = calloc(1, sizeof *t);
     if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
     snprintf(t->path, sizeof t->path, "%s", path);
@@ -401,7 +410,6 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
     for (unsigned char v = 0; v <= RD_STATUS_UNTRUSTED; v++)
         H5Tenum_insert(t->status_t, rd_status_name((rd_status)v), &v);
     layout(t);
-    H5dont_atexit(); /* closed by rd_sweep_table_close; HDF5's exit hook crashed on a failed file */
     FILE *f = fopen(path, "rb");
     int rc = f ? open_table(t, done, err) : create_table(t, err);
     if (f) fclose(f);

@@ -14,6 +14,7 @@
  * Folder io/ owns the HDF5 files; it may call base/, records/, the engine's public API and its
  * state image (engine/state.h), never cli/.
  */
+#include "base/path.h"
 #include "engine/state.h"
 #include "io/io_table.h"
 #include "rockdem/observer.h"
@@ -160,14 +161,24 @@ static int restore(rd_sim *s, const char *path, rd_error *err)
     return rd_error_set(err, "%s: model restore '%s': %s", file, path, msg);
 }
 
+/* The checkpoint may be written where `model save` names (checked before the run, not after
+ * settling). 0 or -1. */
+static int save_path_ok(const rd_scenario *sc, rd_error *err)
+{
+    char why[RD_ERROR_MAX];
+    const char *bad = rd_path_output_conflict(sc, sc->save_path, NULL, why, sizeof why);
+    return bad ? rd_error_set(err, "%s: model save '%s': %s", sc->file, sc->save_path, bad) : 0;
+}
+
 rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
 {
     rd_sim *s = rd_sim_build(sc, err);
     if (!s) return NULL;
     const rd_scenario *own = rd_sim_scenario(s); /* its paths live as long as s */
     const rd_observer save = {.user = (void *)own->save_path, .begin = save_at_rest};
-    if (own->restore_path[0] ? restore(s, own->restore_path, err)
-                             : own->save_path[0] && rd_sim_add_observer(s, &save, err)) {
+    int rc = own->restore_path[0] ? restore(s, own->restore_path, err)
+           : own->save_path[0] ? save_path_ok(own, err) || rd_sim_add_observer(s, &save, err) : 0;
+    if (rc) {
         rd_sim_free(s);
         return NULL;
     }

@@ -14,9 +14,13 @@ typedef struct rd_h5_quiet {
     void *data;
 } rd_h5_quiet;
 
-/* Saves the default error stack's handler and switches it off. */
+/* Saves the default error stack's handler and switches it off. The first call, before HDF5
+ * is initialised, also drops HDF5's exit hook (H5dont_atexit has no effect once the library is
+ * up): rockdem closes every file it opens itself, and the hook crashed on a file whose close
+ * had failed. */
 static inline rd_h5_quiet rd_h5_quiet_begin(void)
 {
+    H5dont_atexit();
     rd_h5_quiet q = {NULL, NULL};
     H5Eget_auto2(H5E_DEFAULT, &q.fn, &q.data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);

@@ -707,7 +707,6 @@ static int write_status_attrs(const rd_h5 *h, rd_error *err)
 
 static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
 {
-    H5dont_atexit(); /* files are closed by rd_h5_close; HDF5's exit hook crashed on a failed one */
     if (check_names(path, meta, err)) return NULL;
     rd_h5 *h = alloc_handle(path, meta);
     if (!h) {

@@ -30,6 +30,7 @@ static hid_t utf8_type(void)
 long long rd_h5t_create(const char *path, rd_error *err)
 {
     hid_t f = H5I_INVALID_HID;
+    H5dont_atexit(); /* before HDF5 is up, if this is its first use (io/h5_quiet.h) */
     H5E_BEGIN_TRY { f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); } H5E_END_TRY;
     if (f < 0) rd_error_set(err, "%s: cannot create the file", path);
     return f < 0 ? -1 : (long long)f;
@@ -38,6 +39,7 @@ long long rd_h5t_create(const char *path, rd_error *err)
 long long rd_h5t_open(const char *path, rd_error *err)
 {
     hid_t f = H5I_INVALID_HID;
+    H5dont_atexit(); /* before HDF5 is up, if this is its first use (io/h5_quiet.h) */
     H5E_BEGIN_TRY { f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT); } H5E_END_TRY;
     if (f < 0) rd_error_set(err, "cannot open '%s'", path);
     return f < 0 ? -1 : (long long)f;

@@ -6,6 +6,7 @@
  */
 #include "rockdem/output.h"
 #include "rockdem/observer.h"
+#include "base/path.h"
 #include "io/io_hdf5.h"
 #include "io/output_scene.h"
 
@@ -119,6 +120,10 @@ static rd_h5 *open_file(rd_sim *sim, const char *path, rd_error *err)
 
 int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err)
 {
+    const rd_scenario *sc = rd_sim_scenario(sim);
+    char why[RD_ERROR_MAX];
+    const char *bad = rd_path_output_conflict(sc, path, sc->save_path, why, sizeof why);
+    if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     rd_h5 *h = open_file(sim, path, err);
     if (!h) return -1;
     rd_observer o = {.user = h, .begin = on_begin, .sample = on_sample, .event = on_event,

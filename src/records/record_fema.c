@@ -128,6 +128,7 @@ int rd_record_read_fema(rd_record *r, const char *path, const char *id, int comp
     snprintf(comp, sizeof comp, "%s/%s", group, component_b ? "b" : "a");
     H5E_auto2_t old_fn;
     void *old_data;
+    H5dont_atexit(); /* no exit hook: rockdem closes its HDF5 files itself (io/h5_quiet.h) */
     H5Eget_auto2(H5E_DEFAULT, &old_fn, &old_data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through err */
     hid_t file = open_record(path, group, id, err);

@@ -8,6 +8,7 @@
  * base/, records/, io/ and the public API.
  */
 #include "rockdem/validate.h"
+#include "base/path.h"
 #include "io/io_hdf5.h"
 
 #include <math.h>
@@ -185,6 +186,9 @@ int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref
                       const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
                       rd_error *err)
 {
+    char why[RD_ERROR_MAX];
+    const char *bad = rd_path_output_conflict(sc, path, NULL, why, sizeof why);
+    if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     double verts[2][8][3];
     rd_summary s = {0};
     rd_body_summary bs[RD_REF_BLOCKS] = {0};

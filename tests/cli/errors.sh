@@ -106,4 +106,24 @@ for n in 1 2 3; do
     expect "record-$n-samples" "short$n.txt: $n sample" -- "$BIN" check "$T/rec.dat"
     expect "record-$n-samples-baseline" "too few for the degree-4 baseline (at least 5, or 'baseline off')" -- "$BIN" run "$T/rec.dat" -o "$T/rec.h5"
 done
+# an output path that is a device, folder or pipe is refused before HDF5 opens it (was: a crash
+# at exit on /dev/null, a dump from HDF5's exit hook on /dev/full)
+expect output-dev-null "/dev/null: cannot write the output there: not a regular file" -- "$BIN" run "$good" -q -o /dev/null
+expect output-dev-full "/dev/full: cannot write the output there: not a regular file" -- "$BIN" run "$good" -q -o /dev/full
+expect output-folder "$T: cannot write the output there: not a regular file" -- "$BIN" run "$good" -q -o "$T"
+expect check-dev-null "/dev/null: cannot write the output there" -- "$BIN" check "$good" -q -o /dev/null
+{ cat "$good"; echo "model save '/dev/null'"; } > "$T/save_dev.dat"
+expect save-dev-null "save_dev.dat: model save '/dev/null': not a regular file" -- "$BIN" run "$T/save_dev.dat" -q -o "$T/x.h5"
+# an output or checkpoint that is a file the run reads is refused, the file left as it was
+cp "$good" "$T/self_out.dat"
+expect output-is-scenario "it is the scenario file being read" -- "$BIN" run "$T/self_out.dat" -q -o "$T/self_out.dat"
+cmp -s "$good" "$T/self_out.dat" || { echo "FAIL output-is-scenario: the scenario was overwritten"; fails=$((fails + 1)); }
+{ cat "$good"; echo "model save '$T/self_save.dat'"; } > "$T/self_save.dat"; cp "$T/self_save.dat" "$T/self_save.orig"
+expect save-is-scenario "self_save.dat': it is the scenario file being read" -- "$BIN" run "$T/self_save.dat" -q -o "$T/x.h5"
+cmp -s "$T/self_save.orig" "$T/self_save.dat" || { echo "FAIL save-is-scenario: the scenario was overwritten"; fails=$((fails + 1)); }
+printf '0 0\n0.005 0.1\n0.01 0\n' > "$T/rec.txt"
+{ cat "$good"; echo "ground-motion import '$T/rec.txt' baseline off"; } > "$T/rec.dat"
+expect output-is-record "it is a ground-motion record the scenario reads" -- "$BIN" run "$T/rec.dat" -q -o "$T/rec.txt"
+{ cat "$good"; echo "model save '$T/both.h5'"; } > "$T/both.dat"
+expect output-is-checkpoint "it is also the run's checkpoint (model save)" -- "$BIN" run "$T/both.dat" -q -o "$T/both.h5"
 [ "$fails" -eq 0 ]

@@ -1,0 +1,59 @@
+/* rockdem — the files a run writes, checked before it writes them (base/path.h).
+ * Folder base/ owns errors, vectors, named constants and these path checks; it calls nothing
+ * else in rockdem.
+ */
+#include "base/path.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+int rd_path_same(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    return strcmp(a, b) == 0;
+}
+
+int rd_path_special(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && !S_ISREG(st.st_mode);
+}
+
+/* The record component c of sc reads a file (AT2, text, FEMA set), not a generator. */
+static int reads_record(const rd_scenario *sc, int c)
+{
+    rd_record_source s = sc->motion.record[c].source;
+    return s == RD_SOURCE_AT2 || s == RD_SOURCE_TEXT || s == RD_SOURCE_FEMA;
+}
+
+/* Which file sc reads that `path` is, into buf; NULL when none. */
+static const char *input_named(const rd_scenario *sc, const char *path, char *buf, size_t n)
+{
+    if (sc->file[0] && rd_path_same(path, sc->file)) {
+        snprintf(buf, n, "it is the scenario file being read (%s)", sc->file);
+        return buf;
+    }
+    if (sc->restore_path[0] && rd_path_same(path, sc->restore_path))
+        return "it is the checkpoint the scenario restores (model restore)";
+    for (int c = 0; c < RD_NCOMPONENTS; c++)
+        if (reads_record(sc, c) && rd_path_same(path, sc->motion.record[c].path))
+            return "it is a ground-motion record the scenario reads";
+    for (int i = 0; i < sc->nbodies; i++)
+        if (sc->bodies[i].shape == RD_SHAPE_MESH && rd_path_same(path, sc->bodies[i].mesh)) {
+            snprintf(buf, n, "it is the mesh of block '%s'", sc->bodies[i].name);
+            return buf;
+        }
+    return NULL;
+}
+
+const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, const char *save,
+                                    char *buf, size_t n)
+{
+    if (rd_path_special(path)) return RD_PATH_NOT_FILE;
+    const char *in = input_named(sc, path, buf, n);
+    if (in) return in;
+    if (save && save[0] && rd_path_same(path, save)) return "it is also the run's checkpoint (model save)";
+    return NULL;
+}

@@ -1,0 +1,32 @@
+/* rockdem (private) — the files a run writes, checked before it writes them: never a device,
+ * folder or pipe (HDF5 cannot close such a file cleanly, and a pipe blocks the open), never a
+ * file the scenario reads (the scenario itself, a record, a mesh, the checkpoint it restores)
+ * nor one of its other outputs.
+ * Folder base/ owns errors, vectors, named constants and these path checks; it calls nothing
+ * else in rockdem (it reads the public rd_scenario struct only).
+ */
+#ifndef RD_PATH_H
+#define RD_PATH_H
+
+#include "rockdem/scenario.h"
+
+#include <stddef.h>
+
+/* 1 when a and b name the same file: the same device and inode where both exist, else the same
+ * text. */
+int rd_path_same(const char *a, const char *b);
+
+/* Why an output cannot go to an existing path that is not a regular file. */
+#define RD_PATH_NOT_FILE "not a regular file (a device, folder or pipe): rockdem writes its outputs to files"
+
+/* 1 when path exists and is not a regular file (a device such as /dev/null, a folder, a pipe). */
+int rd_path_special(const char *path);
+
+/* Why `path` must not be written as an output of scenario sc (its HDF5 output, its `model save`
+ * checkpoint): "not a regular file ...", "it is the scenario file being read", ...; NULL when
+ * it may be. `save` is the run's `model save` checkpoint ("" or NULL: none), which the HDF5
+ * output must not be either. The reason is one line, in buf (n bytes) or a constant. */
+const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, const char *save,
+                                    char *buf, size_t n);
+
+#endif
