@@ -35,6 +35,20 @@ static int fell_off(const rd_sim *sim, int k)
     return 0;
 }
 
+/* The scene's settling stopped before the unbalanced-force ratio fell to the one asked (event
+ * "unsettled"): 1 with the ratio reached, else 0. */
+static int settle_gave_up(const rd_sim *sim, double *ratio)
+{
+    int n;
+    const rd_event *ev = rd_sim_events(sim, &n);
+    for (int k = 0; k < n; k++)
+        if (!strcmp(ev[k].type, "unsettled")) {
+            *ratio = ev[k].value;
+            return 1;
+        }
+    return 0;
+}
+
 static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
 {
     int invalid = s->status == RD_STATUS_PENETRATED || s->status == RD_STATUS_LOST;
@@ -134,19 +148,20 @@ static int cmd_run(int argc, char **argv, int check_only)
     rd_summary s;
     rd_sim_summary(sim, &s);
     print_summary(sim, &s, quiet);
-    int n;
-    const rd_event *ev = rd_sim_events(sim, &n);
-    for (int k = 0; k < n; k++)
-        if (!strcmp(ev[k].type, "unsettled"))
-            fprintf(stderr, "rockdem: warning: settling stopped at force ratio %.3g (asked %.3g)\n",
-                    ev[k].value, sc.settle.ratio);
+    char unsettled[96] = ""; /* settling gave up short of its force ratio: said once, below */
+    double ratio;
+    if (settle_gave_up(sim, &ratio))
+        snprintf(unsettled, sizeof unsettled, "settling stopped at force ratio %.3g (asked %.3g)", ratio,
+                 sc.settle.ratio);
     int rc = 0;
-    if (rd_status_failed(st)) {
-        fprintf(stderr, "%s: %s\n", sc.file, rd_sim_error(sim));
+    if (rd_status_failed(st)) { /* one line: the failure, with the settling that preceded it */
+        fprintf(stderr, "%s: %s%s%s\n", sc.file, rd_sim_error(sim), unsettled[0] ? "; " : "", unsettled);
         rc = 3;
     } else if (st == RD_STATUS_INTERRUPTED) {
         fprintf(stderr, "rockdem: interrupted at t = %.4g s; %s holds everything so far\n", s.end_time, sc.output.path);
         rc = 130;
+    } else if (unsettled[0]) {
+        fprintf(stderr, "rockdem: warning: %s\n", unsettled);
     }
     if (!quiet) printf("output: %s\n", sc.output.path);
     rd_sim_free(sim);

@@ -126,4 +126,9 @@ printf '0 0\n0.005 0.1\n0.01 0\n' > "$T/rec.txt"
 expect output-is-record "it is a ground-motion record the scenario reads" -- "$BIN" run "$T/rec.dat" -q -o "$T/rec.txt"
 { cat "$good"; echo "model save '$T/both.h5'"; } > "$T/both.dat"
 expect output-is-checkpoint "it is also the run's checkpoint (model save)" -- "$BIN" run "$T/both.dat" -q -o "$T/both.h5"
+# a run that fails after settling gave up says both in its one error line (was: a settling
+# warning line, then the error)
+sed 's/position 0 0 0.8 name b/position 100 0 0.8 name b/' "$good" > "$T/falls.dat"
+expect settle-then-lost "left the scene while settling at t = " -- "$BIN" run "$T/falls.dat" -q -o "$T/x.h5"
+expect settle-then-lost-ratio "(nothing holds it); settling stopped at force ratio" -- "$BIN" run "$T/falls.dat" -q -o "$T/x.h5"
 [ "$fails" -eq 0 ]
