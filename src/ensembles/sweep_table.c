@@ -304,16 +304,35 @@ static int trim(rd_sweep_table *t, rd_error *err)
     return 0;
 }
 
+/* Lines of text as one line in buf (n bytes): joined by "; ", the last newline dropped. */
+static const char *one_line(const char *text, char *buf, size_t n)
+{
+    size_t k = 0;
+    for (const char *c = text; *c && k + 3 < n; c++) {
+        if (*c != '\n') buf[k++] = *c;
+        else if (c[1]) { buf[k++] = ';'; buf[k++] = ' '; }
+    }
+    buf[k] = '\0';
+    return buf;
+}
+
+/* The table's root attribute `attr` must read `now`. `what` says what differs: the axes and
+ * overrides (quoted from the table in the message), or NULL for the scenario text (too long to
+ * quote). */
 static int check_same(rd_sweep_table *t, const char *attr, const char *now, const char *what, rd_error *err)
 {
     char *was = attr_read(t->file, attr);
     int same = was && !strcmp(was, now);
+    char had[RD_ERROR_MAX / 2];
     if (!same && !was)
         rd_error_set(err, "rockdem sweep: %s: not a sweep table of rockdem (no '%s' attribute); "
                           "choose another -o", t->path, attr);
+    else if (!same && what)
+        rd_error_set(err, "rockdem sweep: %s holds a sweep with other %s (it has: %s); re-run with "
+                          "the same ones or choose another -o", t->path, what, one_line(was, had, sizeof had));
     else if (!same)
-        rd_error_set(err, "rockdem sweep: %s holds a sweep with other %s; re-run with the same ones "
-                          "or choose another -o (it has:\n%s)", t->path, what, was);
+        rd_error_set(err, "rockdem sweep: %s holds a sweep of another scenario text; re-run with the "
+                          "scenario it was made with or choose another -o", t->path);
     free(was);
     return same ? 0 : -1;
 }
@@ -372,7 +391,7 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     t->file = H5Fopen(t->path, H5F_ACC_RDWR, H5P_DEFAULT);
     if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot open for writing");
     if (check_same(t, "axes", t->plan->axes_text, "axes or --set overrides", err) ||
-        check_same(t, "scenario", t->plan->text, "scenario text", err))
+        check_same(t, "scenario", t->plan->text, NULL, err))
         return -1;
     if ((t->group = H5Gopen2(t->file, "sweep", H5P_DEFAULT)) < 0) return h5fail(t, err, "no /sweep group");
     int layout = 0;

@@ -44,6 +44,13 @@ if grep -q "nan" "$T/frag.txt"; then echo "unexpected: nan $T/frag.txt"; exit 1;
 # changed axes: refused
 rc=0; "$BIN" sweep "$S" --scales 1.0g,2.0g --directions 0,45 -o "$T/sw2.h5" 2> "$T/err" || rc=$?
 [ "$rc" -eq 2 ] && grep -q "holds a sweep with other axes" "$T/err"
+# in one line, naming what the table holds (was: the stored axes on lines of their own)
+{ [ "$(wc -l < "$T/err")" -eq 1 ] && grep -qF "(it has: " "$T/err"; } || { echo "changed axes: $(cat "$T/err")"; exit 1; }
+# another scenario text: refused in one line, without the stored text
+{ cat "$S"; echo "model title 'changed'"; } > "$T/changed.dat"
+rc=0; "$BIN" sweep "$T/changed.dat" --scales 1.0g,2.0g,3.0g --directions 0,45 -o "$T/sw2.h5" 2> "$T/err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(wc -l < "$T/err")" -eq 1 ] && grep -q "holds a sweep of another scenario text" "$T/err"; } ||
+    { echo "changed scenario: rc $rc, $(cat "$T/err")"; exit 1; }
 # bad axis syntax and values: one line each, exit 2
 check() { rc=0; "$BIN" sweep "$S" "$@" -o "$T/bad.h5" 2> "$T/err" || rc=$?; [ "$rc" -eq 2 ] && [ "$(wc -l < "$T/err")" -eq 1 ]; }
 check --axis contact.stiffness-normal && grep -q "expected KEY=V1,V2" "$T/err"
