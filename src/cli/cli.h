@@ -46,9 +46,11 @@ void rd_cli_progress_start(const char *what, int runs_expected);
 void rd_cli_progress_stop(void);
 void rd_cli_progress_clear(void); /* erase the line (before printing a result); keeps counting */
 
-/* cli_help.c: the page of subcommand `sub` (NULL or unknown: the global usage) on out; 0, or
- * -1 for an unknown subcommand. */
+/* cli_help.c: the page of subcommand `sub` (NULL: the global usage) on out; 0, or -1 (nothing
+ * printed) for an unknown subcommand. */
 int rd_cli_help(const char *sub, FILE *out);
+/* cli_help.c: 1 when sub names a subcommand (one with a help page), else 0. */
+int rd_cli_is_subcommand(const char *sub);
 
 /* cli_keys.c: every --set key with units, default and meaning (tsv: tab-separated). */
 void rd_cli_keys(int tsv);

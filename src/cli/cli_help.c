@@ -116,13 +116,20 @@ static const sub_help pages[] = {
              "one header line). block.<name>.<field> keys apply to the named block.\n"},
 };
 
+/* The help page of subcommand sub, or NULL when rockdem has no such subcommand. */
+static const char *page_of(const char *sub)
+{
+    for (size_t i = 0; i < sizeof pages / sizeof pages[0]; i++)
+        if (!strcmp(sub, pages[i].name)) return pages[i].text;
+    return NULL;
+}
+
+int rd_cli_is_subcommand(const char *sub) { return page_of(sub) != NULL; }
+
 int rd_cli_help(const char *sub, FILE *out)
 {
-    for (size_t i = 0; sub && i < sizeof pages / sizeof pages[0]; i++)
-        if (!strcmp(sub, pages[i].name)) {
-            fputs(pages[i].text, out);
-            return 0;
-        }
-    fputs(global_usage, out);
-    return sub ? -1 : 0;
+    const char *text = sub ? page_of(sub) : global_usage;
+    if (!text) return -1;
+    fputs(text, out);
+    return 0;
 }

@@ -169,6 +169,13 @@ static int cmd_run(int argc, char **argv, int check_only)
     return rc;
 }
 
+/* One line for a first argument that is no subcommand; exit status 2. */
+static int unknown_subcommand(const char *name)
+{
+    fprintf(stderr, "rockdem: unknown subcommand '%s' (rockdem help lists them)\n", name);
+    return 2;
+}
+
 int main(int argc, char **argv)
 {
     /* past a file-size limit (ulimit -f) write() then fails with EFBIG and the writer reports
@@ -178,11 +185,15 @@ int main(int argc, char **argv)
         printf("rockdem %s\n", RD_VERSION);
         return 0;
     }
-    if (argc >= 2 && !strcmp(argv[1], "help")) return rd_cli_help(argc >= 3 ? argv[2] : NULL, stdout) ? 2 : 0;
+    if (argc >= 2 && !strcmp(argv[1], "help")) {
+        if (rd_cli_help(argc >= 3 ? argv[2] : NULL, stdout) == 0) return 0;
+        fprintf(stderr, "rockdem: unknown help topic '%s' (rockdem help lists the subcommands)\n", argv[2]);
+        return 2;
+    }
     for (int i = 1; i < argc; i++) /* rockdem --help, rockdem SUB [...] --help */
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            rd_cli_help(i >= 2 ? argv[1] : NULL, stdout);
-            return 0;
+            if (rd_cli_help(i >= 2 ? argv[1] : NULL, stdout) == 0) return 0;
+            return unknown_subcommand(argv[1]);
         }
     if (argc >= 2 && !strcmp(argv[1], "keys")) {
         if (argc > 3 || (argc == 3 && strcmp(argv[2], "--tsv"))) {
@@ -199,9 +210,11 @@ int main(int argc, char **argv)
     if (argc >= 3 && !strcmp(argv[1], "restitution")) return rd_cli_restitution(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "study")) return rd_cli_study(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "sweep")) return rd_cli_sweep(argc, argv);
-    if (argc == 2 && rd_cli_help(argv[1], stderr) == 0) /* a subcommand without its FILE */
-        fprintf(stderr, "rockdem %s: missing FILE\n", argv[1]);
-    else
+    if (argc == 1) { /* no subcommand: the usage */
         rd_cli_help(NULL, stderr);
+        return 2;
+    }
+    if (!rd_cli_is_subcommand(argv[1])) return unknown_subcommand(argv[1]);
+    fprintf(stderr, "rockdem %s: missing FILE (see rockdem %s --help)\n", argv[1], argv[1]);
     return 2;
 }

@@ -131,4 +131,10 @@ expect output-is-checkpoint "it is also the run's checkpoint (model save)" -- "$
 sed 's/position 0 0 0.8 name b/position 100 0 0.8 name b/' "$good" > "$T/falls.dat"
 expect settle-then-lost "left the scene while settling at t = " -- "$BIN" run "$T/falls.dat" -q -o "$T/x.h5"
 expect settle-then-lost-ratio "(nothing holds it); settling stopped at force ratio" -- "$BIN" run "$T/falls.dat" -q -o "$T/x.h5"
+# a mistyped subcommand or help topic: one line naming it (was: the 15-line usage, or for help
+# the usage on stdout and nothing on stderr)
+expect unknown-subcommand "rockdem: unknown subcommand 'bogus' (rockdem help lists them)" -- "$BIN" bogus "$good"
+expect unknown-subcommand-help "unknown subcommand 'bogus'" -- "$BIN" bogus --help
+expect unknown-help-topic "rockdem: unknown help topic 'nosuch'" -- "$BIN" help nosuch
+expect missing-scenario "rockdem run: missing FILE" -- "$BIN" run
 [ "$fails" -eq 0 ]
