@@ -342,6 +342,13 @@ static void test_obj_errors(void **state)
     expect_text_error("suffix.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 1x\n",
                       "suffix.stl:5: bad coordinate '1x' after 'vertex'");
     expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "two.obj:3: face 1 has 2 vertices (at least 3 needed)");
+    /* two closed cubes in one file (here the same cube twice, each with its own vertices): their
+       volumes and masses were summed into one block (2 m^3 for a 1 m cube) */
+    char twice[1024];
+    snprintf(twice, sizeof twice, "%s%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n"
+             "f 9 11 12 10\nf 13 14 16 15\nf 9 10 14 13\nf 11 15 16 12\nf 9 13 15 11\nf 10 12 16 14\n",
+             cube_obj_v, cube_obj_v);
+    expect_text_error("shells.obj", twice, "shells.obj:23: the mesh holds 2 separate closed surfaces (face 7 starts the second)");
     expect_text_error("zero.obj", "v 0 0 0\nf 0 1 1\n", "zero.obj:2: face 1 uses vertex 0 but the file has 1 vertices");
     expect_text_error("empty.obj", "# nothing\n", "empty.obj: empty mesh (0 vertices, 0 faces)");
     expect_error("missing.obj", NULL, 0, "missing.obj: cannot open: No such file or directory");

@@ -299,6 +299,41 @@ static int check_edges(const rd_poly *p, const char *what, int base, int *bad_fa
     return rc;
 }
 
+/* Root of vertex v's set in the union-find forest up (path halving). */
+static int shell_root(int *up, int v)
+{
+    while (up[v] != v) { up[v] = up[up[v]]; v = up[v]; }
+    return v;
+}
+
+/* One closed surface: the faces' edges join every vertex into one shell (after check_edges, so
+ * each shell is closed). A file of two shells (two cubes apart, or one cube twice with its own
+ * vertices) is no single block: its volume and mass were summed. Reports the first face of
+ * another shell than face 0's. */
+static int check_shells(const rd_poly *p, const char *what, int base, int *bad_face, rd_error *err)
+{
+    int *up = malloc((size_t)p->nv * sizeof *up);
+    char *seen = calloc((size_t)p->nv, 1);
+    if (!up || !seen) { free(up); free(seen); return rd_error_set(err, "%s: out of memory", what); }
+    for (int v = 0; v < p->nv; v++) up[v] = v;
+    for (int f = 0; f < p->nf; f++)
+        for (int k = 1; k < p->flen[f]; k++)
+            up[shell_root(up, p->fidx[p->fstart[f] + k])] = shell_root(up, p->fidx[p->fstart[f]]);
+    int other = -1, shells = 0;
+    for (int f = 0; f < p->nf; f++) {
+        int r = shell_root(up, p->fidx[p->fstart[f]]);
+        if (seen[r]) continue;
+        seen[r] = 1;
+        if (shells++ == 1) other = f;
+    }
+    free(up);
+    free(seen);
+    if (other < 0) return 0;
+    *bad_face = other;
+    return rd_error_set(err, "%s: the mesh holds %d separate closed surfaces (face %d starts the second); "
+                        "a block is one: give each its own block", what, shells, other + base);
+}
+
 /* Signed volume of the closed surface, m^3 (tetrahedra from the first vertex, for precision). */
 static double signed_volume(const rd_poly *p)
 {
@@ -337,7 +372,7 @@ int rd_poly_check_at(const rd_poly *p, const char *what, int base, int *bad, rd_
         for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], p->v[i][k]); hi[k] = fmax(hi[k], p->v[i][k]); }
     for (int k = 0; k < 3; k++) d[k] = hi[k] - lo[k];
     if (check_faces(p, what, base, rd_norm(d), bad, err) || check_edges(p, what, base, bad, err) ||
-        check_used(p, what, base, err))
+        check_used(p, what, base, err) || check_shells(p, what, base, bad, err))
         return -1;
     double vol = signed_volume(p);
     if (vol < 0)
