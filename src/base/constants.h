@@ -14,6 +14,10 @@
  * (Housner 1963, Makris & Konstantinidis 2003), so closed-form references compare directly. */
 #define RD_GRAVITY_DEFAULT 9.81
 
+/* Characters no decimal number of a scenario or option holds, though strtod reads them: the
+ * hexadecimal prefix and binary exponent (0x10 is 16, 0x1p1 is 2). */
+#define RD_NOT_DECIMAL "xXpP"
+
 /* ---- monitors (engine/monitor.c) ---- */
 
 /* Uplift hysteresis on the contact area, as fractions of the area at rest: a body is "uplifted"

@@ -3,6 +3,7 @@
  * ensembles/.
  */
 #include "cli/cli.h"
+#include "base/constants.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -14,7 +15,7 @@ int rd_cli_number(const char *name, const char *text, int accel, double *v)
     char *end;
     double x = strtod(text, &end);
     if (accel && *end == 'g') { x *= RD_G_STANDARD; end++; }
-    if (end == text || *end || !isfinite(x)) {
+    if (end == text || *end || !isfinite(x) || strpbrk(text, RD_NOT_DECIMAL)) {
         fprintf(stderr, "rockdem: %s expects a number%s, got '%s'\n", name,
                 accel ? " (m/s^2, or with a g suffix)" : "", text);
         return -1;

@@ -4,6 +4,7 @@
  * base/, records/ and geometry/, never engine/, io/ or cli/.
  */
 #include "scenario/parse.h"
+#include "base/constants.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -19,6 +20,7 @@ int parse_number(const char *s, size_t len, int accel, double *v)
         return -1;
     memcpy(buf, s, len);
     buf[len] = '\0';
+    if (strpbrk(buf, RD_NOT_DECIMAL)) return -1; /* strtod also reads hexadecimal: 0x10 is not 10 */
     double x = strtod(buf, &end);
     if (end == buf)
         return -1;

@@ -43,6 +43,10 @@ expect bad-override "--set contact.stiffnes-normal=1" -- "$BIN" run "$good" --se
 expect bad-override-value "--set contact.friction=abc" -- "$BIN" run "$good" --set contact.friction=abc
 expect unwritable-output "/nonexistent-dir/x.h5" -- "$BIN" run "$good" -o /nonexistent-dir/x.h5
 expect unknown-option "unknown option '--bogus'" -- "$BIN" run "$good" --bogus
+# strtod also reads hexadecimal: 0x10 was taken as 16 Hz, 0x1p1 as 2
+sed 's/model solve time 0.01/model solve time 0x1p1/' "$good" > "$T/hex.dat"
+expect hex-number "hex.dat:3:18: expected a number" -- "$BIN" run "$T/hex.dat" -o "$T/x.h5"
+expect hex-override "--set model.duration=0x1" -- "$BIN" run "$good" --set model.duration=0x1 -o "$T/x.h5"
 # option values out of range are refused, never replaced by a default (timeout: a run that
 # goes ahead instead fails here rather than hanging the suite)
 TH="timeout 60 $BIN threshold $T/pulse.dat --engine reference"
