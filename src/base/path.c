@@ -7,12 +7,24 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 int rd_path_same(const char *a, const char *b)
 {
     struct stat sa, sb;
     if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
     return strcmp(a, b) == 0;
+}
+
+int rd_path_creatable(const char *path, char dir[RD_PATH_MAX])
+{
+    snprintf(dir, RD_PATH_MAX, "%s", path);
+    char *slash = strrchr(dir, '/');
+    if (slash == dir) slash[1] = '\0';
+    else if (slash) *slash = '\0';
+    else snprintf(dir, RD_PATH_MAX, ".");
+    if (access(dir, W_OK | X_OK)) return 1;
+    return access(path, F_OK) == 0 && access(path, W_OK) ? 2 : 0;
 }
 
 int rd_path_special(const char *path)

@@ -16,6 +16,10 @@
  * text. */
 int rd_path_same(const char *a, const char *b);
 
+/* Can a file be created at path? 0; 1 when its folder (into dir) is missing or not writable,
+ * 2 when it exists and is not writable (errno says why in both). */
+int rd_path_creatable(const char *path, char dir[RD_PATH_MAX]);
+
 /* Why an output cannot go to an existing path that is not a regular file. */
 #define RD_PATH_NOT_FILE "not a regular file (a device, folder or pipe): rockdem writes its outputs to files"
 

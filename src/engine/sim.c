@@ -287,28 +287,24 @@ static int check_budget(const rd_sim *s, rd_error *err)
                         s->sc.file, at, n, s->dt, n * s->dt, RD_STEP_BUDGET);
 }
 
-/* The output file can be created: its folder exists and is writable (an existing file must
- * be writable too), and it is neither a device, folder or pipe nor a file the run reads or
- * its checkpoint; nor is the checkpoint (model save) such a file. */
+/* The output file and the checkpoint (model save) can be created, before any work (a missing
+ * folder for the checkpoint was found only after settling), and neither is a device, folder
+ * or pipe nor a file the run reads, nor the output its checkpoint. */
 static int check_output(const rd_sim *s, rd_error *err)
 {
     const rd_scenario *sc = &s->sc;
-    const char *path = sc->output.path;
-    char why[RD_ERROR_MAX];
-    const char *bad = rd_path_output_conflict(sc, path, sc->save_path, why, sizeof why);
+    const char *path = sc->output.path, *save = sc->save_path;
+    char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
+    const char *bad = rd_path_output_conflict(sc, path, save, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
-    if (sc->save_path[0] && (bad = rd_path_output_conflict(sc, sc->save_path, NULL, why, sizeof why)))
-        return rd_error_set(err, "%s: model save '%s': %s", sc->file, sc->save_path, bad);
-    char dir[RD_PATH_MAX];
-    snprintf(dir, sizeof dir, "%s", path);
-    char *slash = strrchr(dir, '/');
-    if (slash == dir) slash[1] = '\0';
-    else if (slash) *slash = '\0';
-    else snprintf(dir, sizeof dir, ".");
-    if (access(dir, W_OK | X_OK))
-        return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
-    if (access(path, F_OK) == 0 && access(path, W_OK))
-        return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
+    if (save[0] && (bad = rd_path_output_conflict(sc, save, NULL, why, sizeof why)))
+        return rd_error_set(err, "%s: model save '%s': %s", sc->file, save, bad);
+    int no = rd_path_creatable(path, dir);
+    if (no == 1) return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
+    if (no == 2) return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
+    no = save[0] ? rd_path_creatable(save, dir) : 0;
+    if (no == 1) return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file, save, dir, strerror(errno));
+    if (no == 2) return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, save, strerror(errno));
     return 0;
 }
 

@@ -20,7 +20,9 @@
 #include "rockdem/observer.h"
 
 #include <stdio.h>
+#include <errno.h>
 #include <stdlib.h>
+#include <string.h>
 
 static rd_h5t_type h5t_type(rd_state_type t)
 {
@@ -165,9 +167,17 @@ static int restore(rd_sim *s, const char *path, rd_error *err)
  * settling). 0 or -1. */
 static int save_path_ok(const rd_scenario *sc, rd_error *err)
 {
-    char why[RD_ERROR_MAX];
+    char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
     const char *bad = rd_path_output_conflict(sc, sc->save_path, NULL, why, sizeof why);
-    return bad ? rd_error_set(err, "%s: model save '%s': %s", sc->file, sc->save_path, bad) : 0;
+    if (bad) return rd_error_set(err, "%s: model save '%s': %s", sc->file, sc->save_path, bad);
+    int no = rd_path_creatable(sc->save_path, dir);
+    if (no == 1)
+        return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file, sc->save_path,
+                            dir, strerror(errno));
+    if (no == 2)
+        return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, sc->save_path,
+                            strerror(errno));
+    return 0;
 }
 
 rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)

@@ -118,6 +118,10 @@ expect output-folder "$T: cannot write the output there: not a regular file" -- 
 expect check-dev-null "/dev/null: cannot write the output there" -- "$BIN" check "$good" -q -o /dev/null
 { cat "$good"; echo "model save '/dev/null'"; } > "$T/save_dev.dat"
 expect save-dev-null "save_dev.dat: model save '/dev/null': not a regular file" -- "$BIN" run "$T/save_dev.dat" -q -o "$T/x.h5"
+# a checkpoint into a missing folder is refused before settling (it failed after it, rc 3)
+{ cat "$good"; echo "model save '/nonexistent-dir/ck.h5'"; } > "$T/save_dir.dat"
+expect save-missing-folder "save_dir.dat: model save '/nonexistent-dir/ck.h5': cannot create the file in /nonexistent-dir" -- "$BIN" run "$T/save_dir.dat" -q -o "$T/x.h5"
+expect check-save-missing-folder "model save '/nonexistent-dir/ck.h5': cannot create the file" -- "$BIN" check "$T/save_dir.dat" -q
 # an output or checkpoint that is a file the run reads is refused, the file left as it was
 cp "$good" "$T/self_out.dat"
 expect output-is-scenario "it is the scenario file being read" -- "$BIN" run "$T/self_out.dat" -q -o "$T/self_out.dat"
