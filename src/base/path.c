@@ -4,6 +4,7 @@
  */
 #include "base/path.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -68,4 +69,18 @@ const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, con
     if (in) return in;
     if (save && save[0] && rd_path_same(path, save)) return "it is also the run's checkpoint (model save)";
     return NULL;
+}
+
+int rd_path_check_save(const rd_scenario *sc, rd_error *err)
+{
+    char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
+    const char *save = sc->save_path, *bad = save[0] ? rd_path_output_conflict(sc, save, NULL, why, sizeof why) : NULL;
+    if (bad) return rd_error_set(err, "%s: model save '%s': %s", sc->file, save, bad);
+    int no = save[0] ? rd_path_creatable(save, dir) : 0;
+    if (no == 1)
+        return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file, save, dir,
+                            strerror(errno));
+    if (no == 2)
+        return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, save, strerror(errno));
+    return 0;
 }

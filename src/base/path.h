@@ -33,4 +33,8 @@ int rd_path_special(const char *path);
 const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, const char *save,
                                     char *buf, size_t n);
 
+/* The `model save` checkpoint of sc (none: 0) may be written: no conflict (above) and its
+ * folder writable. 0, or -1 with err (one line naming the scenario and the checkpoint). */
+int rd_path_check_save(const rd_scenario *sc, rd_error *err);
+
 #endif

@@ -92,20 +92,24 @@ static double convex_depth(const rd_sim *s, int i, int j, double stop)
     return depth;
 }
 
-double rd_overlap_depth(const rd_sim *s, int i, int j)
+/* How deep bodies i and j overlap, m (0: apart or touching); for two convex bodies only known
+ * to be at most stop once it is (convex_depth). */
+static double depth_to(const rd_sim *s, int i, int j, double stop)
 {
-    if (s->convex[i] && s->convex[j]) return fmax(convex_depth(s, i, j, 0.0), 0.0);
+    if (s->convex[i] && s->convex[j]) return fmax(convex_depth(s, i, j, stop), 0.0);
     double d = 0; /* a mesh: its vertices inside the convex other */
     if (s->convex[j]) d = fmax(d, vertex_depth(s, i, j));
     if (s->convex[i]) d = fmax(d, vertex_depth(s, j, i));
     return d;
 }
 
+double rd_overlap_depth(const rd_sim *s, int i, int j) { return depth_to(s, i, j, 0.0); }
+
 void rd_overlap_note(rd_sim *s, int i, int j)
 {
     if (s->fixed[i] && s->fixed[j]) return; /* fixed bodies may be built into each other */
     const double least = fmax(RD_OVERLAP_FRACTION * fmin(s->poly[i].radius, s->poly[j].radius), s->overlap);
-    double d = s->convex[i] && s->convex[j] ? convex_depth(s, i, j, least) : rd_overlap_depth(s, i, j);
+    double d = depth_to(s, i, j, least);
     if (d > least) {
         s->overlap = d;
         s->overlap_pair[0] = i;

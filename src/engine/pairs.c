@@ -95,10 +95,7 @@ static int faces_within(const rd_sim *s, int o, int t)
     for (int f = 0; f < po->nf; f++) {
         const int *ix = po->fidx + po->fstart[f];
         for (int g = 0; g < pt->nf; g++) {
-            if (rd_dot(s->wn[s->face0[o] + f], wn[g]) > -RD_ANTIPARALLEL) continue;
-            int on = 1;
-            for (int k = 0; k < po->flen[f] && on; k++) on = fabs(rd_dot(wn[g], v[ix[k]]) - wd[g]) <= tol;
-            if (!on) continue;
+            if (!rd_face_lies_on(s, o, f, t, g, tol)) continue;
             lies = 1;
             for (int k = 0; k < po->flen[f]; k++)
                 for (int h = 0; h < pt->nf; h++)

@@ -221,23 +221,25 @@ static int find_neighbours(const rd_sim *s, double tol, neighbours *nb)
     return rc;
 }
 
+int rd_face_lies_on(const rd_sim *s, int i, int f, int j, int g, double tol)
+{
+    const rd_poly *p = &s->poly[i];
+    const double *m = s->wn[s->face0[j] + g], dg = s->wd[s->face0[j] + g];
+    if (rd_dot(s->wn[s->face0[i] + f], m) > -RD_ANTIPARALLEL) return 0;
+    for (int k = 0; k < p->flen[f]; k++)
+        if (!(fabs(rd_dot(m, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]]) - dg) < tol)) return 0;
+    return 1;
+}
+
 /* Does face f of body i lie on a face of a neighbouring body (antiparallel normals, coplanar)? */
 static int face_touches(const rd_sim *s, const neighbours *nb, int i, int f, double tol)
 {
-    const double *n = s->wn[s->face0[i] + f];
-    const rd_poly *p = &s->poly[i];
     double lo[3], hi[3], lo2[3], hi2[3];
     face_box(s, i, f, tol, lo, hi);
     for (int m = nb->start[i]; m < nb->start[i + 1]; m++) {
         int j = nb->list[m];
         for (int g = 0; g < s->poly[j].nf; g++) {
-            const double *m = s->wn[s->face0[j] + g];
-            double dg = s->wd[s->face0[j] + g];
-            if (rd_dot(n, m) > -RD_ANTIPARALLEL) continue;
-            int on = 1;
-            for (int k = 0; k < p->flen[f] && on; k++)
-                on = fabs(rd_dot(m, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]]) - dg) < tol;
-            if (!on) continue;
+            if (!rd_face_lies_on(s, i, f, j, g, tol)) continue;
             face_box(s, j, g, tol, lo2, hi2); /* coplanar: do the two faces overlap? */
             if (lo[0] <= hi2[0] && lo2[0] <= hi[0] && lo[1] <= hi2[1] && lo2[1] <= hi[1] &&
                 lo[2] <= hi2[2] && lo2[2] <= hi[2])

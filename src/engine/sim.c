@@ -297,15 +297,10 @@ static int check_output(const rd_sim *s, rd_error *err)
     char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
     const char *bad = rd_path_output_conflict(sc, path, save, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
-    if (save[0] && (bad = rd_path_output_conflict(sc, save, NULL, why, sizeof why)))
-        return rd_error_set(err, "%s: model save '%s': %s", sc->file, save, bad);
     int no = rd_path_creatable(path, dir);
     if (no == 1) return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
     if (no == 2) return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
-    no = save[0] ? rd_path_creatable(save, dir) : 0;
-    if (no == 1) return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file, save, dir, strerror(errno));
-    if (no == 2) return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, save, strerror(errno));
-    return 0;
+    return rd_path_check_save(sc, err);
 }
 
 /* Geometry, subcontact points, time step and budget: everything but the output file. */

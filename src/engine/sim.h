@@ -448,6 +448,9 @@ void rd_observe_release(rd_sim *s);
 /* setup.c */
 int rd_setup_bodies(rd_sim *s, rd_error *err);
 int rd_setup_contacts(rd_sim *s, rd_error *err);
+/* Face f of body i lies on face g of body j: antiparallel normals, every vertex of f within tol
+ * of g's plane (setup.c: the faces that carry a bed; pairs.c: which side covers a joint). */
+int rd_face_lies_on(const rd_sim *s, int i, int f, int j, int g, double tol);
 
 /* rd_sim_build without refusing bodies that overlap as placed (check.c reports them). */
 rd_sim *rd_sim_build_as_placed(const rd_scenario *sc, rd_error *err);

@@ -20,9 +20,7 @@
 #include "rockdem/observer.h"
 
 #include <stdio.h>
-#include <errno.h>
 #include <stdlib.h>
-#include <string.h>
 
 static rd_h5t_type h5t_type(rd_state_type t)
 {
@@ -163,23 +161,6 @@ static int restore(rd_sim *s, const char *path, rd_error *err)
     return rd_error_set(err, "%s: model restore '%s': %s", file, path, msg);
 }
 
-/* The checkpoint may be written where `model save` names (checked before the run, not after
- * settling). 0 or -1. */
-static int save_path_ok(const rd_scenario *sc, rd_error *err)
-{
-    char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
-    const char *bad = rd_path_output_conflict(sc, sc->save_path, NULL, why, sizeof why);
-    if (bad) return rd_error_set(err, "%s: model save '%s': %s", sc->file, sc->save_path, bad);
-    int no = rd_path_creatable(sc->save_path, dir);
-    if (no == 1)
-        return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file, sc->save_path,
-                            dir, strerror(errno));
-    if (no == 2)
-        return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, sc->save_path,
-                            strerror(errno));
-    return 0;
-}
-
 rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
 {
     rd_sim *s = rd_sim_build(sc, err);
@@ -187,7 +168,7 @@ rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
     const rd_scenario *own = rd_sim_scenario(s); /* its paths live as long as s */
     const rd_observer save = {.user = (void *)own->save_path, .begin = save_at_rest};
     int rc = own->restore_path[0] ? restore(s, own->restore_path, err)
-           : own->save_path[0] ? save_path_ok(own, err) || rd_sim_add_observer(s, &save, err) : 0;
+           : own->save_path[0] ? rd_path_check_save(own, err) || rd_sim_add_observer(s, &save, err) : 0;
     if (rc) {
         rd_sim_free(s);
         return NULL;
