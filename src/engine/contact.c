@@ -26,7 +26,11 @@
  * Faces that touch only later (a brick's sides, once it topples) carry their vertices as
  * points that take part only while their face looks at the entrance face (outward normals at
  * more than 135 deg, RD_FACING_COS): a brick's corner belongs to its base while it rocks, and
- * its side's corners join once it has toppled past 45 deg.
+ * its side's corners join once it has toppled past 45 deg. The points of the faces that always
+ * act (a base, a face placed on another body's) bear only on a face they look at, within 80 deg
+ * of facing it (RD_BASE_FACING_COS): a base's corner does not push on a side face that it meets
+ * at right angles (two blocks sliding into each other), and one that crossed a side plane takes
+ * the face it looks at instead (look_again).
  * With the entrance face fixed, the normal force is the gradient of (1/2) KN A' depth^2, a
  * potential of the relative pose: the normal law is conservative (no energy is created by
  * the choice of normal, unlike a common plane that switches between the faces of two blocks).
@@ -87,6 +91,17 @@
 /* A subcontact acts only while its face and the entrance face are within 45 deg of facing each
  * other (cos 135 deg = -RD_FACING_COS). */
 #define RD_FACING_COS 0.70710678118654752
+/* A point of a face that always acts (a base, a bed, a face placed on another body's) bears
+ * only on an entrance face that its own face looks at: outward normals more than 100 deg apart
+ * (cos 100 deg = -RD_BASE_FACING_COS; its normal: rd_sim.pn, the face's, or the mean of the
+ * merged faces' at a vertex, merge.c). A face at right angles to another touches it along an
+ * edge only, which the edge subcontacts carry: a block's base corner that met another block's
+ * side face (the two sliding into each other) bore on it with the base's area as well as the
+ * side face's own corner with the side's, 1.5 times the joint's KN A and its centre at h/3, not
+ * h/2. 10 deg short of the right angle, so that a block striking a vertical face while tilted by
+ * a few degrees is decided far from round-off, while a block rocking on its base keeps its pivot
+ * up to 80 deg of tilt (past any block's overturning angle but the squattest, h/b < 0.18). */
+#define RD_BASE_FACING_COS 0.17364817766693035
 /* A plane counts as approached when the point moves into it faster than this fraction of its
  * relative speed (below, the motion is tangential: round-off must not pick a side face). */
 #define RD_APPROACH_FRACTION 1e-3
@@ -393,6 +408,33 @@ static const double *owner_normal(const rd_sim *s, side_ctx *c)
     return c->m;
 }
 
+/* Does point pt, of a face that always acts, look at its entrance face e (RD_BASE_FACING_COS)?
+ * Both normals in the owner's frame: its own (rd_sim.pn) and the plane's (side_ctx.pl). */
+static inline __attribute__((always_inline)) int base_looks(const double pn[3], const double *plane)
+{
+    return rd_dot(pn, plane) <= -RD_BASE_FACING_COS;
+}
+
+/* A point of a face that always acts, inside the other body with an entrance face its face does
+ * not look at (it crossed a side plane, or its face turned away): it takes the shallowest plane
+ * its face looks at as its entrance face and bears on it from where it is (its depth below it,
+ * if inside, as its set: the level rule of entrance_face, at any depth), from the next step; it
+ * keeps its face if it looks at none. A drum's base vertex that came back over the rim below
+ * beneath the top face's level (a few mm in an impact, more than the contact band) took the
+ * rim's side face and, once not pushed sideways by it, would have idled there for good. */
+static void look_again(rd_sim *s, const side_ctx *c, int pt, int st, const double p[3])
+{
+    int g = -1;
+    double dmin = DBL_MAX;
+    for (int k = 0; k < c->np; k++) {
+        double depth = -plane_dist(c->pl[k], p);
+        if (base_looks(s->pn[pt], c->pl[k]) && depth < dmin) { dmin = depth; g = k; }
+    }
+    if (g < 0) return;
+    s->pface[st] = (short)g;
+    s->pset[st] = fmax(dmin, 0.0);
+}
+
 /* The entrance face of point pt (at p, owner frame) that has just been found inside (see the
  * header); its own normal (rd_sim.pn: its face's, or a merged point's mean) breaks ties.
  * *set: the point's permanent set, m: its depth below the face when that is the level one its
@@ -523,6 +565,11 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
         return 0;
     }
+    if (!c->facing && !base_looks(s->pn[pt], c->pl[e])) {
+        point_idle(s, c, pt, st, kA, sA, &last, depth - s->pset[st]);
+        look_again(s, c, pt, st, p);
+        return 0;
+    }
     /* w: the stretch an elastic joint's unbonded spring moves through in this step (|vn| dt,
        m); one within w / 2 of switching bears its mean force over the step (0: a plain switch) */
     double w = 0;
@@ -638,7 +685,8 @@ typedef struct steady_ctx {
     const uint64_t *mask;     /* side_ctx.mask, dist (vertex_distances) */
     const double *dist;
     int np;                   /* the other body's planes */
-    const double (*pl)[3];    /* rd_sim.pl, pa, pface, pset, fs, pj, pstate */
+    const double (*pl)[3];    /* rd_sim.pl, pn, pa, pface, pset, fs, pj, pstate */
+    const double (*pn)[3];
     const double *pa;
     const short *pface;
     double *pset;
@@ -662,7 +710,7 @@ static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, con
 {
     k->cf_v = s->cf_v; k->cf_v0 = s->cf_v0; k->cf_facing = s->cf_facing;
     k->mask = c->mask; k->dist = c->dist; k->np = c->np;
-    k->pl = (const double (*)[3])s->pl; k->pa = s->pa; k->pface = s->pface; k->pset = s->pset;
+    k->pl = (const double (*)[3])s->pl; k->pn = (const double (*)[3])s->pn; k->pa = s->pa; k->pface = s->pface; k->pset = s->pset;
     k->fs = s->fs; k->pj = s->pj; k->pstate = s->pstate;
     k->plane = (const double (*)[4])c->pl; k->wn = c->wn;
     k->tol = c->tol; k->wa = c->wa; k->damp_coef = c->damp_coef;
@@ -734,6 +782,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     const double dz = rd_dot(k->plane[e], p), depth = -(dz - k->plane[e][3]); /* subcontact's */
     double A = k->wa * k->pa[pt], kA = k->kn * A, sA = k->ks * A;
     const double *u = k->wn[e];
+    if (!k->facing && !base_looks(k->pn[pt], k->plane[e])) return STEADY_NONE; /* turned away: subcontact */
     if (!plain && k->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
             return STEADY_NONE;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Closed-form checks a 3DEC user or a cask analyst would run first (physics audit, 2026-12):
+# Closed-form checks a 3DEC user or a cask analyst would run first (physics audit, 2026-11):
 #  1. vertical + horizontal base motion: a block sliding under a rectangular horizontal pulse
 #     while the base also accelerates vertically (+ up: the pseudo-force adds to gravity, so the
 #     Coulomb limit is mu m (g + a_v)). Reference: the same block with two degrees of freedom, a
@@ -17,8 +17,10 @@
 #     restitution e the rebound speed is sqrt(e^2 v0^2 - 2 g d (1 - e^2)) (d the deepest
 #     compression: the set (1 - e) d, the spring gives back e^2 of 1/2 K d^2, gravity takes m g d).
 #  4. two equal free blocks colliding face to face on a frictionless base, elastic: they exchange
-#     velocities, with no rotation (expected failure, README known gaps: the striking block's base
-#     corners bear on the struck side face too, so the joint's pressure centre is at h/3).
+#     velocities. The striking faces' base corners used to bear on the struck side face too (bed
+#     point and side point at one place), so the joint's pressure centre lay at h/3 and the
+#     striker kept 0.0236 m/s; a base point now bears only on a face it looks at (contact.c,
+#     RD_BASE_FACING_COS).
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/audit_physics; rm -rf "$T"; mkdir -p "$T"
@@ -196,7 +198,7 @@ tol = e * de / refr + refr * (q * q / 4) * (1 + 1 / refr ** 2) / 2
 print("drop-restitution(e=0.5,ratio=%.6g,ref=%.6g)" % (ratio, refr), "%.3g" % abs(ratio - refr), "%.3g" % tol, int(abs(ratio - refr) <= tol))
 PY
 
-# ---- 4. two equal blocks colliding (expected failure) -------------------------------------------
+# ---- 4. two equal blocks colliding -------------------------------------------------------------
 cat > "$T/coll.dat" <<'EOF'
 model gravity 9.81
 block create brick size 6 2 0.5 position 0 0 -0.25 fixed name base
@@ -215,7 +217,7 @@ f = h5py.File(sys.argv[1], "r"); v = f["velocity"][-1]
 # Tolerance: elastic_bounce.sh's bound for an elastic spring switching within a step, 1e-4 of the
 # impact's energy at omega dt 0.2, as a velocity 1e-4 of the impact speed; twice for the two sides
 gap = abs(v[0, 0])
-print("collision-exchange(va=%.4g,vb=%.4g,m/s)" % (v[0, 0], v[1, 0]), "%.3g" % gap, "2e-4", int(gap <= 2e-4), "xfail")
+print("collision-exchange(va=%.4g,vb=%.4g,m/s)" % (v[0, 0], v[1, 0]), "%.3g" % gap, "2e-4", int(gap <= 2e-4))
 PY
 
 [ "$fails" = 0 ] || exit 1

@@ -55,8 +55,46 @@ PY
     verdict "$name: joint sink against m g / (KN A)" "$ok" "$gap" 1e-3 strict || fails=$((fails + 1))
 }
 
+# case_side NAME SPACING: two 1 m cubes placed side by side, touching, on the fixed floor;
+# checks each one's floor joint sink. Their touching side faces carry points (a face placed on
+# another body's), and those merged with the bases' at the shared corners bore with both
+# faces' areas on the floor (and on the neighbour): the floor joint sank 0.75 of m g / (KN A).
+# A point now merges only with points of faces within 60 deg of its own and bears only on a
+# face it looks at (engine/merge.c, engine/contact.c).
+case_side() {
+    local name=$1 spacing=$2
+    cat > "$T/$name.dat" <<EOF
+model gravity 9.81
+block create brick size 4 4 0.4 position 0 0 -0.2 fixed name floor
+block create brick size 1 1 1 position -0.5 0 0.5 name a density 2600
+block create brick size 1 1 1 position 0.5 0 0.5 name b density 2600
+contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 spacing $spacing
+model solve time 0.05
+output hdf5 '$T/$name.h5' interval 0.01
+EOF
+    if ! "$BIN" run "$T/$name.dat" -q > "$T/$name.log" 2>&1; then
+        echo "FAIL $name: rockdem run failed"; cat "$T/$name.log"; fails=$((fails + 1)); return
+    fi
+    local out
+    out=$(/usr/bin/python3 - "$T/$name.h5" <<'PY'
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+sink = max(abs(0.5 - z) for z in f["position"][-1, :, 2])  # the floor joints' closure, m
+want = 2600.0 * 9.81 / 1e10                                 # m g / (KN A), A = 1 m^2
+gap = abs(sink - want) / want
+print("%.4g %.4g %.4g %d" % (sink, want, gap, gap <= 1e-3))
+PY
+)
+    local sink want gap ok
+    read -r sink want gap ok <<< "$out"
+    echo "$name: floor joint sink $sink m, m g / (KN A) = $want m, relative gap $gap"
+    verdict "$name: floor joint sink against m g / (KN A)" "$ok" "$gap" 1e-3 strict || fails=$((fails + 1))
+}
+
 case_sink statue-vertices 1.0 0.5 vertices
 case_sink statue-bed 1.0 0.45 auto
 case_sink wide-top-vertices 0.5 1.0 vertices
 case_sink equal-vertices 0.5 0.5 vertices
+case_side side-by-side-vertices vertices
+case_side side-by-side-bed auto
 exit $((fails > 0))

@@ -11,7 +11,7 @@
 # an integrator change, a different summation order). To update it after a deliberate change:
 #     make && bash tests/cli/determinism.sh      # prints "new hash: ..." when it differs
 # then paste the printed value here, and say in the commit message why the results changed.
-DET_HASH=9d25dd6a2e5aa949
+DET_HASH=1cf88d15811354ad
 DET_SCENE=tests/cli/data/sweep_brick.dat
 DET_SCALES=0.5g,1.0g
 DET_DIRECTIONS=0,30
