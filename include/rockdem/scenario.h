@@ -316,6 +316,11 @@ RD_API int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text
  * "motion.amplitude=0.4g", "output.file=x.h5", "body.cask.density=2500". Returns 0 or -1. */
 RD_API int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err);
 
+/* The valid range [*lo, *hi] of a scenario number by its keyword ("frequency", "amplitude",
+ * ...; docs/LIMITS.md), as written: degrees, m/s^2. 0, or -1 for a keyword without its own
+ * row (then |v| <= 1e9, the bound of any scenario number). */
+RD_API int rd_scenario_limit(const char *keyword, double *lo, double *hi);
+
 /* Cross-field checks after all overrides (at least one free body, positive sizes, ...). */
 RD_API int rd_scenario_validate(const rd_scenario *sc, rd_error *err);
 

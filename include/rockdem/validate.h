@@ -67,10 +67,24 @@ typedef struct rd_threshold_opts {
     int jobs;      /* runs of the coarse scan at once, each in a worker process (fork); <= 0
                       (default): the number of online cores; 1: all in the calling process.
                       The result is the serial scan's whatever the number (runs may be more) */
-    double rtol;   /* bisection stops when (hi - lo) / hi < rtol (default 0.005) */
+    double rtol;   /* bisection stops when (hi - lo) / hi < rtol (default 0.005), in
+                      [RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX] */
 } rd_threshold_opts;
 
+/* The bisection's relative bracket rtol: below 1e-6 the bracket reaches round-off before it
+ * closes (1e-300 bisected for ever); 1 bisects nothing (the coarse scan's bracket), and a
+ * relative bracket (hi - lo) / hi never exceeds 1. */
+#define RD_THRESHOLD_RTOL_MIN 1e-6
+#define RD_THRESHOLD_RTOL_MAX 1.0
+
 RD_API rd_threshold_opts rd_threshold_opts_default(void);
+
+/* The amplitude range (m/s^2) rd_threshold searches for this scenario and these options: lo
+ * and hi with their defaults resolved. 0, or -1 with err (one line) when the options or the
+ * scene cannot be searched: no horizontal pulse, a scene the reference does not map, rtol
+ * outside its range, lo not below hi. Runs nothing: bad input is told before any run. */
+RD_API int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo,
+                              double *hi, rd_error *err);
 
 typedef struct rd_threshold_result {
     int found;          /* 0: nothing in [lo, hi] overturned */

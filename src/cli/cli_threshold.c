@@ -43,8 +43,15 @@ static int read_frequencies(threshold_args *a, const char *v)
         snprintf(item, sizeof item, "%.*s", (int)len, tok);
         double *f = &a->freq[a->nfreq++];
         if (rd_cli_number("--frequencies", item, 0, f)) return -1;
+        double lo, hi; /* Hz: a pulse frequency's range */
+        rd_scenario_limit("frequency", &lo, &hi);
         if (!(*f > 0)) {
             fprintf(stderr, "rockdem: --frequencies expects positive frequencies (Hz), got '%s'\n", item);
+            return -1;
+        }
+        if (!(*f >= lo && *f <= hi)) {
+            fprintf(stderr, "rockdem: --frequencies expects frequencies from %g to %g Hz (docs/LIMITS.md), "
+                    "got '%s'\n", lo, hi, item);
             return -1;
         }
         tok += len;
@@ -52,12 +59,31 @@ static int read_frequencies(threshold_args *a, const char *v)
     }
 }
 
-/* --lo / --hi A: an amplitude above zero (m/s^2, or with a g suffix); 0, or -1 with a message. */
+/* --lo / --hi A: an amplitude above zero, at most a pulse amplitude's cap (m/s^2, or with a g
+ * suffix); 0, or -1 with a message. */
 static int read_amplitude(const char *o, const char *v, double *a)
 {
+    double lo, hi; /* m/s^2: a pulse amplitude's range */
+    rd_scenario_limit("amplitude", &lo, &hi);
     if (rd_cli_number(o, v, 1, a)) return -1;
+    if (*a > hi) {
+        fprintf(stderr, "rockdem: %s expects an amplitude of at most %g m/s^2 (docs/LIMITS.md), got '%s'\n",
+                o, hi, v);
+        return -1;
+    }
     if (*a > 0) return 0;
     fprintf(stderr, "rockdem: %s expects an amplitude above 0 (m/s^2, or with a g suffix), got '%s'\n", o, v);
+    return -1;
+}
+
+/* --rtol r: the bisection's relative bracket in [RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX];
+ * 0, or -1 with a message. */
+static int read_rtol(const char *v, double *rtol)
+{
+    if (rd_cli_number("--rtol", v, 0, rtol)) return -1;
+    if (*rtol >= RD_THRESHOLD_RTOL_MIN && *rtol <= RD_THRESHOLD_RTOL_MAX) return 0;
+    fprintf(stderr, "rockdem: --rtol expects a relative bracket from %g to %g, got '%s'\n",
+            RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX, v);
     return -1;
 }
 
@@ -91,7 +117,7 @@ static int threshold_option(void *ctx, int argc, char **argv, int *i)
     } else if (!strcmp(o, "--lo") || !strcmp(o, "--hi")) {
         rc = read_amplitude(o, v, o[2] == 'l' ? &a->opts.lo : &a->opts.hi);
     } else if (!strcmp(o, "--rtol")) {
-        rc = rd_cli_number(o, v, 0, &a->opts.rtol);
+        rc = read_rtol(v, &a->opts.rtol);
     } else if (!strcmp(o, "--frequencies")) {
         rc = read_frequencies(a, v);
     } else if (!strcmp(o, "--steps")) {
@@ -149,7 +175,14 @@ int rd_cli_threshold(int argc, char **argv)
 {
     rd_scenario sc;
     threshold_args a = {RD_ENGINE_DEM, rd_threshold_opts_default(), 0, {0}};
+    rd_error err;
+    double lo, hi; /* m/s^2: the range searched, refused here (exit 2) before any run */
     if (rd_cli_scenario(&sc, argc, argv, threshold_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
+    if (rd_threshold_range(&sc, &a.opts, &lo, &hi, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
+        rd_scenario_free(&sc);
+        return 2;
+    }
     int rc = 0;
     /* runs: about half the coarse scan, then bisection from its step down to rtol */
     int per = a.opts.nscan / 2 + 2 + (int)ceil(log2(1.0 / fmax(a.opts.rtol * a.opts.nscan, 1e-6)));
@@ -159,7 +192,6 @@ int rd_cli_threshold(int argc, char **argv)
                a.engine == RD_ENGINE_DEM ? "dem" : "reference", "f (Hz)", "w/p", "a/a_uplift", "a (g)", "runs");
         for (int k = 0; k < a.nfreq && rc == 0; k++) rc = curve_row(&sc, &a, a.freq[k]);
     } else {
-        rd_error err;
         rd_threshold_result r;
         rc = rd_threshold(&sc, a.engine, &a.opts, &r, &err);
         rd_cli_progress_stop();

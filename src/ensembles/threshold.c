@@ -262,21 +262,40 @@ static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_erro
     return rc;
 }
 
+/* rd_threshold_range with the scene's scales into out (static uplift, w/p). */
+static int search_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo, double *hi,
+                        rd_threshold_result *out, rd_error *err)
+{
+    if (sc->motion.horizontal.kind == RD_PULSE_NONE)
+        return rd_error_set(err, "%s: threshold: the scenario has no horizontal pulse to scale",
+                            sc->file);
+    if (!(opts->rtol >= RD_THRESHOLD_RTOL_MIN && opts->rtol <= RD_THRESHOLD_RTOL_MAX))
+        return rd_error_set(err, "threshold: --rtol %g is outside its range [%g, %g] (the bisection's "
+                                 "relative bracket)", opts->rtol, RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX);
+    if (scene_scales(sc, out, err)) return -1;
+    *lo = opts->lo > 0 ? opts->lo : 0.9 * out->static_amp;
+    *hi = opts->hi > 0 ? opts->hi : 10 * out->static_amp;
+    if (!(*lo > 0 && *hi > *lo))
+        return rd_error_set(err, "%s: threshold: --lo %.5g m/s^2 is not below --hi %.5g m/s^2 (their "
+                                 "defaults: 0.9 and 10 times the static uplift threshold %.5g m/s^2)",
+                            sc->file, *lo, *hi, out->static_amp);
+    return 0;
+}
+
+int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo, double *hi,
+                       rd_error *err)
+{
+    rd_threshold_result scales = {0};
+    return search_range(sc, opts, lo, hi, &scales, err);
+}
+
 int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opts *opts,
                  rd_threshold_result *out, rd_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (sc->motion.horizontal.kind == RD_PULSE_NONE)
-        return rd_error_set(err, "%s: threshold: the scenario has no horizontal pulse to scale",
-                            sc->file);
-    if (scene_scales(sc, out, err)) return -1;
-    double lo = opts->lo > 0 ? opts->lo : 0.9 * out->static_amp;
-    double hi = opts->hi > 0 ? opts->hi : 10 * out->static_amp;
+    double lo = 0, hi = 0, below, above;
+    if (search_range(sc, opts, &lo, &hi, out, err)) return -1;
     int n = opts->nscan > 0 ? opts->nscan : 24, over = 0;
-    double below, above;
-    if (!(hi > lo) || !(opts->rtol > 0))
-        return rd_error_set(err, "threshold: need 0 < lo < hi and rtol > 0 (got lo %g, hi %g, "
-                                 "rtol %g)", lo, hi, opts->rtol);
     /* (a reference run that lifts off ends the search like an overturning one: the bracket then
        closes on the onset of jumping, reported as such) */
     if (coarse_scan(sc, engine, lo, hi, n, scan_jobs(opts), &below, &above, out, err)) return -1;

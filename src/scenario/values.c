@@ -94,11 +94,20 @@ static const keyword_limit keyword_limits[] = {
 
 #define KEYWORD_DEFAULT_MAX 1e9 /* |v| of a keyword without its own row */
 
-const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t size)
+/* The row of keyword kw (len characters), NULL when it has none. */
+static const keyword_limit *find_limit(const char *kw, size_t len)
 {
     for (size_t i = 0; i < sizeof keyword_limits / sizeof keyword_limits[0]; i++) {
         const keyword_limit *l = &keyword_limits[i];
-        if (strlen(l->name) != len || strncmp(l->name, kw, len)) continue;
+        if (strlen(l->name) == len && !strncmp(l->name, kw, len)) return l;
+    }
+    return NULL;
+}
+
+const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t size)
+{
+    const keyword_limit *l = find_limit(kw, len);
+    if (l) {
         if (v >= l->lo && v <= l->hi) return NULL;
         snprintf(buf, size, "is outside its valid range [%g, %g]%s%s (docs/LIMITS.md)", l->lo, l->hi,
                  l->unit[0] ? " " : "", l->unit);
@@ -107,6 +116,14 @@ const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t 
     if (fabs(v) <= KEYWORD_DEFAULT_MAX) return NULL;
     snprintf(buf, size, "is outside the range of any scenario number, |v| <= %g (docs/LIMITS.md)", KEYWORD_DEFAULT_MAX);
     return buf;
+}
+
+int rd_scenario_limit(const char *keyword, double *lo, double *hi)
+{
+    const keyword_limit *l = find_limit(keyword, strlen(keyword));
+    *lo = l ? l->lo : -KEYWORD_DEFAULT_MAX;
+    *hi = l ? l->hi : KEYWORD_DEFAULT_MAX;
+    return l ? 0 : -1;
 }
 
 /* NULL when a subcontact spacing v (m) is valid, else why not (in buf). 0 is refused rather

@@ -4,14 +4,20 @@
 set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
 fails=0
-expect() { # expect NAME EXPECTED-SUBSTRING -- command...
-    local name=$1 want=$2; shift 3
+# expect_status RC NAME EXPECTED-SUBSTRING -- command...: one stderr line holding the substring
+# and exit status RC ("any": 1 to 3)
+expect_status() {
+    local want_rc=$1 name=$2 want=$3; shift 4
     local out rc
     out=$("$@" 2>&1 >/dev/null); rc=$?
-    if [ "$rc" -eq 0 ] || [ "$rc" -gt 3 ] || ! printf '%s' "$out" | grep -qF -- "$want" || [ "$(printf '%s\n' "$out" | wc -l)" -ne 1 ]; then
-        echo "FAIL $name: rc=$rc, stderr: $out (wanted: $want)"; fails=$((fails + 1))
+    if { [ "$want_rc" = any ] && { [ "$rc" -eq 0 ] || [ "$rc" -gt 3 ]; }; } ||
+       { [ "$want_rc" != any ] && [ "$rc" -ne "$want_rc" ]; } ||
+       ! printf '%s' "$out" | grep -qF -- "$want" || [ "$(printf '%s\n' "$out" | wc -l)" -ne 1 ]; then
+        echo "FAIL $name: rc=$rc, stderr: $out (wanted: $want, exit ${want_rc})"; fails=$((fails + 1))
     fi
 }
+expect() { expect_status any "$@"; }   # expect NAME EXPECTED-SUBSTRING -- command...
+expect2() { expect_status 2 "$@"; }    # the same, exit 2: bad input or option, refused before any run
 good="$T/good.dat"
 cat > "$good" <<'DAT'
 block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base
@@ -50,24 +56,37 @@ expect hex-override "--set model.duration=0x1" -- "$BIN" run "$good" --set model
 # option values out of range are refused, never replaced by a default (timeout: a run that
 # goes ahead instead fails here rather than hanging the suite)
 TH="timeout 60 $BIN threshold $T/pulse.dat --engine reference"
-expect threshold-lo-negative "--lo expects an amplitude above 0 (m/s^2, or with a g suffix), got '-1'" -- $TH --lo -1
-expect threshold-lo-zero "--lo expects an amplitude above 0" -- $TH --lo 0
-expect threshold-hi-zero "--hi expects an amplitude above 0" -- $TH --hi 0
-expect threshold-hi-negative "--hi expects an amplitude above 0 (m/s^2, or with a g suffix), got '-5'" -- $TH --hi -5
-expect threshold-steps-zero "--steps expects a number of coarse scan steps (1 to 1000), got '0'" -- $TH --steps 0
-expect threshold-steps-negative "--steps expects a number of coarse scan steps (1 to 1000), got '-3'" -- $TH --steps -3
-expect threshold-steps-huge "--steps expects a number of coarse scan steps (1 to 1000), got '1e9'" -- $TH --steps 1e9
-expect threshold-steps-fraction "got '2.5'" -- $TH --steps 2.5
-expect threshold-frequencies-empty "--frequencies expects positive numbers (Hz) separated by commas, got '1,,2'" -- $TH --frequencies 1,,2
-expect threshold-frequencies-trailing "got '1,' (an empty item)" -- $TH --frequencies 1,
-expect threshold-frequencies-zero "--frequencies expects positive frequencies (Hz), got '0'" -- $TH --frequencies 0
+expect2 threshold-lo-negative "--lo expects an amplitude above 0 (m/s^2, or with a g suffix), got '-1'" -- $TH --lo -1
+expect2 threshold-lo-zero "--lo expects an amplitude above 0" -- $TH --lo 0
+expect2 threshold-hi-zero "--hi expects an amplitude above 0" -- $TH --hi 0
+expect2 threshold-hi-negative "--hi expects an amplitude above 0 (m/s^2, or with a g suffix), got '-5'" -- $TH --hi -5
+expect2 threshold-steps-zero "--steps expects a number of coarse scan steps (1 to 1000), got '0'" -- $TH --steps 0
+expect2 threshold-steps-negative "--steps expects a number of coarse scan steps (1 to 1000), got '-3'" -- $TH --steps -3
+expect2 threshold-steps-huge "--steps expects a number of coarse scan steps (1 to 1000), got '1e9'" -- $TH --steps 1e9
+expect2 threshold-steps-fraction "got '2.5'" -- $TH --steps 2.5
+expect2 threshold-frequencies-empty "--frequencies expects positive numbers (Hz) separated by commas, got '1,,2'" -- $TH --frequencies 1,,2
+expect2 threshold-frequencies-trailing "got '1,' (an empty item)" -- $TH --frequencies 1,
+expect2 threshold-frequencies-zero "--frequencies expects positive frequencies (Hz), got '0'" -- $TH --frequencies 0
 RS="timeout 60 $BIN restitution $T/pulse.dat"
-expect restitution-target-negative "--target expects a restitution above 0, at most 1, got '-1'" -- $RS --target -1
-expect restitution-target-zero "--target expects a restitution above 0, at most 1, got '0'" -- $RS --target 0
-expect restitution-target-above-1 "--target expects a restitution above 0, at most 1, got '2'" -- $RS --target 2
-expect restitution-theta0-zero "--theta0 expects an initial tilt above 0 (rad), got '0'" -- $RS --theta0 0
-expect restitution-theta0-negative "--theta0 expects an initial tilt above 0 (rad), got '-5'" -- $RS --theta0 -5
-expect restitution-theta0-past-alpha "--theta0 expects an initial tilt below the block's alpha = 0.244979 rad, got 1" -- $RS --theta0 1
+expect2 restitution-target-negative "--target expects a restitution above 0, at most 1, got '-1'" -- $RS --target -1
+expect2 restitution-target-zero "--target expects a restitution above 0, at most 1, got '0'" -- $RS --target 0
+expect2 restitution-target-above-1 "--target expects a restitution above 0, at most 1, got '2'" -- $RS --target 2
+expect2 restitution-theta0-zero "--theta0 expects an initial tilt above 0 (rad), got '0'" -- $RS --theta0 0
+expect2 restitution-theta0-negative "--theta0 expects an initial tilt above 0 (rad), got '-5'" -- $RS --theta0 -5
+expect2 restitution-theta0-past-alpha "--theta0 expects an initial tilt below the block's alpha = 0.244979 rad, got 1" -- $RS --theta0 1
+# --rtol out of range exited 3 after the scene was read (0, -1), or bisected for ever (1e-300:
+# the bracket reaches round-off before it closes); --lo not below --hi (given or defaulted) and
+# a scene without a pulse exited 3; --hi 1e300 failed in CVODE, --frequencies 2,1e9 ran the
+# 2 Hz row before it failed (rc 3)
+expect2 threshold-rtol-zero "--rtol expects a relative bracket from 1e-06 to 1, got '0'" -- $TH --rtol 0
+expect2 threshold-rtol-negative "--rtol expects a relative bracket from 1e-06 to 1, got '-1'" -- $TH --rtol -1
+expect2 threshold-rtol-tiny "--rtol expects a relative bracket from 1e-06 to 1, got '1e-300'" -- $TH --rtol 1e-300
+expect2 threshold-rtol-above-1 "--rtol expects a relative bracket from 1e-06 to 1, got '2'" -- $TH --rtol 2
+expect2 threshold-lo-above-hi "pulse.dat: threshold: --lo 2 m/s^2 is not below --hi 1 m/s^2" -- $TH --lo 2 --hi 1
+expect2 threshold-lo-above-default "pulse.dat: threshold: --lo 980.66 m/s^2 is not below --hi 24.525 m/s^2 (their defaults" -- $TH --lo 100g
+expect2 threshold-hi-huge "--hi expects an amplitude of at most 1e+06 m/s^2 (docs/LIMITS.md), got '1e300'" -- $TH --hi 1e300
+expect2 threshold-frequencies-huge "--frequencies expects frequencies from 0.0001 to 1000 Hz (docs/LIMITS.md), got '1e9'" -- $TH --frequencies 2,1e9
+expect2 threshold-no-pulse "good.dat: threshold: the scenario has no horizontal pulse to scale" -- timeout 60 "$BIN" threshold "$good" --engine reference
 # an option given last without its value is named as needing one, not as unknown
 expect set-no-value "--set needs a value (see rockdem run --help)" -- "$BIN" run "$good" --set
 expect out-no-value "-o needs a value (see rockdem run --help)" -- "$BIN" run "$good" -o
