@@ -442,6 +442,24 @@ static void test_ply_stl_errors(void **state)
                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
                       "idx.ply: face 0 uses vertex 3 but the file has 3 vertices");
     expect_text_error("magic.ply", "solid\n", "magic.ply:1: not a PLY file");
+    /* an ASCII PLY number must be the whole token, as OBJ's and STL's are (9617d77): '1.5.5 0'
+       was read as the two values 1.5 and .5, '1-2 0' as 1 and -2, '0x1' as hexadecimal 1, and
+       '1.0abc' and '2x' were refused without the token ("not a number", "more values") */
+    static const char *tet_ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    static const char *tet_faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    static const struct { const char *name, *v1, *face0, *want; } junk[] = {
+        {"dots.ply", "1.5.5 0", "3 0 2 1", "dots.ply:11: bad number '1.5.5' in vertex 1 of 4"},
+        {"minus.ply", "1-2 0", "3 0 2 1", "minus.ply:11: bad number '1-2' in vertex 1 of 4"},
+        {"hex.ply", "0x1 0 0", "3 0 2 1", "hex.ply:11: bad number '0x1' in vertex 1 of 4"},
+        {"suffix.ply", "1.0abc 0 0", "3 0 2 1", "suffix.ply:11: bad number '1.0abc' in vertex 1 of 4"},
+        {"index.ply", "1 0 0", "3 0 2 1x", "index.ply:14: bad number '1x' in face 0 of 4"},
+    };
+    for (size_t k = 0; k < sizeof junk / sizeof junk[0]; k++) {
+        snprintf(buf, sizeof buf, "%s0 0 0\n%s\n0 1 0\n0 0 1\n%s\n%s", tet_ply, junk[k].v1, junk[k].face0,
+                 tet_faces + strlen("3 0 2 1\n"));
+        expect_text_error(junk[k].name, buf, junk[k].want);
+    }
 }
 
 /* tools/make_pbr.py (run from the repository root): same bytes for a seed, another rock for

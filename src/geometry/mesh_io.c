@@ -266,15 +266,16 @@ static int type_size(ply_type t)
     return size[t];
 }
 
-/* One value of type t at the cursor. 0, or -1 at the end of the data. */
+/* One value of type t at the cursor. 0, or -1 at the end of the data or (ASCII) at a token
+ * that is not a whole decimal number (text_coord: '1.5.5', '1-2', '0x1'), the cursor left on
+ * it for ply_short to name. */
 static int ply_value(ply *h, ply_type t, double *out)
 {
     if (h->format == 0) { /* one element instance per line: stop at its end */
         while (h->s < h->end && (*h->s == ' ' || *h->s == '\t' || *h->s == '\r')) h->s++;
         if (h->s >= h->end || *h->s == '\n') return -1;
-        char *e;
-        *out = strtod(h->s, &e);
-        if (e == h->s) return -1;
+        const char *eol = memchr(h->s, '\n', (size_t)(h->end - h->s)), *tok, *e;
+        if (text_coord(h->s, eol ? eol : h->end, out, &tok, &e)) return -1;
         h->s = e;
         return 0;
     }
@@ -302,8 +303,11 @@ static int ply_value(ply *h, ply_type t, double *out)
 
 static int ply_short(const ply *h, const char *path, const ply_elem *e, long i, rd_error *err)
 {
-    if (h->format == 0 && h->s < h->end && *h->s != '\n' && !isspace((unsigned char)*h->s))
-        return rd_error_set(err, "%s:%d: not a number in %s %ld of %ld", path, h->line, e->name, i, e->count);
+    if (h->format == 0 && h->s < h->end && *h->s != '\n' && !isspace((unsigned char)*h->s)) {
+        size_t n = strcspn(h->s, " \t\r\n"), left = (size_t)(h->end - h->s);
+        return rd_error_set(err, "%s:%d: bad number '%.*s' in %s %ld of %ld", path, h->line,
+                            (int)(n < left ? n : left), h->s, e->name, i, e->count);
+    }
     if (h->format == 0)
         return rd_error_set(err, "%s:%d: %s %ld of %ld has fewer values than the header's properties%s", path,
                             h->line, e->name, i, e->count, h->s >= h->end ? " (file ends)" : "");
