@@ -56,6 +56,11 @@ RD_API int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const
                       const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
                       rd_error *err);
 
+/* Can rd_refscene_write write path? The checks `rockdem run` makes of its output before any
+ * work (never a device, folder or pipe, nor a file the scene reads; its folder writable), for
+ * a caller to make before the solve. 0, or -1 with err (one line naming the output). */
+RD_API int rd_refscene_check_output(const rd_scenario *sc, const char *path, rd_error *err);
+
 /* ---- overturning thresholds ------------------------------------------------------------- */
 
 typedef enum rd_engine { RD_ENGINE_DEM = 0, RD_ENGINE_REFERENCE = 1 } rd_engine;

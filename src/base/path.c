@@ -84,3 +84,14 @@ int rd_path_check_save(const rd_scenario *sc, rd_error *err)
         return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, save, strerror(errno));
     return 0;
 }
+
+int rd_path_check_output(const rd_scenario *sc, const char *path, const char *save, rd_error *err)
+{
+    char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
+    const char *bad = rd_path_output_conflict(sc, path, save, why, sizeof why);
+    if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
+    int no = rd_path_creatable(path, dir);
+    if (no == 1) return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
+    if (no == 2) return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
+    return 0;
+}

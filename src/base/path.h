@@ -37,4 +37,9 @@ const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, con
  * folder writable. 0, or -1 with err (one line naming the scenario and the checkpoint). */
 int rd_path_check_save(const rd_scenario *sc, rd_error *err);
 
+/* The HDF5 output of sc may be written at path, checked before any work: no conflict (above,
+ * with the checkpoint `save`, "" or NULL: none) and its folder writable. 0, or -1 with err
+ * (one line naming the output). Used by check (engine/sim.c) and reference. */
+int rd_path_check_output(const rd_scenario *sc, const char *path, const char *save, rd_error *err);
+
 #endif

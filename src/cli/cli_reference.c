@@ -16,7 +16,7 @@ int rd_cli_reference(int argc, char **argv)
     if (rd_cli_scenario(&sc, argc, argv, NULL, NULL, &out)) { rd_scenario_free(&sc); return 2; }
     rd_error err;
     rd_refscene rs;
-    if (rd_refscene_map(&sc, &rs, &err)) {
+    if (rd_refscene_map(&sc, &rs, &err) || rd_refscene_check_output(&sc, sc.output.path, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         rd_scenario_free(&sc);
         return 2;

@@ -14,7 +14,6 @@
 #include "base/path.h"
 #include "base/vec.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -287,22 +286,6 @@ static int check_budget(const rd_sim *s, rd_error *err)
                         s->sc.file, at, n, s->dt, n * s->dt, RD_STEP_BUDGET);
 }
 
-/* The output file and the checkpoint (model save) can be created, before any work (a missing
- * folder for the checkpoint was found only after settling), and neither is a device, folder
- * or pipe nor a file the run reads, nor the output its checkpoint. */
-static int check_output(const rd_sim *s, rd_error *err)
-{
-    const rd_scenario *sc = &s->sc;
-    const char *path = sc->output.path, *save = sc->save_path;
-    char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
-    const char *bad = rd_path_output_conflict(sc, path, save, why, sizeof why);
-    if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
-    int no = rd_path_creatable(path, dir);
-    if (no == 1) return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
-    if (no == 2) return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
-    return rd_path_check_save(sc, err);
-}
-
 /* Geometry, subcontact points, time step and budget: everything but the output file. */
 static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
 {
@@ -325,7 +308,8 @@ int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err)
     rd_sim *s = sim_build(sc, err);
     if (!s) return -1;
     if (info) *info = (rd_check_info){.dt = s->dt, .dt_critical = s->dt_crit, .steps = step_estimate(s), .npoints = s->npts};
-    int rc = check_output(s, err);
+    int rc = rd_path_check_output(&s->sc, s->sc.output.path, s->sc.save_path, err) || rd_path_check_save(&s->sc, err)
+                 ? -1 : 0;
     rd_sim_free(s);
     return rc;
 }

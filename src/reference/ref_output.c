@@ -182,6 +182,11 @@ static void fill_summary(const rd_scenario *sc, const rd_refscene *rs, const rd_
     }
 }
 
+int rd_refscene_check_output(const rd_scenario *sc, const char *path, rd_error *err)
+{
+    return rd_path_check_output(sc, path, NULL, err);
+}
+
 int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
                       const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
                       rd_error *err)

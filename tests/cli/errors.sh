@@ -153,6 +153,14 @@ printf '0 0\n0.005 0.1\n0.01 0\n' > "$T/rec.txt"
 expect output-is-record "it is a ground-motion record the scenario reads" -- "$BIN" run "$T/rec.dat" -q -o "$T/rec.txt"
 { cat "$good"; echo "model save '$T/both.h5'"; } > "$T/both.dat"
 expect output-is-checkpoint "it is also the run's checkpoint (model save)" -- "$BIN" run "$T/both.dat" -q -o "$T/both.h5"
+# reference checks its output as run does, before the CVODE solve (it was refused only after
+# it, exit 3, with the scenario's name in front)
+expect2 reference-output-missing-folder "/nonexistent-dir/r.h5: cannot create the output file in /nonexistent-dir" -- "$BIN" reference "$T/pulse.dat" -o /nonexistent-dir/r.h5
+expect2 reference-output-folder "$T: cannot write the output there: not a regular file" -- "$BIN" reference "$T/pulse.dat" -o "$T"
+expect2 reference-output-dev-null "/dev/null: cannot write the output there: not a regular file" -- "$BIN" reference "$T/pulse.dat" -o /dev/null
+cp "$T/pulse.dat" "$T/ref_self.dat"
+expect2 reference-output-is-scenario "ref_self.dat: cannot write the output there: it is the scenario file being read" -- "$BIN" reference "$T/ref_self.dat" -o "$T/ref_self.dat"
+cmp -s "$T/pulse.dat" "$T/ref_self.dat" || { echo "FAIL reference-output-is-scenario: the scenario was overwritten"; fails=$((fails + 1)); }
 # a run that fails after settling gave up says both in its one error line (was: a settling
 # warning line, then the error)
 sed 's/position 0 0 0.8 name b/position 100 0 0.8 name b/' "$good" > "$T/falls.dat"
