@@ -326,7 +326,7 @@ static void test_errors(void **state)
                 "'direction' already given on line 4");
     parse_fails("ground-motion stochastic seed 1 pga 0.3g\n", 4, 15, "missing 'duration'");
     parse_fails("ground-motion stochastic seed 1.5 pga 0.3g duration 5\n", 4, 31, "whole number");
-    parse_fails("model solve time 1 tail -1\n", 4, 25, "'tail' must be > 0");
+    parse_fails("model solve tail -1\n", 4, 18, "'tail' must be > 0");
 }
 
 /* A FEMA P695 set (uncompressed) <dir>/<name> whose record 1 has component a only: times t,

@@ -267,7 +267,7 @@ static void test_spacing_words(void **state)
     parse_ok("contact property spacing vertices\n");
     assert_float_equal(sc->contact.spacing, 0.0, EPS);
     rd_scenario_free(sc);
-    parse_ok("contact property spacing 0.1\ncontact property spacing auto\n");
+    parse_ok("contact property spacing auto\n");
     assert_float_equal(sc->contact.spacing, -1.0, EPS);
 }
 
@@ -439,6 +439,74 @@ static void test_error_duplicate_keyword(void **state)
     (void)state;
     parse_fails("contact property friction 30 friction 35\n",
                 "run.dat:1:30: keyword 'friction' given twice");
+}
+
+/* A single-valued setting given twice: the last one silently won (KN, friction, the step,
+ * the title, the output, a block's initial tilt, a joint range's property). Refused at the
+ * repeat with the line of the first; settings that add up (histories, bodies, contact
+ * property lines of different keys, overlapping joint ranges) stay allowed. */
+static void test_error_repeated_setting(void **state)
+{
+    (void)state;
+    parse_fails("contact property stiffness-normal 1e10\ncontact property stiffness-normal 2e10\n",
+                "run.dat:2:18: 'stiffness-normal' of 'contact property' already given on line 1; give each "
+                "setting once");
+    parse_fails("contact property friction 30 spacing 0.1\n; comment\ncontact property friction 35\n",
+                "run.dat:3:18: 'friction' of 'contact property' already given on line 1; give each setting once");
+    parse_fails("model timestep fixed 1e-5\nmodel timestep auto safety 0.1\n",
+                "run.dat:2:1: 'model timestep' already given on line 1; give each setting once");
+    parse_fails("model solve time 1\nmodel solve time 2 tail 1\n",
+                "run.dat:2:13: 'time' of 'model solve' already given on line 1; give each setting once");
+    parse_fails("model gravity 9.81\nmodel gravity 1.62\n",
+                "run.dat:2:1: 'model gravity' already given on line 1; give each setting once");
+    parse_fails("model title 'a'\nmodel title 'b'\n", "run.dat:2:1: 'model title' already given on line 1; "
+                "give each setting once");
+    parse_fails("model damping viscous 0.1\nmodel damping none\n",
+                "run.dat:2:1: 'model damping' already given on line 1; give each setting once");
+    parse_fails("model settle off\nmodel settle on ratio 1e-5\n",
+                "run.dat:2:14: 'on|off' of 'model settle' already given on line 1; give each setting once");
+    parse_fails("model overturn angle 30\nmodel overturn tilt-ratio 1\n",
+                "run.dat:2:16: 'tilt-ratio|angle|height|off-pedestal' of 'model overturn' already given on line "
+                "1; give each setting once");
+    parse_fails("output hdf5 'a.h5'\noutput hdf5 'b.h5' interval 0.01\n",
+                "run.dat:2:1: 'output hdf5' already given on line 1; give each setting once");
+    parse_fails("history interval 0.01\nhistory interval 0.02\n",
+                "run.dat:2:1: 'history interval' already given on line 1; give each setting once");
+    parse_fails("contact interface-perturbation seed 1 raise 0.001\ncontact interface-perturbation seed 2\n",
+                "run.dat:2:32: 'seed' of 'contact interface-perturbation' already given on line 1; give each "
+                "setting once");
+    parse_fails("model reference restitution 0.5\nmodel reference restitution 0.6\n",
+                "run.dat:2:17: 'restitution' of 'model reference' already given on line 1; give each setting once");
+    parse_fails("block create brick size 1 1 1 position 0 0 0.5 name b\nblock initial name b tilt 1\n"
+                "block initial name b velocity 1 0 0 tilt 2\n",
+                "run.dat:3:37: 'tilt' of 'block initial name b' already given on line 2; give each setting once");
+    parse_fails("block create brick size 1 1 1 position 0 0 0.5 name a\nblock create brick size 1 1 1 "
+                "position 0 0 1.5 name b\ncontact property friction 30 range block 'a' block 'b'\n"
+                "contact property friction 20 damping 0 range block 'b' block 'a'\n",
+                "run.dat:4:18: 'friction' of 'contact property ... range block 'a' block 'b'' already given on "
+                "line 3; give each setting once");
+    parse_fails("contact preset rigid\ncontact preset 3dec\n",
+                "run.dat:2:1: 'contact preset' already given on line 1; give each setting once");
+    /* a preset replaces the whole contact and the damping: one after them dropped them */
+    parse_fails("contact property friction 30\ncontact preset rigid\n",
+                "run.dat:2:1: 'contact preset' would replace 'friction' of 'contact property' given on line 1; "
+                "give the preset first");
+    parse_fails("model damping viscous 0.1\ncontact preset rigid\n",
+                "run.dat:2:1: 'contact preset' would replace 'model damping' given on line 1; give the preset first");
+    /* allowed: different keys on separate lines, a preset then single values, overlapping ranges,
+       histories that add up, another block's initial conditions */
+    parse_ok("block create brick size 1 1 1 position 0 0 0.5 name a group 'g'\n"
+             "block create brick size 1 1 1 position 0 0 1.5 name b\n"
+             "contact preset rigid\ncontact property friction 30\ncontact property stiffness-normal 2e10\n"
+             "model damping viscous 0.1\nmodel settle off\nmodel settle time-limit 2\n"
+             "model overturn angle 30\nmodel overturn stop off\n"
+             "contact property friction 20 range group 'g'\ncontact property friction 25 range block 'a' block 'b'\n"
+             "contact property stiffness-normal 1e9 range block 'b' block 'a'\n"
+             "block initial name a tilt 1\nblock initial name b tilt 2\nblock initial name a velocity 1 0 0\n"
+             "history body 'a' position\nhistory body 'a' velocity\nmodel solve time 1\nmodel solve tail 2\n");
+    assert_float_equal(sc->contact.friction, 30 * M_PI / 180, EPS);
+    assert_float_equal(sc->contact.kn, 2e10, EPS);
+    assert_int_equal(sc->njoints, 3);
 }
 
 static void test_error_missing_value(void **state)
@@ -800,6 +868,7 @@ int main(void)
         cmocka_unit_test_teardown(test_error_unknown_and_missing_verb, test_teardown),
         cmocka_unit_test_teardown(test_error_unknown_keyword, test_teardown),
         cmocka_unit_test_teardown(test_error_duplicate_keyword, test_teardown),
+        cmocka_unit_test_teardown(test_error_repeated_setting, test_teardown),
         cmocka_unit_test_teardown(test_error_missing_value, test_teardown),
         cmocka_unit_test_teardown(test_error_not_a_number, test_teardown),
         cmocka_unit_test_teardown(test_error_out_of_range, test_teardown),

@@ -7,6 +7,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
@@ -249,4 +250,47 @@ int read_text(parser *P, const char *what, char *dst, size_t size)
     memcpy(dst, t->s, (size_t)t->len);
     dst[t->len] = '\0';
     return 0;
+}
+
+/* ---- settings given once ---- */
+
+int setting_line(const parser *P, const char *what)
+{
+    for (int i = 0; i < P->nsettings; i++)
+        if (!strcmp(P->settings[i].what, what))
+            return P->settings[i].line;
+    return 0;
+}
+
+int setting_once(parser *P, const token *t, const char *what)
+{
+    int first = setting_line(P, what);
+    if (first)
+        return perr(P, t, "%s already given on line %d; give each setting once", what, first);
+    if (P->nsettings == P->settings_cap) {
+        int cap = P->settings_cap ? 2 * P->settings_cap : 32;
+        setting *grown = realloc(P->settings, (size_t)cap * sizeof *grown);
+        if (!grown)
+            return perr(P, t, "out of memory");
+        P->settings = grown;
+        P->settings_cap = cap;
+    }
+    setting *s = &P->settings[P->nsettings++];
+    snprintf(s->what, sizeof s->what, "%s", what);
+    s->line = t->line;
+    return 0;
+}
+
+int keyword_once(parser *P, const token *kw, const char *name)
+{
+    char what[sizeof ((setting *)0)->what];
+    snprintf(what, sizeof what, "'%s' of '%s'", name, P->ctx);
+    return setting_once(P, kw, what);
+}
+
+int command_once(parser *P)
+{
+    char what[sizeof ((setting *)0)->what];
+    snprintf(what, sizeof what, "'%s'", P->ctx);
+    return setting_once(P, &P->tok[0], what);
 }

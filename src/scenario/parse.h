@@ -79,6 +79,13 @@ typedef struct token {
     int quoted;
 } token;
 
+/* A single-valued setting given in the scenario ('model gravity', 'friction' of 'contact
+ * property', ...) and the line that gave it: a second one is refused (setting_once). */
+typedef struct setting {
+    char what[2 * RD_NAME_MAX + 96]; /* as the message names it; also the key */
+    int line;
+} setting;
+
 typedef struct parser {
     rd_scenario *sc;
     rd_error *err;
@@ -91,6 +98,8 @@ typedef struct parser {
     int cur;                /* next token to take */
     char ctx[64];           /* "noun verb", for messages */
     int motion_line[3];     /* lines that set the records' direction, scale, baseline (0: none) */
+    setting *settings;      /* single-valued settings given so far (malloc'ed; freed by the parse) */
+    int nsettings, settings_cap;
 } parser;
 
 enum { KW_ERR = -1, KW_END = -2 };
@@ -116,6 +125,16 @@ int exclusive(parser *P, const token **prev, const token *kw);
  * (err set: missing, unknown or a second keyword). */
 int one_keyword(parser *P, const char *const *names);
 int expect_end(parser *P);
+/* The line that gave the setting `what` (setting_once's name), or 0 when none has. */
+int setting_line(const parser *P, const char *what);
+/* A single-valued setting `what` ("'model gravity'", "'friction' of 'contact property'") given
+ * at token t: 0 the first time (its line kept), else -1 with err "file:line:col: WHAT already
+ * given on line N ..." (a repeat silently replaced the first before). */
+int setting_once(parser *P, const token *t, const char *what);
+/* setting_once for keyword `name` of the current command (P->ctx): "'name' of 'noun verb'". */
+int keyword_once(parser *P, const token *kw, const char *name);
+/* setting_once for the whole current command: "'noun verb'". */
+int command_once(parser *P);
 int read_values(parser *P, const token *kw, int n, range r, unit u, double *v);
 int read_value(parser *P, const token *kw, range r, unit u, double *v);
 int read_switch(parser *P, const token *kw, int *on);

@@ -335,13 +335,14 @@ int block_initial(parser *P)
 {
     static const char *const names[] = {"name", "tilt", "direction", "velocity",
                                         "angular-velocity", NULL};
-    const token *kw, *name = NULL;
+    const token *kw, *name = NULL, *given[sizeof names / sizeof names[0]] = {NULL};
     char id[RD_NAME_MAX];
     double tilt = 0, dir = 0, v[3] = {0}, w[3] = {0};
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         int rc = 0;
+        given[k] = kw;
         switch (k) {
         case 0: rc = read_name(P, kw, &name, id); break;
         case 1: rc = read_value(P, kw, R_ANGLE, U_DEG, &tilt); break;
@@ -364,6 +365,12 @@ int block_initial(parser *P)
     if (b->fixed)
         return perr(P, name, "block '%s' is fixed; 'block initial' applies only to free blocks",
                     id);
+    for (k = 1; names[k]; k++) { /* each value once per block */
+        char what[sizeof ((setting *)0)->what];
+        snprintf(what, sizeof what, "'%s' of 'block initial name %s'", names[k], id);
+        if (given[k] && setting_once(P, given[k], what))
+            return -1;
+    }
     if (seen & 2u)
         b->tilt = tilt;
     if (seen & 4u)

@@ -13,21 +13,21 @@
 
 int model_title(parser *P)
 {
-    if (read_text(P, "a title", P->sc->title, sizeof P->sc->title))
+    if (command_once(P) || read_text(P, "a title", P->sc->title, sizeof P->sc->title))
         return -1;
     return expect_end(P);
 }
 
 int model_gravity(parser *P)
 {
-    if (read_value(P, verb_token(P), R_NONNEG, U_ACCEL, &P->sc->gravity))
+    if (command_once(P) || read_value(P, verb_token(P), R_NONNEG, U_ACCEL, &P->sc->gravity))
         return -1;
     return expect_end(P);
 }
 
 int model_density(parser *P)
 {
-    if (read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->density))
+    if (command_once(P) || read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->density))
         return -1;
     return expect_end(P);
 }
@@ -40,6 +40,8 @@ int model_damping(parser *P)
     const token *kw, *prev = NULL;
     unsigned seen = 0;
     int k;
+    if (command_once(P))
+        return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         if (exclusive(P, &prev, kw))
             return -1;
@@ -58,6 +60,8 @@ int model_timestep(parser *P)
     const token *kw, *prev = NULL, *safety = NULL;
     unsigned seen = 0;
     int k;
+    if (command_once(P))
+        return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         if (k == 2) {
             safety = kw;
@@ -90,10 +94,11 @@ int model_settle(parser *P)
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         int rc = 0;
         if (k < 2) {
-            rc = exclusive(P, &prev, kw);
+            rc = exclusive(P, &prev, kw) || keyword_once(P, kw, "on|off");
             st->enabled = k == 0;
         } else {
-            rc = read_value(P, kw, R_POS, U_PLAIN, k == 2 ? &st->ratio : &st->max_time);
+            rc = keyword_once(P, kw, names[k]) ||
+                 read_value(P, kw, R_POS, U_PLAIN, k == 2 ? &st->ratio : &st->max_time);
         }
         if (rc)
             return -1;
@@ -109,8 +114,9 @@ int model_solve(parser *P)
     int k;
     P->sc->solve_line = verb_token(P)->line;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (k == 2 ? read_switch(P, kw, &P->sc->force)
-                   : read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail))
+        if (keyword_once(P, kw, names[k]) ||
+            (k == 2 ? read_switch(P, kw, &P->sc->force)
+                    : read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail)))
             return -1;
     return keywords_end(P, k, seen != 0, names);
 }
@@ -126,11 +132,12 @@ int model_overturn(parser *P)
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         if (k == 4) {
-            if (read_switch(P, kw, &ov->stop))
+            if (keyword_once(P, kw, names[k]) || read_switch(P, kw, &ov->stop))
                 return -1;
             continue;
         }
-        if (exclusive(P, &prev, kw) || read_value(P, kw, ranges[k], units[k], &ov->value))
+        if (exclusive(P, &prev, kw) || keyword_once(P, kw, "tilt-ratio|angle|height|off-pedestal") ||
+            read_value(P, kw, ranges[k], units[k], &ov->value))
             return -1;
         ov->kind = (rd_overturn_kind)k;
     }
@@ -145,7 +152,7 @@ int model_reference(parser *P)
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
+        if (keyword_once(P, kw, names[k]) || read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
             return -1;
     return keywords_end(P, k, seen != 0, names);
 }
@@ -169,19 +176,24 @@ static int read_spacing(parser *P, const token *kw, double *v)
     return bad ? perr(P, t, "'spacing' %.*s %s", t->len, t->s, bad) : 0;
 }
 
+/* The keywords of the default `contact property` (no range). */
+static const char *const contact_names[] = {"stiffness-normal", "stiffness-shear", "friction",
+                                            "cohesion",         "tension",         "spacing",
+                                            "restitution",      NULL};
+
 int contact_property(parser *P)
 {
     if (contact_is_range(P))
         return contact_joint(P); /* a per-range joint (parse_scene.c) */
-    static const char *const names[] = {"stiffness-normal", "stiffness-shear", "friction",
-                                        "cohesion",         "tension",         "spacing",
-                                        "restitution",      NULL};
+    const char *const *names = contact_names;
     rd_contact_def *c = &P->sc->contact;
     const token *kw;
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
-        int rc = 0;
+        int rc = keyword_once(P, kw, names[k]);
+        if (rc)
+            return -1;
         switch (k) {
         case 0: rc = read_value(P, kw, R_POS, U_PLAIN, &c->kn); break;
         case 1: rc = read_value(P, kw, R_POS, U_PLAIN, &c->ks); break;
@@ -197,13 +209,31 @@ int contact_property(parser *P)
     return k == KW_ERR ? -1 : 0;
 }
 
+/* The setting a preset would replace, given before it: its name into what, its line; 0 none. */
+static int replaced_by_preset(const parser *P, char *what, size_t size)
+{
+    for (int i = 0; contact_names[i]; i++) {
+        snprintf(what, size, "'%s' of 'contact property'", contact_names[i]);
+        int line = setting_line(P, what);
+        if (line)
+            return line;
+    }
+    snprintf(what, size, "'model damping'");
+    return setting_line(P, what);
+}
+
 /* contact preset rigid|3dec|default: a whole contact setting in one line (rd_contact_preset);
- * `contact property` lines after it change single values. */
+ * `contact property` and `model damping` lines after it change single values, and one before
+ * it is refused (the preset would replace it). */
 int contact_preset(parser *P)
 {
     static const char *const names[] = {"rigid", "3dec", "default", NULL};
-    int k = one_keyword(P, names);
-    if (k < 0) return -1;
+    char what[sizeof ((setting *)0)->what];
+    int k = one_keyword(P, names), line;
+    if (k < 0 || command_once(P)) return -1;
+    if ((line = replaced_by_preset(P, what, sizeof what)))
+        return perr(P, &P->tok[0], "'contact preset' would replace %s given on line %d; give the "
+                                   "preset first", what, line);
     rd_contact_preset(&P->sc->contact, &P->sc->damping, names[k]);
     return 0;
 }
@@ -223,6 +253,8 @@ int contact_perturbation(parser *P)
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         double *v[] = {&d->seed, &d->remove, &d->raise, &d->raise_fraction, &d->scatter};
+        if (keyword_once(P, kw, names[k]))
+            return -1;
         if (k == 5 ? read_switch(P, kw, &d->keep_corners) : read_value(P, kw, R_NONNEG, U_PLAIN, v[k]))
             return -1;
         if ((k == 0 && (d->seed != floor(d->seed) || d->seed > RD_SEED_MAX)) || (k == 1 && d->remove >= 1) ||
@@ -242,7 +274,7 @@ int output_hdf5(parser *P)
     const token *kw;
     unsigned seen = 0;
     int k;
-    if (read_text(P, "a file name", o->path, sizeof o->path))
+    if (command_once(P) || read_text(P, "a file name", o->path, sizeof o->path))
         return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
         if (read_value(P, kw, R_POS, U_PLAIN, &o->interval))

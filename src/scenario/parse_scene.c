@@ -62,6 +62,33 @@ static int read_range(parser *P, const token *kw, rd_joint_def *j)
     return expect_end(P); /* the range closes the command */
 }
 
+/* "group 'A' group 'B'" for range r of one or two selectors, the two in name order (a
+ * pair's range reads the same either way round). */
+static void range_text(const rd_range_def r[2], char *buf, size_t size)
+{
+    char one[2][RD_NAME_MAX + 16] = {"", ""};
+    for (int i = 0; i < 2 && r[i].kind != RD_RANGE_ANY; i++)
+        snprintf(one[i], sizeof one[i], "%s '%s'", r[i].kind == RD_RANGE_GROUP ? "group" : "block", r[i].name);
+    int swap = one[1][0] && strcmp(one[0], one[1]) > 0;
+    snprintf(buf, size, "%s%s%s", one[swap], one[1][0] ? " " : "", one[!swap]);
+}
+
+/* Each property of joint j (its keywords at kw[]) given once per range: a later range wins
+ * where it overlaps another, but the same range twice left the first's value dead. */
+static int joint_once(parser *P, const rd_joint_def *j, const char *const *names, const token *const *kw)
+{
+    char range[2 * RD_NAME_MAX + 40], what[sizeof ((setting *)0)->what];
+    range_text(j->range, range, sizeof range);
+    for (int k = 0; names[k]; k++) {
+        if (!kw[k])
+            continue;
+        snprintf(what, sizeof what, "'%s' of 'contact property ... range %s'", names[k], range);
+        if (setting_once(P, kw[k], what))
+            return -1;
+    }
+    return 0;
+}
+
 /* contact property ... range ...: one per-range joint override. */
 int contact_joint(parser *P)
 {
@@ -77,10 +104,12 @@ int contact_joint(parser *P)
     rd_joint_def j = {.line = P->tok[0].line};
     double *field[] = {&j.kn, &j.ks, &j.friction, &j.cohesion, &j.tension, &j.damping, NULL, NULL,
                        &j.restitution};
-    const token *kw;
+    const token *kw, *given[sizeof names / sizeof names[0]] = {NULL};
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        if (k != 6)
+            given[k] = kw;
         if (k == 7)
             return perr(P, kw, "'spacing' belongs to the bodies, not to a joint range: give it "
                                "in a contact property without range");
@@ -101,6 +130,8 @@ int contact_joint(parser *P)
         return perr(P, verb_token(P), "a contact property range sets no property (expected "
                                       "stiffness-normal, stiffness-shear, friction, cohesion, tension, damping "
                                       "or restitution)");
+    if (joint_once(P, &j, names, given))
+        return -1;
     sc->joint[sc->njoints++] = j;
     return 0;
 }
@@ -109,7 +140,7 @@ int contact_joint(parser *P)
 
 int history_interval(parser *P)
 {
-    if (read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->history_interval))
+    if (command_once(P) || read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->history_interval))
         return -1;
     return expect_end(P);
 }
@@ -217,7 +248,7 @@ int model_save(parser *P)
     if (P->sc->restore_path[0])
         return perr(P, verb_token(P), "'model save' and 'model restore' in one scenario: a restored "
                                       "state is already saved");
-    return checkpoint_path(P, P->sc->save_path);
+    return command_once(P) || checkpoint_path(P, P->sc->save_path) ? -1 : 0;
 }
 
 int model_restore(parser *P)
@@ -225,5 +256,5 @@ int model_restore(parser *P)
     if (P->sc->save_path[0])
         return perr(P, verb_token(P), "'model save' and 'model restore' in one scenario: a restored "
                                       "state is already saved");
-    return checkpoint_path(P, P->sc->restore_path);
+    return command_once(P) || checkpoint_path(P, P->sc->restore_path) ? -1 : 0;
 }

@@ -169,6 +169,7 @@ int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_er
             rc = -1;
             break;
         }
+    free(P.settings);
     if (rc >= 0 && prepare_records(sc, name, err))
         rc = -1;
     if (rc < 0) {

@@ -53,6 +53,12 @@ expect unknown-option "unknown option '--bogus'" -- "$BIN" run "$good" --bogus
 sed 's/model solve time 0.01/model solve time 0x1p1/' "$good" > "$T/hex.dat"
 expect hex-number "hex.dat:3:18: expected a number" -- "$BIN" run "$T/hex.dat" -o "$T/x.h5"
 expect hex-override "--set model.duration=0x1" -- "$BIN" run "$good" --set model.duration=0x1 -o "$T/x.h5"
+# a single-valued setting given twice: the last one won silently (KN 2e10 here); now the
+# repeat is refused with the line of the first (tests/test_scenario.c test_error_repeated_setting)
+{ cat "$good"; printf 'contact property stiffness-normal 1e10 friction 30\ncontact property stiffness-normal 2e10\n'; } > "$T/twice.dat"
+expect2 repeated-setting "twice.dat:5:18: 'stiffness-normal' of 'contact property' already given on line 4; give each setting once" -- "$BIN" check "$T/twice.dat"
+{ cat "$good"; echo 'model solve time 2'; } > "$T/twice_solve.dat"
+expect2 repeated-solve-time "twice_solve.dat:4:13: 'time' of 'model solve' already given on line 3" -- "$BIN" run "$T/twice_solve.dat" -o "$T/x.h5"
 # option values out of range are refused, never replaced by a default (timeout: a run that
 # goes ahead instead fails here rather than hanging the suite)
 TH="timeout 60 $BIN threshold $T/pulse.dat --engine reference"
