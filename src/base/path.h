@@ -26,6 +26,12 @@ int rd_path_creatable(const char *path, char dir[RD_PATH_MAX]);
 /* 1 when path exists and is not a regular file (a device such as /dev/null, a folder, a pipe). */
 int rd_path_special(const char *path);
 
+/* Why a file a scenario reads (a mesh, a record, a checkpoint) cannot be one that rd_path_special
+ * finds: a device such as /dev/zero never ends (the reader grew until memory ran out) and
+ * opening a pipe without a writer blocks for ever. The readers check before they open. */
+#define RD_PATH_INPUT_NOT_FILE "not a regular file (a device, folder or pipe): rockdem reads meshes, " \
+                               "records and checkpoints from files"
+
 /* Why `path` must not be written as an output of scenario sc (its HDF5 output, its `model save`
  * checkpoint): "not a regular file ...", "it is the scenario file being read", ...; NULL when
  * it may be. `save` is the run's `model save` checkpoint ("" or NULL: none), which the HDF5

@@ -5,6 +5,7 @@
  * it may call base/ only.
  */
 #include "geometry/geom.h"
+#include "base/path.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -84,6 +85,7 @@ static void mesh_free(mesh *m) { free(m->v); free(m->flen); free(m->fline); free
 /* Whole file, NUL-terminated. */
 static int read_all(const char *path, char **buf, size_t *len, rd_error *err)
 {
+    if (rd_path_special(path)) return rd_error_set(err, "%s: %s", path, RD_PATH_INPUT_NOT_FILE);
     FILE *f = fopen(path, "rb");
     if (!f) return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     size_t cap = 1 << 16, n = 0;

@@ -150,6 +150,8 @@ static const char *read_image(rd_sim *s, long long f, char *buf, size_t n, rd_er
 static int restore(rd_sim *s, const char *path, rd_error *err)
 {
     const char *file = rd_sim_scenario(s)->file;
+    if (rd_path_special(path))
+        return rd_error_set(err, "%s: model restore '%s': %s", file, path, RD_PATH_INPUT_NOT_FILE);
     long long f = rd_h5t_open(path, err);
     if (f < 0) return rd_error_set(err, "%s: model restore: cannot open '%s' as a checkpoint", file, path);
     char buf[RD_ERROR_MAX]; /* what differs: block names, numbers and the words around them */

@@ -8,6 +8,7 @@
  * measures, SDOF); it may call base/ only.
  */
 #include "records/record_limits.h"
+#include "base/path.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -59,6 +60,8 @@ static int reader_open(reader *rd, const char *path, rd_error *err)
 {
     memset(rd, 0, sizeof *rd);
     rd->path = path;
+    if (rd_path_special(path))
+        return rd_error_set(err, "%s: %s", path, RD_PATH_INPUT_NOT_FILE);
     rd->f = fopen(path, "r");
     if (!rd->f)
         return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));

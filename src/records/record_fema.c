@@ -9,6 +9,7 @@
  * measures, SDOF); it may call base/ only.
  */
 #include "records/record_limits.h"
+#include "base/path.h"
 
 #include <hdf5.h>
 #include <math.h>
@@ -103,6 +104,10 @@ static int read_component(hid_t file, rd_record *r, const char *path, const char
 /* Opens the set and checks that record `id` exists; the file id, or -1 with err filled. */
 static hid_t open_record(const char *path, const char *group, const char *id, rd_error *err)
 {
+    if (rd_path_special(path)) {
+        rd_error_set(err, "%s: %s", path, RD_PATH_INPUT_NOT_FILE);
+        return -1;
+    }
     hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (file < 0) {
         rd_error_set(err, "%s: cannot open as HDF5", path);

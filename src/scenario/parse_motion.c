@@ -4,6 +4,7 @@
  * base/, records/ and geometry/, never engine/, io/ or cli/.
  */
 #include "scenario/parse.h"
+#include "base/path.h"
 
 #include <errno.h>
 #include <math.h>
@@ -293,6 +294,8 @@ int motion_import(parser *P)
         return -1;
     if (resolve_path(P->name, name, d.path, sizeof d.path))
         return perr(P, file, "file name too long with the scenario's directory");
+    if (rd_path_special(d.path))
+        return perr(P, file, "%s: %s", d.path, RD_PATH_INPUT_NOT_FILE);
     FILE *f = fopen(d.path, "rb");
     if (!f)
         return perr(P, file, "%s: cannot open: %s", d.path, strerror(errno));

@@ -167,6 +167,21 @@ expect2 reference-output-dev-null "/dev/null: cannot write the output there: not
 cp "$T/pulse.dat" "$T/ref_self.dat"
 expect2 reference-output-is-scenario "ref_self.dat: cannot write the output there: it is the scenario file being read" -- "$BIN" reference "$T/ref_self.dat" -o "$T/ref_self.dat"
 cmp -s "$T/pulse.dat" "$T/ref_self.dat" || { echo "FAIL reference-output-is-scenario: the scenario was overwritten"; fails=$((fails + 1)); }
+# a mesh, record or checkpoint that is a device or a pipe is refused before it is opened: /dev/zero
+# was read until memory ran out, a pipe without a writer blocked the open for ever (timeout)
+ln -sf /dev/zero "$T/zero.obj"; mkfifo "$T/fifo.obj" "$T/fifo.txt" "$T/fifo.h5"
+{ head -1 "$good"; echo "block import mesh 'zero.obj' position 0 0 1 name r"; echo 'model solve time 0.01'; } > "$T/mesh_dev.dat"
+expect2 input-mesh-device "mesh_dev.dat:2: block 'r': $T/zero.obj: not a regular file (a device, folder or pipe)" -- timeout 20 "$BIN" check "$T/mesh_dev.dat"
+sed 's/zero.obj/fifo.obj/' "$T/mesh_dev.dat" > "$T/mesh_fifo.dat"
+expect2 input-mesh-pipe "block 'r': $T/fifo.obj: not a regular file" -- timeout 20 "$BIN" check "$T/mesh_fifo.dat"
+{ cat "$good"; echo "ground-motion import '/dev/zero' dt 0.01"; } > "$T/rec_dev.dat"
+expect2 input-record-device "rec_dev.dat:4:22: /dev/zero: not a regular file (a device, folder or pipe)" -- timeout 20 "$BIN" check "$T/rec_dev.dat"
+{ cat "$good"; echo "ground-motion import 'fifo.txt' dt 0.01"; } > "$T/rec_fifo.dat"
+expect2 input-record-pipe "fifo.txt: not a regular file" -- timeout 20 "$BIN" check "$T/rec_fifo.dat"
+{ cat "$good"; echo "ground-motion import 'fifo.h5' record 1"; } > "$T/fema_fifo.dat"
+expect2 input-fema-pipe "fifo.h5: not a regular file" -- timeout 20 "$BIN" check "$T/fema_fifo.dat"
+{ cat "$good"; echo "model restore '$T/fifo.h5'"; } > "$T/restore_fifo.dat"
+expect2 input-restore-pipe "restore_fifo.dat: model restore '$T/fifo.h5': not a regular file" -- timeout 20 "$BIN" run "$T/restore_fifo.dat" -q -o "$T/x.h5"
 # a run that fails after settling gave up says both in its one error line (was: a settling
 # warning line, then the error)
 sed 's/position 0 0 0.8 name b/position 100 0 0.8 name b/' "$good" > "$T/falls.dat"
