@@ -8,7 +8,7 @@
  *   - a time step far below the output interval (many steps per sample: a slow run)
  *   - a ground-motion record that ends before the requested duration
  * It first does everything a run would refuse (rd_sim_check: meshes, the step budget, the
- * output file). Exit status: 2 when a run would be refused (bad input), else 0; the last line
+ * output file; the checkpoint it restores, read and compared as run does). Exit status: 2 when a run would be refused (bad input), else 0; the last line
  * is "FILE: ok (...)" without warnings, "FILE: N warnings (...)" with them.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
@@ -87,6 +87,16 @@ static int warnings(const rd_scenario *sc, const rd_check_report *r)
     return n;
 }
 
+/* A restored run reads its checkpoint first and compares its blocks (rd_sim_create): check
+ * does the same, so a missing or mismatched checkpoint is refused here, not only by run. */
+static int check_restore(const rd_scenario *sc, rd_error *err)
+{
+    if (!sc->restore_path[0]) return 0;
+    rd_sim *sim = rd_sim_create(sc, err);
+    rd_sim_free(sim);
+    return sim ? 0 : -1;
+}
+
 int rd_cli_check(rd_scenario *sc, int quiet)
 {
     rd_check_report r;
@@ -94,7 +104,7 @@ int rd_cli_check(rd_scenario *sc, int quiet)
     rd_error err;
     if (!quiet && rd_cli_print_motion(&sc->motion)) return 2;
     /* what a run would refuse (meshes, budget, output file), then the report */
-    if (rd_sim_check(sc, &info, &err) || rd_check_scene(sc, &r, &err)) {
+    if (rd_sim_check(sc, &info, &err) || check_restore(sc, &err) || rd_check_scene(sc, &r, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         return 2;
     }

@@ -55,5 +55,13 @@ refused denser 's/name b$/density 8000 name b/' "block 'b' has another mass (691
 refused lower 's/position 0 0 -0.25/position 0 0 -5.25/' "fixed block 'base' stands elsewhere (centre of mass at (0, 0, -0.25) m there, (0, 0, -5.25) m here)"
 refused turned 's/-0.25 fixed/-0.25 rotation 0 0 10 fixed/' "fixed block 'base' is turned otherwise"
 refused freed 's/ fixed name base/ name base/' "block 'base' is fixed there, free here"
+# check reads and compares the checkpoint as run does (it said ok, exit 0, for a checkpoint of
+# other blocks and for one that does not exist)
+if "$BIN" check "$T/smaller.dat" -q > /dev/null 2> "$T/err"; then echo "check smaller: ok, wanted a refusal"; exit 1; fi
+[ "$(wc -l < "$T/err")" -eq 1 ] && grep -qF "model restore '$T/b.h5': block 'b' has another shape" "$T/err" ||
+    { echo "check smaller: $(cat "$T/err")"; exit 1; }
+{ cat "$T/b.dat"; echo "model restore '$T/nonexistent.h5'"; } > "$T/b_none.dat"
+if "$BIN" check "$T/b_none.dat" -q > /dev/null 2> "$T/err"; then echo "check b_none: ok, wanted a refusal"; exit 1; fi
+grep -qF "model restore: cannot open '$T/nonexistent.h5' as a checkpoint" "$T/err" || { echo "check b_none: $(cat "$T/err")"; exit 1; }
 { cat "$T/b.dat"; echo "model restore '$T/b.h5'"; } > "$T/b_same.dat"
 "$BIN" run "$T/b_same.dat" -o "$T/b_same.h5" -q > /dev/null   # the same blocks restore
