@@ -42,6 +42,20 @@ static const char *opt_value(int argc, char **argv, int *i, const char *opt)
     return argv[++*i];
 }
 
+/* --keep-runs DIR: a folder the runs can be written into, made when missing; 0, or -1 with err.
+ * An existing file there was taken, and every case then failed to write (exit 3, a line each). */
+static int keep_dir_ok(const char *dir, rd_error *err)
+{
+    struct stat st;
+    if (mkdir(dir, 0777) && errno != EEXIST)
+        return rd_error_set(err, "rockdem sweep: --keep-runs %s: %s", dir, strerror(errno));
+    if (stat(dir, &st) || !S_ISDIR(st.st_mode))
+        return rd_error_set(err, "rockdem sweep: --keep-runs %s: not a folder", dir);
+    if (access(dir, W_OK | X_OK))
+        return rd_error_set(err, "rockdem sweep: --keep-runs %s: %s", dir, strerror(errno));
+    return 0;
+}
+
 static int parse_args(int argc, char **argv, sweep_args *a, rd_sweep_plan *p, rd_error *err)
 {
     for (int i = 3; i < argc; i++) {
@@ -77,9 +91,7 @@ static int parse_args(int argc, char **argv, sweep_args *a, rd_sweep_plan *p, rd
         if (rd_sweep_add_axis(p, RD_AXIS_SET, a->axis[k], err)) return -1;
     if (p->naxes == 0)
         return rd_error_set(err, "rockdem sweep: nothing to sweep: give --axis, --records, --scales or --directions");
-    if (p->keep_dir && mkdir(p->keep_dir, 0777) && errno != EEXIST)
-        return rd_error_set(err, "rockdem sweep: --keep-runs %s: %s", p->keep_dir, strerror(errno));
-    return 0;
+    return p->keep_dir ? keep_dir_ok(p->keep_dir, err) : 0;
 }
 
 static double now(void)

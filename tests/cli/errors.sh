@@ -93,6 +93,9 @@ expect2 threshold-lo-above-default "pulse.dat: threshold: --lo 980.66 m/s^2 is n
 expect2 threshold-hi-huge "--hi expects an amplitude of at most 1e+06 m/s^2 (docs/LIMITS.md), got '1e300'" -- $TH --hi 1e300
 expect2 threshold-frequencies-huge "--frequencies expects frequencies from 0.0001 to 1000 Hz (docs/LIMITS.md), got '1e9'" -- $TH --frequencies 2,1e9
 expect2 threshold-no-pulse "good.dat: threshold: the scenario has no horizontal pulse to scale" -- timeout 60 "$BIN" threshold "$good" --engine reference
+# sweep --keep-runs naming a file was taken, and every case then failed to write there (exit 3,
+# a line per case) after running
+expect2 sweep-keep-runs-file "rockdem sweep: --keep-runs $T/good.dat: not a folder" -- timeout 60 "$BIN" sweep "$T/pulse.dat" --scales 1 --keep-runs "$T/good.dat" -q -o "$T/keep.h5"
 # an option given last without its value is named as needing one, not as unknown
 expect set-no-value "--set needs a value (see rockdem run --help)" -- "$BIN" run "$good" --set
 expect out-no-value "-o needs a value (see rockdem run --help)" -- "$BIN" run "$good" -o
