@@ -26,6 +26,12 @@ int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt
  * *v = argv[i + 1]. */
 int rd_cli_option(int argc, char **argv, int i, const char *const *names, const char **v);
 
+/* Is option argv[i] one of the earlier options argv[seen[0]], ..., argv[seen[n - 1]]: the same
+ * name (up to an '=', for --opt=V), or for --set and --axis, whose values are KEY=..., the same
+ * option and key? Then -1 with err's one line naming both (the last one no longer wins
+ * silently); else 0. */
+int rd_cli_repeated(int argc, char **argv, const int *seen, int n, int i, rd_error *err);
+
 /* Parse a number (optionally with a 'g' suffix: times RD_G_STANDARD = 9.80665 m/s^2) for option `name`. */
 int rd_cli_number(const char *name, const char *text, int accel, double *v);
 

@@ -36,6 +36,48 @@ int rd_cli_option(int argc, char **argv, int i, const char *const *names, const 
     return 0;
 }
 
+/* Length of an option's name or a value's key: up to its '=' (or all of it). */
+static size_t name_len(const char *a)
+{
+    const char *e = strchr(a, '=');
+    return e ? (size_t)(e - a) : strlen(a);
+}
+
+/* The KEY=... value of argv[i] when it is --set or --axis (either form), else NULL; *opt_len
+ * the option name's length. */
+static const char *keyed_value(int argc, char **argv, int i, size_t *opt_len)
+{
+    static const char *const keyed[] = {"--set", "--axis", NULL};
+    for (const char *const *k = keyed; *k; k++) {
+        size_t n = strlen(*k);
+        if (strncmp(argv[i], *k, n)) continue;
+        *opt_len = n;
+        if (argv[i][n] == '=') return argv[i] + n + 1;
+        if (!argv[i][n]) return i + 1 < argc ? argv[i + 1] : NULL;
+    }
+    return NULL;
+}
+
+int rd_cli_repeated(int argc, char **argv, const int *seen, int n, int i, rd_error *err)
+{
+    size_t li = 0, lj = 0;
+    const char *a = keyed_value(argc, argv, i, &li);
+    for (int k = 0; k < n; k++) {
+        int j = seen[k];
+        const char *b = keyed_value(argc, argv, j, &lj);
+        int same = a || b ? a && b && li == lj && !strncmp(argv[i], argv[j], li) && name_len(a) == name_len(b) &&
+                                !strncmp(a, b, name_len(a))
+                          : name_len(argv[i]) == name_len(argv[j]) && !strncmp(argv[i], argv[j], name_len(argv[i]));
+        if (!same) continue;
+        if (a)
+            return rd_error_set(err, "rockdem %s: %.*s '%.*s' given twice (arguments %d and %d); give each key once",
+                                argv[1], (int)li, argv[i], (int)name_len(a), a, j, i);
+        return rd_error_set(err, "rockdem %s: option '%.*s' given twice (arguments %d and %d); give each option once",
+                            argv[1], (int)name_len(argv[i]), argv[i], j, i);
+    }
+    return 0;
+}
+
 /* --set KEY=VALUE (help: print the keys and stop); 0, or -1 after printing why not. */
 static int set_key(rd_scenario *sc, const char *kv)
 {
@@ -78,7 +120,10 @@ int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt
 {
     rd_error err;
     if (rd_scenario_load(sc, argv[2], &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+    int seen[argc], nseen = 0; /* the options' places, for rd_cli_repeated */
     for (int i = 3; i < argc; i++) {
+        if (rd_cli_repeated(argc, argv, seen, nseen, i, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+        seen[nseen++] = i;
         int rc = common_option(sc, argc, argv, &i, out);
         if (rc > 0) rc = opt ? opt(ctx, argc, argv, &i) : 1;
         if (rc > 0)

@@ -58,8 +58,11 @@ static int keep_dir_ok(const char *dir, rd_error *err)
 
 static int parse_args(int argc, char **argv, sweep_args *a, rd_sweep_plan *p, rd_error *err)
 {
+    int seen[argc], nseen = 0; /* the options' places, for rd_cli_repeated */
     for (int i = 3; i < argc; i++) {
         const char *v;
+        if (rd_cli_repeated(argc, argv, seen, nseen, i, err)) return -1;
+        seen[nseen++] = i;
         if ((v = opt_value(argc, argv, &i, "--set"))) {
             char **s = realloc(p->sets, (size_t)(p->nsets + 1) * sizeof *s);
             if (!s) return rd_error_set(err, "rockdem sweep: out of memory");

@@ -59,6 +59,11 @@ expect hex-override "--set model.duration=0x1" -- "$BIN" run "$good" --set model
 expect2 repeated-setting "twice.dat:5:18: 'stiffness-normal' of 'contact property' already given on line 4; give each setting once" -- "$BIN" check "$T/twice.dat"
 { cat "$good"; echo 'model solve time 2'; } > "$T/twice_solve.dat"
 expect2 repeated-solve-time "twice_solve.dat:4:13: 'time' of 'model solve' already given on line 3" -- "$BIN" run "$T/twice_solve.dat" -o "$T/x.h5"
+# an option or an override key given twice: the last one won silently (a run of 2 s here, a
+# sweep over the second --axis list only); now refused with both places
+expect2 repeated-set "rockdem run: --set 'model.duration' given twice (arguments 3 and 5); give each key once" -- "$BIN" run "$good" --set model.duration=1 --set=model.duration=2 -o "$T/x.h5"
+expect2 repeated-output "rockdem run: option '-o' given twice (arguments 3 and 5); give each option once" -- "$BIN" run "$good" -o "$T/x.h5" -o "$T/y.h5"
+expect2 repeated-axis "rockdem sweep: --axis 'contact.friction' given twice (arguments 3 and 5); give each key once" -- "$BIN" sweep "$good" --axis contact.friction=30,40 --axis=contact.friction=20 -q -o "$T/sw.h5"
 # option values out of range are refused, never replaced by a default (timeout: a run that
 # goes ahead instead fails here rather than hanging the suite)
 TH="timeout 60 $BIN threshold $T/pulse.dat --engine reference"
@@ -84,6 +89,7 @@ expect2 restitution-theta0-past-alpha "--theta0 expects an initial tilt below th
 # the bracket reaches round-off before it closes); --lo not below --hi (given or defaulted) and
 # a scene without a pulse exited 3; --hi 1e300 failed in CVODE, --frequencies 2,1e9 ran the
 # 2 Hz row before it failed (rc 3)
+expect2 threshold-repeated-lo "rockdem threshold: option '--lo' given twice (arguments 5 and 7); give each option once" -- $TH --lo 1 --lo 2
 expect2 threshold-rtol-zero "--rtol expects a relative bracket from 1e-06 to 1, got '0'" -- $TH --rtol 0
 expect2 threshold-rtol-negative "--rtol expects a relative bracket from 1e-06 to 1, got '-1'" -- $TH --rtol -1
 expect2 threshold-rtol-tiny "--rtol expects a relative bracket from 1e-06 to 1, got '1e-300'" -- $TH --rtol 1e-300
