@@ -64,14 +64,35 @@ static void print_row(const study_run *r, const study_run *ref)
            rd_status_name((rd_status)r->status));
 }
 
+/* The study's KN factors (the largest is the yardstick's) and step safety factors. */
+static const double kf[] = {0.1, 1, 10}, sf[] = {2, 1, 0.5};
+
+/* Are the study's stiffnesses KN x 0.1 .. KN x 10 within the scenario limits of KN
+ * (docs/LIMITS.md)? 0, or -1 with err: a yardstick above 1e15 Pa/m ran for minutes at a step
+ * below 1e-9 s before any row was printed. */
+static int kn_range_ok(const rd_scenario *sc, rd_error *err)
+{
+    double lo, hi, kn = sc->contact.kn;
+    rd_scenario_limit("stiffness-normal", &lo, &hi);
+    if (kf[0] * kn < lo || kf[2] * kn > hi)
+        return rd_error_set(err, "rockdem study: %s: the study runs KN x %g to x %g (%.3g to %.3g Pa/m), outside "
+                                 "stiffness-normal's range [%g, %g] Pa/m; give KN from %g to %g",
+                            sc->file, kf[0], kf[2], kf[0] * kn, kf[2] * kn, lo, hi, lo / kf[0], hi / kf[2]);
+    return 0;
+}
+
 int rd_cli_study(int argc, char **argv)
 {
     rd_scenario sc;
+    rd_error err;
     if (rd_cli_scenario(&sc, argc, argv, NULL, NULL, NULL)) { rd_scenario_free(&sc); return 2; }
-    static const double kf[] = {0.1, 1, 10}, sf[] = {2, 1, 0.5};
+    if (kn_range_ok(&sc, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
+        rd_scenario_free(&sc);
+        return 2;
+    }
     double kn = sc.contact.kn, safety = sc.timestep.safety;
     study_run ref, runs[9];
-    rd_error err;
     rd_cli_progress_start("study", 10); /* the yardstick and 3 x 3 settings */
     int rc = run_one(&sc, 10 * kn, 0.5 * safety, &ref, &err);
     for (int i = 0; rc == 0 && i < 3; i++)
