@@ -179,12 +179,23 @@ int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_er
     return 0;
 }
 
-/* Reads all of f into a NUL-terminated malloc'ed buffer; NULL when out of memory. */
+/* The most a scenario text may hold, bytes: a written scenario is a few kB (meshes and records
+ * are files of their own), and a device read as one (`rockdem check /dev/zero`) never ends: its
+ * buffer grew until memory ran out. A pipe stays a valid source. */
+#define RD_SCENARIO_MAX_BYTES ((size_t)64 << 20)
+
+/* Reads all of f into a NUL-terminated malloc'ed buffer; NULL when out of memory, or (with
+ * *len = RD_SCENARIO_MAX_BYTES) when f holds more than that. */
 static char *slurp(FILE *f, size_t *len)
 {
     size_t cap = 4096, n = 0;
     char *buf = malloc(cap);
     while (buf && !feof(f) && !ferror(f)) {
+        if (n >= RD_SCENARIO_MAX_BYTES) {
+            free(buf);
+            *len = RD_SCENARIO_MAX_BYTES;
+            return NULL;
+        }
         if (n + 1 == cap) {
             char *grown = realloc(buf, cap * 2);
             if (!grown)
@@ -207,6 +218,7 @@ static int read_file(const char *path, char **out, size_t *len, rd_error *err)
     if (!f)
         return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     errno = 0;
+    *len = 0;
     *out = slurp(f, len);
     int bad = ferror(f), e = errno;
     fclose(f);
@@ -215,6 +227,8 @@ static int read_file(const char *path, char **out, size_t *len, rd_error *err)
         *out = NULL;
         return rd_error_set(err, "%s: cannot read: %s", path, strerror(e));
     }
+    if (!*out && *len == RD_SCENARIO_MAX_BYTES)
+        return rd_error_set(err, "%s: more than %zu MiB: not a scenario text", path, RD_SCENARIO_MAX_BYTES >> 20);
     if (!*out)
         return rd_error_set(err, "%s: out of memory", path);
     return 0;

@@ -64,6 +64,8 @@ expect2 repeated-solve-time "twice_solve.dat:4:13: 'time' of 'model solve' alrea
 expect2 repeated-set "rockdem run: --set 'model.duration' given twice (arguments 3 and 5); give each key once" -- "$BIN" run "$good" --set model.duration=1 --set=model.duration=2 -o "$T/x.h5"
 expect2 repeated-output "rockdem run: option '-o' given twice (arguments 3 and 5); give each option once" -- "$BIN" run "$good" -o "$T/x.h5" -o "$T/y.h5"
 expect2 repeated-axis "rockdem sweep: --axis 'contact.friction' given twice (arguments 3 and 5); give each key once" -- "$BIN" sweep "$good" --axis contact.friction=30,40 --axis=contact.friction=20 -q -o "$T/sw.h5"
+# a scenario that never ends (a device) grew its buffer until memory ran out; a pipe still reads
+expect2 scenario-device "/dev/zero: more than 64 MiB: not a scenario text" -- timeout 20 "$BIN" check /dev/zero
 # study runs KN x 0.1 to x 10: a yardstick beyond KN's range ran for minutes at dt < 1e-9 s
 expect2 study-kn-above "the study runs KN x 0.1 to x 10 (5e+13 to 5e+15 Pa/m), outside stiffness-normal's range" -- timeout 60 "$BIN" study "$good" --set contact.stiffness-normal=5e14
 # option values out of range are refused, never replaced by a default (timeout: a run that
