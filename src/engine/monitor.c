@@ -277,14 +277,29 @@ static void support_polygon(rd_sim *s, int k, double zmin)
     w->support = pts;
 }
 
-/* The scene's floor: the lowest vertex of the fixed bodies (after setup). */
+/* Inradius of convex body i about its centre of mass, m: the distance to its nearest face plane
+ * (body frame: the origin is the centre of mass, face f is fn[f] . x = fd[f]). A centre of mass
+ * that passes through the body's middle travels at least twice this inside it. */
+static double inradius(const rd_sim *s, int i)
+{
+    double r = INFINITY;
+    for (int f = 0; f < s->poly[i].nf; f++) r = fmin(r, s->poly[i].fd[f]);
+    return r;
+}
+
+/* The scene's floor: the lowest vertex of the fixed bodies; and the escape checks' reach: half
+ * the smallest inradius of a convex body (the bodies a centre of mass is tested against), so a
+ * centre that crosses one through its middle is inside it at a check (after setup). */
 void rd_monitor_scene(rd_sim *s)
 {
     s->floor_z = -INFINITY;
-    double z = INFINITY;
-    for (int i = 0; i < s->nb; i++)
+    double z = INFINITY, reach = INFINITY;
+    for (int i = 0; i < s->nb; i++) {
         for (int v = s->vert0[i]; s->fixed[i] && v < s->vert0[i + 1]; v++) z = fmin(z, s->wv[v][2]);
+        if (s->convex[i]) reach = fmin(reach, 0.5 * inradius(s, i));
+    }
     if (isfinite(z)) s->floor_z = z;
+    s->escape_reach = reach;
 }
 
 /* Is point c strictly inside convex body j (behind every face plane)? */

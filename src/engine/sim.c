@@ -130,6 +130,27 @@ static int ground_varies(const rd_motion_def *m)
     return varies;
 }
 
+/* The escape checks (rd_monitor_escape: a centre of mass inside another body, a body out of the
+ * scene) every RD_ESCAPE_EVERY steps, and sooner once a centre of mass may have moved half the
+ * smallest inradius against another body (rd_sim.escape_reach): a point moves at most
+ * u = |v| + |w| r <= sqrt(2 (v^2 + w^2 r^2)) (r: the body's radius), so a centre moves against
+ * another body's material within that body's radius at most 2 u_max per second. A 0.5 m block
+ * at 30 m/s on a 0.2 m wall at KN 1e6 (2.2 ms steps: 6.7 cm a step, 4.3 m between checks of
+ * every 64 steps) passed through it and the run ended done. */
+static void escape_watch(rd_sim *s)
+{
+    double u2 = 0;
+    for (int k = 0; k < s->nfree; k++) {
+        int i = s->free_body[k];
+        double r = s->poly[i].radius;
+        u2 = fmax(u2, rd_dot(s->v[i], s->v[i]) + rd_dot(s->w[i], s->w[i]) * r * r);
+    }
+    s->escape_travel += 2.0 * sqrt(2.0 * u2) * s->dt;
+    if ((++s->nsteps_all & (RD_ESCAPE_EVERY - 1)) != 0 && s->escape_travel < s->escape_reach) return;
+    s->escape_travel = 0;
+    rd_monitor_escape(s);
+}
+
 /* One explicit step from t to t + dt. */
 static void step_once(rd_sim *s)
 {
@@ -165,7 +186,7 @@ static void step_once(rd_sim *s)
     rd_integrate_drift(s);
     memcpy(s->ag_prev, s->ag, sizeof s->ag);
     s->t += s->dt;
-    if ((++s->nsteps_all & (RD_ESCAPE_EVERY - 1)) == 0) rd_monitor_escape(s);
+    escape_watch(s);
 }
 
 /* Bring the scene to rest under gravity (local damping RD_SETTLE_DAMPING, no shaking), like

@@ -47,7 +47,8 @@
  * which faces carry a bed; pairs.c: which side of a joint covers it). */
 #define RD_FACE_TOL 1e-6
 #define RD_ANTIPARALLEL 0.999 /* two faces whose normals' dot product is below minus this face each other */
-#define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left (power of 2) */
+#define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left, at most
+                              (power of 2); fewer where bodies move fast (rd_sim.escape_reach) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
 enum {
@@ -363,6 +364,9 @@ struct rd_sim {
     char errmsg[RD_ERROR_MAX];
     double floor_z;        /* lowest point of the fixed bodies, m (-INFINITY without any) */
     long nsteps_all;       /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
+    double escape_reach;   /* travel of a centre of mass against another body between escape checks,
+                              at most, m: half the smallest inradius of a convex body (monitor.c) */
+    double escape_travel;  /* bound on that travel since the last escape check, m */
 };
 
 /* sim.c: n settle-mode steps from the current state (returns the wall seconds they took);
