@@ -1125,6 +1125,18 @@ int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *
     RD_H5_QUIETLY(int, h5_body_size(h, body, size, err));
 }
 
+int rd_h5_reserve(rd_h5 *h, size_t bytes, rd_error *err)
+{
+    RD_H5_QUIETLY(int, reserve(h, bytes, err));
+}
+
+int rd_h5_fail(rd_h5 *h, const char *what, rd_error *err)
+{
+    char why[RD_ERROR_MAX];
+    snprintf(why, sizeof why, "%s", err->msg);
+    RD_H5_QUIETLY(int, fault(h, err, what, why));
+}
+
 void rd_h5_close(rd_h5 *h)
 {
     rd_h5_quiet q = rd_h5_quiet_begin();

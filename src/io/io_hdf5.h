@@ -118,5 +118,12 @@ int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *
 void rd_h5_close(rd_h5 *h);
 /* The open file's HDF5 id, for the table writer (io_table.h): /history, /joints. */
 long long rd_h5_file_id(const rd_h5 *h);
+/* Make room for `bytes` of tables the table writer is about to add (posix_fallocate, as before
+ * every batch of samples: a full disk or a file-size limit fails here, before HDF5 writes
+ * anything). 0, or -1 with the file's status io_error. */
+int rd_h5_reserve(rd_h5 *h, size_t bytes, rd_error *err);
+/* The table writer failed (err holds why): the file's status becomes io_error with
+ * "<path>: <what>: <why>", also put in err. Returns -1. */
+int rd_h5_fail(rd_h5 *h, const char *what, rd_error *err);
 
 #endif

@@ -11,6 +11,7 @@
  * internals or cli/.
  */
 #include "io/output_scene.h"
+#include "io/h5_quiet.h"
 #include "io/io_table.h"
 #include "rockdem/history.h"
 
@@ -114,8 +115,32 @@ static int outcomes(long long f, const rd_summary *s, rd_error *err)
     return rc ? -1 : 0;
 }
 
+/* Bytes the tables take in the file, at most: their doubles (contiguous, uncompressed), each
+ * joint's three name strings in the global heap, and RD_TABLE_HEADER per dataset (its object
+ * header, units, long_name and dimension-scale attributes), plus an eighth for HDF5's
+ * allocation slack as for the series (io_hdf5.c h5_flush). */
+#define RD_TABLE_HEADER 4096
+static size_t scene_bytes(const rd_sim *sim, const rd_summary *s)
+{
+    long rows;
+    int cols, nj = rd_sim_joint_count(sim), nd = rd_sim_history_count(sim) + 8;
+    rd_sim_history_table(sim, &rows, &cols);
+    size_t label = 2 * RD_NAME_MAX + 2 + 16; /* a joint's label and its heap object's header */
+    size_t raw = sizeof(double) * ((size_t)rows * (size_t)cols + (size_t)nj * (NPROP + NOUT) +
+                                   (size_t)s->nbodies * NBODY) +
+                 3 * label * (size_t)nj + RD_TABLE_HEADER * (size_t)nd;
+    return raw + raw / 8;
+}
+
+/* The space is reserved first: HDF5 writing past a full disk or a size limit left a file that
+ * no reader opens (its superblock's end of file beyond the file's end), and the run's samples
+ * with it. A failure marks the file io_error: its status had read the run's, "done". */
 int rd_h5_scene_tables(rd_h5 *h, const rd_sim *sim, const rd_summary *s, rd_error *err)
 {
+    if (rd_h5_reserve(h, scene_bytes(sim, s), err)) return -1;
     long long f = rd_h5_file_id(h);
-    return history(f, sim, err) || joints(f, sim, err) || outcomes(f, s, err) ? -1 : 0;
+    rd_h5_quiet q = rd_h5_quiet_begin();
+    int rc = history(f, sim, err) || joints(f, sim, err) || outcomes(f, s, err);
+    rd_h5_quiet_end(q);
+    return rc ? rd_h5_fail(h, "cannot write the end-of-run tables", err) : 0;
 }
