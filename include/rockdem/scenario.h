@@ -45,6 +45,7 @@ typedef struct rd_body_def {
                                    tilt_direction, rad (>= 0); 0 = none */
     double tilt_direction;      /* horizontal direction the body leans towards, rad from +x */
     int line;                   /* scenario line that created the body (for messages) */
+    int initial_line;           /* scenario line of its last 'block initial' (0: none) */
 } rd_body_def;
 
 /* Seeded perturbation of the subcontact points when they are built (src/perturb.c;

@@ -285,6 +285,25 @@ static int choose_timestep(rd_sim *s, rd_error *err)
     return 0;
 }
 
+/* Refuse initial conditions that are already a runaway (healthy: v^2 + (w r)^2 above
+ * RD_RUNAWAY_V2, r the body's radius): `block initial` accepts up to 1e3 m/s and 1e4 rad/s
+ * (docs/LIMITS.md), and a 0.5 x 0.5 x 1 m block spun at 3000 rad/s (1840 m/s at its corners)
+ * stopped at step 1 as "unstable ... contact forces blew up", blaming the time step. */
+static int check_initial_speeds(const rd_sim *s, rd_error *err)
+{
+    for (int k = 0; k < s->nfree; k++) {
+        int i = s->free_body[k];
+        const rd_body_def *d = &s->sc.bodies[i];
+        double r = s->poly[i].radius, v = rd_norm(d->velocity), w = rd_norm(d->angular_velocity);
+        if (v * v + w * w * r * r <= RD_RUNAWAY_V2) continue;
+        return rd_error_set(err, "%s:%d: block '%s' starts at %.3g m/s (velocity %.3g m/s, angular velocity "
+                                 "%.3g rad/s at its radius %.3g m), above the %g m/s at which a run stops as a "
+                                 "runaway (docs/LIMITS.md)", s->sc.file, d->initial_line, d->name,
+                            sqrt(v * v + w * w * r * r), v, w, r, sqrt(RD_RUNAWAY_V2));
+    }
+    return 0;
+}
+
 /* Estimated steps of the whole run: settling (at most its time limit), shaking, tail. */
 static double step_estimate(const rd_sim *s)
 {
@@ -314,7 +333,8 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
     rd_sim *s = calloc(1, sizeof *s);
     if (!s) { rd_error_set(err, "out of memory"); return NULL; }
     if (rd_scenario_copy(&s->sc, sc, err) || rd_setup_bodies(s, err) || rd_setup_contacts(s, err) ||
-        choose_timestep(s, err) || check_budget(s, err) || rd_history_init(s, err)) {
+        check_initial_speeds(s, err) || choose_timestep(s, err) || check_budget(s, err) ||
+        rd_history_init(s, err)) {
         rd_sim_free(s);
         return NULL;
     }

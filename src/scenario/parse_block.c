@@ -379,5 +379,6 @@ int block_initial(parser *P)
         memcpy(b->velocity, v, sizeof v);
     if (seen & 16u)
         memcpy(b->angular_velocity, w, sizeof w);
+    b->initial_line = verb_token(P)->line;
     return 0;
 }

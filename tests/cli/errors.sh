@@ -68,6 +68,12 @@ expect2 repeated-axis "rockdem sweep: --axis 'contact.friction' given twice (arg
 expect2 scenario-device "/dev/zero: more than 64 MiB: not a scenario text" -- timeout 20 "$BIN" check /dev/zero
 # study runs KN x 0.1 to x 10: a yardstick beyond KN's range ran for minutes at dt < 1e-9 s
 expect2 study-kn-above "the study runs KN x 0.1 to x 10 (5e+13 to 5e+15 Pa/m), outside stiffness-normal's range" -- timeout 60 "$BIN" study "$good" --set contact.stiffness-normal=5e14
+# an initial state past the runaway speed (1000 m/s: RD_RUNAWAY_V2), within each number's own
+# range: b (0.4 x 0.4 x 1.6 m, radius sqrt(0.2^2 + 0.2^2 + 0.8^2) = 0.849 m) spun at 2000 rad/s
+# moves its corners at 1697 m/s; it stopped at step 1 as "unstable ... contact forces blew up"
+{ cat "$good"; echo 'block initial name b angular-velocity 0 0 2000'; } > "$T/spin.dat"
+expect runaway-start "spin.dat:4: block 'b' starts at 1.7e+03 m/s" -- "$BIN" run "$T/spin.dat" -o "$T/x.h5"
+expect runaway-start-check "spin.dat:4: block 'b' starts at 1.7e+03 m/s" -- "$BIN" check "$T/spin.dat" -o "$T/x.h5"
 # option values out of range are refused, never replaced by a default (timeout: a run that
 # goes ahead instead fails here rather than hanging the suite)
 TH="timeout 60 $BIN threshold $T/pulse.dat --engine reference"
