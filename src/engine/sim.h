@@ -433,6 +433,7 @@ int rd_rest_reached(rd_sim *s);
 /* monitor.c */
 void rd_monitor_rest(rd_sim *s);
 void rd_monitor_scene(rd_sim *s);
+double rd_monitor_inradius(const rd_sim *s, int i);
 int rd_monitor_escape(rd_sim *s);
 void rd_monitor_start(rd_sim *s);
 void rd_monitor_step(rd_sim *s);

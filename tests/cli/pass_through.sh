@@ -14,6 +14,12 @@
 # wall, across both its faces at once; such an edge's depth gradient is 0, and its unit normal
 # g / |g| made the state NaN at step 28: the run ended "unstable" (blaming the time step) where
 # it is "penetrated" (edge.c edge_point).
+# Sunk without a centre inside: the seeded PBR (354 kg, its bed a few cm^2 of mesh vertices)
+# on its 0.3 m pedestal at KN 1e6 Pa/m (KS 1e7). Its static depth m g / (KN A) is 0.2 m for a bed of
+# 0.017 m^2, past the pedestal's middle (0.15 m down): while settling it sank through, hung in
+# the pedestal's side with its centre below it (never inside it), and the run ended "done",
+# exit 0, the rock "FELL FREELY". A bearing point deeper than the other body's inradius now
+# ends it as penetrated (monitor.c sunk). The control at KN 1e10 (KS 1e11) stays done.
 set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/pass_through; rm -rf "$T"; mkdir -p "$T"
 cat > "$T/fixed.dat" <<'EOS'
@@ -45,4 +51,15 @@ x=$(/usr/bin/python3 -c "import h5py; print('%.4f' % h5py.File('$T/fixed_1e10.h5
 echo "fixed wall, KN 1e10: exit $rc, status $st, largest x of the cube's centre $x m (expected done, < -0.1)"
 [ "$rc" -eq 0 ] && [ "$st" = done ] && awk -v x="$x" 'BEGIN { exit !(x < -0.1) }' ||
     { echo "FAIL pass-through control KN 1e10: exit $rc, status $st, x $x"; fail=1; }
+cp scenarios/pbr.dat "$T/pbr.dat"
+/usr/bin/python3 tools/make_pbr.py --seed 1 -o "$T/pbr.obj" > /dev/null
+for k in 1e6:1e7 1e10:1e11; do   # KN:KS, KS = 10 KN (docs/CONTACT.md section 4)
+    kn=${k%:*}
+    out=$("$BIN" run "$T/pbr.dat" --set contact.stiffness-normal=$kn --set contact.stiffness-shear=${k#*:} \
+          --set model.duration=0.5 -o "$T/pbr_$kn.h5" 2>&1); rc=$?
+    st=$(printf '%s\n' "$out" | sed -n 's/^run: status \([a-z]*\),.*/\1/p')
+    want=$([ $kn = 1e6 ] && echo "3 penetrated" || echo "0 done")
+    echo "PBR on its pedestal, KN $kn: exit $rc, status $st (expected $want)"
+    [ "$rc $st" = "$want" ] || { echo "FAIL pass-through PBR KN $kn: exit $rc, status $st"; fail=1; }
+done
 exit $fail
