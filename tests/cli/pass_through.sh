@@ -14,9 +14,10 @@
 # wall, across both its faces at once; such an edge's depth gradient is 0, and its unit normal
 # g / |g| made the state NaN at step 28: the run ended "unstable" (blaming the time step) where
 # it is "penetrated" (edge.c edge_point).
-# Sunk without a centre inside: the seeded PBR (354 kg, its bed a few cm^2 of mesh vertices)
-# on its 0.3 m pedestal at KN 1e6 Pa/m (KS 1e7). Its static depth m g / (KN A) is 0.2 m for a bed of
-# 0.017 m^2, past the pedestal's middle (0.15 m down): while settling it sank through, hung in
+# Sunk without a centre inside: the seeded PBR (354 kg) on its 0.3 m pedestal at KN 1e6 Pa/m
+# (KS 1e7). To hold it within the pedestal's upper half (depth d <= 0.15 m) its bed would need
+# A >= m g / (KN d) = 0.023 m^2; its bed is smaller (a precarious rock's, tipping at 12.75 deg):
+# while settling it sank past the pedestal's middle and on through it, hung in
 # the pedestal's side with its centre below it (never inside it), and the run ended "done",
 # exit 0, the rock "FELL FREELY". A bearing point deeper than the other body's inradius now
 # ends it as penetrated (monitor.c sunk). The control at KN 1e10 (KS 1e11) stays done.
