@@ -20,10 +20,15 @@ static double tail_start(const rd_sim *s)
     return fmax(s->sc.duration, rd_motion_end(&s->sc.motion));
 }
 
+double rd_run_length(const rd_sim *s)
+{
+    return s->sc.tail > 0 ? tail_start(s) + s->sc.tail : s->sc.duration;
+}
+
 double rd_rest_end(rd_sim *s)
 {
     s->rest_since = -1.0;
-    return s->sc.tail > 0 ? tail_start(s) + s->sc.tail : s->sc.duration;
+    return rd_run_length(s);
 }
 
 static int body_at_rest(const rd_sim *s, int k)

@@ -427,6 +427,10 @@ void rd_energy_sample(rd_sim *s);
 void rd_energy_sample_end(rd_sim *s);
 
 /* rest.c: the free-vibration tail (`model solve time T tail D`) */
+/* Longest the shaking stage runs, s: the duration; with a tail, the later of the duration and
+ * the motion's end, plus the tail. */
+double rd_run_length(const rd_sim *s);
+/* rd_run_length, with the tail's rest watch reset: the run's end time. */
 double rd_rest_end(rd_sim *s);
 int rd_rest_reached(rd_sim *s);
 

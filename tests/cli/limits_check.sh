@@ -55,6 +55,15 @@ same "steps.dat:5: the run would take about " "$T/steps.dat"
 "$BIN" check "$T/steps.dat" --force > /dev/null || fail "--force does not lift the budget"
 sed 's/model solve time 1e5/model solve time 1e5 force on/' "$T/steps.dat" > "$T/forced.dat"
 "$BIN" check "$T/forced.dat" > /dev/null || fail "'model solve ... force on' does not lift the budget"
+# the budget counts the shaking the run takes: without a tail a run stops at its duration, so a
+# motion that ends later does not count (0.05 s at KN 1e15 under a pulse starting at 1e4 s:
+# (5 s of settling + 0.05 s) / ~1e-7 s = ~5e7 steps; the motion's end made it ~1e11, refused);
+# with a tail (model.tail) the run goes on to the motion's end, and is refused
+base | sed 's/stiffness-normal 1e9/stiffness-normal 1e15/; s/direction 0/direction 0 start 1e4/' > "$T/late.dat"
+out=$("$BIN" check "$T/late.dat" 2>&1); rc=$?
+{ [ "$rc" -ne 2 ] && ! printf '%s' "$out" | grep -q "budget"; } ||
+    fail "a motion ending after a run without a tail counted in its step budget (exit $rc): $(printf '%s' "$out" | tail -1)"
+same "late.dat:5: the run would take about " "$T/late.dat" --set model.tail=1
 
 # meshes: missing, malformed (with the line), good
 { base | sed '2d'; echo "block import mesh 'rock.obj' seat-on base density 2500 name rock"; } > "$T/mesh.dat"
