@@ -417,18 +417,20 @@ static inline __attribute__((always_inline)) int base_looks(const double pn[3], 
 
 /* A point of a face that always acts, inside the other body with an entrance face its face does
  * not look at (it crossed a side plane, or its face turned away): it takes the shallowest plane
- * its face looks at as its entrance face and bears on it from where it is (its depth below it,
- * if inside, as its set: the level rule of entrance_face, at any depth), from the next step; it
- * keeps its face if it looks at none. A drum's base vertex that came back over the rim below
- * beneath the top face's level (a few mm in an impact, more than the contact band) took the
- * rim's side face and, once not pushed sideways by it, would have idled there for good. */
+ * its face looks at that lies within the contact band of it as its entrance face and bears on
+ * it from where it is (its depth below it, if inside, as its set: the level rule of
+ * entrance_face), from the next step; it idles on its face while no such plane is near. A drum's
+ * base vertex within the band beyond the rim below had taken the rim's side face and, once not
+ * pushed sideways by it, would have idled there for good. Only a near plane: the corner of a
+ * brick's side face placed on a neighbour, lying on the floor, took the floor's far side 2 m away
+ * and bore on it from there (tests/cli/joint_stiffness.sh, tests/cli/pass_through.sh). */
 static void look_again(rd_sim *s, const side_ctx *c, int pt, int st, const double p[3])
 {
     int g = -1;
     double dmin = DBL_MAX;
     for (int k = 0; k < c->np; k++) {
         double depth = -plane_dist(c->pl[k], p);
-        if (base_looks(s->pn[pt], c->pl[k]) && depth < dmin) { dmin = depth; g = k; }
+        if (base_looks(s->pn[pt], c->pl[k]) && depth <= c->tol && depth < dmin) { dmin = depth; g = k; }
     }
     if (g < 0) return;
     s->pface[st] = (short)g;

@@ -20,6 +20,21 @@ set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/joint_stiffness; rm -rf "$T"; mkdir -p "$T"
 fails=0
 
+# run_scene NAME: runs $T/NAME.dat; 1 when rockdem fails (after printing why)
+run_scene() {
+    "$BIN" run "$T/$1.dat" -q > "$T/$1.log" 2>&1 && return 0
+    echo "FAIL $1: rockdem run failed"; cat "$T/$1.log"; fails=$((fails + 1)); return 1
+}
+
+# judge NAME WHAT "SINK WANT GAP OK": prints and checks a measured joint sink (m) against
+# m g / (KN A)
+judge() {
+    local sink want gap ok
+    read -r sink want gap ok <<< "$3"
+    echo "$1: $2 sink $sink m, m g / (KN A) = $want m, relative gap $gap"
+    verdict "$1: $2 sink against m g / (KN A)" "$ok" "$gap" 1e-3 strict || fails=$((fails + 1))
+}
+
 # case NAME LOWER_SIDE UPPER_SIDE SPACING: a 1.2 m lower block and a 0.6 m upper one, square
 # footprints, density 2600, KN 1e10; checks the upper joint's sink
 case_sink() {
@@ -33,9 +48,7 @@ contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 spacing 
 model solve time 0.05
 output hdf5 '$T/$name.h5' interval 0.01
 EOF
-    if ! "$BIN" run "$T/$name.dat" -q > "$T/$name.log" 2>&1; then
-        echo "FAIL $name: rockdem run failed"; cat "$T/$name.log"; fails=$((fails + 1)); return
-    fi
+    run_scene "$name" || return
     local out
     out=$(/usr/bin/python3 - "$T/$name.h5" "$lo" "$up" <<'PY'
 import sys, h5py
@@ -49,10 +62,7 @@ gap = abs(sink - want) / want
 print("%.4g %.4g %.4g %d" % (sink, want, gap, gap <= 1e-3))
 PY
 )
-    local sink want gap ok
-    read -r sink want gap ok <<< "$out"
-    echo "$name: joint sink $sink m, m g / (KN A) = $want m, relative gap $gap"
-    verdict "$name: joint sink against m g / (KN A)" "$ok" "$gap" 1e-3 strict || fails=$((fails + 1))
+    judge "$name" joint "$out"
 }
 
 # case_side NAME SPACING: two 1 m cubes placed side by side, touching, on the fixed floor;
@@ -72,9 +82,7 @@ contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 spacing 
 model solve time 0.05
 output hdf5 '$T/$name.h5' interval 0.01
 EOF
-    if ! "$BIN" run "$T/$name.dat" -q > "$T/$name.log" 2>&1; then
-        echo "FAIL $name: rockdem run failed"; cat "$T/$name.log"; fails=$((fails + 1)); return
-    fi
+    run_scene "$name" || return
     local out
     out=$(/usr/bin/python3 - "$T/$name.h5" <<'PY'
 import sys, h5py
@@ -85,10 +93,7 @@ gap = abs(sink - want) / want
 print("%.4g %.4g %.4g %d" % (sink, want, gap, gap <= 1e-3))
 PY
 )
-    local sink want gap ok
-    read -r sink want gap ok <<< "$out"
-    echo "$name: floor joint sink $sink m, m g / (KN A) = $want m, relative gap $gap"
-    verdict "$name: floor joint sink against m g / (KN A)" "$ok" "$gap" 1e-3 strict || fails=$((fails + 1))
+    judge "$name" "floor joint" "$out"
 }
 
 case_sink statue-vertices 1.0 0.5 vertices
