@@ -363,10 +363,11 @@ static int penetrated(rd_sim *s, int i, int j, const char *stage)
 
 /* A bearing subcontact point of side sd deeper in the other (convex) body than that body's
  * inradius has passed its middle (an idle point's depth is from an entrance face it may have
- * slid far past, a late face's corner on a pedestal's side plane: not evidence): the bodies have passed into each other though neither centre of mass lies in the other (a 354 kg
- * scanned rock on a 0.3 m pedestal at KN 1e6 Pa/m sank 0.2 m into it while settling, on through
- * it, and hung in its side below its top: the run ended "done", the rock "FELL FREELY"). Any stiffness that holds the load keeps the depth far below:
- * the rock's is 0.04 mm at KN 1e10. One error, 1. */
+ * slid far past, a late face's corner on a pedestal's side plane: not evidence): the bodies have
+ * passed into each other though neither centre of mass lies in the other (a 354 kg scanned rock
+ * on a 0.3 m pedestal at KN 1e6 Pa/m sank 0.2 m into it while settling, on through it, and hung
+ * in its side below its top: the run ended "done", the rock "FELL FREELY"). Any stiffness that
+ * holds the load keeps the depth far below: the rock's is 0.04 mm at KN 1e10. One error, 1. */
 static int sunk(rd_sim *s, const rd_side *sd, const char *stage)
 {
     const int o = sd->owner, t = sd->other;
