@@ -45,7 +45,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test asan fuzz fuzz-bins bench bench-study bench-peers study deps clean check-yade mpi
+.PHONY: python all lib run test unit asan asan-unit debug fuzz fuzz-bins bench bench-study bench-peers study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -118,9 +118,22 @@ test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed
 validate: $(BIN)/rockdem
 	/usr/bin/python3 tools/validate/ladder.py --depth full --bin $(BIN)/rockdem --md docs/validation.md
 
+# AddressSanitizer and UBSan, with the internal invariants checked (RD_DEBUG: base/assert.h).
+# `make asan` runs every test so built; `make asan-unit` the CMocka unit tests only (.ci/run).
+ASAN_VARS := BUILD=build-asan BIN=build-asan/bin OPT=-O1 \
+    SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all -DRD_DEBUG"
 asan:
-	$(MAKE) test BUILD=build-asan BIN=build-asan/bin OPT=-O1 \
-	    SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
+	$(MAKE) test $(ASAN_VARS)
+asan-unit:
+	$(MAKE) unit $(ASAN_VARS)
+
+# the CMocka unit tests alone (tests/test_*.c), counted as make test counts them
+unit: $(TESTBIN) scenarios/pbr.obj
+	@RD_TESTS=unit bash tests/run.sh $(BUILD) $(BIN)
+
+# an optimised build with the internal invariants checked
+debug:
+	$(MAKE) test BUILD=build-debug BIN=build-debug/bin SAN=-DRD_DEBUG
 
 # libFuzzer (clang) under ASan/UBSan on the readers of untrusted input: tests/fuzz/README.md.
 # FUZZ_TIME seconds per target (scenario obj ply stl at2 csv); crashes land in tests/fuzz/found/
@@ -181,7 +194,7 @@ $(BIN)/rockdem-mpi: src/cli/rockdem_mpi.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEAD
 	$(MPICC) $(ALL_CFLAGS) $< $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 clean:
-	rm -rf build build-asan build-fuzz bin
+	rm -rf build build-asan build-debug build-fuzz bin
 
 # the Python module (tools/rockdem, docs/examples/pbr_study.py): its library and the rockdem
 # program beside it, so `pip install ./tools` packs them (tools/pyproject.toml)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Remake the figures of docs/ (TOOLS.md, README) from real rockdem runs (about 15 s of CPU, plus
+# Remake the figures of docs/ (TOOLS.md, the README's gallery) from real rockdem runs (about 15 s of CPU, plus
 # the stored tables: docs/pbr_sweep.h5 for the PBR fragility, docs/study.md for the study).
 #   bash tools/doc_figures.sh [path/to/rockdem] [workdir]
 set -eu
@@ -18,7 +18,13 @@ for a in 0.5 0.8 1.1 1.4 1.7 2.0 2.5 3.0; do for f in 0.25 0.35 0.5 0.7 1.0 1.4 
         --set model.duration=8 -q -o "$2/a${3}_f$4.h5" >/dev/null' "$BIN" "$W/sweep.dat" "$W/sweep"
 $PY tools/rdtable.py "$W"/sweep/*.h5 --csv "$W/sweep.csv" -q
 $PY tools/rdfragility.py "$W/sweep.csv" --outcome ever_overturned -o docs/rdfragility_example.png
-# 3. the README's PBR fragility from its stored sweep table (README: "Worked example")
+# 3. the PBR fragility from its stored sweep table (docs/FRAGILITY.md: "Worked example")
 $PY tools/rdfragility.py docs/pbr_sweep.h5 --where direction=0 --bins 2 -o docs/pbr_fragility.png
-# 4. the study figure from its table (make study reruns the 72 DEM runs)
+# 4. the README's gallery: each shipped scene family at rest (settled, first sample)
+mkdir -p docs/gallery
+for sc in default pbr column statue seed001_cask seed000_topple; do
+    "$BIN" run "scenarios/$sc.dat" --set model.duration=0.01 -q -o "$W/$sc.h5" >/dev/null
+    $PY tools/rdscene.py "$W/$sc.h5" -o "docs/gallery/$sc.png" --dpi 150 >/dev/null
+done
+# 5. the study figure from its table (make study reruns the 72 DEM runs)
 $PY tools/study.py --replot docs/study.md

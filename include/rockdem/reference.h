@@ -1,6 +1,6 @@
 /* rockdem — rigid-block reference solvers (SUNDIALS CVODE with root finding).
  *
- * Two models from shared/reference/ROCKING-EQUATIONS.md, both planar, rigid, no sliding:
+ * Two models from docs/ROCKING-EQUATIONS.md, both planar, rigid, no sliding:
  *   - Housner: one block 2b x 2h rocking on a moving ground (1 DOF, impacts with restitution e);
  *   - Kounadis: two stacked blocks (2 DOF), eight configuration patterns (s1, s2) plus rest,
  *     switched by root functions; impacts conserve angular momentum (perfectly plastic).

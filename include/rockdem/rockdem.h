@@ -145,7 +145,9 @@ RD_API int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *er
 /* Build the simulation (geometry, subcontact points, time step, output file). NULL on error. */
 RD_API rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
 
-/* Settle (if asked), then shake for the scenario's duration. Writes the HDF5 file as it goes. */
+/* Settle (if asked), then shake for the scenario's duration. The engine writes no file: its
+ * observers are told at the start, at each output sample and at the end (the run file's writer,
+ * rd_sim_write_hdf5 of rockdem/output.h, is one of them; rockdem/observer.h). */
 RD_API rd_status rd_sim_run(rd_sim *sim);
 
 /* Fill the summary (valid after rd_sim_run, also after an early stop; out->body borrowed). */

@@ -1,6 +1,6 @@
 /* rockdem — the validation ladder: run a scenario through the rigid reference solvers, find
  * overturning thresholds, measure and calibrate the DEM's coefficient of restitution, and
- * measure the DEM's error against run time (shared/DESIGN.md section 5).
+ * measure the DEM's error against run time (the validation ladder of docs/validation.md).
  *
  * Mapping a scene to a reference model (rd_refscene_map):
  *   - one fixed body (the base) and one free brick standing on it       -> Housner (1 DOF);

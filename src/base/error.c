@@ -2,9 +2,11 @@
  * Folder base/ owns errors, vectors and named constants; it calls nothing else in rockdem.
  */
 #include "rockdem/error.h"
+#include "base/assert.h"
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 int rd_error_set(rd_error *err, const char *fmt, ...)
 {
@@ -16,3 +18,11 @@ int rd_error_set(rd_error *err, const char *fmt, ...)
     }
     return -1;
 }
+
+#ifdef RD_DEBUG
+void rd_assert_fail(const char *cond, const char *file, int line)
+{
+    fprintf(stderr, "rockdem: internal invariant broken at %s:%d: %s\n", file, line, cond);
+    abort();
+}
+#endif

@@ -10,6 +10,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "base/assert.h"
 #include "base/vec.h"
 
 /* w = R diag(1/I) R^T L */
@@ -103,6 +104,7 @@ void rd_integrate_kick(rd_sim *s)
 {
     for (int i = 0; i < s->nb; i++) {
         if (s->fixed[i]) continue;
+        RD_ASSERT(s->mass[i] > 0.0);
         double im = 1.0 / s->mass[i];
         rd_copy3(s->v[i], s->v_old[i]);
         rd_copy3(s->L[i], s->L_old[i]);
@@ -128,6 +130,7 @@ void rd_integrate_drift(rd_sim *s)
         rd_quat_from_rotvec(phi, dq);
         rd_quat_mul(dq, s->q[i], qh);
         rd_quat_normalize(qh);
+        RD_ASSERT(fabs(qh[0] * qh[0] + qh[1] * qh[1] + qh[2] * qh[2] + qh[3] * qh[3] - 1.0) < 1e-12);
         for (int k = 0; k < 4; k++) s->q[i][k] = qh[k];
     }
 }

@@ -31,6 +31,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "base/assert.h"
 #include "base/constants.h"
 #include "base/vec.h"
 
@@ -44,6 +45,7 @@ static unsigned hash_pair(int a, int b) { return (unsigned)a * 2654435761u ^ (un
 
 static int hash_find(const rd_sim *s, int a, int b)
 {
+    RD_ASSERT(a < b && s->hcap > 0 && (s->hcap & (s->hcap - 1)) == 0);
     unsigned mask = (unsigned)s->hcap - 1;
     for (unsigned h = hash_pair(a, b) & mask;; h = (h + 1) & mask) {
         int p = s->hkey[h];

@@ -110,7 +110,7 @@ int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
            (corner) subcontacts, elastic joint, no damping */
         c->kn = 1e10; c->ks = 1e9; c->friction = 40.0 * RD_DEG; c->spacing = 0; c->restitution = 1;
     } else if (!strcmp(name, "default")) {
-        /* README "Contact defaults": seed 002's KN and friction on corner subcontacts with
+        /* docs/GUIDE.md, `contact preset`: seed 002's KN and friction on corner subcontacts with
            plastic point impacts and KS = 10 KN (the rigid preset's layout and ratio), so the
            impact loses what free-rocking tests on stone and concrete bases lose: r = 0.692 =
            0.99 Housner's r on the 0.5 x 1.0 m block (docs/CONTACT.md section 4; adopted range

@@ -13,7 +13,7 @@
 # points at full weight (engine/pairs.c, faces_within). Equal faces keep both sets (the
 # control case).
 # Tolerance 1e-3 of the sink: settling stops at an unbalanced force of 1e-6 of the weight
-# (README, `model settle`), and the floor joint's own sink is subtracted exactly; the errors
+# (docs/GUIDE.md, `model settle`), and the floor joint's own sink is subtracted exactly; the errors
 # this catches are factors of 2 and 1.22.
 set -u
 . "$(dirname "$0")/lib/check.sh"

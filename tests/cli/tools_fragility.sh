@@ -175,7 +175,7 @@ expect "expected 0/1" $PY tools/rdfragility.py "$T/bad2.csv"
 expect "no column 'truth'" $PY tools/rdfragility.py "$T/t.csv" --observed truth
 $PY -c "import h5py; h5py.File('$T/plain.h5','w')['x']=[1]"
 expect "neither a sweep table (/sweep) nor a rockdem run file" $PY tools/rdfragility.py "$T/plain.h5"
-# --where keeps the rows of one direction of the README's PBR sweep (36 of 72), and a missing
+# --where keeps the rows of one direction of docs/FRAGILITY.md's PBR sweep (36 of 72), and a missing
 # column is one clear error
 n=$(/usr/bin/python3 tools/rdfragility.py docs/pbr_sweep.h5 --where direction=0 2>&1 | sed -n 's/^runs: \([0-9]*\),.*/\1/p')
 [ "$n" = 36 ] || { echo "--where direction=0 kept '$n' rows, expected 36"; exit 1; }

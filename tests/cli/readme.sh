@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The README says what the program does: its quick-start output block is what `make run`
+# prints (every line but perf: and output:, which vary with the machine and the path), its
+# scenario block is scenarios/default.dat without comments, and its tutorial scenario passes
+# `check`. A change of results or syntax that leaves the README stale fails here.
+set -u
+. "$(dirname "$0")/lib/check.sh"
+BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
+fail=0
+# block N: the N-th fenced block (1-based) after the heading line $1 of README.md
+block() {
+    awk -v h="$1" -v n="$2" '$0 == h { on = 1; next } on && /^## / { exit }
+        on && /^ *```/ { if (inblk) { inblk = 0; if (++k == n) exit; next } inblk = 1; next }
+        on && inblk && k == n - 1 { sub(/^   /, ""); print }' README.md
+}
+judge() { if [ "$2" = ok ]; then echo "CHECK $1"; else echo "FAIL $1: $2"; fail=1; fi; }
+
+# 1. the quick start's output (its first block)
+block '## Quick start' 1 > "$T/readme_out.txt"
+( cd "$T" && "$BIN" run "$OLDPWD/scenarios/default.dat" -o "$T/default.h5" ) 2>&1 |
+    grep -v -E '^(perf|output): ' > "$T/run_out.txt"
+if diff -u "$T/readme_out.txt" "$T/run_out.txt" > "$T/diff.txt"; then judge readme-run-output ok
+else cat "$T/diff.txt"; judge readme-run-output "README's quick-start output differs from make run's"; fi
+
+# 2. the quick start's scenario is the shipped one
+block '## Quick start' 2 > "$T/readme_dat.txt"
+grep -v -E '^(;|[[:space:]]*$)' scenarios/default.dat > "$T/default_lines.txt"
+if diff -u "$T/readme_dat.txt" "$T/default_lines.txt" > "$T/diff.txt"; then judge readme-scenario ok
+else cat "$T/diff.txt"; judge readme-scenario "README's scenario differs from scenarios/default.dat"; fi
+
+# 3. the tutorial's scenario builds (beside the shipped rock's mesh, as the tutorial says)
+block '## Tutorial: your own scanned rock' 1 > "$T/myrock.dat"
+cp scenarios/pbr.obj "$T/pbr.obj"
+if out=$("$BIN" check "$T/myrock.dat" 2>&1) && [ -s "$T/myrock.dat" ]; then judge readme-tutorial-check ok
+else printf '%s\n' "$out"; judge readme-tutorial-check "the tutorial's scenario fails check"; fi
+exit $fail
