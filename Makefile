@@ -181,6 +181,12 @@ check-yade: $(BIN)/rockdem
 	/usr/bin/python3 tools/yade/regen.py
 	/usr/bin/python3 tools/validate/ladder.py --depth full --only yade,column --bin $(BIN)/rockdem
 
+# the figures of docs/ and the README's gallery, redrawn from real runs and the stored tables
+# (tools/doc_figures.sh); tests/cli/readme.sh checks the README's sample output
+.PHONY: docs
+docs: $(BIN)/rockdem scenarios/pbr.obj
+	@bash tools/doc_figures.sh $(BIN)/rockdem
+
 # error against run time of the DEM vs the rigid references: docs/study.md, docs/study.png
 study: $(BIN)/rockdem
 	@bash bench/study.sh $(BIN)

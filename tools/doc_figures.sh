@@ -8,7 +8,7 @@ PY=/usr/bin/python3
 mkdir -p "$W/sweep"
 # 1. one run that overturns: the default cask, 1.1 g one-sine at 0.7 Hz
 "$BIN" run scenarios/default.dat --set motion.amplitude=1.1g --set motion.frequency=0.7 -q -o "$W/over.h5"
-$PY tools/rdplot.py "$W/over.h5" -o docs/rdplot_example.png --dpi 150
+$PY tools/rdplot.py "$W/over.h5" -o docs/rdplot_example.png
 # 2. an 8 x 8 sweep of one-sine pulses (amplitude x frequency, PGV/PGA = 1/(pi f)); the
 #    runs go on after overturning ('stop off') so every run sees the whole pulse
 sed 's/^model overturn tilt-ratio 1.0$/model overturn tilt-ratio 1.0 stop off/' scenarios/default.dat > "$W/sweep.dat"

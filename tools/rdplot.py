@@ -14,8 +14,8 @@ def main():
     p.add_argument("run", metavar="RUN.h5", help="HDF5 file written by 'rockdem run'")
     p.add_argument("-o", "--output", metavar="OUT.png",
                    help="PNG to write (default: RUN.png next to the run file)")
-    p.add_argument("--dpi", type=int, default=200,
-                   help="resolution (default 200: 1440 px across the 7.2 in page width)")
+    p.add_argument("--dpi", type=int, default=300,
+                   help="resolution (default 300, print quality: 2160 px across the 7.2 in page width)")
     a = p.parse_args()
     from rdtools.plot import plot_run
     out = a.output or os.path.splitext(a.run)[0] + ".png"

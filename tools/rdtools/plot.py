@@ -24,6 +24,9 @@ ENERGY_STYLE = {"kinetic": "tab:blue", "gravitational": "tab:green", "elastic": 
 COMPONENT_COLOUR = {"x": "#1f77b4", "y": "#ff7f0e", "z": "#2ca02c"}
 G = 9.80665
 WIDTH_IN = 7.2
+RIGHT_OF_AXES = 1.02   # legends start just right of a panel (axes fraction)
+RIGHT_OF_TWIN = 1.16   # ... or right of a twin axis's labels
+SHOW_ALPHA_LINE = 0.5  # draw tilt = alpha only if some tilt ratio reaches this
 FONT_PT = 9
 
 
@@ -35,6 +38,12 @@ def energy_unit(peak):
     return 1.0, "J"
 
 
+def outside(x):
+    """Legend keywords: beside the panel, at x axes-widths from its left edge, so that no
+    legend covers a curve."""
+    return dict(loc="upper left", bbox_to_anchor=(x, 1.0), frameon=False, borderaxespad=0.0)
+
+
 def _symmetric(ax, values, pad=1.12):
     """y limits symmetric about zero (so twin axes share their zero line)."""
     m = float(np.nanmax(np.abs(values))) if np.size(values) else 1.0
@@ -42,7 +51,7 @@ def _symmetric(ax, values, pad=1.12):
     ax.set_ylim(-pad * m, pad * m)
 
 
-def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
+def plot_run(path, out, dpi=300, max_event_lines=400, width=WIDTH_IN):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -75,7 +84,9 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
         yk = ratios[k] if use_ratio else np.degrees(tilt[:, k])
         ax[0].plot(t, yk, lw=1.0, label=n)
     if use_ratio:
-        ax[0].axhline(1.0, color="0.5", lw=0.8, ls="--")
+        peak_ratio = max((float(np.nanmax(np.abs(x))) for x in ratios if np.size(x)), default=0.0)
+        if peak_ratio >= SHOW_ALPHA_LINE:   # the overturn line only where it is near the data
+            ax[0].axhline(1.0, color="0.5", lw=0.8, ls="--", label="tilt = α")
         ax[0].set_ylabel("tilt / α (1)\nα toward the lean")
     else:
         ax[0].set_ylabel("tilt (°)")
@@ -102,9 +113,9 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
         tw.tick_params(labelsize=FONT_PT - 1)
         h1, l1 = ax[2].get_legend_handles_labels()
         h2, l2 = tw.get_legend_handles_labels()
-        ax[2].legend(h1 + h2, l1 + l2, loc="upper right", ncol=2, framealpha=0.85)
+        ax[2].legend(h1 + h2, l1 + l2, **outside(RIGHT_OF_TWIN))
     else:
-        ax[2].legend(loc="upper right", framealpha=0.85)
+        ax[2].legend(**outside(RIGHT_OF_AXES))
     ax[2].axhline(0, color="0.6", lw=0.6)
 
     peak = max((float(np.nanmax(np.abs(v))) for v in en.values() if np.size(v)), default=1.0)
@@ -129,8 +140,8 @@ def plot_run(path, out, dpi=200, max_event_lines=400, width=WIDTH_IN):
             ax[0].plot([te], [yv], marker="v" if ty != "overturn" else "X", color=col,
                        ms=4 if ty != "overturn" else 8, ls="none", label=None if ty in seen else ty)
             seen.add(ty)
-    ax[0].legend(loc="upper left", ncol=4, framealpha=0.85)
-    ax[1].legend(loc="upper left", framealpha=0.85)
+    ax[0].legend(**outside(RIGHT_OF_AXES))
+    ax[1].legend(**outside(RIGHT_OF_AXES))
     nev = {}
     for e in events:
         nev[e[2]] = nev.get(e[2], 0) + 1
