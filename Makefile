@@ -199,6 +199,12 @@ $(BIN)/rockdem-mpi: src/cli/rockdem_mpi.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEAD
 	@mkdir -p $(dir $@)
 	$(MPICC) $(ALL_CFLAGS) $< $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
+# the C style of .clang-format (Debian clang-format 14) applied in place
+FORMAT_FILES = $(wildcard src/*/*.c src/*/*.h include/rockdem/*.h tests/*.c tests/*.h tests/fuzz/*.c examples/*.c bench/*.c)
+.PHONY: format
+format:
+	clang-format -i $(FORMAT_FILES)
+
 clean:
 	rm -rf build build-asan build-debug build-fuzz bin
 

@@ -10,13 +10,37 @@ ground plane, the camera on the scene and the animation snapped to the written s
 Given RUN.h5 it writes the XDMF sidecar first (tools/rdxdmf.py: RUN.xmf + RUN.vis.h5, every
 k-th step with --every k) unless an up-to-date RUN.xmf is there; given RUN.xmf it opens that.
 The .xmf is opened by its absolute path: ParaView 5.11's Xdmf3 readers join a bare file name
-("run.xmf") and the HDF5 path inside it wrongly."""
+("run.xmf") and the HDF5 path inside it wrongly.
+
+Headless: Debian's ParaView renders only on an X display (its build has no EGL or OSMesa, and
+--force-offscreen-rendering still opens an X window: without a display pvpython dies with
+SIGSEGV in XSync). With no $DISPLAY the script therefore runs itself again under xvfb-run (a
+virtual X display, Debian's xvfb), or says in one line what to install."""
 import argparse
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+
+
+XVFB_SCREEN = "-screen 0 1280x1024x24 +extension GLX"  # room for the 1200 x 800 picture
+
+
+def ensure_display(argv):
+    """Without an X display, re-run this script under xvfb-run (never returns), or return an
+    error line when xvfb-run is missing; None when a display is there (or already virtual)."""
+    if os.environ.get("DISPLAY"):
+        return None
+    import shutil
+    xvfb, pvpython = shutil.which("xvfb-run"), shutil.which("pvpython")
+    if not xvfb or not pvpython or os.environ.get("RDPARAVIEW_XVFB"):
+        return ("rdparaview: error: no X display ($DISPLAY unset) and no xvfb-run: Debian's ParaView "
+                "renders only on a display; install xvfb (apt-get install xvfb) or set DISPLAY")
+    env = dict(os.environ, RDPARAVIEW_XVFB="1")
+    # pvpython's sys.executable names its embedded interpreter, not a program to run
+    cmd = [xvfb, "-a", "-s", XVFB_SCREEN, pvpython, os.path.abspath(__file__)] + list(argv)
+    os.execve(xvfb, cmd, env)
 
 
 def sidecar(path, every, frame):
@@ -95,6 +119,10 @@ def main(argv):
     if not os.path.exists(a.run):
         sys.stderr.write("rdparaview: error: %s: no such file\n" % a.run)
         return 2
+    no_display = ensure_display(argv)
+    if no_display:
+        sys.stderr.write(no_display + "\n")
+        return 2
     xmf = sidecar(a.run, a.every, a.frame)
     from paraview import simple as pv
     view, reader = scene(xmf, a.ratio_max)
@@ -108,6 +136,11 @@ def main(argv):
     print("rdparaview: %s: %d steps from %g to %g s%s%s" % (
         xmf, len(ts), ts[0], ts[-1], "; state " + a.state if a.state else "",
         "; picture " + a.screenshot if a.screenshot else ""))
+    if os.environ.get("RDPARAVIEW_XVFB"):
+        # ParaView's teardown on Xvfb's GLX fails (GLXBadContext, exit 1) after everything is
+        # written: leave without it
+        sys.stdout.flush()
+        os._exit(0)
     return 0
 
 
