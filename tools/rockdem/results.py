@@ -184,12 +184,37 @@ class Run:
         return "<rockdem.Run %s: %s; %s>" % (self.path or "(in memory)", self.status, b)
 
 
+def _inherited_coords(f: Any, group: str, ds: Any) -> Any:
+    """ds with a coordinate for each of its dimensions that has none in its own group, taken
+    from the nearest enclosing group holding a one-dimensional variable of that name (netCDF-4's
+    inherited dimensions: /ground and /energy share the root's `time`, /history/body/NAME the
+    `time` of /history, every group the root's `body` and `xyz`); strings decoded to str."""
+    parts = [p for p in group.strip("/").split("/") if p]
+    for dim in ds.dims:
+        if dim in ds.coords:
+            continue
+        for k in range(len(parts) - 1, -1, -1):
+            name = "/".join([""] + parts[:k] + [dim])
+            if name in f and getattr(f[name], "ndim", 0) == 1 and f[name].shape[0] == ds.sizes[dim]:
+                v = f[name][()]
+                if v.dtype.kind in "SO":
+                    v = np.array([x.decode("utf-8") if isinstance(x, bytes) else str(x) for x in v])
+                attrs = {a: f[name].attrs[a] for a in ("units", "long_name") if a in f[name].attrs}
+                ds = ds.assign_coords({dim: (dim, v, attrs)})
+                break
+    return ds
+
+
 def open_run(path: Any, group: Optional[str] = None) -> Any:
-    """A group of a run file as an xarray.Dataset; for the root group the summary's per-body
+    """A group of a run file as an xarray.Dataset with a coordinate on every dimension that has
+    one in the file (its own group's, else the nearest enclosing group's: `time` on /ground,
+    /energy and /history/*, body and joint names); for the root group the summary's per-body
     values are added as variables over `body` and the status is decoded (attrs['status'])."""
     xr, h5py = _xarray(), _h5py()
     ds = xr.open_dataset(os.fspath(path), engine="h5netcdf", group=group)
     with h5py.File(path, "r") as f:
+        if group not in (None, "/"):
+            ds = _inherited_coords(f, group, ds)
         if group in (None, "/") and "summary" in f:
             s = f["summary"]
             for k in s.attrs:
