@@ -38,7 +38,7 @@ def full_scene(folder):
             .history_joint("base", "block", "normal-force", "slip").history_energy()
             .record("rec.txt", units="g", dt=0.01, direction=0, scale=1.0, baseline="off")
             .solve(0.5, tail=1).output("full.h5", 0.01)
-            .save("settled.h5").reference_restitution(0.9))
+            .save(str(folder / "settled.h5")).reference_restitution(0.9))
 
 
 def test_every_command_parses_and_builds(tmp_path):

@@ -275,6 +275,8 @@ class Simulation:
                  progress: Any = None) -> None:
         self._sim = None
         self._finished: Optional[Run] = None
+        self._started = False
+        self._over = False
         self.output = os.fspath(output) if output is not None else None
         self.scenario = _as_scenario(scenario)  # our own copy: later changes to the caller's stay there
         if self.output is not None:
@@ -291,16 +293,12 @@ class Simulation:
             progress = _Bar() if sys.stderr.isatty() else False
         self._rec.progress = progress or None
         check(lib.rd_sim_add_observer(sim, ctypes.byref(self._rec.struct), ctypes.byref(err)), err)
-        if self.output is not None:
-            check(lib.rd_sim_write_hdf5(sim, os.fsencode(self.output), ctypes.byref(err)), err)
         nfixed = ctypes.c_int(0)
         nfree = lib.rd_sim_body_count(sim, ctypes.byref(nfixed))
         self.bodies: Dict[str, Body] = _Names()
         for k in range(nfree + nfixed.value):
             b = Body(self, k, k if k < nfree else -1)
             self.bodies[b.name] = b
-        self._started = False
-        self._over = False
 
     def _handle(self) -> int:
         if not self._sim:
@@ -393,9 +391,15 @@ class Simulation:
         return rc
 
     def _start(self) -> None:
+        """Open the run file (if any) and settle: the first step() or run_until() does it, so a
+        Simulation closed unstarted writes nothing and settles nothing."""
         if not self._started:
-            self._started = True
             sim = self._handle()
+            if self.output is not None:
+                err = _lib.Error()
+                check(_lib.lib().rd_sim_write_hdf5(sim, os.fsencode(self.output),
+                                                   ctypes.byref(err)), err)
+            self._started = True
             self._call(lambda: _lib.lib().rd_sim_start(sim))
 
     def step(self, n: int = 1) -> "Simulation":
@@ -433,6 +437,7 @@ class Simulation:
         raises RockdemError for a failed run (unstable, penetrated, lost, untrusted, I/O or
         memory error) unless raise_failed is False. Later calls return the same Run."""
         if self._finished is None:
+            self._start()  # an unstarted run settles first (rd_sim_finish would too)
             lib = _lib.lib()
             sim = self._handle()
             status = STATUS[lib.rd_sim_finish(sim)]
@@ -458,9 +463,10 @@ class Simulation:
         return self._finished
 
     def close(self) -> None:
-        """Free the C simulation (finishing it first, so a file being written is complete)."""
+        """Free the C simulation; a started run is finished first, so its file is complete
+        (status interrupted if it had not reached its end)."""
         if self._sim:
-            if self._finished is None:
+            if self._finished is None and self._started:
                 self.finish(raise_failed=False)
             sim, self._sim = self._sim, None
             _lib.lib().rd_sim_free(sim)
