@@ -130,3 +130,21 @@ def test_fragility_sweep(block_file, tmp_path):
                         scales=["%.4gg" % (0.5 * a), "%.4gg" % (2 * a)], jobs=2,
                         overrides={"model.duration": 3})
     assert tab.sizes["case"] == 2 and list(tab["overturned"].values) == [0, 1]
+
+
+def test_checkpoint_restores_bit_for_bit(tmp_path):
+    """`model save` after settling, then a run from `model restore`: the same shaking, to the
+    bit (the checkpoint holds the settled state; tests/cli/checkpoint.sh for the CLI)."""
+    state = str(tmp_path / "settled.h5")
+
+    def scene():
+        return (rockdem.Scene("checkpoint", folder=str(tmp_path))
+                .brick("pad", (4, 4, 0.5), (0, 0, -0.25), fixed=True)
+                .brick("block", (0.4, 0.4, 1.6), (0, 0, 0.8))
+                .contact(kn=1e9, ks=1e8, friction=40).pulse("one-sine", "0.35g", 2).solve(0.5)
+                .output("x.h5", 0.01))
+    a = rockdem.Simulation(scene().save(state)).run()
+    assert os.path.exists(state)
+    b = rockdem.Simulation(scene().restore(state)).run()
+    assert np.array_equal(a.histories()["tilt"], b.histories()["tilt"])
+    assert b.summary["steps"] == a.summary["steps"]
