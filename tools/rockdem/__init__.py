@@ -7,12 +7,17 @@
     run.summary["bodies"]["rock"]["max_tilt_ratio"]         # the C summary, as a dict
     run.histories()["tilt"]                                 # numpy arrays [time][body]
     ds = run.dataset()                                      # xarray.Dataset with named dims
+    sim = rockdem.Simulation(sc)                            # or step it, results in memory:
+    sim.add_callback(lambda sim, s: print(s["time"], s["tilt"]), every=20)
+    sim.run_until(1.0); sim.bodies["rock"].position; run = sim.run()
     rockdem.threshold(sc, engine="dem")                     # minimum overturning amplitude
     rockdem.sweep("scenarios/pbr_fragility.dat", scales=["0.2g", "0.4g"], jobs=2, output="t.h5")
 
-Scenario, run and threshold call the library in this process; sweep runs `rockdem sweep` (its
-fork pool of workers, resumable table) and returns the table. Units: SI throughout, as in the
-scenario language (m, kg, s, rad; accelerations may be written "0.3g").
+Scenario, Simulation and threshold call the library in this process; sweep runs `rockdem
+sweep` (its fork pool of workers, resumable table) and returns the table. Scenarios copy and
+pickle as real copies (multiprocessing: spawn, forkserver, fork); Ctrl-C stops a run, completes
+its file and raises KeyboardInterrupt. Units: SI throughout, as in the scenario language (m, kg,
+s, rad, J; accelerations may be written "0.3g" with g = 9.80665 m/s^2). docs/PYTHON.md.
 """
 from __future__ import annotations
 
