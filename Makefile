@@ -210,6 +210,16 @@ clean:
 
 # the Python module (tools/rockdem, docs/examples/pbr_study.py): its library and the rockdem
 # program beside it, so `pip install ./tools` packs them (tools/pyproject.toml)
+# the Python API reference, built from the docstrings and type hints by the standard library's
+# pydoc (nothing to install): one HTML page per module in $(BUILD)/python-docs/ (docs/PYTHON.md)
+PYDOC_MODULES := rockdem rockdem.scenario rockdem.simulation rockdem.scene rockdem.results
+.PHONY: python-docs
+python-docs: $(BUILD)/librockdem.so
+	@mkdir -p $(BUILD)/python-docs
+	cd $(BUILD)/python-docs && PYTHONPATH=$(abspath tools) ROCKDEM_LIB=$(abspath $(BUILD))/librockdem.so \
+	    /usr/bin/python3 -m pydoc -w $(PYDOC_MODULES)
+	@echo "API reference: $(BUILD)/python-docs/rockdem.html"
+
 python: $(BUILD)/librockdem.so $(BIN)/rockdem
 	@mkdir -p tools/rockdem/bin
 	cp $(BUILD)/librockdem.so tools/rockdem/librockdem.so

@@ -1,6 +1,6 @@
 /* The library as an embedding program sees it (issue 14): a run with no file at all, observers
  * (samples, events, summary), the HDF5 file as one observer, a per-simulation stop beside the
- * process-wide one, HDF5's error printing left as the program set it, and the progress of a
+ * process-wide one, a run stepped in pieces, HDF5's error printing left as the program set it, and the progress of a
  * threshold scan run on several worker processes. Only the public headers are used. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -61,6 +61,51 @@ static void test_stop_one_simulation(void **state)
     rd_sim_free(b);
     rd_scenario_free(&sa);
     rd_scenario_free(&sb);
+}
+
+/* rd_sim_start / rd_sim_advance / rd_sim_finish: a run stepped in pieces (100 steps, to 0.2 s,
+ * then to the end) ends in the same state, bit for bit, as rd_sim_run (the same loop); each
+ * piece stops where it was asked to, to within half a step; a run finished before its end is
+ * interrupted, and further calls change nothing. */
+static void test_stepped_run(void **state)
+{
+    (void)state;
+    rd_scenario sa, sb, sc;
+    rd_sim *a = create(&sa, "whole.h5"), *b = create(&sb, "stepped.h5"), *c = create(&sc, "early.h5");
+    assert_true(isnan(rd_sim_end_time(b)));
+    assert_int_equal(rd_sim_run(a), RD_STATUS_DONE);
+    assert_int_equal(rd_sim_start(b), 1);
+    assert_true(fabs(rd_sim_end_time(b) - 0.5) < 1e-12);
+    assert_int_equal(rd_sim_advance(b, 100, INFINITY), 1);
+    assert_true(fabs(rd_sim_time(b) - 100 * rd_sim_dt(b)) < 1e-12);
+    assert_int_equal(rd_sim_advance(b, -1, 0.2), 1);
+    assert_true(fabs(rd_sim_time(b) - 0.2) <= 0.5 * rd_sim_dt(b));
+    assert_int_equal(rd_sim_advance(b, -1, INFINITY), 0);
+    assert_int_equal(rd_sim_finish(b), RD_STATUS_DONE);
+    rd_summary ra, rb;
+    rd_sim_summary(a, &ra);
+    rd_sim_summary(b, &rb);
+    assert_int_equal(ra.steps, rb.steps);
+    assert_true(ra.body[0].max_tilt == rb.body[0].max_tilt);
+    double xa[3], xb[3], qa[4], qb[4];
+    rd_sim_body_state(a, 0, xa, qa, NULL, NULL);
+    rd_sim_body_state(b, 0, xb, qb, NULL, NULL);
+    assert_memory_equal(xa, xb, sizeof xa);
+    assert_memory_equal(qa, qb, sizeof qa);
+    assert_int_equal(rd_sim_start(c), 1);
+    assert_int_equal(rd_sim_advance(c, 10, INFINITY), 1);
+    assert_int_equal(rd_sim_finish(c), RD_STATUS_INTERRUPTED);
+    assert_int_equal(rd_sim_advance(c, 10, INFINITY), 0);
+    assert_int_equal(rd_sim_finish(c), RD_STATUS_INTERRUPTED);
+    rd_summary rc;
+    rd_sim_summary(c, &rc);
+    assert_int_equal(rc.steps, 10);
+    rd_sim_free(a);
+    rd_sim_free(b);
+    rd_sim_free(c);
+    rd_scenario_free(&sa);
+    rd_scenario_free(&sb);
+    rd_scenario_free(&sc);
 }
 
 static int printed;
@@ -288,6 +333,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_one_simulation),
+        cmocka_unit_test(test_stepped_run),
         cmocka_unit_test(test_hdf5_error_handler_kept),
         cmocka_unit_test(test_observers_no_file),
         cmocka_unit_test(test_free_scenario_before_run),

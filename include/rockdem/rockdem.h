@@ -150,6 +150,23 @@ RD_API rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
  * rd_sim_write_hdf5 of rockdem/output.h, is one of them; rockdem/observer.h). */
 RD_API rd_status rd_sim_run(rd_sim *sim);
 
+/* rd_sim_run in three stages, for a caller that steps a run itself (the Python binding's
+ * step(n) and run_until(t)): rd_sim_start settles (or restores) the scene, begins the observers
+ * and applies the initial conditions; rd_sim_advance takes shaking steps until nsteps are taken
+ * (nsteps < 0: no count), the time reaches t_until (s since the start of shaking; INFINITY: no
+ * time) or the run is over (its duration, a stop, every body overturned, a failure, rest in the
+ * tail); rd_sim_finish summarises and ends the observers (the file is complete), once, at any
+ * stage (an unstarted run is started first; one finished while shaking could go on is INTERRUPTED).
+ * rd_sim_start and rd_sim_advance return 1 while shaking can go on, 0 once it is over. */
+RD_API int rd_sim_start(rd_sim *sim);
+RD_API int rd_sim_advance(rd_sim *sim, long nsteps, double t_until);
+RD_API rd_status rd_sim_finish(rd_sim *sim);
+
+/* Simulated time since the start of shaking (s), and the time the shaking stage ends at (s;
+ * NaN before rd_sim_start). */
+RD_API double rd_sim_time(const rd_sim *sim);
+RD_API double rd_sim_end_time(const rd_sim *sim);
+
 /* Fill the summary (valid after rd_sim_run, also after an early stop; out->body borrowed). */
 RD_API void rd_sim_summary(const rd_sim *sim, rd_summary *out);
 

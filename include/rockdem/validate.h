@@ -68,7 +68,7 @@ typedef enum rd_engine { RD_ENGINE_DEM = 0, RD_ENGINE_REFERENCE = 1 } rd_engine;
 typedef struct rd_threshold_opts {
     double lo, hi; /* amplitude range searched, m/s^2; <= 0: defaults 0.9 and 10 times the
                       static uplift threshold g tan(alpha) (stack: the lower of item 2) */
-    int nscan;     /* coarse steps from lo to hi (default 24) */
+    int nscan;     /* coarse steps from lo to hi (<= 0: default 24; at most RD_THRESHOLD_SCAN_MAX) */
     int jobs;      /* runs of the coarse scan at once, each in a worker process (fork); <= 0
                       (default): the number of online cores; 1: all in the calling process.
                       The result is the serial scan's whatever the number (runs may be more) */
@@ -82,12 +82,18 @@ typedef struct rd_threshold_opts {
 #define RD_THRESHOLD_RTOL_MIN 1e-6
 #define RD_THRESHOLD_RTOL_MAX 1.0
 
+/* Coarse scan steps, at most: each is one run (the default 24 brackets a threshold to 1/24 of
+ * the range before bisection); 1000 runs of even a 1 s scene are hours, past which a count is
+ * almost always a slip (10**9 would run for years). */
+#define RD_THRESHOLD_SCAN_MAX 1000
+
 RD_API rd_threshold_opts rd_threshold_opts_default(void);
 
 /* The amplitude range (m/s^2) rd_threshold searches for this scenario and these options: lo
  * and hi with their defaults resolved. 0, or -1 with err (one line) when the options or the
  * scene cannot be searched: no horizontal pulse, a scene the reference does not map, rtol
- * outside its range, lo not below hi. Runs nothing: bad input is told before any run. */
+ * outside its range, nscan above RD_THRESHOLD_SCAN_MAX, lo not below hi. Runs nothing: bad
+ * input is told before any run. */
 RD_API int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo,
                               double *hi, rd_error *err);
 

@@ -16,7 +16,6 @@
 
 #define RD_MAX_FREQS 64
 #define RD_MAX_JOBS 256 /* -j: the scan's own cap (src/ensembles/threshold.c) */
-#define RD_MAX_SCAN_STEPS 1000 /* --steps: coarse scan steps (each one run; the default 24) */
 
 typedef struct threshold_args {
     rd_engine engine;
@@ -121,7 +120,7 @@ static int threshold_option(void *ctx, int argc, char **argv, int *i)
     } else if (!strcmp(o, "--frequencies")) {
         rc = read_frequencies(a, v);
     } else if (!strcmp(o, "--steps")) {
-        rc = read_count(o, v, RD_MAX_SCAN_STEPS, "coarse scan steps", &a->opts.nscan);
+        rc = read_count(o, v, RD_THRESHOLD_SCAN_MAX, "coarse scan steps", &a->opts.nscan);
     } else {
         rc = read_count(o, v, RD_MAX_JOBS, "worker processes", &a->opts.jobs);
     }

@@ -407,8 +407,9 @@ double rd_sim_trial_steps(rd_sim *s, int n)
     return wall_now() - t0;
 }
 
-rd_status rd_sim_run(rd_sim *s)
+int rd_sim_start(rd_sim *s)
 {
+    if (s->phase != RD_PHASE_CREATED) return s->phase == RD_PHASE_SHAKING;
     stop_requested = 0;
     s->status = RD_STATUS_DONE;
     restore_or_settle(s);
@@ -420,18 +421,41 @@ rd_status rd_sim_run(rd_sim *s)
     rd_monitor_start(s);
     s->shaking = 1;
     s->e_fric = s->e_damp = s->e_work = 0;
-    double t0 = wall_now(), end = rd_rest_end(s);
-    while (s->status == RD_STATUS_DONE && s->t < end - 0.5 * s->dt) {
-        if (stopping(s)) { s->status = RD_STATUS_INTERRUPTED; break; }
-        step_once(s);
-        s->step++;
-        if (s->step % RD_PROGRESS_STEPS == 0) rd_progress_report(s->t, end);
-        if (s->status != RD_STATUS_DONE || !healthy(s)) break;
-        if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) { s->status = RD_STATUS_OVERTURNED; break; }
-        if (rd_rest_reached(s)) break; /* free-vibration tail: everything at rest */
-    }
-    s->wall = wall_now() - t0;
-    rd_progress_report(s->t, end);
+    s->end = rd_rest_end(s);
+    s->phase = s->status == RD_STATUS_DONE ? RD_PHASE_SHAKING : RD_PHASE_OVER;
+    return s->phase == RD_PHASE_SHAKING;
+}
+
+/* One shaking step and the checks after it; 1 while the run goes on, 0 once it is over. */
+static int shake_once(rd_sim *s)
+{
+    if (s->t >= s->end - 0.5 * s->dt) return 0;
+    if (stopping(s)) { s->status = RD_STATUS_INTERRUPTED; return 0; }
+    step_once(s);
+    s->step++;
+    if (s->step % RD_PROGRESS_STEPS == 0) rd_progress_report(s->t, s->end);
+    if (s->status != RD_STATUS_DONE || !healthy(s)) return 0;
+    if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) { s->status = RD_STATUS_OVERTURNED; return 0; }
+    return !rd_rest_reached(s); /* free-vibration tail: everything at rest */
+}
+
+int rd_sim_advance(rd_sim *s, long nsteps, double t_until)
+{
+    if (s->phase != RD_PHASE_SHAKING) return 0;
+    double t0 = wall_now();
+    for (long k = 0; (nsteps < 0 || k < nsteps) && s->t < t_until - 0.5 * s->dt; k++)
+        if (!shake_once(s)) { s->phase = RD_PHASE_OVER; break; }
+    s->wall += wall_now() - t0;
+    return s->phase == RD_PHASE_SHAKING;
+}
+
+rd_status rd_sim_finish(rd_sim *s)
+{
+    if (s->phase == RD_PHASE_FINISHED) return s->status;
+    if (s->phase == RD_PHASE_CREATED) rd_sim_start(s);
+    if (s->phase == RD_PHASE_SHAKING) s->status = RD_STATUS_INTERRUPTED; /* ended before its end */
+    s->phase = RD_PHASE_FINISHED;
+    rd_progress_report(s->t, s->end);
     rd_monitor_finish(s);
     rd_joints_sample(s);
     rd_energy_sample_end(s);
@@ -439,6 +463,16 @@ rd_status rd_sim_run(rd_sim *s)
     rd_observe_end(s);
     return s->status;
 }
+
+rd_status rd_sim_run(rd_sim *s)
+{
+    if (rd_sim_start(s)) rd_sim_advance(s, -1, INFINITY);
+    return rd_sim_finish(s);
+}
+
+double rd_sim_time(const rd_sim *s) { return s->t; }
+
+double rd_sim_end_time(const rd_sim *s) { return s->phase == RD_PHASE_CREATED ? NAN : s->end; }
 
 void rd_sim_summary(const rd_sim *s, rd_summary *out)
 {

@@ -360,6 +360,8 @@ struct rd_sim {
     int restored;          /* 1: the state came from `model restore` (no settling) */
     double *rest_area;     /* [nfree] state image (state.c) staging: each free body's contact area, m^2 */
     rd_status status;
+    int phase;             /* rd_sim_phase: where rd_sim_start / advance / finish have got to */
+    double end;            /* time the shaking stage ends at (rd_rest_end at its start), s */
     atomic_int stop;       /* rd_sim_stop: 1 = stop at the next step */
     char errmsg[RD_ERROR_MAX];
     double floor_z;        /* lowest point of the fixed bodies, m (-INFINITY without any) */
@@ -368,6 +370,14 @@ struct rd_sim {
                               at most, m: half the smallest inradius of a convex body (monitor.c) */
     double escape_travel;  /* bound on that travel since the last escape check, m */
 };
+
+/* The stages of a run (rd_sim_start, rd_sim_advance, rd_sim_finish in rockdem.h). */
+typedef enum rd_sim_phase {
+    RD_PHASE_CREATED = 0,  /* built, not settled */
+    RD_PHASE_SHAKING = 1,  /* at rest, observers begun, shaking under way */
+    RD_PHASE_OVER = 2,     /* the shaking stage ended (duration, stop, overturn, failure, rest) */
+    RD_PHASE_FINISHED = 3  /* summarised, observers ended */
+} rd_sim_phase;
 
 /* sim.c: n settle-mode steps from the current state (returns the wall seconds they took);
  * rd_sim_build (the simulation without a checkpoint) is in engine/state.h */

@@ -272,6 +272,9 @@ static int search_range(const rd_scenario *sc, const rd_threshold_opts *opts, do
     if (!(opts->rtol >= RD_THRESHOLD_RTOL_MIN && opts->rtol <= RD_THRESHOLD_RTOL_MAX))
         return rd_error_set(err, "threshold: --rtol %g is outside its range [%g, %g] (the bisection's "
                                  "relative bracket)", opts->rtol, RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX);
+    if (opts->nscan > RD_THRESHOLD_SCAN_MAX)
+        return rd_error_set(err, "threshold: --steps %d is above its cap %d (coarse scan steps, one "
+                                 "run each)", opts->nscan, RD_THRESHOLD_SCAN_MAX);
     if (scene_scales(sc, out, err)) return -1;
     *lo = opts->lo > 0 ? opts->lo : 0.9 * out->static_amp;
     *hi = opts->hi > 0 ? opts->hi : 10 * out->static_amp;

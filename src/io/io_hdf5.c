@@ -10,7 +10,7 @@
  * of writes the file is extended by posix_fallocate by more than the batch can need (reserve),
  * so running out of space fails there, before HDF5 has written anything; after each flush the
  * file is truncated back to the end of HDF5's allocation (flush_file). On such a failure the writer stops writing: the
- * root attributes `status` and `status_message`, created at open with fixed sizes, are
+ * root attributes `status` and `status_message`, created at open at their largest, are
  * overwritten in place ("io_error" and the reason with the system's errno text), which needs
  * no new space, and the file keeps every sample flushed before the fault. Until a run ends the
  * root `status` reads "running" (a file left by a killed process says so).
@@ -187,24 +187,16 @@ static hid_t enum_type(const char *const *names, int n)
 
 /* ---- faults ---- */
 
-/* Fixed-length string type of n bytes (NUL-terminated), or a negative id. */
-static hid_t fixed_string(size_t n)
-{
-    hid_t t = H5Tcopy(H5T_C_S1);
-    if (t >= 0 && H5Tset_size(t, n) < 0) { H5Tclose(t); t = H5I_INVALID_HID; }
-    return t;
-}
-
-/* Overwrite the fixed-size root attribute `name` in place (no new space is needed). */
-static int overwrite_fixed(const rd_h5 *h, const char *name, size_t n, const char *value)
+/* Overwrite the root string attribute `name` in place (variable-length UTF-8, value cut to
+ * n - 1 bytes). Its global-heap space was reserved when it was created (reserve_status). */
+static int overwrite_status(const rd_h5 *h, const char *name, size_t n, const char *value)
 {
     char buf[RD_H5_STATUS_MSG] = {0};
     snprintf(buf, n < sizeof buf ? n : sizeof buf, "%s", value);
-    hid_t t = fixed_string(n);
-    hid_t a = t >= 0 ? H5Aopen(h->file, name, H5P_DEFAULT) : H5I_INVALID_HID;
-    int ok = a >= 0 && H5Awrite(a, t, buf) >= 0;
+    const char *v = buf;
+    hid_t a = H5Aopen(h->file, name, H5P_DEFAULT);
+    int ok = a >= 0 && H5Awrite(a, h->str_type, &v) >= 0;
     if (a >= 0) H5Aclose(a);
-    if (t >= 0) H5Tclose(t);
     return ok ? 0 : -1;
 }
 
@@ -219,8 +211,8 @@ static int flush_file(const rd_h5 *h)
 /* Root `status` and `status_message`, written in place and flushed. 0 or -1. */
 static int write_status(const rd_h5 *h, const char *status, const char *message)
 {
-    if (overwrite_fixed(h, "status", RD_H5_STATUS, status) ||
-        overwrite_fixed(h, "status_message", RD_H5_STATUS_MSG, message))
+    if (overwrite_status(h, "status", RD_H5_STATUS, status) ||
+        overwrite_status(h, "status_message", RD_H5_STATUS_MSG, message))
         return -1;
     return flush_file(h);
 }
@@ -696,17 +688,23 @@ static int make_types(rd_h5 *h)
            h->event_type >= 0 ? 0 : -1;
 }
 
-/* Root `status` ("running" until the run ends) and `status_message`, fixed-size strings so
- * that a fault can overwrite them in place. */
+/* Root `status` ("running" until the run ends) and `status_message` (""), variable-length
+ * UTF-8 strings. Each is first written at its largest (RD_H5_STATUS, RD_H5_STATUS_MSG bytes),
+ * then overwritten with its value: HDF5 frees the larger heap object on the overwrite, so the
+ * file's global heap keeps room for a fault's status and message without growing. */
 static int write_status_attrs(const rd_h5 *h, rd_error *err)
 {
-    char st[RD_H5_STATUS] = "running", msg[RD_H5_STATUS_MSG] = "";
-    hid_t t1 = fixed_string(sizeof st), t2 = fixed_string(sizeof msg);
-    int rc = t1 < 0 || t2 < 0 || attr_write(h, h->file, "status", t1, 0, st, err) ||
-             attr_write(h, h->file, "status_message", t2, 0, msg, err) ? -1 : 0;
-    if (t1 >= 0) H5Tclose(t1);
-    if (t2 >= 0) H5Tclose(t2);
-    return rc;
+    char big[RD_H5_STATUS_MSG];
+    memset(big, '-', sizeof big - 1);
+    big[sizeof big - 1] = '\0';
+    const char *st = big + sizeof big - RD_H5_STATUS, *msg = big;
+    if (attr_write(h, h->file, "status", h->str_type, 0, &st, err) ||
+        attr_write(h, h->file, "status_message", h->str_type, 0, &msg, err))
+        return -1;
+    if (overwrite_status(h, "status", RD_H5_STATUS, "running") ||
+        overwrite_status(h, "status_message", RD_H5_STATUS_MSG, ""))
+        return rd_error_set(err, "%s: cannot write the root status", h->path);
+    return 0;
 }
 
 static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)

@@ -50,15 +50,13 @@ void rd_h5t_close(long long file)
     if (file >= 0) H5Fclose((hid_t)file);
 }
 
-/* A fixed-length UTF-8 string attribute: stored in the object header, so a table costs no
- * global-heap collection per attribute (keeps small run files small). */
+/* A variable-length UTF-8 string attribute (as every string rockdem writes: h5py reads a str,
+ * netCDF readers a string, never bytes). */
 static int str_attr(hid_t d, const char *name, const char *value)
 {
-    hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
-    H5Tset_size(t, strlen(value) + 1);
-    H5Tset_cset(t, H5T_CSET_UTF8);
+    hid_t t = utf8_type(), sp = H5Screate(H5S_SCALAR);
     hid_t a = H5Acreate2(d, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
-    int ok = a >= 0 && H5Awrite(a, t, value) >= 0;
+    int ok = a >= 0 && H5Awrite(a, t, &value) >= 0;
     if (a >= 0) H5Aclose(a);
     H5Sclose(sp);
     H5Tclose(t);

@@ -32,7 +32,7 @@ for path, want in zip(sys.argv[1:], ("penetrated", "lost")):
     f = h5py.File(path, "r")
     names = {v: k for k, v in h5py.check_enum_dtype(f["summary"].attrs.get_id("status").dtype).items()}
     assert names[int(f["summary"].attrs["status"])] == want, path
-    assert f.attrs["status"] == want.encode(), f.attrs["status"]
+    assert f.attrs["status"] == want, f.attrs["status"]
 PY
 
 /usr/bin/python3 tools/make_pbr.py --seed 1 --roughness 5e-4 -o "$T/rough.obj" > /dev/null

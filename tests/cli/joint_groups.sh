@@ -22,7 +22,7 @@ def slips(path):
     names = [n.decode() if isinstance(n, bytes) else n for n in f["joints/joint"][...]]
     props = [p.decode() if isinstance(p, bytes) else p for p in f["joints/property"][...]]
     fric = dict(zip(names, f["joints/properties"][:, props.index("friction")]))
-    assert f["history/joint/pad-on-pad/slip"].attrs["units"] in (b"m", "m")
+    assert f["history/joint/pad-on-pad/slip"].attrs["units"] == "m"
     return pad, rock, fric
 pad9, rock9, fric = slips(sys.argv[1])
 pad8, _, _ = slips(sys.argv[2])

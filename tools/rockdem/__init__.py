@@ -7,238 +7,153 @@
     run.summary["bodies"]["rock"]["max_tilt_ratio"]         # the C summary, as a dict
     run.histories()["tilt"]                                 # numpy arrays [time][body]
     ds = run.dataset()                                      # xarray.Dataset with named dims
+    sim = rockdem.Simulation(sc)                            # or step it, results in memory:
+    sim.add_callback(lambda sim, s: print(s["time"], s["tilt"]), every=20)
+    sim.run_until(1.0); sim.bodies["rock"].position; run = sim.run()
     rockdem.threshold(sc, engine="dem")                     # minimum overturning amplitude
     rockdem.sweep("scenarios/pbr_fragility.dat", scales=["0.2g", "0.4g"], jobs=2, output="t.h5")
 
-Scenario, run and threshold call the library in this process; sweep runs `rockdem sweep` (its
-fork pool of workers, resumable table) and returns the table. Units: SI throughout, as in the
-scenario language (m, kg, s, rad; accelerations may be written "0.3g").
+Scenario, Simulation and threshold call the library in this process; sweep runs `rockdem
+sweep` (its fork pool of workers, resumable table) and returns the table. Scenarios copy and
+pickle as real copies (multiprocessing: spawn, forkserver, fork); Ctrl-C stops a run, completes
+its file and raises KeyboardInterrupt. Units: SI throughout, as in the scenario language (m, kg,
+s, rad, J; accelerations may be written "0.3g" with g = 9.80665 m/s^2). docs/PYTHON.md.
 """
+from __future__ import annotations
+
 import ctypes
 import os
 import shutil
-import signal
 import subprocess
 import sys
-import time
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _lib
 from ._lib import STATUS
+from .results import Run, event_table, open_run, open_sweep
+from .scenario import RockdemError, Scenario, check
 from .scene import Scene
-from .results import Run, open_run, open_sweep
+from .simulation import Body, Joint, Simulation, _Bar, count_arg
 
 __version__ = "0.1.0"
-__all__ = ["Scenario", "Scene", "Run", "RockdemError", "open_run", "open_sweep", "threshold",
-           "sweep", "keys", "program"]
-
-
-class RockdemError(RuntimeError):
-    """A one-line error from the library (file:line: problem) or from the rockdem program."""
-
-
-def _check(rc, err):
-    if rc != 0:
-        raise RockdemError(err.text or "rockdem: failed")
-
-
-class Scenario:
-    """A parsed scenario (rd_scenario, owned). Build with load(), from_text() or Scene().build()."""
-
-    def __init__(self, _handle, source):
-        self._h = _handle
-        self.source = source
-        self.overrides = []
-
-    @classmethod
-    def _new(cls, source):
-        h = _lib.lib().rd_scenario_new()
-        if not h:
-            raise MemoryError("rockdem: cannot allocate a scenario")
-        return cls(h, source)
-
-    @classmethod
-    def load(cls, path):
-        """Parse a scenario file (relative paths inside it: to its folder)."""
-        sc = cls._new(os.fspath(path))
-        err = _lib.Error()
-        _check(_lib.lib().rd_scenario_load(sc._h, os.fsencode(path), ctypes.byref(err)), err)
-        return sc
-
-    @classmethod
-    def from_text(cls, text, name="scenario.dat"):
-        """Parse scenario text; `name` names it in messages and its folder anchors relative
-        paths (mesh files, records)."""
-        sc = cls._new(name)
-        err = _lib.Error()
-        _check(_lib.lib().rd_scenario_parse(sc._h, os.fsencode(name), text.encode("utf-8"),
-                                            ctypes.byref(err)), err)
-        sc.text = text
-        return sc
-
-    def set(self, key, value=None):
-        """Override one key: set("motion.amplitude", "0.4g") or set("motion.amplitude=0.4g").
-        The keys are those of `rockdem keys` (and --set on the command line)."""
-        assignment = key if value is None else "%s=%s" % (key, value)
-        err = _lib.Error()
-        _check(_lib.lib().rd_scenario_set(self._h, assignment.encode("utf-8"), ctypes.byref(err)), err)
-        self.overrides.append(assignment)
-        return self
-
-    def update(self, overrides):
-        """set() every item of a dict (or iterable of "key=value")."""
-        items = overrides.items() if isinstance(overrides, dict) else ((o, None) for o in overrides)
-        for k, v in items:
-            self.set(k, v)
-        return self
-
-    def validate(self):
-        err = _lib.Error()
-        _check(_lib.lib().rd_scenario_validate(self._h, ctypes.byref(err)), err)
-
-    def run(self, output, progress=None):
-        """Settle and shake; write the HDF5 run file `output`; return a Run (summary, events,
-        histories). progress: None (a bar on a terminal), False, or a callable(t, t_end)."""
-        self.set("output.file", os.fspath(output))
-        self.validate()
-        lib = _lib.lib()
-        err = _lib.Error()
-        sim = lib.rd_sim_create(self._h, ctypes.byref(err))
-        if not sim:
-            raise RockdemError(err.text)
-        if lib.rd_sim_write_hdf5(sim, os.fsencode(output), ctypes.byref(err)):
-            lib.rd_sim_free(sim)
-            raise RockdemError(err.text)
-        try:
-            with _progress(progress), _interruptible():
-                status = lib.rd_sim_run(sim)
-            summ = _lib.Summary()
-            lib.rd_sim_summary(sim, ctypes.byref(summ))
-            summary = _summary_dict(summ)  # now: summ.body points into the simulation
-            n = ctypes.c_int(0)
-            ev = lib.rd_sim_events(sim, ctypes.byref(n))
-            events = [(ev[k].time, ev[k].body, ev[k].type.decode(), ev[k].value) for k in range(n.value)]
-            message = (lib.rd_sim_error(sim) or b"").decode("utf-8", "replace")
-        finally:
-            lib.rd_sim_free(sim)
-        if STATUS[status] in ("unstable", "io_error", "error", "penetrated", "lost", "untrusted"):
-            raise RockdemError("%s: %s" % (self.source, message))
-        return Run(os.fspath(output), summary, events)
-
-    def __del__(self):
-        h, self._h = getattr(self, "_h", None), None
-        if h:
-            _lib.lib().rd_scenario_delete(h)
-
-
-def _summary_dict(s):
-    bodies = {}
-    for k in range(s.nbodies):
-        b = s.body[k]
-        d = {name: getattr(b, name) for name, _ in _lib.BodySummary._fields_ if name != "name"}
-        d["overturned"] = bool(d["overturned"])
-        d["uplifted"], d["slid"] = bool(d["uplifted"]), bool(d["slid"])
-        d["unsupported"], d["final_position"] = bool(d["unsupported"]), list(d["final_position"])
-        bodies[b.name.decode()] = d
-    return {"status": STATUS[s.status], "any_overturned": bool(s.any_overturned),
-            "end_time": s.end_time, "dt": s.dt, "dt_critical": s.dt_critical, "steps": s.steps,
-            "settle_time": s.settle_time, "energy_residual_max": s.energy_residual_max,
-            "wall_seconds": s.wall_seconds, "bodies": bodies}
-
-
-class _interruptible:
-    """Ctrl-C during a run asks the library to stop at the next step (the file stays valid)."""
-
-    def __enter__(self):
-        self.old = None
-        try:
-            self.old = signal.signal(signal.SIGINT, lambda *a: _lib.lib().rd_sim_request_stop())
-        except ValueError:  # not the main thread
-            pass
-
-    def __exit__(self, *exc):
-        if self.old is not None:
-            signal.signal(signal.SIGINT, self.old)
+__all__ = ["Scenario", "Scene", "Simulation", "Body", "Joint", "Run", "RockdemError",
+           "open_run", "open_sweep", "event_table", "threshold", "sweep", "keys", "program",
+           "STATUS"]
 
 
 class _progress:
-    """Install the library's progress callback for the duration of a run."""
+    """Install the library's process-wide progress callback for the duration of a threshold
+    search (its runs may be in forked workers, which relay their progress)."""
 
-    def __init__(self, how):
+    def __init__(self, how: Any) -> None:
         if how is None:
             how = _Bar() if sys.stderr.isatty() else False
         self.fn = how
 
-    def __enter__(self):
+    def __enter__(self) -> None:
         if self.fn:
             fn = self.fn
             self.cb = _lib.PROGRESS(lambda ctx, t, end: fn(t, end))
             _lib.lib().rd_set_progress(self.cb, None)
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: Any) -> None:
         if self.fn:
             _lib.lib().rd_set_progress(_lib.PROGRESS(), None)
             if isinstance(self.fn, _Bar):
                 self.fn.done()
 
 
-class _Bar:
-    """t / t_end with an ETA on stderr, at most twice a second."""
-
-    def __init__(self):
-        self.t0 = time.monotonic()
-        self.last = 0.0
-
-    def __call__(self, t, end):
-        now = time.monotonic()
-        if now - self.last < 0.5 or end <= 0:
-            return
-        self.last = now
-        f = min(max(t / end, 0.0), 1.0)
-        eta = (now - self.t0) * (1 - f) / f if f > 0 else float("nan")
-        sys.stderr.write("\r  t = %.3g / %.3g s  %3.0f %%  ETA %.0f s " % (t, end, 100 * f, eta))
-        sys.stderr.flush()
-
-    def done(self):
-        if self.last:
-            sys.stderr.write("\n")
+def _limit(keyword: str) -> Tuple[float, float]:
+    """The valid range of a scenario number (docs/LIMITS.md), from the library."""
+    lo, hi = ctypes.c_double(), ctypes.c_double()
+    _lib.lib().rd_scenario_limit(keyword.encode(), ctypes.byref(lo), ctypes.byref(hi))
+    return lo.value, hi.value
 
 
-def threshold(scenario, engine="dem", lo=None, hi=None, rtol=None, steps=None,
-              frequencies=None, jobs=None):
+def _amplitude_arg(name: str, v: Any) -> float:
+    """An amplitude in m/s^2 (a number, or a str such as "0.3g") within the pulse amplitude's
+    range, as `rockdem threshold --lo/--hi` reads it."""
+    if isinstance(v, str):
+        t = v.strip()
+        try:
+            a = float(t[:-1]) * G if t.endswith("g") else float(t)
+        except ValueError:
+            raise ValueError("rockdem: %s expects an amplitude in m/s^2 or like '0.3g', got %r"
+                             % (name, v)) from None
+    elif isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool):
+        a = float(v)
+    else:
+        raise TypeError("rockdem: %s expects an amplitude in m/s^2, got %r" % (name, v))
+    lo, hi = _limit("amplitude")
+    if not (a > 0 and a <= hi):
+        raise ValueError("rockdem: %s expects an amplitude above 0 and at most %g m/s^2, got %r"
+                         % (name, hi, v))
+    return a
+
+
+G = 9.80665  # standard gravity, m/s^2: what "0.3g" means in the scenario language
+RTOL_RANGE = (1e-6, 1.0)  # RD_THRESHOLD_RTOL_MIN / MAX (include/rockdem/validate.h)
+SCAN_MAX = 1000           # RD_THRESHOLD_SCAN_MAX (include/rockdem/validate.h)
+JOBS_MAX = 256            # `rockdem threshold -j`'s cap (src/cli/cli_threshold.c)
+
+
+def threshold(scenario: Scenario, engine: str = "dem", lo: Any = None, hi: Any = None,
+              rtol: Optional[float] = None, steps: Optional[int] = None,
+              frequencies: Optional[Sequence[float]] = None, jobs: Optional[int] = None,
+              progress: Any = False) -> Union[Dict[str, Any], List[Dict[str, Any]]]:
     """Minimum overturning amplitude of the scenario's horizontal pulse (rd_threshold, the code
     of `rockdem threshold`). Returns a dict: found, amplitude and below (m/s^2, the final
     bracket), static (g tan alpha, m/s^2), ratio (amplitude / static), w_over_p, runs. With
     frequencies (Hz), a list of such dicts, one per pulse frequency (the minimum-overturning
     curve). jobs: coarse-scan runs at once, each in a forked worker process (default: the
-    number of cores; 1: all in this process); the result does not depend on it."""
-    if frequencies is not None:
-        out = []
-        for f in frequencies:
-            scenario.set("motion.frequency", repr(float(f)))
-            r = threshold(scenario, engine, lo, hi, rtol, steps, jobs=jobs)
-            r["frequency"] = float(f)
-            out.append(r)
-        return out
+    number of cores; 1: all in this process); the result does not depend on it. Every
+    argument is range-checked as `rockdem threshold` checks its options (ValueError,
+    TypeError): lo, hi above 0 up to the pulse amplitude's cap; rtol in [1e-6, 1]; steps 1 to
+    1000; jobs 1 to 256; frequencies within the pulse frequency's range, at most 64. The
+    scenario is not changed (frequencies are set on a copy)."""
+    if not isinstance(scenario, Scenario):
+        raise TypeError("rockdem: threshold expects a Scenario, got %s" % type(scenario).__name__)
+    if engine not in ("dem", "reference"):
+        raise ValueError("rockdem: engine expects 'dem' or 'reference', got %r" % (engine,))
     lib = _lib.lib()
     opts = lib.rd_threshold_opts_default()
-    if lo is not None: opts.lo = float(lo)
-    if hi is not None: opts.hi = float(hi)
-    if rtol is not None: opts.rtol = float(rtol)
-    if steps is not None: opts.nscan = int(steps)
-    if jobs is not None: opts.jobs = int(jobs)
+    if lo is not None: opts.lo = _amplitude_arg("lo", lo)
+    if hi is not None: opts.hi = _amplitude_arg("hi", hi)
+    if rtol is not None:
+        if isinstance(rtol, bool) or not isinstance(rtol, (int, float, np.floating)) \
+                or not RTOL_RANGE[0] <= float(rtol) <= RTOL_RANGE[1]:
+            raise ValueError("rockdem: rtol expects a relative bracket from %g to %g, got %r"
+                             % (RTOL_RANGE + (rtol,)))
+        opts.rtol = float(rtol)
+    if steps is not None: opts.nscan = count_arg("steps", steps, 1, SCAN_MAX)
+    if jobs is not None: opts.jobs = count_arg("jobs", jobs, 1, JOBS_MAX)
+    if frequencies is not None:
+        fs = [float(f) for f in frequencies]
+        flo, fhi = _limit("frequency")
+        if not 1 <= len(fs) <= 64 or not all(flo <= f <= fhi and f > 0 for f in fs):
+            raise ValueError("rockdem: frequencies expects 1 to 64 pulse frequencies in (0, %g] "
+                             "Hz, got %r" % (fhi, frequencies))
+        out = []
+        for f in fs:
+            r = threshold(scenario.copy().set("motion.frequency", repr(f)), engine, lo, hi,
+                          rtol, steps, jobs=jobs, progress=progress)
+            r["frequency"] = f
+            out.append(r)
+        return out
     res, err = _lib.ThresholdResult(), _lib.Error()
     scenario.validate()
     eng = {"dem": 0, "reference": 1}[engine]
-    _check(lib.rd_threshold(scenario._h, eng, ctypes.byref(opts), ctypes.byref(res),
-                            ctypes.byref(err)), err)
+    with _progress(progress), scenario._lock:
+        check(lib.rd_threshold(scenario._h, eng, ctypes.byref(opts), ctypes.byref(res),
+                               ctypes.byref(err)), err)
     return {"found": bool(res.found), "amplitude": res.amplitude, "below": res.below,
             "static": res.static_amp, "ratio": res.amplitude / res.static_amp if res.found else None,
             "w_over_p": res.w_over_p, "runs": res.runs}
 
 
-def program():
+def program() -> str:
     """Path of the rockdem program: $ROCKDEM_BIN, beside this package (pip install), the
     repository's bin/rockdem, or rockdem on PATH."""
     for p in (os.environ.get("ROCKDEM_BIN"), os.path.join(_lib.HERE, "bin", "rockdem"),
@@ -248,8 +163,11 @@ def program():
     raise RockdemError("rockdem: the rockdem program was not found; run `make` or set ROCKDEM_BIN")
 
 
-def sweep(scenario_file, output, axes=None, records=None, scales=None, directions=None,
-          overrides=None, jobs=None, keep_runs=None, quiet=True):
+def sweep(scenario_file: Any, output: Any, axes: Optional[Mapping[str, Sequence[Any]]] = None,
+          records: Optional[Sequence[str]] = None, scales: Optional[Sequence[Any]] = None,
+          directions: Optional[Sequence[float]] = None,
+          overrides: Optional[Mapping[str, Any]] = None, jobs: Optional[int] = None,
+          keep_runs: Any = None, quiet: bool = True) -> Any:
     """A fragility sweep with `rockdem sweep` (the same fork pool, -j workers, resumable table).
     axes: {"motion.seed": [1, 2, 3]}; records, scales, directions: lists; overrides: {key: value}.
     Returns open_sweep(output): an xarray.Dataset over dimension `case`."""
@@ -261,8 +179,8 @@ def sweep(scenario_file, output, axes=None, records=None, scales=None, direction
     for opt, vals in (("--records", records), ("--scales", scales), ("--directions", directions)):
         if vals is not None:
             cmd += [opt, ",".join(str(v) for v in vals)]
-    if jobs:
-        cmd += ["-j", str(int(jobs))]
+    if jobs is not None:
+        cmd += ["-j", str(count_arg("jobs", jobs, 1, JOBS_MAX))]
     if keep_runs:
         cmd += ["--keep-runs", os.fspath(keep_runs)]
     if quiet:
@@ -275,7 +193,7 @@ def sweep(scenario_file, output, axes=None, records=None, scales=None, direction
     return open_sweep(output)
 
 
-def keys():
+def keys() -> List[Dict[str, str]]:
     """Every override key with its units and default, as `rockdem keys` prints them:
     a list of dicts (key, units, default, meaning)."""
     p = subprocess.run([program(), "keys", "--tsv"], stdout=subprocess.PIPE, text=True, check=True)

@@ -7,6 +7,7 @@ install copies it here); build/librockdem.so of the repository this file sits in
 import ctypes
 import ctypes.util
 import os
+from typing import Iterator
 
 RD_NAME_MAX = 64      # include/rockdem/scenario.h
 RD_ERROR_MAX = 512    # include/rockdem/error.h
@@ -80,10 +81,59 @@ class ThresholdResult(ctypes.Structure):  # rd_threshold_result
                 ("w_over_p", ctypes.c_double), ("runs", ctypes.c_int)]
 
 
+class JointSummary(ctypes.Structure):  # rd_joint_summary
+    _fields_ = [("a", ctypes.c_char * RD_NAME_MAX), ("b", ctypes.c_char * RD_NAME_MAX),
+                ("kn", ctypes.c_double), ("ks", ctypes.c_double), ("friction", ctypes.c_double),
+                ("cohesion", ctypes.c_double), ("tension", ctypes.c_double),
+                ("damping", ctypes.c_double), ("closed", ctypes.c_int),
+                ("max_opening", ctypes.c_double), ("max_slip", ctypes.c_double),
+                ("final_slip", ctypes.c_double)]
+
+
+RD_NENERGY = 7  # include/rockdem/observer.h
+ENERGY = ("kinetic", "gravitational", "elastic", "friction", "damping", "ground_work", "residual")
+_DP = ctypes.POINTER(ctypes.c_double)
+
+
+class Sample(ctypes.Structure):  # rd_sample
+    _fields_ = [("time", ctypes.c_double), ("nbodies", ctypes.c_int),
+                ("position", _DP), ("quaternion", _DP), ("velocity", _DP),
+                ("angular_velocity", _DP), ("tilt", _DP), ("rotation", _DP),
+                ("ground_acc", ctypes.c_double * 3), ("ground_vel", ctypes.c_double * 3),
+                ("ground_disp", ctypes.c_double * 3), ("energy", ctypes.c_double * RD_NENERGY)]
+
+
+class BodyInfo(ctypes.Structure):  # rd_body_info
+    _fields_ = [("name", ctypes.c_char_p), ("fixed", ctypes.c_int),
+                ("position", ctypes.c_double * 3), ("quaternion", ctypes.c_double * 4),
+                ("mass", ctypes.c_double), ("inertia", ctypes.c_double * 3),
+                ("size", ctypes.c_double * 3), ("alpha", ctypes.c_double),
+                ("nvert", ctypes.c_int), ("vertices", _DP), ("ntri", ctypes.c_int),
+                ("triangles", ctypes.POINTER(ctypes.c_int)), ("nprec", ctypes.c_int),
+                ("precariousness", _DP)]
+
+
+_E = ctypes.POINTER(Error)
+OBS_BEGIN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, _E)
+OBS_SAMPLE = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
+                              ctypes.POINTER(Sample), _E)
+OBS_EVENT = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
+                             ctypes.POINTER(Event), _E)
+OBS_END = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
+                           ctypes.POINTER(Summary), _E)
+OBS_RELEASE = ctypes.CFUNCTYPE(None, ctypes.c_void_p)
+
+
+class Observer(ctypes.Structure):  # rd_observer
+    _fields_ = [("user", ctypes.c_void_p), ("every", ctypes.c_int), ("begin", OBS_BEGIN),
+                ("sample", OBS_SAMPLE), ("event", OBS_EVENT), ("end", OBS_END),
+                ("release", OBS_RELEASE)]
+
+
 PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_double, ctypes.c_double)
 
 
-def _candidates():
+def _candidates() -> "Iterator[str]":
     env = os.environ.get("ROCKDEM_LIB")
     if env:
         yield env
@@ -112,6 +162,22 @@ def _prototypes(lib):
         "rd_sim_events": (ctypes.POINTER(Event), [P, ctypes.POINTER(I)]),
         "rd_sim_request_stop": (None, []),
         "rd_sim_free": (None, [P]),
+        "rd_sim_stop": (None, [P]),
+        "rd_sim_start": (I, [P]),
+        "rd_sim_advance": (I, [P, ctypes.c_long, D]),
+        "rd_sim_finish": (I, [P]),
+        "rd_sim_time": (D, [P]),
+        "rd_sim_end_time": (D, [P]),
+        "rd_sim_dt": (D, [P]),
+        "rd_sim_add_observer": (I, [P, ctypes.POINTER(Observer), E]),
+        "rd_sim_body_count": (I, [P, ctypes.POINTER(I)]),
+        "rd_sim_body_info": (None, [P, I, ctypes.POINTER(BodyInfo)]),
+        "rd_sim_body_state": (None, [P, I, _DP, _DP, _DP, _DP]),
+        "rd_sim_body_summary": (None, [P, I, ctypes.POINTER(BodySummary)]),
+        "rd_sim_energy": (None, [P, _DP]),
+        "rd_sim_joint_count": (I, [P]),
+        "rd_sim_joint": (None, [P, I, ctypes.POINTER(JointSummary)]),
+        "rd_scenario_limit": (I, [ctypes.c_char_p, ctypes.POINTER(D), ctypes.POINTER(D)]),
         "rd_set_progress": (None, [PROGRESS, P]),
         "rd_threshold_opts_default": (ThresholdOpts, []),
         "rd_threshold": (I, [P, I, ctypes.POINTER(ThresholdOpts),
@@ -126,7 +192,7 @@ def _prototypes(lib):
 _lib = None
 
 
-def lib():
+def lib() -> ctypes.CDLL:
     """The loaded library (loaded once). OSError naming every place looked at if none works."""
     global _lib
     if _lib is None:
