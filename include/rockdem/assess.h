@@ -188,6 +188,10 @@ RD_API int rd_assess_pga_sliding(const rd_assess_body *b, const rd_spectrum *h, 
 /* ---- evidence.c: spectrum-compatible records through the DEM ------------------------------ */
 
 #define RD_EVIDENCE_MAX 32
+/* Periods at which each record is matched and checked: log-spaced over the band, 200 over
+ * 0.05-4 s are 2.2 % apart (at 48, 10 % apart, a record's spectrum dipped to 0.83 of the
+ * target between two of them). */
+#define RD_EVIDENCE_NPERIODS 200
 
 typedef struct rd_evidence_def {
     int nrecords;        /* >= RD_TH_MIN_RECORDS (default 5) */
@@ -197,7 +201,7 @@ typedef struct rd_evidence_def {
     double tmin, tmax;   /* matching band, s (default 0.05 .. 4: EN 1998-1's period range) */
     double lo, hi;       /* each record's 5 % spectrum within [lo, hi] x target in the band
                             (default 0.9 .. 1.3: US NRC SRP 3.7.1 option 1 approach 2) */
-    int iterations;      /* most matching iterations (default 30) */
+    int iterations;      /* most matching iterations (default 60) */
     double kv;           /* vertical record matched to kv x the horizontal spectrum (0: none) */
     char dir[RD_PATH_MAX]; /* where records (CSV) and runs (HDF5) go; "" = nowhere */
 } rd_evidence_def;

@@ -22,8 +22,6 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Matching periods: log-spaced over the band (about 25 a decade over 0.05-4 s). */
-#define MATCH_NPERIODS 48
 /* Seconds of free motion after the record ends (the body comes to rest or keeps rocking). */
 #define EVIDENCE_TAIL 2.0
 /* Seed offset of the vertical records (independent of the horizontal ones). */
@@ -44,7 +42,7 @@ void rd_evidence_defaults(rd_evidence_def *d)
     d->tmax = 4.0;
     d->lo = 0.9;
     d->hi = 1.3;
-    d->iterations = 30;
+    d->iterations = 60;
     d->kv = 2.0 / 3.0;
 }
 
@@ -63,9 +61,9 @@ static double peak_period(const rd_spectrum *h)
 static int make_record(const rd_spectrum *h, const rd_evidence_def *d, unsigned long seed, double kv,
                        const char *path, double *qmin, double *qmax, double *pga, rd_error *err)
 {
-    double T[MATCH_NPERIODS], target[MATCH_NPERIODS];
-    for (int i = 0; i < MATCH_NPERIODS; i++) {
-        T[i] = d->tmin * pow(d->tmax / d->tmin, (double)i / (MATCH_NPERIODS - 1));
+    double T[RD_EVIDENCE_NPERIODS], target[RD_EVIDENCE_NPERIODS];
+    for (int i = 0; i < RD_EVIDENCE_NPERIODS; i++) {
+        T[i] = d->tmin * pow(d->tmax / d->tmin, (double)i / (RD_EVIDENCE_NPERIODS - 1));
         target[i] = kv * rd_spectrum_sa(h, T[i], h->damping);
     }
     rd_stochastic_def sd;
@@ -79,7 +77,7 @@ static int make_record(const rd_spectrum *h, const rd_evidence_def *d, unsigned 
     rd_record r;
     memset(&r, 0, sizeof r);
     if (rd_record_stochastic(&r, &sd, err)) return -1;
-    int rc = rd_record_match(&r, T, target, MATCH_NPERIODS, h->damping, d->iterations, d->lo, d->hi, qmin, qmax,
+    int rc = rd_record_match(&r, T, target, RD_EVIDENCE_NPERIODS, h->damping, d->iterations, d->lo, d->hi, qmin, qmax,
                              err);
     rd_im im;
     rd_im_compute(&r, &im);

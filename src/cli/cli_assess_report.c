@@ -165,8 +165,8 @@ static int write_json(const rd_scenario *sc, int body, const assess_args *a, con
     else {
         const rd_evidence *e = &r->ev;
         fprintf(f, "{\"n\": %d, \"duration\": %g, \"dt\": %g, \"seed\": %lu, \"tmin\": %g, \"tmax\": %g, \"lo\": %g, "
-                "\"hi\": %g, \"sf_slide\": %g, \"sf_rock\": %g, ", e->n, a->ev.duration, a->ev.dt, a->ev.seed,
-                a->ev.tmin, a->ev.tmax, a->ev.lo, a->ev.hi, RD_TH_SF_SLIDE, RD_ASCE43_SF_ROCK);
+                "\"hi\": %g, \"nperiods\": %d, \"sf_slide\": %g, \"sf_rock\": %g, ", e->n, a->ev.duration, a->ev.dt, a->ev.seed,
+                a->ev.tmin, a->ev.tmax, a->ev.lo, a->ev.hi, RD_EVIDENCE_NPERIODS, RD_TH_SF_SLIDE, RD_ASCE43_SF_ROCK);
         jnum(f, "tilt_mean", e->tilt_mean, 1); jnum(f, "tilt_sd", e->tilt_sd, 1);
         jnum(f, "slide_mean", e->slide_mean, 1); jnum(f, "slide_sd", e->slide_sd, 1);
         fprintf(f, "\"rock_ok\": %d, \"slide_ok\": %d, \"records\": [", r->th_rock_ok, r->th_slide_ok);
