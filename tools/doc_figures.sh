@@ -22,3 +22,9 @@ $PY tools/rdfragility.py "$W/sweep.csv" --outcome ever_overturned -o docs/rdfrag
 $PY tools/rdfragility.py docs/pbr_sweep.h5 --where direction=0 --bins 2 -o docs/pbr_fragility.png
 # 4. the study figure from its table (make study reruns the 72 DEM runs)
 $PY tools/study.py --replot docs/study.md
+# 5. docs/ASSESS.md: the shipped cask assessed under EN 1998 type 1, ground A, a_g = 0.6 g
+"$BIN" assess scenarios/cask.dat --ag 0.6g --out "$W/assess" -q > "$W/assess.txt"
+$PY tools/rdassess.py "$W/assess"
+cp "$W/assess/fig_spectrum.png" docs/assess_spectrum.png
+cp "$W/assess/fig_histories.png" docs/assess_histories.png
+cp "$W/assess/fig_margins.png" docs/assess_margins.png

@@ -143,8 +143,11 @@ def fig_histories(a, d, plt):
         peaks.append((tilt.max(), slide.max()))
         ax1.plot(t, tilt, lw=0.6, label="record %d" % (k + 1))
         ax2.plot(t, 1e3 * slide, lw=0.6)
-    ax1.axhline(a["body"]["alpha"] / ev["sf_rock"], color="k", ls=":", lw=0.8, label="alpha / %.0f" % ev["sf_rock"])
-    ax1.set_ylabel("tilt (rad)")
+    limit = a["body"]["alpha"] / ev["sf_rock"]
+    top = max(p[0] for p in peaks)
+    if limit < 5 * top:  # the limit drawn only where it does not flatten the histories
+        ax1.axhline(limit, color="k", ls=":", lw=0.8, label="alpha / %.0f" % ev["sf_rock"])
+    ax1.set_ylabel("tilt (rad); alpha / %.0f = %.3g" % (ev["sf_rock"], limit))
     ax1.legend(fontsize=7)
     ax2.set_ylabel("base slide on the pad (mm)")
     ax2.set_xlabel("time (s)")

@@ -56,6 +56,15 @@ for f in sys.argv[1:]:
     if round(d[0]) != 300: print('FAIL %s at %s dpi' % (f, d)); sys.exit(1)
 print('CHECK figures at 300 dpi')" "$T"/fig_*.png || fail=1
 
+# the Python call runs the same program: the same numbers
+PYTHONPATH=tools $PY -c "
+import json, sys, rockdem
+a = rockdem.assess('scenarios/cask.dat', sys.argv[1] + '_py', ag='0.6g', records=0, report=False)
+b = json.load(open(sys.argv[1] + '/assess.json'))
+ok = a['rocking'] == b['rocking'] and a['static'] == b['static'] and a['sliding'] == b['sliding']
+print('CHECK Python rockdem.assess: the same checks as the program' if ok else 'FAIL Python rockdem.assess differs')
+sys.exit(0 if ok else 1)" "$T" || fail=1
+
 # bad input: one line on stderr, nothing on stdout, exit 2
 printf '0 0.3\n0.5 x\n' > "$T/bad_table.txt"
 bad() {

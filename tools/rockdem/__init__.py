@@ -9,6 +9,7 @@
     ds = run.dataset()                                      # xarray.Dataset with named dims
     rockdem.threshold(sc, engine="dem")                     # minimum overturning amplitude
     rockdem.sweep("scenarios/pbr_fragility.dat", scales=["0.2g", "0.4g"], jobs=2, output="t.h5")
+    rockdem.assess("scenarios/cask.dat", "cask_assess", ag="0.6g")  # code checks + report
 
 Scenario, run and threshold call the library in this process; sweep runs `rockdem sweep` (its
 fork pool of workers, resumable table) and returns the table. Units: SI throughout, as in the
@@ -31,7 +32,7 @@ from .results import Run, open_run, open_sweep
 
 __version__ = "0.1.0"
 __all__ = ["Scenario", "Scene", "Run", "RockdemError", "open_run", "open_sweep", "threshold",
-           "sweep", "keys", "program"]
+           "sweep", "assess", "keys", "program"]
 
 
 class RockdemError(RuntimeError):
@@ -273,6 +274,41 @@ def sweep(scenario_file, output, axes=None, records=None, scales=None, direction
         raise RockdemError((p.stderr.strip() or p.stdout.strip() or "rockdem sweep failed")
                            .splitlines()[-1])
     return open_sweep(output)
+
+
+def assess(scenario_file, out, ag=None, spectrum=None, overrides=None, report=True, **options):
+    """The seismic assessment of the scene's body on its pad with `rockdem assess` (docs/ASSESS.md):
+    static code checks, ASCE 43-05 A.1/A.2, allowable PGAs and matched-record DEM runs, written
+    into folder `out`. ag: EN 1998 a_g ("0.3g" or m/s^2); spectrum: "en1998-1A" (default) or
+    a table file; options: any other option by name, e.g. records=5, mu=0.6, slide_limit=1.0,
+    vertical=0.667, code="en1998,kta", body="cask" (True for a flag: neglect_vertical=True).
+    report=True also writes out/report.md and its figures (tools/rdassess.py). Returns the
+    parsed out/assess.json."""
+    import json
+    cmd = [program(), "assess", os.fspath(scenario_file), "--out", os.fspath(out), "-q"]
+    if ag is not None:
+        cmd += ["--ag", str(ag)]
+    if spectrum is not None:
+        cmd += ["--spectrum", os.fspath(spectrum)]
+    for k, v in (overrides or {}).items():
+        cmd += ["--set", "%s=%s" % (k, v)]
+    for k, v in options.items():
+        opt = "--" + k.replace("_", "-")
+        if v is True:
+            cmd.append(opt)
+        elif v is not False and v is not None:
+            cmd += [opt, str(v)]
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        raise RockdemError((p.stderr.strip() or p.stdout.strip() or "rockdem assess failed").splitlines()[-1])
+    if report:
+        tool = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rdassess.py")
+        r = subprocess.run([sys.executable, tool, os.fspath(out)], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+        if r.returncode != 0:
+            raise RockdemError((r.stderr.strip() or "rdassess failed").splitlines()[-1])
+    with open(os.path.join(os.fspath(out), "assess.json")) as f:
+        return json.load(f)
 
 
 def keys():
