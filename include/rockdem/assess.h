@@ -58,8 +58,9 @@ RD_API double rd_spectrum_eta(double zeta);
 /* Spectral acceleration (m/s^2) at period T (s, >= 0) and damping ratio zeta: EN's
  * eqs. (3.2)-(3.5) with eta(zeta) (beyond 4 s the 1/T^2 branch (3.5) continues); a table is
  * interpolated linearly in period, held at constant spectral displacement beyond its last
- * period, and corrected from its damping by eta(zeta) / eta(damping) away from T = 0 (the PGA
- * does not depend on damping: EN's (3.2) at T = 0). */
+ * period, and corrected from its damping by eta(zeta) / eta(damping), blended in linearly over
+ * its first interval as EN's (3.2) does up to TB (the PGA at T = 0 does not depend on damping).
+ * Every value is times s->scale. */
 RD_API double rd_spectrum_sa(const rd_spectrum *s, double T, double zeta);
 
 /* Peak ground acceleration the spectrum implies (Sa at T = 0; EN: a_g S), m/s^2. */

@@ -92,7 +92,7 @@ int rd_spectrum_read(rd_spectrum *s, const char *path, double damping, rd_error 
     FILE *f = fopen(path, "r");
     if (!f)
         return rd_error_set(err, "%s: cannot open the spectrum table: %s", path, strerror(errno));
-    static double T[RD_SPECTRUM_MAX], sa[RD_SPECTRUM_MAX];
+    double T[RD_SPECTRUM_MAX], sa[RD_SPECTRUM_MAX];
     char line[512];
     int n = 0, lineno = 0, rc = 0;
     while (rc == 0 && fgets(line, sizeof line, f)) {

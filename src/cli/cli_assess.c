@@ -191,13 +191,13 @@ static int make_body(const rd_scenario *sc, int k, double mu, rd_assess_body *ab
     return -1;
 }
 
-/* Distance the body may slide before its base reaches the pad's edge along x, m (-1: unknown). */
+/* Distance the body may slide before its base reaches the pad's edge along x, m (0: it
+ * overhangs; -1: unknown, the support is no brick). */
 static double pad_gap(const rd_scenario *sc, int body, int support, double half_width)
 {
     if (support < 0 || sc->bodies[support].shape != RD_SHAPE_BRICK) return -1.0;
     const rd_body_def *p = &sc->bodies[support], *b = &sc->bodies[body];
-    double x = b->seat_on[0] ? b->position[0] : b->position[0];
-    return 0.5 * p->size[0] - fabs(x - p->position[0]) - half_width;
+    return fmax(0.5 * p->size[0] - fabs(b->position[0] - p->position[0]) - half_width, 0.0);
 }
 
 static int mkdir_p(const char *dir)
@@ -232,8 +232,8 @@ int rd_cli_assess(int argc, char **argv)
                                         : sc.contact.friction;
     if (make_body(&sc, body, a.mu >= 0 ? a.mu : tan(phi_mu), &ab, &half)) goto done;
     if (a.limit < 0 && (a.limit = pad_gap(&sc, body, support, half)) <= 0) {
-        fprintf(stderr, "%s: assess: no allowable sliding distance: give --slide-limit (m); the pad's edge %s\n",
-                sc.file, a.limit < 0 && a.limit != -1 ? "is under the body" : "is not known (no brick pad)");
+        fprintf(stderr, "%s: assess: no allowable sliding distance: give --slide-limit (m); %s\n", sc.file,
+                a.limit < 0 ? "the pad's edge is not known (its support is no brick)" : "the body overhangs its pad");
         goto done;
     }
     if (!a.out[0]) {
