@@ -17,7 +17,7 @@
 
 /* ---- spectrum.c: horizontal elastic response spectra ------------------------------------- */
 
-#define RD_SPECTRUM_MAX 256 /* points of a tabulated spectrum */
+#define RD_SPECTRUM_MAX 1024 /* points of a tabulated spectrum */
 
 typedef enum rd_spectrum_kind {
     RD_SPECTRUM_EN1998 = 0, /* EN 1998-1:2004 3.2.2.2, eqs. (3.2)-(3.5), Tables 3.2 / 3.3 */

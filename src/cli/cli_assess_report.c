@@ -35,6 +35,19 @@ static void jnum(FILE *f, const char *key, double x, int comma)
     else fprintf(f, "\"%s\": null%s", key, comma ? ", " : "");
 }
 
+/* A JSON string: quotes, backslashes and control characters escaped. */
+static void jstr(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
+        else if (c < 0x20) fprintf(f, "\\u%04x", c);
+        else fputc(c, f);
+    }
+    fputc('"', f);
+}
+
 static const char *verdict(double margin)
 {
     return margin >= 1.0 ? "pass" : "FAIL";
@@ -100,7 +113,7 @@ static void json_spectrum(FILE *f, const assess_args *a, const rd_spectrum *h, c
     if (h->kind == RD_SPECTRUM_EN1998)
         fprintf(f, "\"type\": %d, \"ground\": \"%c\", \"ag\": %.10g, \"S\": %g, \"TB\": %g, \"TC\": %g, \"TD\": %g, ",
                 h->type, h->ground, h->ag, h->S, h->TB, h->TC, h->TD);
-    else fprintf(f, "\"file\": \"%s\", ", a->spectrum);
+    else { fprintf(f, "\"file\": "); jstr(f, a->spectrum); fprintf(f, ", "); }
     jnum(f, "damping", h->damping, 1);
     fprintf(f, "\"T\": [");
     for (int i = 0; i < CURVE_N; i++)
@@ -123,10 +136,13 @@ static int write_json(const rd_scenario *sc, int body, const assess_args *a, con
     snprintf(path, sizeof path, "%s/assess.json", a->out);
     FILE *f = fopen(path, "w");
     if (!f) { fprintf(stderr, "rockdem: assess: cannot write %s\n", path); return -1; }
-    fprintf(f, "{\"scene\": \"%s\", \"title\": \"%s\", \"version\": \"%s\", \"g\": %.10g,\n", sc->file, sc->title,
-            RD_VERSION, r->g);
-    fprintf(f, "\"body\": {\"name\": \"%s\", \"shape\": \"%s\", ", sc->bodies[body].name,
-            sc->bodies[body].shape == RD_SHAPE_BRICK ? "brick" : "prism");
+    fprintf(f, "{\"scene\": ");
+    jstr(f, sc->file);
+    fprintf(f, ", \"title\": ");
+    jstr(f, sc->title);
+    fprintf(f, ", \"version\": \"%s\", \"g\": %.10g,\n\"body\": {\"name\": ", RD_VERSION, r->g);
+    jstr(f, sc->bodies[body].name);
+    fprintf(f, ", \"shape\": \"%s\", ", sc->bodies[body].shape == RD_SHAPE_BRICK ? "brick" : "prism");
     jnum(f, "b", ab->b, 1); jnum(f, "h", ab->h, 1); jnum(f, "mass", ab->mass, 1); jnum(f, "inertia", ab->inertia, 1);
     jnum(f, "alpha", rd_assess_alpha(ab), 1); jnum(f, "restitution", rd_assess_restitution(ab), 1);
     jnum(f, "mu", ab->mu, 1); jnum(f, "friction_angle", phi_scene, 0);
