@@ -2,7 +2,7 @@
 # Install the Debian 12 packages rockdem needs, only those that are missing. Needs root (or sudo).
 set -eu
 pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmocka-dev libqhull-dev hdf5-tools
-      python3-h5py python3-numpy python3-scipy python3-matplotlib python3-statsmodels
+      python3-h5py python3-numpy python3-scipy python3-matplotlib python3-pil python3-statsmodels
       python3-xarray python3-h5netcdf python3-venv python3-pip python3-setuptools
       python3-wheel python3-build python3-pytest python3-pandas
       hdf5-filter-plugin-blosc-serial

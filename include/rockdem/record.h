@@ -143,4 +143,15 @@ RD_API void rd_stochastic_defaults(rd_stochastic_def *def);
  * same definition gives the same record bit for bit. Not baseline-corrected. */
 RD_API int rd_record_stochastic(rd_record *r, const rd_stochastic_def *def, rd_error *err);
 
+/* --- match.c: spectral matching ------------------------------------------------------------ */
+
+/* Match r to target pseudo-spectral accelerations target[i] (m/s^2) at increasing periods
+ * periods[i] (s, n >= 2) and damping zeta by the Gasparini-Vanmarcke Fourier iteration (at
+ * most `iterations` corrections, each followed by a degree-4 baseline correction). On return
+ * *qmin, *qmax hold the least and largest ratio target / Sa of the record as it is. 0 when
+ * every Sa / target lies in [lo, hi] (0 < lo <= 1 <= hi), 1 when the iterations ran out first
+ * (r holds the last iterate), -1 with err. */
+RD_API int rd_record_match(rd_record *r, const double *periods, const double *target, size_t n, double zeta,
+                           int iterations, double lo, double hi, double *qmin, double *qmax, rd_error *err);
+
 #endif

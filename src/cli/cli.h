@@ -40,6 +40,7 @@ int rd_cli_threshold(int argc, char **argv);   /* rockdem threshold SCENARIO ...
 int rd_cli_restitution(int argc, char **argv); /* rockdem restitution SCENARIO ... */
 int rd_cli_study(int argc, char **argv);       /* rockdem study SCENARIO ... */
 int rd_cli_sweep(int argc, char **argv);       /* rockdem sweep SCENARIO ... (cli_sweep.c) */
+int rd_cli_assess(int argc, char **argv);     /* rockdem assess SCENARIO ... (cli_assess.c) */
 int rd_cli_check(rd_scenario *sc, int quiet);  /* rockdem check: report and warnings (cli_check.c) */
 
 /* -q given (rd_cli_scenario takes it for every subcommand): no progress line, shorter output. */

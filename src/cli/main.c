@@ -210,6 +210,7 @@ int main(int argc, char **argv)
     if (argc >= 3 && !strcmp(argv[1], "restitution")) return rd_cli_restitution(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "study")) return rd_cli_study(argc, argv);
     if (argc >= 3 && !strcmp(argv[1], "sweep")) return rd_cli_sweep(argc, argv);
+    if (argc >= 3 && !strcmp(argv[1], "assess")) return rd_cli_assess(argc, argv);
     if (argc == 1) { /* no subcommand: the usage */
         rd_cli_help(NULL, stderr);
         return 2;

@@ -18,6 +18,7 @@ declare -A allowed=(
     [io]="base records engine"
     [reference]="base records io"
     [ensembles]="base records scenario engine reference io"
+    [assess]="base records scenario engine io"
 )
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 # a folder's objects: those of its sources now (a stale object of a moved file is no edge)

@@ -12,6 +12,7 @@
     sim.run_until(1.0); sim.bodies["rock"].position; run = sim.run()
     rockdem.threshold(sc, engine="dem")                     # minimum overturning amplitude
     rockdem.sweep("scenarios/pbr_fragility.dat", scales=["0.2g", "0.4g"], jobs=2, output="t.h5")
+    rockdem.assess("scenarios/cask.dat", "cask_assess", ag="0.6g")  # code checks + report
 
 Scenario, Simulation and threshold call the library in this process; sweep runs `rockdem
 sweep` (its fork pool of workers, resumable table) and returns the table. Scenarios copy and
@@ -39,8 +40,8 @@ from .simulation import Body, Joint, Simulation, _Bar, count_arg
 
 __version__ = "0.1.0"
 __all__ = ["Scenario", "Scene", "Simulation", "Body", "Joint", "Run", "RockdemError",
-           "open_run", "open_sweep", "event_table", "threshold", "sweep", "keys", "program",
-           "STATUS"]
+           "open_run", "open_sweep", "event_table", "threshold", "sweep", "assess", "keys",
+           "program", "STATUS"]
 
 
 class _progress:
@@ -191,6 +192,44 @@ def sweep(scenario_file: Any, output: Any, axes: Optional[Mapping[str, Sequence[
         raise RockdemError((p.stderr.strip() or p.stdout.strip() or "rockdem sweep failed")
                            .splitlines()[-1])
     return open_sweep(output)
+
+
+def assess(scenario_file: Any, out: Any, ag: Any = None, spectrum: Any = None,
+           overrides: Optional[Mapping[str, Any]] = None, report: bool = True,
+           **options: Any) -> Dict[str, Any]:
+    """The seismic assessment of the scene's body on its pad with `rockdem assess` (docs/ASSESS.md):
+    static code checks, ASCE 43-05 A.1/A.2, allowable PGAs and matched-record DEM runs, written
+    into folder `out`. ag: EN 1998 a_g ("0.3g", or a number in m/s^2); spectrum: "en1998-1A"
+    (default) or a table file; options: any other option by name, e.g. records=5, mu=0.6,
+    slide_limit=1.0 (m), vertical=0.667, code="en1998,kta", body="cask" (True for a flag:
+    neglect_vertical=True). report=True also writes out/report.md and its figures
+    (tools/rdassess.py, where the repository is there). Returns the parsed out/assess.json."""
+    import json
+    cmd = [program(), "assess", os.fspath(scenario_file), "--out", os.fspath(out), "-q"]
+    if ag is not None:
+        cmd += ["--ag", str(ag)]
+    if spectrum is not None:
+        cmd += ["--spectrum", os.fspath(spectrum)]
+    for k, v in (overrides or {}).items():
+        cmd += ["--set", "%s=%s" % (k, v)]
+    for k, v in options.items():
+        opt = "--" + k.replace("_", "-")
+        if v is True:
+            cmd.append(opt)
+        elif v is not False and v is not None:
+            cmd += [opt, str(v)]
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        raise RockdemError((p.stderr.strip() or p.stdout.strip() or "rockdem assess failed")
+                           .splitlines()[-1])
+    if report:
+        tool = os.path.join(_lib.REPO, "tools", "rdassess.py")
+        r = subprocess.run([sys.executable, tool, os.fspath(out)], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+        if r.returncode != 0:
+            raise RockdemError((r.stderr.strip() or "rdassess failed").splitlines()[-1])
+    with open(os.path.join(os.fspath(out), "assess.json")) as f:
+        return json.load(f)
 
 
 def keys() -> List[Dict[str, str]]:
