@@ -5,7 +5,10 @@ with its 10/50/95 % contours, (3) a lognormal fragility in PGA (median, beta) by
 likelihood with 95 % bands (Fisher information, or --bootstrap N), (4) accuracy, precision,
 recall and F1 of the simulated outcome against an observed column (seed 002 Table 4).
 Inputs: the CSV of rdtable.py --csv, a sweep HDF5 (/sweep with fields pga, pgv, overturned), or
-rockdem run files; SI units in (m/s^2, m/s)."""
+rockdem run files; SI units in (m/s^2, m/s).
+Subcommands: `rdfragility planes` (intensity planes per direction, rose, modes, normalised axes),
+`rdfragility select` (records from a flatfile), `rdfragility calibrate` (fit contact parameters
+to observed outcomes); each has --help."""
 import json
 import math
 import os
@@ -21,7 +24,14 @@ def num(v):
     return None if v is None or (isinstance(v, float) and not math.isfinite(v)) else v
 
 
+SUBCOMMANDS = ("planes", "select", "calibrate")
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] in SUBCOMMANDS:
+        import importlib
+        mod = importlib.import_module("rdtools.%s_cli" % sys.argv[1])
+        return mod.main(sys.argv[2:])
     p = cli.Parser(prog="rdfragility", description=cli.describe(__doc__))
     p.add_argument("inputs", nargs="+", metavar="TABLE.csv|SWEEP.h5|RUN.h5")
     p.add_argument("-o", "--output", metavar="OUT.png", help="figure: surface with contours, "
