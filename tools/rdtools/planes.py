@@ -98,6 +98,29 @@ def level_groups(values, rtol=1e-9):
     return idx
 
 
+def row_levels(rows):
+    """The scale level of each row (fraginput.load rows): the sweep's own scale index where all
+    rows come from one sweep table with a scale axis; else equal `scale` values (1e-9
+    relative); else equal PGA values (1e-9 relative)."""
+    srcs = sorted({r["source"] for r in rows})
+    cols = [r.get("cols", {}) for r in rows]
+    if (len(srcs) == 1 and srcs[0].lower().endswith((".h5", ".hdf5")) and
+            all("case" in c and "scale" in c for c in cols)):
+        f = open_h5(srcs[0], "sweep table")
+        try:
+            level = scale_index([c["case"] for c in cols], as_str(f.attrs.get("axes", "")))
+        finally:
+            f.close()
+        if level is not None:
+            return np.asarray(level, int)
+    if all("scale" in c for c in cols):
+        try:
+            return level_groups([float(c["scale"]) for c in cols])
+        except (TypeError, ValueError):
+            pass
+    return level_groups([r["pga"] for r in rows])
+
+
 def table(paths, where=None, outcome="overturned"):
     """All 1-D columns of the rows (sweep tables, rdtable CSVs) as numpy arrays, plus
     'overturned' (0/1 outcome), 'level' (the scale index: the sweep's own where it has a scale
@@ -120,17 +143,7 @@ def table(paths, where=None, outcome="overturned"):
     t["overturned"] = np.array([r["overturned"] for r in rows], float)
     if "pgv_pga" not in t:
         t["pgv_pga"] = t["pgv"] / t["pga"]
-    level = None
-    srcs = sorted({r["source"] for r in rows})
-    if "case" in t and "scale" in t and len(srcs) == 1 and srcs[0].lower().endswith((".h5", ".hdf5")):
-        f = open_h5(srcs[0], "sweep table")
-        try:
-            level = scale_index(t["case"], as_str(f.attrs.get("axes", "")))
-        finally:
-            f.close()
-    if level is None:
-        level = level_groups(t["scale"] if "scale" in t else t["pga"])
-    t["level"] = np.asarray(level, int)
+    t["level"] = row_levels(rows)
     base = t["scale"] if "scale" in t else t["pga"]
     t["level_value"] = np.array([base[t["level"] == i][0] if (t["level"] == i).any() else np.nan
                                  for i in range(t["level"].max() + 1)])
