@@ -3,7 +3,7 @@
 set -eu
 pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmocka-dev libqhull-dev hdf5-tools
       python3-h5py python3-numpy python3-scipy python3-matplotlib python3-statsmodels
-      python3-xarray python3-h5netcdf python3-venv python3-pip python3-setuptools
+      python3-xarray python3-h5netcdf python3-pil python3-venv python3-pip python3-setuptools
       hdf5-filter-plugin-blosc-serial
       libopenmpi-dev openmpi-bin"  # BLOSC: FEMA P695 sets (src/record_fema.c); MPI: make mpi
 missing=""
