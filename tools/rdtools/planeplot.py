@@ -8,6 +8,8 @@ legends and colour bars outside the data; each figure written as a 300 dpi PNG a
   rose_figure     the median capacity (PGA, and PGA / (g tan alpha) where the geometry is
                   known) against the shaking direction, with 95 % intervals
   modes_figure    P(mode | PGA level) for the six response modes, with 95 % intervals"""
+import textwrap
+
 import numpy as np
 
 from . import planes as P
@@ -37,6 +39,13 @@ def save(fig, prefix):
     return out
 
 
+def caption(fig, text, width_in):
+    """A caption under the axes, wrapped to the figure's width (about 17 characters per inch
+    at 6.5 pt)."""
+    fig.text(0.01, 0.0, "\n".join(textwrap.wrap(text, int(17 * width_in))), fontsize=6.5,
+             ha="left", va="top", transform=fig.transFigure)
+
+
 def label(name, scale_g=False):
     sym, unit, _ = P.IMS[name]
     if scale_g and name == "pga":
@@ -59,8 +68,11 @@ def planes_figure(res, pair, prefix, g_units=True, ncols=4):
     ng = len(per)
     nc = min(ncols, ng)
     nr = int(np.ceil(ng / nc))
-    fig, axs = plt.subplots(nr, nc, figsize=(WIDTH_IN, 1.95 * nr + 0.9), squeeze=False,
+    width = min(WIDTH_IN, 1.55 * nc + 1.3)
+    fig, axs = plt.subplots(nr, nc, figsize=(width, 1.7 * nr + 0.6), squeeze=False,
                             sharex=True, sharey=True)
+    fig.subplots_adjust(left=0.1 if nc > 2 else 0.17, right=0.86, bottom=0.12 / nr ** 0.5 + 0.08,
+                        top=1 - 0.16 / nr, wspace=0.08, hspace=0.3)
     cmap = plt.get_cmap("viridis")
     norm = Normalize(0, 1)
     sx = P.G if (g_units and x == "pga") else 1.0
@@ -87,6 +99,9 @@ def planes_figure(res, pair, prefix, g_units=True, ncols=4):
                 ax.contour(X, Y, Z, levels=[q], colors="#ff7f00", linestyles=ls, linewidths=1.1)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        from matplotlib.ticker import FuncFormatter
+        for axis in (ax.xaxis, ax.yaxis):
+            axis.set_major_formatter(FuncFormatter(lambda v, _: "%g" % v))
         ax.set_xlim(xe[0], xe[-1])
         ax.set_ylim(ye[0], ye[-1])
         t = _direction_title(d["group"], res["by"])
@@ -102,17 +117,19 @@ def planes_figure(res, pair, prefix, g_units=True, ncols=4):
     for j in range(ng, nr * nc):
         axs[j // nc][j % nc].set_visible(False)
     sm = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
-    cb = fig.colorbar(sm, ax=axs, location="right", shrink=0.8, pad=0.02)
+    cax = fig.add_axes([0.88, fig.subplotpars.bottom, 0.018, fig.subplotpars.top - fig.subplotpars.bottom])
+    cb = fig.colorbar(sm, cax=cax)
     cb.set_label("P(overturning) = k/n in the cell")
     for q, ls in CONTOURS:
         axs[0][0].plot([], [], color="#ff7f00", ls=ls, lw=1.1, label="fitted P = %d %%" % (100 * q))
-    fig.legend(*axs[0][0].get_legend_handles_labels(), loc="lower center", ncol=3, frameon=False,
-               bbox_to_anchor=(0.45, -0.06))
+    if any(d["fit"] is not None for d in per):
+        fig.legend(*axs[0][0].get_legend_handles_labels(), loc="lower center", ncol=3, frameon=False,
+                   bbox_to_anchor=(0.5, 1 - 0.1 / nr))
     sym = "; ".join("%s: %s" % (P.IMS[v][0], P.IMS[v][2]) for v in (x, y))
-    fig.text(0.0, -0.1, "Cells: k of n runs overturned (colour k/n); x by the sweep's PGA level "
-             "where x is the scaled PGA. Surface: logit P = c0 + c1 ln x + c2 ln y "
-             "(Firth's penalised likelihood where the outcomes separate); the 50 %% line is the "
-             "median-capacity curve. %s." % sym, fontsize=6.5, wrap=True, ha="left", va="top")
+    caption(fig, "Cells: k of n runs overturned (colour k/n); x by the sweep's PGA level where x "
+            "is the scaled PGA. Lines: the fitted surface logit P = c0 + c1 ln x + c2 ln y (Firth's "
+            "penalised likelihood where the outcomes separate); its 50 %% line is the "
+            "median-capacity curve. %s." % sym, width)
     out = save(fig, prefix)
     plt.close(fig)
     return out
@@ -125,7 +142,8 @@ def rose_figure(res, prefix, g_units=True):
                P.G if g_units else 1.0)]
     if res.get("rose_n"):
         panels.append(("rose_n", "median PGA/(g tan α) capacity", 1.0))
-    fig = plt.figure(figsize=(WIDTH_IN if len(panels) > 1 else 3.6, 3.4))
+    fig = plt.figure(figsize=(WIDTH_IN if len(panels) > 1 else 3.6, 3.6))
+    fig.subplots_adjust(wspace=0.55)
     for i, (key, lab, s) in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), i + 1, projection="polar")
         ax.set_theta_zero_location("E")
@@ -156,7 +174,11 @@ def rose_figure(res, prefix, g_units=True):
             ax.plot([a], [r], marker="^" if c["bound"] == "above" else "v", color="k", ms=5, ls="none")
         if bnd:
             ax.plot([], [], marker="^", color="k", ls="none", label="bound: no run (▲) / every run (▼) fell")
-        ax.set_title(lab, pad=12)
+        from matplotlib.ticker import MaxNLocator
+        ax.yaxis.set_major_locator(MaxNLocator(4))
+        ax.set_rlabel_position(112.5)
+        ax.tick_params(axis="y", labelsize=6.5)
+        ax.set_title(lab, pad=14)
         ax.set_xlabel("shaking direction θ (deg, counter-clockwise from +x)", labelpad=8)
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.18), frameon=False)
     out = save(fig, prefix)
