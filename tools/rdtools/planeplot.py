@@ -96,12 +96,15 @@ def planes_figure(res, pair, prefix, g_units=True, ncols=4):
             X, Y = np.meshgrid(xs, ys)
             Z = P.surface_prob(d["fit"], X * sx, Y * sy)
             for q, ls in CONTOURS:
-                ax.contour(X, Y, Z, levels=[q], colors="#ff7f00", linestyles=ls, linewidths=1.1)
+                if Z.min() < q < Z.max():  # a level outside the panel draws nothing
+                    ax.contour(X, Y, Z, levels=[q], colors="#ff7f00", linestyles=ls, linewidths=1.1)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        from matplotlib.ticker import FuncFormatter
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
         for axis in (ax.xaxis, ax.yaxis):
+            axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
             axis.set_major_formatter(FuncFormatter(lambda v, _: "%g" % v))
+            axis.set_minor_formatter(NullFormatter())
         ax.set_xlim(xe[0], xe[-1])
         ax.set_ylim(ye[0], ye[-1])
         t = _direction_title(d["group"], res["by"])
@@ -201,6 +204,10 @@ def modes_figure(res, prefix, g_units=True):
         ax.errorbar(x * off, md["p"][i], yerr=err, color=MODE_COLOURS[m], marker="o", ms=3.5,
                     lw=1.1, capsize=2, label=m)
     ax.set_xscale("log")
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+    ax.xaxis.set_major_locator(FixedLocator(x))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: "%.3g" % v))
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_ylim(-0.03, 1.03)
     ax.set_xlabel("PGA level (%s)" % ("g" if g_units else "m/s²"))
     ax.set_ylabel("P(mode), fraction of runs")

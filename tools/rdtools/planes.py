@@ -182,30 +182,30 @@ def _bin_of(v, edges):
 
 
 def binned(t, x, y, outcome="overturned", nx=6, ny=6, mask=None):
-    """Cells over (x, y). x grouped by the scale index when x is the measure the sweep scaled
-    (pga for --scales ...g) and the rows hold several levels; else both binned in equal-count
-    log bins. Returns dict: xedges, yedges (bin edges; for x by level, geometric midpoints
-    between the levels' median values), n, k, p, lo, hi [nx][ny], x_by_level (bool)."""
+    """Cells over (x, y) for the rows in mask (default all). The edges come from all rows, so the
+    panels of one plane (one per direction) share their cells. x is grouped by the scale index
+    when x is the measure the sweep scaled (pga for --scales ...g) and the rows hold several
+    levels; else both are binned in equal-count log bins. Returns dict: xedges, yedges (bin
+    edges; for x by level, geometric midpoints between the levels' median values), n, k, p, lo,
+    hi [nx][ny], x_by_level (bool)."""
     m = np.ones(len(t["pga"]), bool) if mask is None else np.asarray(mask, bool)
-    xv, yv, o = t[x][m], t[y][m], np.asarray(t[outcome], float)[m]
-    by_level = x == "pga" and "level" in t and len(np.unique(t["level"][m])) > 1
+    xa, ya = np.asarray(t[x], float), np.asarray(t[y], float)
+    o = np.asarray(t[outcome], float)
+    by_level = x == "pga" and "level" in t and len(np.unique(t["level"])) > 1
     if by_level:
-        lv = t["level"][m]
-        levels = np.unique(lv)
-        centre = np.array([np.median(xv[lv == L]) for L in levels])
+        levels = np.unique(t["level"])
+        centre = np.array([np.median(xa[t["level"] == L]) for L in levels])
         mid = np.sqrt(centre[1:] * centre[:-1])
-        first = centre[0] ** 2 / mid[0] if len(mid) else centre[0] * 0.9
-        last = centre[-1] ** 2 / mid[-1] if len(mid) else centre[-1] * 1.1
-        xe = np.concatenate([[first], mid, [last]])
-        xi = np.searchsorted(levels, lv)
+        xe = np.concatenate([[centre[0] ** 2 / mid[0]], mid, [centre[-1] ** 2 / mid[-1]]])
+        xi = np.searchsorted(levels, t["level"])
     else:
-        xe = log_edges(xv, nx)
-        xi = _bin_of(xv, xe)
-    ye = log_edges(yv, ny)
-    yi = _bin_of(yv, ye)
+        xe = log_edges(xa, nx)
+        xi = _bin_of(xa, xe)
+    ye = log_edges(ya, ny)
+    yi = _bin_of(ya, ye)
     n = np.zeros((len(xe) - 1, len(ye) - 1))
     k = np.zeros_like(n)
-    ok = (xi >= 0) & (yi >= 0)
+    ok = m & (xi >= 0) & (yi >= 0)
     np.add.at(n, (xi[ok], yi[ok]), 1)
     np.add.at(k, (xi[ok], yi[ok]), o[ok])
     lo, hi = interval(k, n)
