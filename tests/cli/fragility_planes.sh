@@ -158,6 +158,13 @@ for f in ("fig_pga_pgv", "fig_pga_sa_1", "fig_rose", "fig_modes"):
 r = json.load(open(T + "/planes.json"))
 assert r["n"] == 8 and set(r["planes"]) == {"pga:pgv", "pga:sa_1"}
 assert set(r["rose"]) == {"0.0", "45.0"}
+sys.path.insert(0, "tools")
+from rdtools import planes as P  # the one Python call gives what the command wrote
+res = P.fragility([T + "/b.h5"], pairs=[("pga", "pgv")], geometry_run=T + "/brick_run.h5",
+                  output=T + "/api")
+assert {k: v["median"] for k, v in res["rose"].items() if v and "median" in v} == \
+       {float(k): v["median"] for k, v in r["rose"].items() if v and "median" in v}
+assert len(res["files"]) == 6
 print("planes command ok")
 PY
 

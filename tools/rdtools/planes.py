@@ -18,7 +18,8 @@ seed 002: PGA x PGV/PGA) and Purvance's normalised axes, from a `rockdem sweep` 
   normalised(t, geo)             PGA / (g tan alpha(theta)) and p(theta) PGV/PGA per row
   modes(t, ...)                  P(mode | scale level) with intervals
 
-analyse(...) runs them all and returns one dict (what `rdfragility planes` prints and plots)."""
+analyse(...) runs them all and returns one dict (what `rdfragility planes` prints and plots);
+fragility(paths, pairs, ..., output=PREFIX) is the one call from files to results and figures."""
 import math
 import re
 
@@ -390,4 +391,31 @@ def analyse(t, pairs, by="direction", outcome="overturned", nx=6, ny=6, method="
         if "pga_n" in t:
             res["rose_n"] = rose(t, "pga_n", by, outcome, method)
     res["modes"] = modes(t)
+    return res
+
+
+def fragility(paths, pairs=(("pga", "pgv"),), by="direction", geometry_run=None, body=None,
+              where=None, outcome="overturned", nx=6, ny=5, method="auto", output=None):
+    """The one call: table, normalised axes (geometry_run: a rockdem run file of the scene),
+    analyse(), and with output=PREFIX the figures (PNG 300 dpi + PDF). Pairs are names as
+    im_name takes them ('pga', 'duration', 'pga_n', ...). Returns analyse()'s dict (+ 'files')."""
+    t = table(list(paths), where, outcome)
+    if geometry_run:
+        normalised(t, geometry(geometry_run, body))
+    pairs = [(im_name(a), im_name(b)) for a, b in pairs]
+    for x, y in pairs:
+        for c in (x, y):
+            if c not in t:
+                raise RDError("the input has no column '%s'" % c)
+    res = analyse(t, pairs, by if by in t else None, outcome, nx, ny, method)
+    if output:
+        from . import planeplot as PP
+        files = []
+        for key in res["planes"]:
+            files += PP.planes_figure(res, key, "%s_%s" % (output, key.replace(":", "_")))
+        if "rose" in res:
+            files += PP.rose_figure(res, output + "_rose")
+        if res["modes"] is not None:
+            files += PP.modes_figure(res, output + "_modes")
+        res["files"] = files
     return res
