@@ -6,7 +6,7 @@ import json
 import os
 import sys
 
-from . import cli, RDError
+from . import cli
 from . import calibrate as C
 
 

@@ -6,7 +6,7 @@ PGA from all runs — the lognormal (probit GLM) with its 95 % band, or, when th
 separated by PGA, Firth's logistic in ln PGA with its Wald band — and the fraction overturned
 per PGA level (the sweep's own scale index) with Wilson 95 % intervals (statsmodels)."""
 import numpy as np
-from scipy import special, stats
+from scipy import special
 
 from . import fragility as F
 

@@ -140,13 +140,14 @@ def main(argv):
 
 
 def _cap_text(c, s, u):
+    """One line for a direction's capacity (s: divisor of the PGA unit, u: its name)."""
     if c is None:
         return "no runs"
-    if "median" not in c:
-        return {"above": "none of %d runs fell: capacity above %.4g %s",
-                "below": "all %d runs fell: capacity below %.4g %s"}.get(
-            c["bound"], "no estimate (%d runs%s%.4g %s)") % (
-            c["n"], c["x_max"] / s if c["bound"] == "above" else c["x_min"] / s, u) \
-            if c["bound"] in ("above", "below") else "no estimate (%s)" % c.get("note", c["bound"])
-    return "%.4g %s [%.4g, %.4g]  (%s, %d of %d fell)" % (
-        c["median"] / s, u, c["ci"][0] / s, c["ci"][1] / s, c["method"], c["k"], c["n"])
+    if "median" in c:
+        return "%.4g %s [%.4g, %.4g]  (%s, %d of %d fell)" % (
+            c["median"] / s, u, c["ci"][0] / s, c["ci"][1] / s, c["method"], c["k"], c["n"])
+    if c["bound"] == "above":
+        return "none of %d runs fell: capacity above %.4g %s" % (c["n"], c["x_max"] / s, u)
+    if c["bound"] == "below":
+        return "all %d runs fell: capacity below %.4g %s" % (c["n"], c["x_min"] / s, u)
+    return "no estimate (%s)" % c.get("note", "one PGA value")
