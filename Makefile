@@ -45,7 +45,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test unit asan asan-unit debug fuzz fuzz-bins bench bench-study bench-peers study deps clean check-yade mpi
+.PHONY: python all lib run test unit asan asan-unit debug fragility-example fuzz fuzz-bins bench bench-study bench-peers study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -108,6 +108,10 @@ run: $(BIN)/rockdem
 # the shipped PBR's mesh comes from a seeded generator (no mesh is committed)
 scenarios/pbr.obj: tools/make_pbr.py
 	/usr/bin/python3 tools/make_pbr.py --seed 1 -o $@
+
+# the worked example of docs/FRAGILITY.md: PBR planes, rose and modes; a calibration (~4 min)
+fragility-example: $(BIN)/rockdem scenarios/pbr.obj
+	bash tools/fragility_example.sh $(BIN)/rockdem
 
 test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed $(TESTBIN) $(BUILD)/tests/rockdem-general scenarios/pbr.obj
 	@bash tests/run.sh $(BUILD) $(BIN)

@@ -314,7 +314,7 @@ static void test_errors(void **state)
     parse_fails("ground-motion import 'rec.AT2' scale 2 scale-pga 0.3g\n", 4, 40,
                 "'scale-pga' cannot be combined with 'scale'");
     parse_fails("ground-motion import 'set.h5' record 99\n", 4, 38, "record id '99' not found");
-    parse_fails("ground-motion import 'set.h5' record 7 component h2\n", 4, 50, "expected a or b");
+    parse_fails("ground-motion import 'set.h5' record 7 component h2\n", 4, 50, "expected a, b or v");
     parse_fails("ground-motion import 'set.h5'\n", 4, 15, "needs 'record <id>'");
     parse_fails("ground-motion import 'rec.AT2' baseline 9\n", 4, 41, "degree (2 to 8)");
     parse_fails("ground-motion import 'rec.AT2'\nground-motion import 'rec2.csv'\n", 5, 1,

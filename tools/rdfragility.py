@@ -5,7 +5,10 @@ with its 10/50/95 % contours, (3) a lognormal fragility in PGA (median, beta) by
 likelihood with 95 % bands (Fisher information, or --bootstrap N), (4) accuracy, precision,
 recall and F1 of the simulated outcome against an observed column (seed 002 Table 4).
 Inputs: the CSV of rdtable.py --csv, a sweep HDF5 (/sweep with fields pga, pgv, overturned), or
-rockdem run files; SI units in (m/s^2, m/s)."""
+rockdem run files; SI units in (m/s^2, m/s).
+Subcommands: `rdfragility planes` (intensity planes per direction, rose, modes, normalised axes),
+`rdfragility select` (records from a flatfile), `rdfragility calibrate` (fit contact parameters
+to observed outcomes); each has --help."""
 import json
 import math
 import os
@@ -21,7 +24,14 @@ def num(v):
     return None if v is None or (isinstance(v, float) and not math.isfinite(v)) else v
 
 
+SUBCOMMANDS = ("planes", "select", "calibrate")
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] in SUBCOMMANDS:
+        import importlib
+        mod = importlib.import_module("rdtools.%s_cli" % sys.argv[1])
+        return mod.main(sys.argv[2:])
     p = cli.Parser(prog="rdfragility", description=cli.describe(__doc__))
     p.add_argument("inputs", nargs="+", metavar="TABLE.csv|SWEEP.h5|RUN.h5")
     p.add_argument("-o", "--output", metavar="OUT.png", help="figure: surface with contours, "
@@ -68,11 +78,13 @@ def main():
             cli.ensure_writable(out)
 
     rows = select(load(a.inputs, a.observed, a.body, a.outcome), a.where)
+    from rdtools.planes import row_levels, interval
+    level = row_levels(rows)
     pga_si, pgv, y, obs, ok = arrays(rows)
     if (~ok).any():
         sys.stderr.write("rdfragility: warning: %d rows without a positive finite pga/pgv skipped\n"
                          % int((~ok).sum()))
-    pga_si, pgv, y = pga_si[ok], pgv[ok], y[ok]
+    pga_si, pgv, y, level = pga_si[ok], pgv[ok], y[ok], level[ok]
     obs = obs[ok] if obs is not None else None
     if len(y) < 3:
         raise RDError("need at least 3 runs with pga, pgv > 0 (got %d)" % len(y))
@@ -163,6 +175,18 @@ def main():
                                 theta_ci=list(ln["theta_ci"]), beta_ci=list(ln["beta_ci"]),
                                 band_method=ln["band_method"])
 
+    # (5 in the JSON: levels) the fraction overturned per PGA level (the sweep's scale index)
+    res["levels"] = []
+    for L in np.unique(level):
+        m = level == L
+        lo, hi = interval(y[m].sum(), m.sum())
+        res["levels"].append(dict(pga=float(np.exp(np.log(pga[m]).mean())), n=int(m.sum()),
+                                  k=int(y[m].sum()), ci=[float(lo), float(hi)]))
+    o.write("\nfraction overturned per PGA level (%s; Wilson 95 %%, statsmodels):\n  %s\n" % (
+        "the sweep's scale index" if len(a.inputs) == 1 and a.inputs[0].lower().endswith((".h5", ".hdf5"))
+        else "equal values", "; ".join("%.4g %s: %d/%d" % (d["pga"], ustr, d["k"], d["n"])
+                                        for d in res["levels"])))
+
     # (4) metrics
     if obs is not None:
         m = F.metrics(*F.confusion(y, obs))
@@ -175,7 +199,7 @@ def main():
 
     if a.output:
         from rdtools.fragplot import plot_fragility
-        plot_fragility(a.output, pga, T, y, bins, surf, ln, ustr, a.form)
+        plot_fragility(a.output, pga, T, y, bins, surf, ln, ustr, a.form, level=level)
         o.write("\nwrote %s\n" % a.output)
     if a.json:
         with open(a.json, "w") as fh:

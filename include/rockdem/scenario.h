@@ -201,7 +201,7 @@ typedef struct rd_component_def {
     double unit;              /* m/s^2 per unit of the file's values (text files; default g) */
     double dt;                /* text files: sample step, s (0 = from the time column) */
     char record[RD_NAME_MAX]; /* FEMA: record id (e.g. "1") */
-    int fema_b;               /* FEMA: 0 = component a, 1 = component b */
+    int fema_b;               /* FEMA: 0 = component a, 1 = component b, 2 = component v (vertical) */
     rd_stochastic_def stochastic; /* STOCHASTIC: generator parameters */
     int line;                 /* scenario line that defined it */
     struct rd_record *raw;     /* as read or generated, m/s^2 (owned; rd_scenario_free) */

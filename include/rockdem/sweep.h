@@ -56,7 +56,27 @@ typedef struct rd_sweep_plan {
     const char *keep_dir;   /* --keep-runs DIR: each case's HDF5 file there; NULL: no file */
 } rd_sweep_plan;
 
-enum { RD_IM_PGA, RD_IM_PGV, RD_IM_PGD, RD_IM_PGV_PGA, RD_IM_ARIAS, RD_IM_D5_95, RD_SWEEP_NIM };
+enum { RD_IM_PGA, RD_IM_PGV, RD_IM_PGD, RD_IM_PGV_PGA, RD_IM_ARIAS, RD_IM_D5_95, RD_IM_SA_0_2, RD_IM_SA_1,
+       RD_SWEEP_NIM };
+
+/* Response mode of a free body in one run (docs/FRAGILITY.md "Response modes"), most severe
+ * last; a run's mode is the most severe over its bodies. */
+typedef enum rd_sweep_mode {
+    RD_MODE_REST = 0,   /* neither rocked nor slid */
+    RD_MODE_SLIDE,      /* joint slip >= RD_MODE_SLIP_MIN, no rocking (twist by slip included) */
+    RD_MODE_ROCK,       /* uplifted and max tilt >= RD_MODE_TILT_MIN x alpha */
+    RD_MODE_ROCK_SLIDE, /* rock and slide, twist below RD_MODE_TWIST_MIN */
+    RD_MODE_ROCK_TWIST, /* rock with max |twist| >= RD_MODE_TWIST_MIN (slid or not) */
+    RD_MODE_OVERTURN,   /* the overturn criterion was met */
+    RD_MODE_COUNT
+} rd_sweep_mode;
+
+/* Thresholds of the modes (justified in docs/FRAGILITY.md). */
+#define RD_MODE_TILT_MIN 1e-3  /* max tilt / alpha (with uplift): rocking; the brick of
+                                  tests/cli/data/sweep_brick.dat reaches 5.4e-4 at 0.38 g, below its
+                                  tipping 0.4 g, and 2.7e-3 at 0.42 g */
+#define RD_MODE_SLIP_MIN 1e-3  /* m of joint slip: sliding (seed 002's mm displacement resolution) */
+#define RD_MODE_TWIST_MIN 0.05 /* rad of max |twist|: rock-twist (2.9 deg) */
 
 /* What one case found: sent through a pipe or MPI as raw bytes (a homogeneous machine set). */
 typedef struct rd_sweep_result {
@@ -64,12 +84,16 @@ typedef struct rd_sweep_result {
     unsigned long long hash;     /* rd_sweep_hash of the case */
     int status;                  /* rd_status; -1: the case could not be set up (message) */
     char message[RD_SWEEP_MSG];
-    double im[RD_SWEEP_NIM];     /* pga m/s^2, pgv m/s, pgd m, pgv/pga s, arias m/s, d5-95 s */
+    double im[RD_SWEEP_NIM];     /* pga m/s^2, pgv m/s, pgd m, pgv/pga s, arias m/s, d5-95 s,
+                                    5 %-damped Sa(0.2 s), Sa(1 s) m/s^2 */
     int overturned;              /* 1 if any free body overturned */
     double overturn_time;        /* first overturn, s (-1 if none) */
     double max_tilt_ratio;       /* max over bodies of max tilt / alpha */
     double max_slide;            /* max over bodies, m */
     double final_twist;          /* the largest |twist at the end| over bodies, signed, rad */
+    double max_twist;            /* max over bodies of max |twist about the vertical|, rad */
+    double max_slip;             /* max over joints of a free body of its joint slip, m */
+    char mode[RD_SWEEP_TEXT];    /* rd_sweep_mode_name of the most severe body mode */
     double energy_residual;      /* max |balance residual| / energy scale */
     double end_time;             /* simulated time reached, s */
     double wall_seconds;         /* wall time of the whole case (setup + run), s */
@@ -77,7 +101,17 @@ typedef struct rd_sweep_result {
     int b_overturned[RD_SWEEP_BODIES];
     double b_overturn_time[RD_SWEEP_BODIES], b_max_tilt_ratio[RD_SWEEP_BODIES];
     double b_max_slide[RD_SWEEP_BODIES], b_final_twist[RD_SWEEP_BODIES];
+    double b_max_twist[RD_SWEEP_BODIES], b_max_slip[RD_SWEEP_BODIES];
+    int b_mode[RD_SWEEP_BODIES]; /* rd_sweep_mode */
 } rd_sweep_result;
+
+/* --- sweep_mode.c ---------------------------------------------------------------------------- */
+
+/* Mode of one body from its summary and the largest slip of its joints (m). */
+RD_API rd_sweep_mode rd_sweep_mode_of(const rd_body_summary *b, double max_slip);
+
+/* "rest", "slide", "rock", "rock-slide", "rock-twist", "overturn". */
+RD_API const char *rd_sweep_mode_name(rd_sweep_mode m);
 
 /* --- sweep.c ----------------------------------------------------------------------------- */
 

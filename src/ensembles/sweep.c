@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #define RD_PULSE_SAMPLES 4000 /* samples of a pulse for its intensity measures */
+#define RD_SA_PAD 2.0 /* s of rest after a pulse for its Sa: two periods of the longest oscillator */
 
 static volatile sig_atomic_t stop_flag;
 
@@ -324,9 +325,11 @@ void rd_sweep_plan_free(rd_sweep_plan *p)
 }
 
 /* Intensity measures of a pulse along its direction, from RD_PULSE_SAMPLES samples of the exact
- * acceleration, velocity and displacement over [0, end of the pulse]. */
+ * acceleration, velocity and displacement over [0, end of the pulse]; its Sa(0.2 s), Sa(1 s)
+ * (5 % damping) after RD_SA_PAD s of rest, as rd_motion_im pads records. */
 static void pulse_im(const rd_pulse_def *h, double im[RD_SWEEP_NIM])
 {
+    static const double periods[2] = {0.2, 1.0}; /* s */
     double end = rd_pulse_end(h);
     rd_record r = {0};
     rd_error e;
@@ -335,9 +338,12 @@ static void pulse_im(const rd_pulse_def *h, double im[RD_SWEEP_NIM])
         return;
     for (size_t i = 0; i < r.npts; i++) rd_pulse_eval(h, (double)i * r.dt, &r.acc[i], &r.vel[i], &r.disp[i]);
     rd_im m;
+    double sa[2] = {0, 0};
     rd_im_compute(&r, &m);
+    if (rd_record_pad(&r, RD_SA_PAD, &e) || rd_im_psa(&r, periods, 2, 0.05, sa, &e))
+        sa[0] = sa[1] = NAN;
     rd_record_free(&r);
-    double v[RD_SWEEP_NIM] = {m.pga, m.pgv, m.pgd, m.pgv_pga, m.arias, m.d5_95};
+    double v[RD_SWEEP_NIM] = {m.pga, m.pgv, m.pgd, m.pgv_pga, m.arias, m.d5_95, sa[0], sa[1]};
     memcpy(im, v, sizeof v);
 }
 
@@ -351,13 +357,25 @@ static int record_im(const rd_motion_def *m, double im[RD_SWEEP_NIM], rd_error *
         double sa[2];
         if (!m->record[c].applied || (horiz && c == RD_VERTICAL)) continue;
         if (rd_motion_im(m, c, &x, sa, err)) return -1;
-        double v[RD_SWEEP_NIM] = {x.pga, x.pgv, x.pgd, x.pgv_pga, x.arias, x.d5_95};
+        double v[RD_SWEEP_NIM] = {x.pga, x.pgv, x.pgd, x.pgv_pga, x.arias, x.d5_95, sa[0], sa[1]};
         for (int i = 0; i < RD_SWEEP_NIM; i++) im[i] = fmax(im[i], v[i]);
     }
     return 0;
 }
 
-static void copy_summary(const rd_summary *s, rd_sweep_result *r)
+/* Largest slip of the joints of free body `name`, m (0 if it has none). */
+static double body_slip(const rd_sim *sim, const char *name)
+{
+    double m = 0.0;
+    for (int j = 0; j < rd_sim_joint_count(sim); j++) {
+        rd_joint_summary js;
+        rd_sim_joint(sim, j, &js);
+        if (!strcmp(js.a, name) || !strcmp(js.b, name)) m = fmax(m, js.max_slip);
+    }
+    return m;
+}
+
+static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result *r)
 {
     r->status = (int)s->status;
     r->overturned = s->any_overturned;
@@ -365,6 +383,7 @@ static void copy_summary(const rd_summary *s, rd_sweep_result *r)
     r->end_time = s->end_time;
     r->nbodies = s->nbodies < RD_SWEEP_BODIES ? s->nbodies : RD_SWEEP_BODIES; /* inspect_base checked */
     r->overturn_time = -1;
+    rd_sweep_mode mode = RD_MODE_REST;
     for (int k = 0; k < r->nbodies; k++) {
         const rd_body_summary *b = &s->body[k];
         r->b_overturned[k] = b->overturned;
@@ -372,12 +391,19 @@ static void copy_summary(const rd_summary *s, rd_sweep_result *r)
         r->b_max_tilt_ratio[k] = b->max_tilt_ratio;
         r->b_max_slide[k] = b->max_slide;
         r->b_final_twist[k] = b->final_twist;
+        r->b_max_twist[k] = fabs(b->max_twist);
+        r->b_max_slip[k] = body_slip(sim, b->name);
+        r->b_mode[k] = (int)rd_sweep_mode_of(b, r->b_max_slip[k]);
         if (b->overturned && (r->overturn_time < 0 || b->overturn_time < r->overturn_time))
             r->overturn_time = b->overturn_time;
         r->max_tilt_ratio = fmax(r->max_tilt_ratio, b->max_tilt_ratio);
         r->max_slide = fmax(r->max_slide, b->max_slide);
+        r->max_twist = fmax(r->max_twist, r->b_max_twist[k]);
+        r->max_slip = fmax(r->max_slip, r->b_max_slip[k]);
         if (fabs(b->final_twist) > fabs(r->final_twist)) r->final_twist = b->final_twist;
+        if (r->b_mode[k] > (int)mode) mode = (rd_sweep_mode)r->b_mode[k];
     }
+    snprintf(r->mode, sizeof r->mode, "%s", rd_sweep_mode_name(mode));
 }
 
 static double now(void)
@@ -408,7 +434,7 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, rd_sweep_result *r)
         rd_status st = rd_sim_run(sim);
         rd_summary s;
         rd_sim_summary(sim, &s);
-        copy_summary(&s, r);
+        copy_summary(sim, &s, r);
         r->status = (int)st;
         if (rd_status_failed(st))
             snprintf(r->message, sizeof r->message, "%.199s", rd_sim_error(sim));

@@ -30,7 +30,8 @@
 #include <unistd.h>
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
-#define RD_SWEEP_LAYOUT 2 /* /sweep layout_version: 2 = scales, status enum, numeric ncases */
+#define RD_SWEEP_LAYOUT 3 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
+                            3 = Sa, max twist, joint slip, response modes */
 /* Space reserved before a row: a new chunk for every column when the row starts one (chunks
  * are allocated whole), plus 32 KiB for chunk-index (B-tree) nodes and object-header updates. */
 #define RD_SWEEP_RESERVE_FIXED (32 << 10)
@@ -54,11 +55,17 @@ static const col_spec outcome_cols[] = {
     {"pgv_pga", C_F64, R(im[RD_IM_PGV_PGA]), 0, "s", "PGV / PGA"},
     {"arias", C_F64, R(im[RD_IM_ARIAS]), 0, "m/s", "Arias intensity"},
     {"d5_95", C_F64, R(im[RD_IM_D5_95]), 0, "s", "significant duration D5-95"},
+    {"sa_0_2", C_F64, R(im[RD_IM_SA_0_2]), 0, "m/s^2", "pseudo-spectral acceleration, 5 % damping, T = 0.2 s"},
+    {"sa_1", C_F64, R(im[RD_IM_SA_1]), 0, "m/s^2", "pseudo-spectral acceleration, 5 % damping, T = 1 s"},
     {"overturned", C_I32, R(overturned), 0, "1", "1 if any free body overturned"},
     {"overturn_time", C_F64, R(overturn_time), 0, "s", "time of the first overturn (-1: none)"},
     {"max_tilt_ratio", C_F64, R(max_tilt_ratio), 0, "1", "largest max tilt / alpha over the free bodies"},
     {"max_slide", C_F64, R(max_slide), 0, "m", "largest max slide over the free bodies"},
     {"final_twist", C_F64, R(final_twist), 0, "rad", "largest |twist at the end| over the free bodies (signed)"},
+    {"max_twist", C_F64, R(max_twist), 0, "rad", "largest max |twist about the vertical| over the free bodies"},
+    {"max_slip", C_F64, R(max_slip), 0, "m", "largest joint slip of a free body (not its centre's sway)"},
+    {"mode", C_STR, R(mode), 0, "", "response mode, most severe over the bodies: rest, slide, rock, "
+                                   "rock-slide, rock-twist, overturn (docs/FRAGILITY.md)"},
     {"status", C_STATUS, R(status), 0, "", "how the run ended"},
     {"energy_residual", C_F64, R(energy_residual), 0, "1", "max |energy balance residual| / energy scale"},
     {"end_time", C_F64, R(end_time), 0, "s", "simulated time reached"},
@@ -69,6 +76,10 @@ static const col_spec outcome_cols[] = {
     {"body_max_tilt_ratio", C_F64, R(b_max_tilt_ratio), 1, "1", "max tilt / alpha of the body"},
     {"body_max_slide", C_F64, R(b_max_slide), 1, "m", "max slide of the body"},
     {"body_final_twist", C_F64, R(b_final_twist), 1, "rad", "twist of the body at the end"},
+    {"body_max_twist", C_F64, R(b_max_twist), 1, "rad", "max |twist about the vertical| of the body"},
+    {"body_max_slip", C_F64, R(b_max_slip), 1, "m", "largest slip of the body's joints"},
+    {"body_mode", C_I32, R(b_mode), 1, "", "response mode: 0 rest, 1 slide, 2 rock, 3 rock-slide, "
+                                          "4 rock-twist, 5 overturn (docs/FRAGILITY.md)"},
     {"case", C_I64, R(index), 0, "", "case index in the sweep plan"}, /* last: writing it commits the row */
 };
 #define NOUT (int)(sizeof outcome_cols / sizeof outcome_cols[0])
@@ -397,7 +408,7 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     int layout = 0;
     if (H5Aexists(t->group, "layout_version") <= 0 ||
         H5LTget_attribute_int(t->group, ".", "layout_version", &layout) < 0 || layout != RD_SWEEP_LAYOUT)
-        return h5fail(t, err, "was written by an older rockdem (layout 1); choose another -o");
+        return h5fail(t, err, "was written by an older rockdem (another table layout); choose another -o");
     for (int i = 0; i < t->ncols; i++)
         if ((t->col[i].dset = H5Dopen2(t->group, t->col[i].name, H5P_DEFAULT)) < 0)
             return h5fail(t, err, "a column of /sweep is missing");

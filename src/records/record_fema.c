@@ -130,7 +130,9 @@ int rd_record_read_fema(rd_record *r, const char *path, const char *id, int comp
     if (!id[0] || strchr(id, '/') || strlen(id) > 64)
         return rd_error_set(err, "%s: invalid record id '%s'", path, id);
     snprintf(group, sizeof group, "/_timeseries/%s", id);
-    snprintf(comp, sizeof comp, "%s/%s", group, component_b ? "b" : "a");
+    static const char *const names[3] = {"a", "b", "v"};
+    const char *cn = names[component_b >= 0 && component_b <= 2 ? component_b : 0];
+    snprintf(comp, sizeof comp, "%s/%s", group, cn);
     H5E_auto2_t old_fn;
     void *old_data;
     H5dont_atexit(); /* no exit hook: rockdem closes its HDF5 files itself (io/h5_quiet.h) */
@@ -143,7 +145,7 @@ int rd_record_read_fema(rd_record *r, const char *path, const char *id, int comp
     H5Eset_auto2(H5E_DEFAULT, old_fn, old_data);
     if (rc)
         return -1;
-    snprintf(r->name, sizeof r->name, "FEMA P695 %s%s", id, component_b ? "b" : "a");
-    snprintf(r->source, sizeof r->source, "%s record %s component %s", path, id, component_b ? "b" : "a");
+    snprintf(r->name, sizeof r->name, "FEMA P695 %s%s", id, cn);
+    snprintf(r->source, sizeof r->source, "%s record %s component %s", path, id, cn);
     return 0;
 }

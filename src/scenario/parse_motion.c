@@ -179,18 +179,18 @@ static int apply_common(parser *P, const motion_cmd *mc)
 }
 
 /* The slot of the command's component: h1 (default), h2 or vertical; a FEMA set names its
- * horizontal components a (into h1) and b (into h2). */
+ * horizontal components a (into h1) and b (into h2), and a vertical one v. */
 static int component_slot(parser *P, const motion_cmd *mc, int fema, int *slot)
 {
     static const char *const plain[] = {"h1", "h2", "vertical", NULL};
-    static const char *const ab[] = {"a", "b", NULL};
+    static const char *const ab[] = {"a", "b", "v", NULL};
     *slot = RD_H1;
     if (!mc->comp)
         return 0;
     *slot = find_word(mc->comp, fema ? ab : plain);
     if (*slot < 0)
         return perr(P, mc->comp, "unknown component '%.*s' (expected %s)", mc->comp->len, mc->comp->s,
-                    fema ? "a or b for a FEMA P695 set" : "h1, h2 or vertical");
+                    fema ? "a, b or v for a FEMA P695 set" : "h1, h2 or vertical");
     return 0;
 }
 
@@ -300,7 +300,7 @@ int motion_import(parser *P)
     if (!f)
         return perr(P, file, "%s: cannot open: %s", d.path, strerror(errno));
     fclose(f);
-    d.fema_b = d.source == RD_SOURCE_FEMA && slot == RD_H2;
+    d.fema_b = d.source == RD_SOURCE_FEMA ? slot : 0; /* a -> h1, b -> h2, v -> vertical */
     /* the file opens: a FEMA reader error is about the record id, any other about the file */
     return apply_common(P, &mc) || define_component(P, slot, &d, id ? id : file);
 }

@@ -4,9 +4,9 @@ axis with its unit): (A) the runs over (PGA, PGV/PGA) with the 2-D logistic surf
 binned logistic curves against PGA with their 95 % bands and the outcomes; (C) the fragility in
 PGA from all runs — the lognormal (probit GLM) with its 95 % band, or, when the outcomes are
 separated by PGA, Firth's logistic in ln PGA with its Wald band — and the fraction overturned
-per PGA value with Wilson 95 % intervals."""
+per PGA level (the sweep's own scale index) with Wilson 95 % intervals (statsmodels)."""
 import numpy as np
-from scipy import special, stats
+from scipy import special
 
 from . import fragility as F
 
@@ -22,14 +22,10 @@ def _rc(plt):
                          "axes.titlelocation": "left", "axes.titleweight": "bold"})
 
 
-def wilson(k, n, z=1.96):
-    """Wilson score interval of a binomial proportion k/n (95 %)."""
-    k, n = np.asarray(k, float), np.asarray(n, float)
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return c - h, c + h
+def wilson(k, n):
+    """95 % Wilson score interval of k/n (statsmodels proportion_confint)."""
+    from .planes import interval
+    return interval(k, n)
 
 
 def _logit_band(beta, cov, X):
@@ -39,10 +35,15 @@ def _logit_band(beta, cov, X):
     return special.expit(eta), special.expit(eta - 1.96 * sd), special.expit(eta + 1.96 * sd)
 
 
-def _fractions(ax, pga, y, color="k"):
-    """Fraction overturned at each distinct PGA (or in up to 8 quantile bins), Wilson bars."""
-    u = np.unique(pga)
-    groups = [pga == v for v in u] if len(u) <= 12 else None
+def _fractions(ax, pga, y, level=None, color="k"):
+    """Fraction overturned per PGA level, Wilson 95 % bars. level: the sweep's own scale index of
+    each run (planes.table; PGA values equal to 1e-9 relative when the input has none), so runs
+    scaled to one level are one group whatever their rounding; more than 12 levels: 8 quantile
+    bins of PGA instead."""
+    from .planes import level_groups
+    lv = np.asarray(level if level is not None else level_groups(pga), int)
+    u = np.unique(lv)
+    groups = [lv == v for v in u] if len(u) <= 12 else None
     if groups is None:
         e = np.unique(np.quantile(pga, np.linspace(0, 1, 9)))
         groups = [(pga >= e[i]) & ((pga <= e[i + 1]) if i == len(e) - 2 else (pga < e[i + 1]))
@@ -60,6 +61,7 @@ def _fractions(ax, pga, y, color="k"):
     err = np.clip([fr - np.array(lo), np.array(hi) - fr], 0, None)  # rounding at 0 and 1
     ax.errorbar(xs, fr, yerr=err, fmt="s", color=color, ms=4,
                 capsize=2, lw=0.8, label="fraction overturned (Wilson 95 %)", zorder=5)
+    return dict(x=xs, fraction=fr, n=[int(m.sum()) for m in groups if m.any()])
 
 
 def _ticks(axis, lo, hi, data):
@@ -75,7 +77,7 @@ def _ticks(axis, lo, hi, data):
     axis.set_minor_formatter(mt.NullFormatter())
 
 
-def plot_fragility(out, pga, T, y, bins, surf, ln, ustr, form, dpi=200):
+def plot_fragility(out, pga, T, y, bins, surf, ln, ustr, form, dpi=300, level=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -181,7 +183,7 @@ def plot_fragility(out, pga, T, y, bins, surf, ln, ustr, form, dpi=200):
         c.fill_between(xs, lo, hi, color="#2c7bb6", alpha=0.2, lw=0, label="95 % Wald band")
         c.plot(xs, p, color="#2c7bb6", lw=1.6, label="Firth logistic in ln PGA: median %.3g %s"
                % (np.exp(-fb[0] / fb[1]), ustr))
-    _fractions(c, pga, y.astype(float))
+    _fractions(c, pga, y.astype(float), level)
     c.set_xscale("log")
     _ticks(c.xaxis, xlo, xhi, pga)
     c.set_xlim(xlo, xhi)
