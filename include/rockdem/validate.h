@@ -86,7 +86,7 @@ RD_API rd_threshold_opts rd_threshold_opts_default(void);
 
 /* The amplitude range (m/s^2) rd_threshold searches for this scenario and these options: lo
  * and hi with their defaults resolved. 0, or -1 with err (one line) when the options or the
- * scene cannot be searched: no horizontal pulse, a scene the reference does not map, rtol
+ * scene cannot be searched: no horizontal pulse, no free body that can tip, rtol
  * outside its range, lo not below hi. Runs nothing: bad input is told before any run. */
 RD_API int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo,
                               double *hi, rd_error *err);
@@ -97,6 +97,9 @@ typedef struct rd_threshold_result {
     double below;       /* m/s^2, lower end (does not overturn) */
     double static_amp;  /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
     double w_over_p;    /* 2 pi f / p of block 1 (0 without a frequency) */
+    int own_scale;      /* 1: static_amp and w_over_p are the scene's own (no rigid reference maps
+                           it): the least g tan(alpha) along the shaking over its free bodies and
+                           the assemblies standing on them, p of that one's rocking */
     int runs;           /* simulations made (a parallel scan may run up to jobs - 1 past the
                            first bracket) */
     int lifted_off;     /* reference only: 1 when the upper end of the bracket is the onset of
@@ -149,6 +152,24 @@ typedef struct rd_restitution {
     double r_speed;     /* geometric mean of speed_ratio[] */
     double t_impact[4]; /* s, first impact times */
 } rd_restitution;
+
+/* The rigid-body scales of a scene's free rocking: one free body's tipping angle alpha (rad)
+ * and frequency parameter p = sqrt(m g R / I_O) (rad/s) on the side it tips to first along the
+ * pulse's direction (x without a pulse), the distance R (m) from its centre of mass to that
+ * pivot edge, and that lean direction (rad from +x). From Housner's block where the reference
+ * maps the scene (housner = 1: a brick), else from the body itself (a mesh, a prism: its own
+ * support polygon, R and pivot inertia; housner = 0). 0, or -1 with err (not one free body). */
+typedef struct rd_rocking_scales {
+    double alpha, p, R, lean;
+    int housner;
+} rd_rocking_scales;
+RD_API int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error *err);
+
+/* Rigid theory's restitution of an impact onto the opposite pivot edge, angular momentum
+ * about the new pivot conserved: r = 1 - 2 m R^2 sin^2(alpha) / I_O = 1 - 2 p^2 R sin^2(alpha)
+ * / g (a uniform rectangular block, I_O = 4/3 m R^2: Housner's 1 - 1.5 sin^2 alpha). Exact for
+ * a body symmetric about its rocking plane's vertical; an approximation for an irregular one. */
+RD_API double rd_rigid_restitution(const rd_rocking_scales *s, double gravity);
 
 RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
                            rd_error *err);

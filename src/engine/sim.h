@@ -438,6 +438,11 @@ int rd_rest_reached(rd_sim *s);
 void rd_monitor_rest(rd_sim *s);
 void rd_monitor_scene(rd_sim *s);
 double rd_monitor_inradius(const rd_sim *s, int i);
+/* Static tipping angle (rad) of free body k's support polygon at rest (after rd_monitor_rest)
+ * with a centre of mass at com (ground frame, m), leaning towards the horizontal (dx, dy):
+ * atan(d / h) as for the body's own alpha. com is the body's own, or that of the body and
+ * everything standing on it (the assembly tipping as one about this body's base). */
+double rd_monitor_alpha_at(const rd_sim *s, int k, const double com[3], double dx, double dy);
 int rd_monitor_escape(rd_sim *s);
 void rd_monitor_start(rd_sim *s);
 void rd_monitor_step(rd_sim *s);

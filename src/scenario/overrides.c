@@ -38,6 +38,7 @@ static const set_key set_keys[] = {
     {"contact.stiffness-normal", S_NUMBER, offsetof(rd_scenario, contact.kn), R_POS, U_PLAIN},
     {"contact.stiffness-shear", S_NUMBER, offsetof(rd_scenario, contact.ks), R_POS, U_PLAIN},
     {"contact.friction", S_NUMBER, offsetof(rd_scenario, contact.friction), R_ANGLE, U_DEG},
+    {"contact.friction-coefficient", S_NUMBER, offsetof(rd_scenario, contact.friction), R_NONNEG, U_MU},
     {"contact.cohesion", S_NUMBER, offsetof(rd_scenario, contact.cohesion), R_NONNEG, U_PLAIN},
     {"contact.tension", S_NUMBER, offsetof(rd_scenario, contact.tension), R_NONNEG, U_PLAIN},
     {"contact.spacing", S_SPACING, 0, R_NONNEG, U_PLAIN},
@@ -122,7 +123,7 @@ static int set_parse(const setter *S, const char *text, range r, unit u, double 
     char why[128];
     if ((bad = limit_error(kw, (size_t)(S->a + n - kw), *v, why, sizeof why)))
         return serr(S, "%s %s", text, bad);
-    *v *= unit_scale(u);
+    *v = unit_si(*v, u);
     return 0;
 }
 
