@@ -29,8 +29,8 @@ static const double DEG = 180.0 / 3.14159265358979323846; /* degrees per radian 
 
 static void print_body(const rd_check_report *r, const rd_check_body *b)
 {
-    printf("  %-12s %s mass %.6g kg, volume %.4g m^3, %.4g x %.4g x %.4g m", b->name, b->fixed ? "fixed" : "free ",
-           b->mass, b->volume, b->extent[0], b->extent[1], b->extent[2]);
+    printf("  %-12s %s mass %.6g kg, volume %.4g m^3", b->name, b->fixed ? "fixed" : "free ",
+           b->mass, b->volume);
     if (b->group[0]) printf(", group '%s'", b->group);
     if (!b->fixed)
         printf(", tipping angle %.3g deg (least %.3g deg), %d subcontacts", b->alpha * DEG,
@@ -38,7 +38,7 @@ static void print_body(const rd_check_report *r, const rd_check_body *b)
     if (!b->fixed && b->rests_on >= 0) printf(", rests on '%s'", r->body[b->rests_on].name);
     else if (!b->fixed && b->below >= 0) printf(", %.4g m above '%s'", b->gap, r->body[b->below].name);
     else if (!b->fixed) printf(", nothing under it");
-    printf("\n");
+    printf("; size %.4g x %.4g x %.4g m (x, y, z)\n", b->extent[0], b->extent[1], b->extent[2]);
 }
 
 /* Height of a body from its volume and mass are not enough: use the cube root of its volume as

@@ -155,7 +155,7 @@ int rd_cli_body_warnings(const rd_body_def *d, double mass, const double size[3]
                                            : "mesh in mm? its coordinates are read as m: add 'units mm' (or cm) "
                                              "to its block import")
                        : "scenario lengths are in m");
-    if (mesh && alpha >= 0 && alpha * DEG < ALPHA_DEG_SUSPECT)
+    if (mesh && !n && alpha >= 0 && alpha * DEG < ALPHA_DEG_SUSPECT) /* (a mesh in mm: its size first) */
         n += WARN("block '%s' tips at %.3g deg: it stands on its side or on a point; %s", d->name, alpha * DEG,
                   d->mesh_up == 1 ? "check its orientation ('rotation')"
                                   : "a mesh drawn y-up is read z-up: add 'up y' to its block import");

@@ -353,7 +353,7 @@ static int set_apply(const setter *S, const set_key *k)
 /* Unknown key: lists the keys of its section, or the sections. */
 static int unknown_key(const setter *S, const char *key, size_t len)
 {
-    char list[RD_ERROR_MAX / 2] = "";
+    char list[RD_ERROR_MAX - 96] = ""; /* room for the key and the words around the list */
     size_t sect = strcspn(key, ".=") + 1; /* section length with its dot */
     for (size_t i = 0; i < NSET_KEYS; i++)
         if (sect <= len && strncasecmp(set_keys[i].key, key, sect) == 0)
