@@ -71,8 +71,10 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
                            : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
         printf("%s: %s", b->name, what);
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
-        printf("; max tilt %.4g rad = %.3g alpha; max slide %.3g mm%s%s\n", b->max_tilt, b->max_tilt_ratio,
-               1e3 * b->max_slide, b->slid ? "; slid" : "", b->uplifted && !b->overturned ? "; uplifted" : "");
+        printf("; max tilt %.4g rad = %.3g alpha; max sway of its base centre %.3g mm (rocking and sliding "
+               "together; the slip at its joints is on the joint lines)%s%s\n", b->max_tilt, b->max_tilt_ratio,
+               1e3 * b->max_slide, b->slid ? "; all its bearing points slipped at once" : "",
+               b->uplifted && !b->overturned ? "; uplifted" : "");
         if (b->overturned)
             printf("%s: ended at (%.4g, %.4g, %.4g) m: %.4g m from where it stood, %.4g m lower\n",
                    b->name, b->final_position[0], b->final_position[1], b->final_position[2], b->travel,
@@ -87,9 +89,11 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
         rd_joint_summary j;
         rd_sim_joint(sim, k, &j);
         if (!j.closed) continue;
-        printf("joint %s-%s: max slip %.4g mm, final slip %.4g mm, max opening %.4g mm "
+        char opening[64] = "never opened";
+        if (j.max_opening > 0) snprintf(opening, sizeof opening, "max opening %.4g mm", 1e3 * j.max_opening);
+        printf("joint %s-%s: max slip %.4g mm, final slip %.4g mm (relative sliding at the joint), %s "
                "(KN %.3g, KS %.3g Pa/m, friction %.3g deg)\n", j.a, j.b, 1e3 * j.max_slip,
-               1e3 * j.final_slip, 1e3 * j.max_opening, j.kn, j.ks, j.friction * 180 / M_PI);
+               1e3 * j.final_slip, opening, j.kn, j.ks, j.friction * 180 / M_PI);
     }
     if (quiet) return;
     double sim_s = s->steps * s->dt;

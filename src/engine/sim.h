@@ -121,9 +121,15 @@ typedef struct rd_pair {
     double ref[2][3];  /* its centre of pressure then, in the frames of a and b, m */
     double slip_acc[3];/* accumulated tangential displacement of b against a at the centre of
                           pressure while loaded (elastic shear included), m */
-    double open_max;   /* largest opening while shaking, m */
-    double slip_max;   /* largest |slip| while shaking, m */
-    double slip_end[3];/* slip at the last sample, m */
+    double open_max;   /* largest opening while shaking beyond its gaps when it first closed
+                          (open_rest), every step, m; 0 while it never opened */
+    double open_rest;  /* its largest gap when it first closed while shaking (a seated mesh's
+                          base has gaps where it does not touch), m */
+    double comp_rest;  /* its springs' mean static compression then, fn / (KN A), m: an opening
+                          below it is the springs' breathing, not the joint opening */
+    int rest_set;      /* 1 once open_rest and comp_rest are set */
+    double slip_max;   /* largest |slip| while shaking, every step, m */
+    double slip_end[3];/* slip at the last step, m */
     int closed;        /* 1 if the joint ever carried load while shaking */
 } rd_pair;
 

@@ -256,8 +256,8 @@ static int own_scales(const rd_scenario *sc, rd_threshold_result *out, rd_error 
     for (int i = 0; i < rep.nbodies; i++) {
         const rd_check_body *b = &rep.body[i];
         if (b->fixed) continue;
-        if (b->alpha_shaking < alpha) { alpha = b->alpha_shaking; p = 0; }
-        if (b->alpha_tower <= alpha) { alpha = b->alpha_tower; p = b->p_tower; }
+        double a = fmin(b->alpha_shaking, b->alpha_tower); /* (p: the assembly's, or its own alone) */
+        if (a < alpha) { alpha = a; p = b->p_tower; }
     }
     rd_check_free(&rep);
     if (!(alpha > 0 && alpha < M_PI / 2))
