@@ -35,6 +35,14 @@ typedef struct rd_refscene {
     double base_z;            /* top of the fixed base, m */
     double theta0;            /* initial tilt of a single block, rad (signed) */
     double alpha, p;          /* slenderness (rad) and p = sqrt(3 g / 4 R) (1/s) of block 1 */
+    int equivalent;           /* 1: block 1 is the rigid-rocking equivalent of a body that is no
+                                 brick (a mesh, a prism, a hull): Housner's equation with that
+                                 body's own alpha (the lesser of its two sides along the shaking)
+                                 and p = sqrt(m g R / I_O) (R and pivot inertia I_O from its mass
+                                 properties), written as the rectangle of the same alpha and p;
+                                 its impact keeps r = 1 - 2 p^2 R sin^2(alpha) / g (an
+                                 approximation for an irregular body) */
+    double R_own;             /* equivalent: the body's own distance to its pivot edge, m */
     rd_motion_def motion;     /* the scenario's ground motion */
     double breaks[4];         /* pulse starts and ends, s */
     rd_ground ground;         /* ground acceleration for the solvers (ctx = this struct) */

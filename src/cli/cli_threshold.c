@@ -166,8 +166,7 @@ static void print_single(const rd_scenario *sc, const threshold_args *a, const r
            r->amplitude, r->amplitude / RD_G_STANDARD, r->below, r->amplitude, r->runs);
     if (r->own_scale)
         printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2: g tan alpha of the scene itself, "
-               "the least along the shaking over its bodies and the assemblies standing on them; no rigid "
-               "reference maps it)   w / p = %.4f (p of that body or assembly about its pivot edge)\n",
+               "the least along the shaking over its free bodies and the assemblies standing on them)   w / p = %.4f (p of that body or assembly about its pivot edge)\n",
                r->amplitude / r->static_amp, r->static_amp, r->w_over_p);
     else
         printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2; g tan alpha for one "

@@ -130,7 +130,7 @@ int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error
     rd_refscene *rs = malloc(sizeof *rs);
     if (!rs) return rd_error_set(err, "out of memory");
     rd_error ref_err;
-    if (rd_refscene_map(sc, rs, &ref_err) == 0 && rs->model == RD_REFMODEL_HOUSNER) {
+    if (rd_refscene_map(sc, rs, &ref_err) == 0 && rs->model == RD_REFMODEL_HOUSNER && !rs->equivalent) {
         *out = (rd_rocking_scales){.alpha = rs->alpha, .p = rs->p, .R = hypot(rs->b[0], rs->h[0]), .lean = 0, .housner = 1};
         free(rs);
         return 0;

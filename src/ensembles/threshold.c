@@ -286,6 +286,7 @@ static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_erro
             out->static_amp = sc->gravity * fmin(stack, upper);
         }
         out->w_over_p = 2 * M_PI * sc->motion.horizontal.frequency / rs->p;
+        out->own_scale = rs->equivalent;
     }
     free(rs);
     return rc;
