@@ -55,6 +55,17 @@ has at2-velocity-refused "vel.AT2:3: a PEER VELOCITY file" "$T/out.txt"
 [ "$rc" -eq 2 ] && ok at2-velocity-exit-2 || bad "at2-velocity-exit-2: rc=$rc"
 rc=0; "$BIN" check "$T/fur.dat" > "$T/out.txt" 2>&1 || rc=$?
 has at2-unknown-units "unknown units 'FURLONGS' in the header" "$T/out.txt"
+at2 "$T/dis.AT2" "DISPLACEMENT TIME SERIES IN UNITS OF CM" 1
+base "$T/dis.dat" <<'DAT'
+ground-motion import 'dis.AT2' direction 0
+DAT
+rc=0; "$BIN" check "$T/dis.dat" > "$T/out.txt" 2>&1 || rc=$?
+has at2-displacement-refused "dis.AT2:3: a PEER DISPLACEMENT file" "$T/out.txt"
+base "$T/atu.dat" <<'DAT'
+ground-motion import 'g.AT2' direction 0 units cm/s2
+DAT
+rc=0; "$BIN" check "$T/atu.dat" > "$T/out.txt" 2>&1 || rc=$?
+has at2-units-keyword-refused "'units' applies only to text/CSV records (an AT2 header states its units" "$T/out.txt"
 
 # --- CSV records: undeclared units are g, and a PGA above 5 g warns with the fix -------------
 sine 99.2 time > "$T/cm.csv"
@@ -130,6 +141,13 @@ if [ -f "$M" ]; then
     has mesh-yup-warning "a mesh drawn y-up is read z-up: add 'up y'" "$T/mesh4.txt"
     has mesh-up-y "$seated" "$T/mesh5.txt"
     hasnt mesh-up-y-clean "warning:" "$T/mesh5.txt"
+    for bad_kw in "units ft" "up x"; do
+        sed "s|'pbr.obj'|'m.obj' $bad_kw|; s|output hdf5 'pbr.h5'|output hdf5 '$T/o.h5'|" scenarios/pbr.dat > "$T/badmesh.dat"
+        rc=0; "$BIN" check "$T/badmesh.dat" > "$T/out.txt" 2>&1 || rc=$?
+        [ "$rc" -eq 2 ] && [ "$(wc -l < "$T/out.txt")" -eq 1 ] && ok "mesh-$bad_kw-refused: $(cat "$T/out.txt")" ||
+            bad "mesh-$bad_kw-refused: rc=$rc: $(cat "$T/out.txt")"
+    done
+    has mesh-up-x-message "unknown up axis 'x' (expected y or z)" "$T/out.txt"
 else
     bad "mesh cases: $M missing (make scenarios/pbr.obj)"
 fi
