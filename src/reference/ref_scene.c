@@ -1,7 +1,8 @@
 /* rockdem — a scenario as a rigid reference model (Housner or Kounadis): mapping and solving.
  * See include/rockdem/validate.h for the rules; every refusal names what does not fit.
  * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
- * base/, records/, io/ and the public API.
+ * base/, records/, io/ and the public API (rd_check_scene of engine/check.c: a body that is no
+ * brick, for its Housner equivalent).
  */
 #include "rockdem/validate.h"
 #include "rockdem/check.h"

@@ -145,6 +145,8 @@ static int set_pulse(const setter *S, const set_key *k)
     if (set_parse(S, S->value, k->range, k->unit, &v))
         return -1;
     *field(p, k->off) = v;
+    if (k->off == offsetof(rd_pulse_def, amplitude)) /* as written, for check's echo and advice */
+        p->amplitude_in_g = S->value[0] && S->value[strlen(S->value) - 1] == 'g';
     if (k->off == offsetof(rd_pulse_def, duration))
         p->frequency = 0.0;
     p->duration = pulse_duration(p);

@@ -167,6 +167,8 @@ has repeated-option-refused "option '-q' given twice" "$T/out.txt"
 rc=0; "$BIN" run -q > "$T/out.txt" 2>&1 || rc=$?
 has missing-file "rockdem run: missing FILE" "$T/out.txt"
 [ "$rc" -eq 2 ] && ok missing-file-exit-2 || bad "missing-file-exit-2: rc=$rc"
+"$BIN" check --set motion.amplitude=0.3 "$T/run.dat" > "$T/out.txt" 2>&1
+has amplitude-override-warning "amplitude 0.3 m/s^2 = 0.0306 g (a number without a g suffix is m/s^2)" "$T/out.txt"
 rc=0; "$BIN" check --strict "$T/run.dat" > /dev/null 2>&1 || rc=$?
 [ "$rc" -eq 0 ] && ok check-strict-first || bad "check-strict-first: rc=$rc"
 
