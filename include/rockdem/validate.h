@@ -105,14 +105,15 @@ typedef struct rd_threshold_result {
     double below;       /* m/s^2, lower end (does not overturn) */
     double static_amp;  /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
     double w_over_p;    /* 2 pi f / p of block 1 (0 without a frequency) */
-    int own_scale;      /* 1: static_amp and w_over_p are the scene's own (no rigid reference maps
-                           it): the least g tan(alpha) along the shaking over its free bodies and
-                           the assemblies standing on them, p of that one's rocking */
     int runs;           /* simulations made (a parallel scan may run up to jobs - 1 past the
                            first bracket) */
     int lifted_off;     /* reference only: 1 when the upper end of the bracket is the onset of
                            pivot lift-off (the block jumps; the rigid model stops there), not
                            of overturning */
+    int own_scale;      /* 1: static_amp and w_over_p are the scene's own (no brick or stack the
+                           rigid reference maps exactly): the least g tan(alpha) along the shaking
+                           over its free bodies and the assemblies standing on them, p of that
+                           one's rocking (last: tools/rockdem/_lib.py mirrors the layout) */
 } rd_threshold_result;
 
 /* rd_overturns' *over for a reference run whose pivot lifts off (the block jumps). */
