@@ -431,7 +431,7 @@ static void test_error_unknown_keyword(void **state)
     parse_fails("model solve time 1\n\n\n\n\n\n"
                 "   contact property frction 30\n",
                 "run.dat:7:21: unknown keyword 'frction' for 'contact property' (expected "
-                "stiffness-normal, stiffness-shear, friction, cohesion, tension, spacing, restitution)");
+                "stiffness-normal, stiffness-shear, friction, cohesion, tension, spacing, restitution, friction-coefficient)");
 }
 
 static void test_error_duplicate_keyword(void **state)
@@ -755,7 +755,7 @@ static void test_set_bad_key(void **state)
     parse_ok(BASE);
     set_fails("contact.frction=30",
               "--set contact.frction=30: unknown key 'contact.frction' (expected "
-              "contact.stiffness-normal, contact.stiffness-shear, contact.friction, "
+              "contact.stiffness-normal, contact.stiffness-shear, contact.friction, contact.friction-coefficient, "
               "contact.cohesion, contact.tension, contact.spacing, contact.restitution, contact.interface-seed, "
               "contact.interface-remove, contact.interface-raise, contact.interface-scatter)");
     set_fails("solver.dt=1", "--set solver.dt=1: unknown key 'solver.dt' (expected a key in "

@@ -13,8 +13,21 @@ typedef struct rd_check_body {
     int fixed;
     double mass;          /* kg */
     double volume;        /* m^3 */
+    double extent[3];     /* its bounding box in the ground frame as placed (x, y, z), m */
     double alpha_min;     /* least static tipping angle over all lean directions, rad (free) */
     double alpha;         /* tipping angle about its base edges (least of +-x, +-y), rad (free) */
+    double alpha_shaking; /* tipping angle leaning along +- the horizontal pulse's direction
+                             (x without a pulse), rad (free) */
+    double alpha_tower;   /* the same for the body and every free body standing on it, tipping
+                             as one about this body's base (its own alpha_shaking when nothing
+                             stands on it), rad (free) */
+    double p_tower;       /* frequency parameter sqrt(m g R / I_O) of that assembly rocking
+                             about its pivot edge on the side of alpha_tower (I_O its moment of
+                             inertia about the edge, R the distance to it): Housner's p for a
+                             rigid body of this mass, R and pivot inertia, rad/s (free) */
+    double R_tower;       /* that assembly's distance from its centre of mass to the pivot edge, m */
+    double lean_tower;    /* the direction it tips to first (the pulse's or the opposite), rad
+                             from +x */
     int npoints;          /* its subcontact points */
     int rests_on;         /* index of the body it rests on as placed, -1: none */
     int below;            /* index of the nearest body under it, -1: nothing under it */

@@ -82,8 +82,11 @@ typedef struct rd_joint_summary {
     double cohesion, tension; /* Pa */
     double damping;       /* viscous ratio of its normal dashpot */
     int closed;           /* 1 if it carried load while shaking */
-    double max_opening;   /* largest opening while shaking, m */
-    double max_slip;      /* largest relative slip of b against a at the joint, m */
+    double max_opening;   /* largest opening while shaking beyond the gaps it had when it first
+                             closed and beyond its springs' static compression (0: it never
+                             opened), every step, m */
+    double max_slip;      /* largest relative slip of b against a at the joint's centre of
+                             pressure (not a body's sway), every step, m */
     double final_slip;    /* slip at the end, m */
 } rd_joint_summary;
 

@@ -29,6 +29,10 @@ typedef struct rd_body_def {
     int nverts;                 /* hull: number of points */
     double *verts;              /* hull: points [nverts][3], m (owned by the scenario) */
     char mesh[RD_PATH_MAX];     /* mesh: file path (relative paths: to the scenario's folder) */
+    double mesh_unit;           /* mesh: metres per file unit (`units mm|cm|m`: 0.001, 0.01, 1);
+                                   0 = not declared (read as m) */
+    int mesh_up;                /* mesh: the file's up axis, 2 = z (default), 1 = y (`up y`: the
+                                   file's +y becomes +z, its +z becomes -y) */
     char group[RD_NAME_MAX];    /* joint group (`group 'pad'`), "" = none: selects the body in
                                    `contact property ... range group 'pad'` */
     char seat_on[RD_NAME_MAX];  /* if set: place the body so its lowest point rests on the top of
@@ -160,6 +164,7 @@ typedef enum rd_pulse_kind {
 typedef struct rd_pulse_def {
     rd_pulse_kind kind;
     double amplitude; /* m/s^2 (the parser converts g) */
+    int amplitude_in_g; /* 1 when the scenario wrote it with a g suffix (for check's echo and advice) */
     double frequency; /* Hz (sine, cosine, harmonic) */
     double duration;  /* s (rectangular, triangle); for the others derived from frequency */
     double cycles;    /* harmonic only, default 1 */
@@ -199,6 +204,7 @@ typedef struct rd_component_def {
     rd_record_source source;  /* NONE = this component is absent */
     char path[RD_PATH_MAX];   /* file, resolved against the scenario file's directory */
     double unit;              /* m/s^2 per unit of the file's values (text files; default g) */
+    int unit_given;           /* text files: 1 when the scenario declared `units` (else g by default) */
     double dt;                /* text files: sample step, s (0 = from the time column) */
     char record[RD_NAME_MAX]; /* FEMA: record id (e.g. "1") */
     int fema_b;               /* FEMA: 0 = component a, 1 = component b, 2 = component v (vertical) */

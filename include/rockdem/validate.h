@@ -35,6 +35,14 @@ typedef struct rd_refscene {
     double base_z;            /* top of the fixed base, m */
     double theta0;            /* initial tilt of a single block, rad (signed) */
     double alpha, p;          /* slenderness (rad) and p = sqrt(3 g / 4 R) (1/s) of block 1 */
+    int equivalent;           /* 1: block 1 is the rigid-rocking equivalent of a body that is no
+                                 brick (a mesh, a prism, a hull): Housner's equation with that
+                                 body's own alpha (the lesser of its two sides along the shaking)
+                                 and p = sqrt(m g R / I_O) (R and pivot inertia I_O from its mass
+                                 properties), written as the rectangle of the same alpha and p;
+                                 its impact keeps r = 1 - 2 p^2 R sin^2(alpha) / g (an
+                                 approximation for an irregular body) */
+    double R_own;             /* equivalent: the body's own distance to its pivot edge, m */
     rd_motion_def motion;     /* the scenario's ground motion */
     double breaks[4];         /* pulse starts and ends, s */
     rd_ground ground;         /* ground acceleration for the solvers (ctx = this struct) */
@@ -91,9 +99,9 @@ RD_API rd_threshold_opts rd_threshold_opts_default(void);
 
 /* The amplitude range (m/s^2) rd_threshold searches for this scenario and these options: lo
  * and hi with their defaults resolved. 0, or -1 with err (one line) when the options or the
- * scene cannot be searched: no horizontal pulse, a scene the reference does not map, rtol
- * outside its range, nscan above RD_THRESHOLD_SCAN_MAX, lo not below hi. Runs nothing: bad
- * input is told before any run. */
+ * scene cannot be searched: no horizontal pulse, no free body that can tip, rtol outside its
+ * range, nscan above RD_THRESHOLD_SCAN_MAX, lo not below hi. Runs nothing: bad input is told
+ * before any run. */
 RD_API int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo,
                               double *hi, rd_error *err);
 
@@ -108,6 +116,10 @@ typedef struct rd_threshold_result {
     int lifted_off;     /* reference only: 1 when the upper end of the bracket is the onset of
                            pivot lift-off (the block jumps; the rigid model stops there), not
                            of overturning */
+    int own_scale;      /* 1: static_amp and w_over_p are the scene's own (no brick or stack the
+                           rigid reference maps exactly): the least g tan(alpha) along the shaking
+                           over its free bodies and the assemblies standing on them, p of that
+                           one's rocking (last: tools/rockdem/_lib.py mirrors the layout) */
 } rd_threshold_result;
 
 /* rd_overturns' *over for a reference run whose pivot lifts off (the block jumps). */
@@ -155,6 +167,24 @@ typedef struct rd_restitution {
     double r_speed;     /* geometric mean of speed_ratio[] */
     double t_impact[4]; /* s, first impact times */
 } rd_restitution;
+
+/* The rigid-body scales of a scene's free rocking: one free body's tipping angle alpha (rad)
+ * and frequency parameter p = sqrt(m g R / I_O) (rad/s) on the side it tips to first along the
+ * pulse's direction (x without a pulse), the distance R (m) from its centre of mass to that
+ * pivot edge, and that lean direction (rad from +x). From Housner's block where the reference
+ * maps the scene (housner = 1: a brick), else from the body itself (a mesh, a prism: its own
+ * support polygon, R and pivot inertia; housner = 0). 0, or -1 with err (not one free body). */
+typedef struct rd_rocking_scales {
+    double alpha, p, R, lean;
+    int housner;
+} rd_rocking_scales;
+RD_API int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error *err);
+
+/* Rigid theory's restitution of an impact onto the opposite pivot edge, angular momentum
+ * about the new pivot conserved: r = 1 - 2 m R^2 sin^2(alpha) / I_O = 1 - 2 p^2 R sin^2(alpha)
+ * / g (a uniform rectangular block, I_O = 4/3 m R^2: Housner's 1 - 1.5 sin^2 alpha). Exact for
+ * a body symmetric about its rocking plane's vertical; an approximation for an irregular one. */
+RD_API double rd_rigid_restitution(const rd_rocking_scales *s, double gravity);
 
 RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
                            rd_error *err);

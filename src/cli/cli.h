@@ -21,6 +21,12 @@ typedef int (*rd_cli_option_fn)(void *ctx, int argc, char **argv, int *i);
 int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt, void *ctx,
                     const char **out);
 
+/* Options anywhere (getopt's order): moves the subcommand's FILE, the first argument from
+ * argv[2] on that is neither an option nor an option's value, to argv[2]; options that take no
+ * value are -q, --force, --strict and --tsv, every other one takes the next argument unless
+ * written --opt=V. 0, or -1 when there is no FILE. */
+int rd_cli_permute(int argc, char **argv);
+
 /* Is argv[i] one of the options `names` (NULL-terminated) that take a value? 1 when it is not
  * one of them; -1 when the value is missing (after printing which option needs one); 0 with
  * *v = argv[i + 1]. */
@@ -41,7 +47,20 @@ int rd_cli_restitution(int argc, char **argv); /* rockdem restitution SCENARIO .
 int rd_cli_study(int argc, char **argv);       /* rockdem study SCENARIO ... */
 int rd_cli_sweep(int argc, char **argv);       /* rockdem sweep SCENARIO ... (cli_sweep.c) */
 int rd_cli_assess(int argc, char **argv);     /* rockdem assess SCENARIO ... (cli_assess.c) */
-int rd_cli_check(rd_scenario *sc, int quiet);  /* rockdem check: report and warnings (cli_check.c) */
+/* rockdem check: report and warnings (cli_check.c); strict: exit 1 when it warns. */
+int rd_cli_check(rd_scenario *sc, int quiet, int strict);
+
+/* cli_units.c: every dimensional input of the scene with its units ("inputs: ..." lines). */
+void rd_cli_echo_inputs(const rd_scenario *sc);
+/* One "inputs: block ..." line: its size along ground x, y, z (m) and mass (kg). */
+void rd_cli_echo_body(const char *name, int mesh, double mass, const double size[3]);
+/* "warning:" lines for scene values that look like a unit mistake, each with the likely
+ * intent (friction in degrees below 1.5, gravity off the Earth's, a pulse amplitude under
+ * 1 m/s^2 without a g suffix, a PGA above 5 g); returns how many. */
+int rd_cli_unit_warnings(const rd_scenario *sc);
+/* The same for body d as built: larger than 100 m across (a mesh in mm?), a mesh tipping at
+ * under 0.5 deg (y-up?); alpha < 0 when unknown. Returns how many. */
+int rd_cli_body_warnings(const rd_body_def *d, double mass, const double size[3], double alpha);
 
 /* -q given (rd_cli_scenario takes it for every subcommand): no progress line, shorter output. */
 extern int rd_cli_quiet;

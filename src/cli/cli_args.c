@@ -115,6 +115,31 @@ static int common_option(rd_scenario *sc, int argc, char **argv, int *i, const c
     return rc;
 }
 
+/* Options of any subcommand that take no value (every other '-' argument without '=' takes the
+ * next one). */
+static int is_flag(const char *a)
+{
+    static const char *const flags[] = {"-q", "--force", "--strict", "--tsv", NULL};
+    for (const char *const *f = flags; *f; f++)
+        if (!strcmp(a, *f)) return 1;
+    return 0;
+}
+
+int rd_cli_permute(int argc, char **argv)
+{
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        if (a[0] != '-' || !a[1]) { /* the operand: moved to argv[2], the options keep their order */
+            char *file = argv[i];
+            memmove(argv + 3, argv + 2, (size_t)(i - 2) * sizeof *argv);
+            argv[2] = file;
+            return 0;
+        }
+        if (!is_flag(a) && !strchr(a, '=')) i++; /* its value */
+    }
+    return -1;
+}
+
 int rd_cli_scenario(rd_scenario *sc, int argc, char **argv, rd_cli_option_fn opt, void *ctx,
                     const char **out)
 {

@@ -8,7 +8,8 @@
  *   - a time step far below the output interval (many steps per sample: a slow run)
  *   - a ground-motion record that ends before the requested duration
  * It first does everything a run would refuse (rd_sim_check: meshes, the step budget, the
- * output file; the checkpoint it restores, read and compared as run does). Exit status: 2 when a run would be refused (bad input), else 0; the last line
+ * output file; the checkpoint it restores, read and compared as run does). Exit status: 2 when a
+ * run would be refused (bad input), 1 with --strict when it warned, else 0; the last line
  * is "FILE: ok (...)" without warnings, "FILE: N warnings (...)" with them.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
@@ -37,7 +38,7 @@ static void print_body(const rd_check_report *r, const rd_check_body *b)
     if (!b->fixed && b->rests_on >= 0) printf(", rests on '%s'", r->body[b->rests_on].name);
     else if (!b->fixed && b->below >= 0) printf(", %.4g m above '%s'", b->gap, r->body[b->below].name);
     else if (!b->fixed) printf(", nothing under it");
-    printf("\n");
+    printf("; size %.4g x %.4g x %.4g m (x, y, z)\n", b->extent[0], b->extent[1], b->extent[2]);
 }
 
 /* Height of a body from its volume and mass are not enough: use the cube root of its volume as
@@ -70,6 +71,9 @@ static int warnings(const rd_scenario *sc, const rd_check_report *r)
             n++;
         }
     }
+    n += rd_cli_unit_warnings(sc);
+    for (int i = 0; i < r->nbodies; i++)
+        n += rd_cli_body_warnings(&sc->bodies[i], r->body[i].mass, r->body[i].extent, r->body[i].alpha_min);
     double per_sample = r->output_interval / r->dt;
     if (per_sample > RD_STEPS_PER_SAMPLE_MAX) {
         printf("warning: the time step %.3g s (limit %.3g s) is %.0f times shorter than the output "
@@ -97,7 +101,7 @@ static int check_restore(const rd_scenario *sc, rd_error *err)
     return sim ? 0 : -1;
 }
 
-int rd_cli_check(rd_scenario *sc, int quiet)
+int rd_cli_check(rd_scenario *sc, int quiet, int strict)
 {
     rd_check_report r;
     rd_check_info info;
@@ -112,6 +116,7 @@ int rd_cli_check(rd_scenario *sc, int quiet)
            r.npoints, r.njoints, r.njoints == 1 ? "y set" : "y sets", r.duration);
     printf("time step %.4g s (stability limit %.4g s), %.0f steps per output sample (%.3g s)\n",
            r.dt, r.dt_critical, r.output_interval / r.dt, r.output_interval);
+    rd_cli_echo_inputs(sc);
     for (int i = 0; i < r.nbodies; i++) print_body(&r, &r.body[i]);
     printf("cost: %.3g s of wall time per simulated second (%d steps timed), about %.3g s for "
            "the run\n", r.wall_per_sim_s, r.trial_steps, r.wall_per_sim_s * r.duration);
@@ -124,5 +129,6 @@ int rd_cli_check(rd_scenario *sc, int quiet)
         printf("%s: ok (%d bodies, %d subcontact points, %.4g s; dt %.3g s, about %.3g steps; output %s)\n",
                sc->file, sc->nbodies, info.npoints, sc->duration, info.dt, info.steps, sc->output.path);
     rd_check_free(&r);
-    return 0; /* warnings are advice: the exit status says whether a run would be refused */
+    /* warnings are advice: the exit status says whether a run would be refused, unless --strict */
+    return strict && n ? 1 : 0;
 }

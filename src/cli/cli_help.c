@@ -69,7 +69,7 @@ static const sub_help pages[] = {
             "size limit, file removed: one line names the file and the reason), a body passed into\n"
             "another (penetrated) or fell out of the scene (lost); 130 Ctrl-C, SIGTERM or SIGHUP\n"
             "(the file then holds everything so far).\n"},
-    {"check", "usage: rockdem check FILE [--set KEY=VALUE]... [-o OUT.h5] [-q] [--force]\n"
+    {"check", "usage: rockdem check FILE [--set KEY=VALUE]... [-o OUT.h5] [-q] [--force] [--strict]\n"
               "Read and build everything run would, writing nothing: the scenario (every number\n"
               "within its range, docs/LIMITS.md), meshes (read and checked), records (read; their\n"
               "intensity measures printed unless -q), the perturbed subcontact points, the time\n"
@@ -78,9 +78,13 @@ static const sub_help pages[] = {
               "subcontacts, what it rests on), the joints and the measured cost of a simulated\n"
               "second, and warns of a block with nothing under it, a block placed above its\n"
               "support, overlapping blocks, a step far below the output interval and a record\n"
-              "shorter than the run. The last line is 'FILE: ok (...)' or 'FILE: N warnings\n"
-              "(...)'. Exit status 0 when valid (warnings included), 2 with one line naming file,\n"
-              "line and problem.\n"},
+              "shorter than the run; echoes every dimensional input with its units ('inputs:'\n"
+              "lines) and warns of values that look like a unit mistake, with the likely intent\n"
+              "(friction in degrees under 1.5, gravity off the Earth's, an amplitude under 1 m/s^2\n"
+              "without g, a PGA above 5 g, a body over 100 m across, a mesh tipping under 0.5 deg).\n"
+              "The last line is 'FILE: ok (...)' or 'FILE: N warnings (...)'. Exit status 0 when\n"
+              "valid (warnings included; 1 with --strict when it warns), 2 with one line naming\n"
+              "file, line and problem. Options may come before or after FILE.\n"},
     {"reference", "usage: rockdem reference FILE [--set KEY=VALUE]... [-o OUT.h5]\n"
                   "Solve the scene as rigid blocks with CVODE: Housner's equation for one free brick\n"
                   "on a fixed base, Kounadis' two-block equations for a stack of two. Same HDF5\n"

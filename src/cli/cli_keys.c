@@ -28,6 +28,7 @@ static const key_doc keys[] = {
     {"contact.stiffness-normal", "Pa/m", "1e10", "KN, normal stiffness per unit area"},
     {"contact.stiffness-shear", "Pa/m", "1e11", "KS, shear stiffness per unit area (default 10 KN: see docs/CONTACT.md)"},
     {"contact.friction", "degree", "40", "friction angle"},
+    {"contact.friction-coefficient", "1", "0.839", "friction as a coefficient mu = tan(friction angle)"},
     {"contact.cohesion", "Pa", "0", "peak cohesion (lost at the first slip)"},
     {"contact.tension", "Pa", "0", "peak tensile strength (lost at the first opening)"},
     {"contact.spacing", "m | auto | vertices", "vertices", "subcontact spacing (vertices: face corners; auto: a tenth of the narrowest face)"},

@@ -29,6 +29,12 @@ int rd_cli_reference(int argc, char **argv)
     if (rc) {
         fprintf(stderr, "%s: %s\n", sc.file, err.msg);
     } else {
+        if (rs.equivalent)
+            printf("reference: APPROXIMATE: body '%s' is no brick; Housner's one-block equation with its own "
+                   "alpha, R = %.4g m and pivot inertia along the shaking (the lesser side), as the block "
+                   "b = %.4g m, h = %.4g m of the same alpha and p; its impacts keep r = 1 - 2 p^2 R sin^2(alpha) "
+                   "/ g (exact only for a body symmetric about the rocking plane's vertical)\n",
+                   sc.bodies[rs.body[0]].name, rs.R_own, rs.b[0], rs.h[0]);
         printf("reference: %s, alpha = %.4g rad, p = %.4g 1/s", rs.model == RD_REFMODEL_HOUSNER ?
                "Housner (one block)" : "Kounadis (two-block stack)", rs.alpha, rs.p);
         if (rs.model == RD_REFMODEL_HOUSNER)

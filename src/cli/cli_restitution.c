@@ -89,10 +89,9 @@ int rd_cli_restitution(int argc, char **argv)
     restitution_args a = {0, 0};
     if (rd_cli_scenario(&sc, argc, argv, restitution_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
     rd_error err;
-    rd_refscene rs;
-    if (rd_refscene_map(&sc, &rs, &err) || rs.model != RD_REFMODEL_HOUSNER) {
-        fprintf(stderr, "%s\n", rs.model == RD_REFMODEL_KOUNADIS ? "restitution: needs one free "
-                "block on a fixed base (this is a stack)" : err.msg);
+    rd_rocking_scales rs;
+    if (rd_rocking_scales_of(&sc, &rs, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
         rd_scenario_free(&sc);
         return 2;
     }
@@ -103,7 +102,14 @@ int rd_cli_restitution(int argc, char **argv)
         return 2;
     }
     double theta0 = a.theta0 > 0 ? a.theta0 : 0.5 * rs.alpha;
-    double target = a.target > 0 ? a.target : rd_housner_r(rs.alpha);
+    double rigid = rs.housner ? rd_housner_r(rs.alpha) : rd_rigid_restitution(&rs, sc.gravity);
+    double target = a.target > 0 ? a.target : rigid;
+    if (!rs.housner)
+        printf("body: no Housner block (not a brick); its own rocking: alpha %.4g rad, R %.4g m, p %.4g rad/s, "
+               "leaning towards %.0f deg; rigid impact about the opposite edge r = 1 - 2 p^2 R sin^2(alpha) / g "
+               "= %.4f (exact for a body symmetric about its rocking plane's vertical, approximate for an "
+               "irregular one)%s\n", rs.alpha, rs.R, rs.p, rs.lean * 180 / M_PI, rigid,
+               a.target > 0 ? "" : ": the target");
     /* 4 x 5 table runs, then up to RD_CAL_ITER calibration runs (restitution.c; its scan is
        the table's row at the scenario's KN when there is one, else 5 more runs); the check is
        the calibration's last run */
@@ -119,7 +125,7 @@ int rd_cli_restitution(int argc, char **argv)
     } else if (rc == 0) {
         printf("calibrated: contact property restitution %.4f gives r = %.4f (target %.4f%s, "
                "|error| < %g) at KN %.3g Pa/m\n", e, reached, target,
-               a.target > 0 ? "" : ", Housner's r", RD_CAL_RTOL, sc.contact.kn);
+               a.target > 0 ? "" : rs.housner ? ", Housner's r" : ", the rigid impact's r", RD_CAL_RTOL, sc.contact.kn);
         print_check(&at);
     } else {
         const char *why = rc == 2

@@ -163,8 +163,13 @@ static void print_single(const rd_scenario *sc, const threshold_args *a, const r
     printf("engine %s: minimum overturning amplitude %.5g m/s^2 = %.4f g "
            "(bracket %.5g .. %.5g m/s^2, %d runs)\n", a->engine == RD_ENGINE_DEM ? "dem" : "reference",
            r->amplitude, r->amplitude / RD_G_STANDARD, r->below, r->amplitude, r->runs);
-    printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2; g tan alpha for one "
-           "block)   w / p = %.4f\n", r->amplitude / r->static_amp, r->static_amp, r->w_over_p);
+    if (r->own_scale)
+        printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2: g tan alpha of the scene itself, "
+               "the least along the shaking over its free bodies and the assemblies standing on them)   w / p = %.4f (p of that body or assembly about its pivot edge)\n",
+               r->amplitude / r->static_amp, r->static_amp, r->w_over_p);
+    else
+        printf("a / a_uplift = %.4f   (static uplift a_uplift = %.4g m/s^2; g tan alpha for one "
+               "block)   w / p = %.4f\n", r->amplitude / r->static_amp, r->static_amp, r->w_over_p);
     if (r->amplitude == r->below)
         printf("note: the lowest amplitude tried (%.4g m/s^2 = %.4f g) already overturns; lower --lo\n",
                r->amplitude, r->amplitude / sc->gravity);

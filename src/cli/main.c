@@ -6,6 +6,7 @@
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
+#include "rockdem/observer.h"
 #include "rockdem/output.h"
 #include "rockdem/rockdem.h"
 #include "cli/cli.h"
@@ -70,8 +71,10 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
                            : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
         printf("%s: %s", b->name, what);
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
-        printf("; max tilt %.4g rad = %.3g alpha; max slide %.3g mm%s%s\n", b->max_tilt, b->max_tilt_ratio,
-               1e3 * b->max_slide, b->slid ? "; slid" : "", b->uplifted && !b->overturned ? "; uplifted" : "");
+        printf("; max tilt %.4g rad = %.3g alpha; max sway of its base centre %.3g mm (rocking and sliding "
+               "together; the slip at its joints is on the joint lines)%s%s\n", b->max_tilt, b->max_tilt_ratio,
+               1e3 * b->max_slide, b->slid ? "; all its bearing points slipped at once" : "",
+               b->uplifted && !b->overturned ? "; uplifted" : "");
         if (b->overturned)
             printf("%s: ended at (%.4g, %.4g, %.4g) m: %.4g m from where it stood, %.4g m lower\n",
                    b->name, b->final_position[0], b->final_position[1], b->final_position[2], b->travel,
@@ -86,9 +89,11 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
         rd_joint_summary j;
         rd_sim_joint(sim, k, &j);
         if (!j.closed) continue;
-        printf("joint %s-%s: max slip %.4g mm, final slip %.4g mm, max opening %.4g mm "
+        char opening[64] = "never opened";
+        if (j.max_opening > 0) snprintf(opening, sizeof opening, "max opening %.4g mm", 1e3 * j.max_opening);
+        printf("joint %s-%s: max slip %.4g mm, final slip %.4g mm (relative sliding at the joint), %s "
                "(KN %.3g, KS %.3g Pa/m, friction %.3g deg)\n", j.a, j.b, 1e3 * j.max_slip,
-               1e3 * j.final_slip, 1e3 * j.max_opening, j.kn, j.ks, j.friction * 180 / M_PI);
+               1e3 * j.final_slip, opening, j.kn, j.ks, j.friction * 180 / M_PI);
     }
     if (quiet) return;
     double sim_s = s->steps * s->dt;
@@ -104,13 +109,36 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
 }
 
-/* --force (run past the step budget) of run and check; -q is common (rd_cli_quiet). */
-static int force_option(void *ctx, int argc, char **argv, int *i)
+/* --force (run past the step budget) of run and check, --strict (warnings fail) of check;
+ * -q is common (rd_cli_quiet). */
+typedef struct run_flags {
+    int check_only, force, strict;
+} run_flags;
+
+static int run_option(void *ctx, int argc, char **argv, int *i)
 {
+    run_flags *f = ctx;
     (void)argc;
-    if (strcmp(argv[*i], "--force")) return 1;
-    *(int *)ctx = 1;
+    if (!strcmp(argv[*i], "--force")) f->force = 1;
+    else if (f->check_only && !strcmp(argv[*i], "--strict")) f->strict = 1;
+    else return 1;
     return 0;
+}
+
+/* The run's header: every dimensional input with its units, each free body's size and mass. */
+static void print_inputs(const rd_sim *sim)
+{
+    const rd_scenario *sc = rd_sim_scenario(sim);
+    rd_cli_echo_inputs(sc);
+    int nfree = rd_sim_body_count(sim, NULL);
+    for (int k = 0; k < nfree; k++) {
+        rd_body_info b;
+        rd_sim_body_info(sim, k, &b);
+        int mesh = 0;
+        for (int i = 0; i < sc->nbodies; i++)
+            if (!strcmp(sc->bodies[i].name, b.name)) mesh = sc->bodies[i].shape == RD_SHAPE_MESH;
+        rd_cli_echo_body(b.name, mesh, b.mass, b.size);
+    }
 }
 
 /* rockdem check: everything run would read and build (meshes, records with their IMs,
@@ -119,12 +147,12 @@ static int cmd_run(int argc, char **argv, int check_only)
 {
     rd_scenario sc;
     const char *out = NULL;
-    int force = 0;
-    if (rd_cli_scenario(&sc, argc, argv, force_option, &force, &out)) { rd_scenario_free(&sc); return 2; }
+    run_flags f = {.check_only = check_only};
+    if (rd_cli_scenario(&sc, argc, argv, run_option, &f, &out)) { rd_scenario_free(&sc); return 2; }
     int quiet = rd_cli_quiet;
-    if (force) sc.force = 1;
+    if (f.force) sc.force = 1;
     if (check_only) {
-        int rc = rd_cli_check(&sc, quiet);
+        int rc = rd_cli_check(&sc, quiet, f.strict);
         rd_scenario_free(&sc);
         return rc;
     }
@@ -137,6 +165,7 @@ static int cmd_run(int argc, char **argv, int check_only)
         rd_scenario_free(&sc);
         return 2;
     }
+    if (!quiet) print_inputs(sim);
     /* Ctrl-C, kill (SIGTERM) and a closed terminal or session (SIGHUP) all stop the run at the
        next step; the file is closed with status interrupted */
     signal(SIGINT, on_signal);
@@ -202,6 +231,10 @@ int main(int argc, char **argv)
         }
         rd_cli_keys(argc == 3);
         return 0;
+    }
+    if (argc >= 3 && rd_cli_is_subcommand(argv[1]) && rd_cli_permute(argc, argv)) {
+        fprintf(stderr, "rockdem %s: missing FILE (see rockdem %s --help)\n", argv[1], argv[1]);
+        return 2;
     }
     if (argc >= 3 && !strcmp(argv[1], "run")) return cmd_run(argc, argv, 0);
     if (argc >= 3 && !strcmp(argv[1], "check")) return cmd_run(argc, argv, 1);

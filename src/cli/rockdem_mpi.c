@@ -88,7 +88,7 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &b.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &b.size);
     int rc;
-    if (argc >= 3 && !strcmp(argv[1], "sweep")) {
+    if (argc >= 3 && !strcmp(argv[1], "sweep") && rd_cli_permute(argc, argv) == 0) {
         rc = rd_cli_sweep_with(argc, argv, &b);
     } else {
         if (b.rank == 0) fprintf(stderr, "usage: mpirun -n N rockdem-mpi sweep FILE ... (see rockdem --help)\n");

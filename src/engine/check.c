@@ -18,6 +18,66 @@
 #define RD_CHECK_STEPS 400     /* trial steps timed for the cost estimate */
 #define RD_CHECK_WALL_MAX 1.0  /* ... or fewer, when they take longer than this, s */
 
+/* Does free body j stand on body i, directly or through the bodies under it (at rest)? */
+static int stands_on(const rd_sim *s, int j, int i)
+{
+    for (int n = 0; n < s->nb && j >= 0 && !s->fixed[j]; n++) {
+        j = s->watch[s->free_of[j]].rests_on;
+        if (j == i) return 1;
+    }
+    return 0;
+}
+
+/* Housner's frequency parameter p = sqrt(m g R / I_O) of the bodies standing on i (and i),
+ * total mass m, centre of mass com, rocking about the edge of i's support polygon towards
+ * (dx, dy) (unit): the edge's point P lies below com at the tipping angle alpha, R = |com - P|;
+ * I_O sums each body's inertia about the edge's axis a = (-dy, dx, 0) through its centre
+ * (principal moments I_k times (a in body axes)_k^2) and m_j r_j^2 (r_j its distance to the
+ * edge line). */
+static double pivot_frequency(const rd_sim *s, int i, const double com[3], double m, double dx, double dy,
+                              double alpha, double *R)
+{
+    const double a[3] = {-dy, dx, 0};
+    const double *seat = s->watch[s->free_of[i]].seat; /* seat . x = seat[3] */
+    double h = com[2] - (seat[3] - seat[0] * com[0] - seat[1] * com[1]) / seat[2]; /* height over the seat */
+    double d = h * tan(alpha), P[3] = {com[0] + d * dx, com[1] + d * dy, com[2] - h}, io = 0;
+    for (int j = 0; j < s->nb; j++) {
+        if (!(j == i || (!s->fixed[j] && stands_on(s, j, i)))) continue;
+        double ab[3], r[3];
+        rd_mat_tvec(s->R[j], a, ab);
+        for (int k = 0; k < 3; k++) io += s->inertia[j][k] * ab[k] * ab[k];
+        for (int k = 0; k < 3; k++) r[k] = s->x[j][k] - P[k];
+        double along = rd_dot(r, a);
+        rd_axpy(-along, a, r);
+        io += s->mass[j] * rd_dot(r, r);
+    }
+    *R = hypot(d, h);
+    return io > 0 ? sqrt(m * s->sc.gravity * *R / io) : 0.0;
+}
+
+/* Body i's tipping angles along +- the shaking direction: its own, and with everything that
+ * stands on it as one rigid assembly (a drum column, a stack or a statue on its plinth tips
+ * first as a whole, at a smaller angle than any one of its parts). */
+static void shaking_alphas(const rd_sim *s, int i, rd_check_body *cb)
+{
+    const double psi = s->sc.motion.horizontal.kind != RD_PULSE_NONE ? s->sc.motion.horizontal.direction : 0.0;
+    const double dx = cos(psi), dy = sin(psi);
+    double com[3] = {0, 0, 0}, m = 0;
+    for (int j = 0; j < s->nb; j++)
+        if (j == i || (!s->fixed[j] && stands_on(s, j, i))) {
+            rd_axpy(s->mass[j], s->x[j], com);
+            m += s->mass[j];
+        }
+    for (int k = 0; k < 3; k++) com[k] /= m;
+    int k = s->free_of[i];
+    cb->alpha_shaking = fmin(rd_monitor_alpha_at(s, k, s->x[i], dx, dy), rd_monitor_alpha_at(s, k, s->x[i], -dx, -dy));
+    double ap = rd_monitor_alpha_at(s, k, com, dx, dy), an = rd_monitor_alpha_at(s, k, com, -dx, -dy);
+    cb->alpha_tower = fmin(ap, an);
+    double sgn = ap <= an ? 1.0 : -1.0; /* the side it tips to first */
+    cb->p_tower = pivot_frequency(s, i, com, m, sgn * dx, sgn * dy, cb->alpha_tower, &cb->R_tower);
+    cb->lean_tower = atan2(sgn * dy, sgn * dx);
+}
+
 static double body_volume(const rd_sim *s, int i)
 {
     rd_mass m;
@@ -118,6 +178,9 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
         cb->fixed = s->fixed[i];
         cb->mass = s->mass[i];
         cb->volume = body_volume(s, i);
+        double lo[3], hi[3];
+        extent(s, i, lo, hi);
+        for (int k = 0; k < 3; k++) cb->extent[k] = hi[k] - lo[k];
         cb->npoints = s->pt0[i + 1] - s->pt0[i];
         touching(probe, i, cb);
         cb->below = s->fixed[i] ? -1 : below(s, i, &cb->gap);
@@ -127,6 +190,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
             const rd_watch *w = &s->watch[s->free_of[i]];
             cb->alpha_min = w->sum->alpha_min;
             cb->alpha = w->sum->alpha;
+            shaking_alphas(s, i, cb);
         }
     }
     if (probe != s) rd_sim_free(probe);

@@ -214,20 +214,24 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
         double to_other = o == pr->a ? 1.0 : -1.0; /* pr->n points from a towards b */
         int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
         int t = o == pr->a ? pr->b : pr->a;
-        double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius);
+        double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius), nb[3];
+        rd_mat_tvec(s->R[o], pr->n, nb); /* the joint's normal in the owner's frame (called every step:
+                                            one rotation per side, not one per face) */
         for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
+            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf]) continue; /* a face without points (most of a mesh's) */
             /* only faces turned towards the other body measure the joint's opening (the face's
-               normal from the rotation: a mesh body's step leaves its face normals alone) */
-            double fnorm[3];
-            rd_mat_vec(s->R[o], s->poly[o].fn[s->cf_face[cf]], fnorm);
-            int facing = normal && to_other * rd_dot(fnorm, pr->n) > 0.5;
+               normal in the body frame: a mesh body's step leaves its world face normals alone) */
+            int facing = normal && to_other * rd_dot(s->poly[o].fn[s->cf_face[cf]], nb) > 0.5;
             for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
                 int st = sd->state0 + (j - s->pt0[o]);
+                int active = s->pstate[st] & RD_PT_ACTIVE;
+                int opens = facing && s->pj[st][1] < 1e300 && s->pj[st][1] > open;
+                if (!active && !opens) continue;
                 double p[3];
                 point_world(s, o, j, p);
-                if (facing && s->pj[st][1] < 1e300 && s->pj[st][1] > open && (!s->convex[t] || over_face(s, t, pr->n, p, tol)))
+                if (opens && (!s->convex[t] || over_face(s, t, pr->n, p, tol)))
                     open = s->pj[st][1];
-                if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
+                if (!active) continue;
                 double fn = s->pj[st][0], a = sd->weight * s->pa[j];
                 m->fn += fn;
                 m->area += a;
@@ -267,7 +271,10 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
     }
 }
 
-/* Outcomes of every joint while shaking: largest opening and slip, final slip. */
+/* Outcomes of every joint while shaking, called every step (the slip accumulates between
+ * measures along the centre of pressure's path, so a coarser call misses slip, and maxima
+ * between samples): largest opening beyond the gaps it had when it first closed, largest slip,
+ * final slip. */
 void rd_joints_sample(rd_sim *s)
 {
     for (int p = 0; p < s->npair; p++) {
@@ -277,7 +284,14 @@ void rd_joints_sample(rd_sim *s)
         rd_joint_measure(s, pr, &m);
         if (m.area > 0) pr->closed = 1;
         if (!pr->closed) continue;
-        if (isfinite(m.opening)) pr->open_max = fmax(pr->open_max, m.opening);
+        if (!pr->rest_set && m.area > 0 && isfinite(m.opening)) {
+            const rd_joint *jt = &s->joint[pr->joint];
+            pr->open_rest = m.opening;
+            pr->comp_rest = m.fn / (jt->kn * m.area);
+            pr->rest_set = 1;
+        }
+        double opened = m.opening - pr->open_rest;
+        if (pr->rest_set && isfinite(m.opening) && opened > pr->comp_rest) pr->open_max = fmax(pr->open_max, opened);
         pr->slip_max = fmax(pr->slip_max, rd_norm(m.slip));
         rd_copy3(m.slip, pr->slip_end);
     }

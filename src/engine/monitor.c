@@ -110,6 +110,15 @@ static double alpha_toward(const rd_watch *w, double dx, double dy)
     return atan2(d, w->x_ref[2] - seat_z(w, w->x_ref[0] + d * dx, w->x_ref[1] + d * dy));
 }
 
+double rd_monitor_alpha_at(const rd_sim *s, int k, const double com[3], double dx, double dy)
+{
+    const rd_watch *w = &s->watch[k];
+    double n = hypot(dx, dy);
+    if (n == 0) { dx = 1; dy = 0; } else { dx /= n; dy /= n; }
+    double d = ray_to_edge(w, com[0], com[1], dx, dy);
+    return atan2(d, com[2] - seat_z(w, com[0] + d * dx, com[1] + d * dy));
+}
+
 /* Ground-frame xy of the subcontact points pressed between body i and the body `below` it
  * at rest (either side's points); returns the count written into a malloc'ed *out, or -1. */
 static int contact_points(const rd_sim *s, int i, int below, double (**out)[2])

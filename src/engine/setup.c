@@ -35,13 +35,31 @@ static void initial_orientation(const double rot[3], const double axes[9], doubl
     rd_quat_mul(t2, qa, q);
 }
 
+/* A mesh in the scene's frame: read (path resolved by the parser), scaled to metres by its
+ * declared units and turned z-up when the file is y-up (+90 deg about x: (x, y, z) ->
+ * (x, -z, y)); the bounding-box centre stays at the origin. */
+static int mesh_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
+{
+    if (rd_mesh_read(p, d->mesh, NULL, err)) return -1;
+    double s = d->mesh_unit > 0 ? d->mesh_unit : 1.0;
+    if (s == 1.0 && d->mesh_up != 1) return 0;
+    for (int i = 0; i < p->nv; i++) {
+        double x = p->v[i][0], y = p->v[i][1], z = p->v[i][2];
+        p->v[i][0] = s * x;
+        p->v[i][1] = s * (d->mesh_up == 1 ? -z : y);
+        p->v[i][2] = s * (d->mesh_up == 1 ? y : z);
+    }
+    rd_poly_update(p);
+    return 0;
+}
+
 static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
 {
     switch (d->shape) {
     case RD_SHAPE_BRICK: return rd_poly_brick(p, d->size, err);
     case RD_SHAPE_PRISM: return rd_poly_prism(p, d->sides, d->radius, d->radius_top, d->size[2], err);
     case RD_SHAPE_HULL: return rd_poly_hull(p, (const double (*)[3])d->verts, d->nverts, err);
-    case RD_SHAPE_MESH: return rd_mesh_read(p, d->mesh, NULL, err); /* path resolved by the parser */
+    case RD_SHAPE_MESH: return mesh_shape(d, p, err);
     }
     return rd_error_set(err, "unknown shape");
 }

@@ -178,9 +178,9 @@ static void step_once(rd_sim *s)
         if (s->t >= s->next_out - 1e-9 * s->dt) {
             rd_energy_sample(s);
             rd_observe_sample(s);
-            rd_joints_sample(s);
             s->next_out += s->sc.output.interval;
         }
+        rd_joints_sample(s); /* every step: slip accumulates along the path, maxima between samples */
         rd_history_step(s);
     }
     rd_integrate_drift(s);

@@ -121,9 +121,15 @@ typedef struct rd_pair {
     double ref[2][3];  /* its centre of pressure then, in the frames of a and b, m */
     double slip_acc[3];/* accumulated tangential displacement of b against a at the centre of
                           pressure while loaded (elastic shear included), m */
-    double open_max;   /* largest opening while shaking, m */
-    double slip_max;   /* largest |slip| while shaking, m */
-    double slip_end[3];/* slip at the last sample, m */
+    double open_max;   /* largest opening while shaking beyond its gaps when it first closed
+                          (open_rest), every step, m; 0 while it never opened */
+    double open_rest;  /* its largest gap when it first closed while shaking (a seated mesh's
+                          base has gaps where it does not touch), m */
+    double comp_rest;  /* its springs' mean static compression then, fn / (KN A), m: an opening
+                          below it is the springs' breathing, not the joint opening */
+    int rest_set;      /* 1 once open_rest and comp_rest are set */
+    double slip_max;   /* largest |slip| while shaking, every step, m */
+    double slip_end[3];/* slip at the last step, m */
     int closed;        /* 1 if the joint ever carried load while shaking */
 } rd_pair;
 
@@ -448,6 +454,11 @@ int rd_rest_reached(rd_sim *s);
 void rd_monitor_rest(rd_sim *s);
 void rd_monitor_scene(rd_sim *s);
 double rd_monitor_inradius(const rd_sim *s, int i);
+/* Static tipping angle (rad) of free body k's support polygon at rest (after rd_monitor_rest)
+ * with a centre of mass at com (ground frame, m), leaning towards the horizontal (dx, dy):
+ * atan(d / h) as for the body's own alpha. com is the body's own, or that of the body and
+ * everything standing on it (the assembly tipping as one about this body's base). */
+double rd_monitor_alpha_at(const rd_sim *s, int k, const double com[3], double dx, double dy);
 int rd_monitor_escape(rd_sim *s);
 void rd_monitor_start(rd_sim *s);
 void rd_monitor_step(rd_sim *s);

@@ -8,6 +8,7 @@
  */
 #include "rockdem/validate.h"
 #include "rockdem/observer.h"
+#include "rockdem/check.h"
 #include "base/vec.h"
 
 #include <math.h>
@@ -117,31 +118,66 @@ static int speed_ratios(const speed_log *lg, double p, double alpha, double *rat
     return n > 0 ? n : 0;
 }
 
-/* The free-rocking scene: no motion, the single block tilted by theta0 toward +x (a copy of
- * base the caller frees with rd_scenario_free, also on error). */
+int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error *err)
+{
+    memset(out, 0, sizeof *out);
+    int nfree = 0;
+    for (int i = 0; i < sc->nbodies; i++) nfree += !sc->bodies[i].fixed;
+    if (nfree != 1)
+        return rd_error_set(err, "%s: restitution: needs exactly one free body (found %d): the free rocking of "
+                                 "an assembly has no single sequence of impacts to measure; give one of its "
+                                 "bodies alone on a fixed base", sc->file, nfree);
+    rd_refscene *rs = malloc(sizeof *rs);
+    if (!rs) return rd_error_set(err, "out of memory");
+    rd_error ref_err;
+    if (rd_refscene_map(sc, rs, &ref_err) == 0 && rs->model == RD_REFMODEL_HOUSNER && !rs->equivalent) {
+        *out = (rd_rocking_scales){.alpha = rs->alpha, .p = rs->p, .R = hypot(rs->b[0], rs->h[0]), .lean = 0, .housner = 1};
+        free(rs);
+        return 0;
+    }
+    free(rs);
+    rd_check_report rep;
+    if (rd_check_scene(sc, &rep, err)) return -1;
+    for (int i = 0; i < rep.nbodies; i++)
+        if (!rep.body[i].fixed)
+            *out = (rd_rocking_scales){.alpha = rep.body[i].alpha_tower, .p = rep.body[i].p_tower,
+                                       .R = rep.body[i].R_tower, .lean = rep.body[i].lean_tower};
+    rd_check_free(&rep);
+    if (!(out->alpha > 0 && out->p > 0))
+        return rd_error_set(err, "%s: restitution: the free body does not stand on a base it can rock on "
+                                 "(tipping angle %.3g deg)", sc->file, out->alpha * 180 / M_PI);
+    return 0;
+}
+
+double rd_rigid_restitution(const rd_rocking_scales *s, double gravity)
+{
+    double sa = sin(s->alpha);
+    return 1 - 2 * s->p * s->p * s->R * sa * sa / gravity;
+}
+
+/* The free-rocking scene: no motion, the single body tilted by theta0 towards the side it tips
+ * to first (rd_rocking_scales_of; +x for a brick), its in-plane rocking measured in that plane (a
+ * copy of base the caller frees with rd_scenario_free, also on error). */
 static int free_rocking_scene(const rd_scenario *base, double theta0, rd_scenario *sc,
                               double *p, double *alpha, rd_error *err)
 {
+    rd_rocking_scales rk;
     if (rd_scenario_copy(sc, base, err)) return -1;
+    if (rd_rocking_scales_of(base, &rk, err)) return -1;
     rd_motion_release(&sc->motion);
     memset(&sc->motion, 0, sizeof sc->motion);
-    int k = -1, nfree = 0;
+    sc->motion.horizontal.direction = rk.lean; /* no motion: the plane of in-plane rocking */
     for (int i = 0; i < sc->nbodies; i++)
-        if (!sc->bodies[i].fixed) { k = i; nfree++; }
-    if (nfree != 1)
-        return rd_error_set(err, "%s: restitution: needs exactly one free block (found %d)",
-                            base->file, nfree);
-    sc->bodies[k].tilt = theta0;
-    sc->bodies[k].tilt_direction = 0;
-    rd_refscene *rs = malloc(sizeof *rs);
-    if (!rs) return rd_error_set(err, "out of memory");
-    int rc = rd_refscene_map(sc, rs, err);
-    if (rc == 0 && !(theta0 > 0 && theta0 < rs->alpha))
+        if (!sc->bodies[i].fixed) {
+            sc->bodies[i].tilt = theta0;
+            sc->bodies[i].tilt_direction = rk.lean;
+        }
+    int rc = 0;
+    if (!(theta0 > 0 && theta0 < rk.alpha))
         rc = rd_error_set(err, "restitution: release angle %g rad must be in (0, alpha = %g)",
-                          theta0, rs->alpha);
-    *p = rs->p;
-    *alpha = rs->alpha;
-    free(rs);
+                          theta0, rk.alpha);
+    *p = rk.p;
+    *alpha = rk.alpha;
     /* four impacts from theta0 <= alpha take under 3 quarter periods of the first half-cycle
        (each later one is shorter); 8/p leaves margin */
     sc->duration = 8.0 / *p;

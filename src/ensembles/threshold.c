@@ -8,6 +8,7 @@
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/validate.h"
+#include "rockdem/check.h"
 #include "ensembles/pipe_io.h"
 
 #include <errno.h>
@@ -243,13 +244,41 @@ static int coarse_scan(const rd_scenario *sc, rd_engine engine, double lo, doubl
     return 0;
 }
 
-/* Static uplift threshold (m/s^2) and w/p of the scene's lower block. */
+/* The scene's own scales where no rigid reference maps it (meshes, prisms, drum columns,
+ * several bodies): the least static tipping acceleration g tan(alpha) along +- the pulse's
+ * direction over every free body, alone or with everything standing on it (rd_check_scene:
+ * each body's support polygon and centre of mass as placed), and w/p of that assembly. */
+static int own_scales(const rd_scenario *sc, rd_threshold_result *out, rd_error *err)
+{
+    rd_check_report rep;
+    if (rd_check_scene(sc, &rep, err)) return -1;
+    double alpha = INFINITY, p = 0;
+    for (int i = 0; i < rep.nbodies; i++) {
+        const rd_check_body *b = &rep.body[i];
+        if (b->fixed) continue;
+        double a = fmin(b->alpha_shaking, b->alpha_tower); /* (p: the assembly's, or its own alone) */
+        if (a < alpha) { alpha = a; p = b->p_tower; }
+    }
+    rd_check_free(&rep);
+    if (!(alpha > 0 && alpha < M_PI / 2))
+        return rd_error_set(err, "%s: threshold: no free body stands on a support that can tip it (static "
+                                 "tipping angle %.3g deg); give --lo and --hi", sc->file, alpha * 180 / M_PI);
+    out->static_amp = sc->gravity * tan(alpha);
+    out->w_over_p = p > 0 ? 2 * M_PI * sc->motion.horizontal.frequency / p : 0;
+    out->own_scale = 1;
+    return 0;
+}
+
+/* Static uplift threshold (m/s^2) and w/p of the scene's lower block: from the rigid reference
+ * where it maps the scene (bricks: Housner, a two-block stack: Kounadis), else the scene's own. */
 static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_error *err)
 {
     rd_refscene *rs = malloc(sizeof *rs);
     if (!rs) return rd_error_set(err, "out of memory");
-    int rc = rd_refscene_map(sc, rs, err);
-    if (rc == 0) {
+    rd_error ref_err;
+    int rc = rd_refscene_map(sc, rs, &ref_err);
+    if (rc) rc = own_scales(sc, out, err);
+    else {
         out->static_amp = sc->gravity * tan(rs->alpha);
         if (rs->model == RD_REFMODEL_KOUNADIS) {
             double stack, upper;
@@ -257,6 +286,7 @@ static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_erro
             out->static_amp = sc->gravity * fmin(stack, upper);
         }
         out->w_over_p = 2 * M_PI * sc->motion.horizontal.frequency / rs->p;
+        out->own_scale = rs->equivalent;
     }
     free(rs);
     return rc;

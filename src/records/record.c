@@ -211,10 +211,50 @@ static int parse_npts_dt(const reader *rd, const char *line, double *npts, doubl
     return find_key(end2, "NPTS") ? 0 : -1;
 }
 
-/* Header (4 lines): keeps the event line in r->source, returns NPTS and DT. */
-static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, rd_error *err)
+/* The unit words a PEER header writes after "UNITS OF" (case-insensitive), and m/s^2 per unit.
+ * NGA-West2 writes "ACCELERATION TIME SERIES IN UNITS OF G"; older PEER and converted files
+ * write cm/s^2 and m/s^2 in several spellings. */
+static const struct at2_unit {
+    const char *word;
+    double si;
+} at2_units[] = {
+    {"G", RD_G_STANDARD},  {"CM/SEC/SEC", 0.01}, {"CM/S/S", 0.01}, {"CM/SEC^2", 0.01}, {"CM/SEC2", 0.01},
+    {"CM/S^2", 0.01},      {"CM/S2", 0.01},      {"GAL", 0.01},    {"M/SEC/SEC", 1.0},  {"M/S/S", 1.0},
+    {"M/SEC^2", 1.0},      {"M/SEC2", 1.0},      {"M/S^2", 1.0},   {"M/S2", 1.0},
+};
+
+/* What header line `line` (number k) says of the file's quantity and units: -1 (err filled) for a
+ * velocity or displacement file, or for units it names but rockdem does not know; else 0, with
+ * *si set to m/s^2 per unit when the line says "UNITS OF <unit>" (left as is otherwise). */
+static int at2_header_units(const reader *rd, const char *line, int k, double *si, rd_error *err)
+{
+    static const char *const quantity[] = {"VELOCITY", "DISPLACEMENT"};
+    for (int q = 0; q < 2; q++)
+        if (find_key(line, quantity[q]))
+            return rd_error_set(err, "%s:%d: a PEER %s file (its header says \"%s\"): rockdem reads "
+                                     "acceleration records; give the matching acceleration file (.AT2 whose "
+                                     "header says ACCELERATION)", rd->path, k, quantity[q], line);
+    const char *p = find_key(line, "UNITS OF");
+    if (!p)
+        return 0;
+    p += strlen("UNITS OF");
+    p += strspn(p, " \t");
+    size_t n = strcspn(p, " \t,.;");
+    for (size_t u = 0; u < sizeof at2_units / sizeof at2_units[0]; u++)
+        if (strlen(at2_units[u].word) == n && !strncasecmp(p, at2_units[u].word, n)) {
+            *si = at2_units[u].si;
+            return 0;
+        }
+    return rd_error_set(err, "%s:%d: unknown units '%.*s' in the header (expected G, CM/SEC/SEC or M/SEC/SEC)",
+                        rd->path, k, (int)n, p);
+}
+
+/* Header (4 lines): keeps the event line in r->source, returns NPTS, DT and the values' units
+ * (m/s^2 per unit: g unless a line says "UNITS OF ..."); refuses velocity and displacement files. */
+static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, double *si, rd_error *err)
 {
     char *line = NULL;
+    *si = RD_G_STANDARD;
     for (int k = 1; k <= 4; k++) {
         line = reader_next(rd);
         if (!line && k == 1)
@@ -223,6 +263,8 @@ static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, r
             return reader_fail(rd, err, "file ends in the header: expected 4 header lines, found %d", k - 1);
         if (k == 2)
             snprintf(r->source, sizeof r->source, "%s", line);
+        if (k != 2 && k < 4 && at2_header_units(rd, line, k, si, err))
+            return -1;
     }
     double n;
     int rc = parse_npts_dt(rd, line, &n, dt, err);
@@ -241,8 +283,9 @@ static int read_at2_header(reader *rd, rd_record *r, size_t *npts, double *dt, r
     return 0;
 }
 
-/* Every value after the header, in g; checks the count against NPTS. */
-static int read_at2_values(reader *rd, size_t npts, values *acc, rd_error *err)
+/* Every value after the header, in the header's units (si m/s^2 each); checks the count
+ * against NPTS. */
+static int read_at2_values(reader *rd, size_t npts, double si, values *acc, rd_error *err)
 {
     long surplus_line = 0;
     char *line, *save;
@@ -252,8 +295,8 @@ static int read_at2_values(reader *rd, size_t npts, values *acc, rd_error *err)
             char why[128];
             if (parse_number(tok, &x))
                 return reader_fail(rd, err, "non-numeric value '%s'", tok);
-            if (rd_record_sample_error(x, RD_G_STANDARD, why, sizeof why))
-                return reader_fail(rd, err, "acceleration '%s' g %s", tok, why);
+            if (rd_record_sample_error(x, si, why, sizeof why))
+                return reader_fail(rd, err, "acceleration '%s' %s %s", tok, si == RD_G_STANDARD ? "g" : si == 1.0 ? "m/s^2" : "cm/s^2", why);
             if (values_push(acc, x))
                 return reader_fail(rd, err, "out of memory");
             if (acc->n == npts + 1)
@@ -273,17 +316,17 @@ int rd_record_read_at2(rd_record *r, const char *path, rd_error *err)
     reader rd;
     values acc = {0};
     size_t npts = 0;
-    double dt = 0.0;
+    double dt = 0.0, si = RD_G_STANDARD;
     memset(r, 0, sizeof *r);
     if (reader_open(&rd, path, err))
         return -1;
-    int status = read_at2_header(&rd, r, &npts, &dt, err);
+    int status = read_at2_header(&rd, r, &npts, &dt, &si, err);
     if (status == 0)
-        status = read_at2_values(&rd, npts, &acc, err);
+        status = read_at2_values(&rd, npts, si, &acc, err);
     if (rd.read_errno)
         status = reader_check(&rd, err);
     if (status == 0)
-        status = finish(r, &acc, dt, rd_accel_unit_factor(RD_UNIT_G), path, err);
+        status = finish(r, &acc, dt, si, path, err);
     reader_close(&rd);
     free(acc.v);
     if (status)

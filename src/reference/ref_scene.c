@@ -1,9 +1,11 @@
 /* rockdem — a scenario as a rigid reference model (Housner or Kounadis): mapping and solving.
  * See include/rockdem/validate.h for the rules; every refusal names what does not fit.
  * Folder reference/ owns the rigid CVODE reference solvers (Housner, Kounadis); it may call
- * base/, records/, io/ and the public API.
+ * base/, records/, io/ and the public API (rd_check_scene of engine/check.c: a body that is no
+ * brick, for its Housner equivalent).
  */
 #include "rockdem/validate.h"
+#include "rockdem/check.h"
 
 #include <math.h>
 #include <string.h>
@@ -142,11 +144,75 @@ static int count_bodies(const rd_scenario *sc, int *fixed, int free_idx[2], int 
     return 0;
 }
 
+/* Breaks of the pulses (starts and ends) and the ground's evaluation, for either model. */
+static void ground_of(const rd_scenario *sc, rd_refscene *rs)
+{
+    size_t nb = 0;
+    const rd_pulse_def *p[2] = {&sc->motion.horizontal, &sc->motion.vertical};
+    rs->motion = sc->motion;
+    for (int k = 0; k < 2; k++)
+        if (p[k]->kind != RD_PULSE_NONE) {
+            rs->breaks[nb++] = p[k]->start;
+            rs->breaks[nb++] = rd_pulse_end(p[k]);
+        }
+    /* records (if any) enter through rd_motion_eval; the ground is quiet after all motion */
+    double quiet = rd_motion_end(&rs->motion);
+    rs->ground = (rd_ground){.fn = quiet > 0 ? refscene_ground : NULL, .ctx = rs,
+                             .breaks = rs->breaks, .nbreaks = nb, .t_quiet = quiet};
+}
+
+/* One free body that is no brick, standing on the fixed base: Housner's equation with its own
+ * alpha and p along the shaking (rd_check_scene: its support polygon, centre of mass, R and
+ * pivot inertia as placed), as the rectangle b = R_eq sin(alpha), h = R_eq cos(alpha) of the
+ * same alpha and p (R_eq = 3 g / 4 p^2: the rectangle's p = sqrt(3 g / 4 R)); its impacts keep
+ * the rigid impact's r = 1 - 2 p^2 R sin^2(alpha) / g with its own R, unless the scenario sets
+ * `model reference restitution`. */
+static int map_equivalent(const rd_scenario *sc, int ibase, int ifree, rd_refscene *rs, rd_error *err)
+{
+    const rd_body_def *blk = &sc->bodies[ifree], *base = &sc->bodies[ibase];
+    if (check_shape(sc, base, err) || choose_direction(sc, blk, rs, err)) return -1;
+    rd_check_report rep;
+    if (rd_check_scene(sc, &rep, err)) return -1;
+    const rd_check_body *cb = &rep.body[ifree];
+    double alpha = cb->alpha_tower, p = cb->p_tower, R = cb->R_tower, m = cb->mass;
+    int rests = cb->rests_on == ibase;
+    rd_check_free(&rep);
+    if (!rests)
+        return rd_error_set(err, "%s:%d: reference: body '%s' does not rest on the fixed base as placed", sc->file,
+                            blk->line, blk->name);
+    if (!(alpha > 0 && p > 0))
+        return rd_error_set(err, "%s:%d: reference: body '%s' has no tipping angle along the shaking (%.3g deg)",
+                            sc->file, blk->line, blk->name, alpha * 180 / M_PI);
+    double Req = 3 * sc->gravity / (4 * p * p);
+    rs->equivalent = 1;
+    rs->R_own = R;
+    rs->nblock = 1;
+    rs->body[0] = ifree;
+    rs->out[0] = 0;
+    rs->mass[0] = m;
+    rs->b[0] = Req * sin(alpha);
+    rs->h[0] = Req * cos(alpha);
+    rs->size[0][0] = rs->size[0][1] = 2 * rs->b[0];
+    rs->size[0][2] = 2 * rs->h[0];
+    rs->origin[0] = blk->position[0];
+    rs->origin[1] = blk->position[1];
+    rs->base_z = base->position[2] + 0.5 * base->size[2];
+    rs->alpha = alpha;
+    rs->p = p;
+    double sa = sin(alpha), r = 1 - 2 * p * p * R * sa * sa / sc->gravity;
+    rs->model = RD_REFMODEL_HOUSNER;
+    rs->housner = (rd_housner_def){.b = rs->b[0], .h = rs->h[0], .g = sc->gravity,
+                                   .e = sc->ref_restitution >= 0 ? sc->ref_restitution : r};
+    ground_of(sc, rs);
+    return 0;
+}
+
 int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err)
 {
     memset(rs, 0, sizeof *rs);
     int ibase = -1, fr[2] = {0, 0}, nfree;
     if (count_bodies(sc, &ibase, fr, &nfree, err)) return -1;
+    if (nfree == 1 && sc->bodies[fr[0]].shape != RD_SHAPE_BRICK) return map_equivalent(sc, ibase, fr[0], rs, err);
     const rd_body_def *base = &sc->bodies[ibase];
     if (check_shape(sc, base, err)) return -1;
     /* block 1 is the lower of the free bricks */
@@ -191,17 +257,7 @@ int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err)
                                          .b2 = rs->b[1], .h2 = rs->h[1], .m2 = rs->mass[1],
                                          .g = sc->gravity, .r = sc->ref_restitution};
     }
-    size_t nb = 0;
-    const rd_pulse_def *p[2] = {&sc->motion.horizontal, &sc->motion.vertical};
-    for (int k = 0; k < 2; k++)
-        if (p[k]->kind != RD_PULSE_NONE) {
-            rs->breaks[nb++] = p[k]->start;
-            rs->breaks[nb++] = rd_pulse_end(p[k]);
-        }
-    /* records (if any) enter through rd_motion_eval; the ground is quiet after all motion */
-    double quiet = rd_motion_end(&rs->motion);
-    rs->ground = (rd_ground){.fn = quiet > 0 ? refscene_ground : NULL, .ctx = rs,
-                             .breaks = rs->breaks, .nbreaks = nb, .t_quiet = quiet};
+    ground_of(sc, rs);
     return 0;
 }
 

@@ -200,7 +200,7 @@ int read_values(parser *P, const token *kw, int n, range r, unit u, double *v)
         char why[128];
         if ((bad = limit_error(kw->s, (size_t)kw->len, v[i], why, sizeof why)))
             return perr(P, t, "'%.*s' %.*s %s", kw->len, kw->s, t->len, t->s, bad);
-        v[i] *= unit_scale(u);
+        v[i] = unit_si(v[i], u);
     }
     return 0;
 }

@@ -38,6 +38,7 @@ static const set_key set_keys[] = {
     {"contact.stiffness-normal", S_NUMBER, offsetof(rd_scenario, contact.kn), R_POS, U_PLAIN},
     {"contact.stiffness-shear", S_NUMBER, offsetof(rd_scenario, contact.ks), R_POS, U_PLAIN},
     {"contact.friction", S_NUMBER, offsetof(rd_scenario, contact.friction), R_ANGLE, U_DEG},
+    {"contact.friction-coefficient", S_NUMBER, offsetof(rd_scenario, contact.friction), R_NONNEG, U_MU},
     {"contact.cohesion", S_NUMBER, offsetof(rd_scenario, contact.cohesion), R_NONNEG, U_PLAIN},
     {"contact.tension", S_NUMBER, offsetof(rd_scenario, contact.tension), R_NONNEG, U_PLAIN},
     {"contact.spacing", S_SPACING, 0, R_NONNEG, U_PLAIN},
@@ -122,7 +123,7 @@ static int set_parse(const setter *S, const char *text, range r, unit u, double 
     char why[128];
     if ((bad = limit_error(kw, (size_t)(S->a + n - kw), *v, why, sizeof why)))
         return serr(S, "%s %s", text, bad);
-    *v *= unit_scale(u);
+    *v = unit_si(*v, u);
     return 0;
 }
 
@@ -144,6 +145,8 @@ static int set_pulse(const setter *S, const set_key *k)
     if (set_parse(S, S->value, k->range, k->unit, &v))
         return -1;
     *field(p, k->off) = v;
+    if (k->off == offsetof(rd_pulse_def, amplitude)) /* as written, for check's echo and advice */
+        p->amplitude_in_g = S->value[0] && S->value[strlen(S->value) - 1] == 'g';
     if (k->off == offsetof(rd_pulse_def, duration))
         p->frequency = 0.0;
     p->duration = pulse_duration(p);
@@ -352,7 +355,7 @@ static int set_apply(const setter *S, const set_key *k)
 /* Unknown key: lists the keys of its section, or the sections. */
 static int unknown_key(const setter *S, const char *key, size_t len)
 {
-    char list[RD_ERROR_MAX / 2] = "";
+    char list[RD_ERROR_MAX - 96] = ""; /* room for the key and the words around the list */
     size_t sect = strcspn(key, ".=") + 1; /* section length with its dot */
     for (size_t i = 0; i < NSET_KEYS; i++)
         if (sect <= len && strncasecmp(set_keys[i].key, key, sect) == 0)

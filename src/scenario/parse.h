@@ -40,7 +40,8 @@ typedef enum range {
 typedef enum unit {
     U_PLAIN, /* stored as written */
     U_DEG,   /* written in degrees, stored in rad */
-    U_ACCEL  /* m/s^2, or a number with a `g` suffix times RD_G_STANDARD */
+    U_ACCEL, /* m/s^2, or a number with a `g` suffix times RD_G_STANDARD */
+    U_MU     /* a friction coefficient mu = tan(phi), stored as the angle phi = atan(mu), rad */
 } unit;
 
 /* Parses s[0..len) as a C floating-point number; with accel a trailing 'g' multiplies by
@@ -53,7 +54,8 @@ const char *range_error(double v, range r);
 const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t size);
 /* NULL when a subcontact spacing (m) is valid, else why not: 0, or outside its limits. */
 const char *spacing_error(double v, char *buf, size_t size);
-double unit_scale(unit u);
+/* A number v as written in unit u, in SI (degrees to rad, a friction coefficient to its angle). */
+double unit_si(double v, unit u);
 int is_periodic(rd_pulse_kind k);
 /* Duration of a pulse, s (one period, cycles periods, 1/frequency or the given duration). */
 double pulse_duration(const rd_pulse_def *p);

@@ -78,6 +78,35 @@ static int read_vertices(parser *P, const token *kw, rd_body_def *b)
     return 0;
 }
 
+/* `units mm|cm|m` of a mesh: metres per file unit (a scan exported in millimetres is common). */
+static int read_mesh_units(parser *P, const token *kw, rd_body_def *b)
+{
+    static const char *const names[] = {"mm", "cm", "m", NULL};
+    static const double metres[] = {1e-3, 1e-2, 1.0};
+    const token *t = take(P);
+    int k = t ? find_word(t, names) : -1;
+    if (!t)
+        return perr(P, kw, "expected mm, cm or m after 'units'");
+    if (k < 0)
+        return perr(P, t, "unknown mesh units '%.*s' (expected mm, cm or m)", t->len, t->s);
+    b->mesh_unit = metres[k];
+    return 0;
+}
+
+/* `up y|z` of a mesh: the file's vertical axis (many scanning and graphics tools write y up). */
+static int read_mesh_up(parser *P, const token *kw, rd_body_def *b)
+{
+    static const char *const names[] = {"y", "z", NULL};
+    const token *t = take(P);
+    int k = t ? find_word(t, names) : -1;
+    if (!t)
+        return perr(P, kw, "expected y or z after 'up'");
+    if (k < 0)
+        return perr(P, t, "unknown up axis '%.*s' (expected y or z)", t->len, t->s);
+    b->mesh_up = k == 0 ? 1 : 2;
+    return 0;
+}
+
 /* Shape keywords: brick {size}, prism {sides, radius, radius-top, height}, polyhedron
  * {vertices}, mesh {} (the file is read before the keywords). */
 static int shape_keyword(parser *P, int k, const token *kw, rd_body_def *b)
@@ -96,7 +125,7 @@ static int shape_keyword(parser *P, int k, const token *kw, rd_body_def *b)
         }
         return read_value(P, kw, R_POS, U_PLAIN, k == 1 ? &b->radius : k == 2 ? &b->radius_top : &b->size[2]);
     case RD_SHAPE_HULL: return read_vertices(P, kw, b);
-    case RD_SHAPE_MESH: break;
+    case RD_SHAPE_MESH: return k == 0 ? read_mesh_units(P, kw, b) : read_mesh_up(P, kw, b);
     }
     return 0;
 }
@@ -114,7 +143,7 @@ static const shape_syntax shapes[] = {
     {"brick", RD_SHAPE_BRICK, {"size"}, 1, 1u},
     {"prism", RD_SHAPE_PRISM, {"sides", "radius", "radius-top", "height"}, 4, 1u | 2u | 8u},
     {"polyhedron", RD_SHAPE_HULL, {"vertices"}, 1, 1u},
-    {"mesh", RD_SHAPE_MESH, {NULL}, 0, 0u},
+    {"mesh", RD_SHAPE_MESH, {"units", "up"}, 2, 0u},
 };
 
 static int body_command(parser *P, const shape_syntax *sh, body_cmd *c)
@@ -167,7 +196,7 @@ static int add_body(parser *P, const rd_body_def *b, const token *name, const to
 
 static int single_body(parser *P, const shape_syntax *sh, const token *at)
 {
-    body_cmd c = {.b = {.shape = sh->kind}};
+    body_cmd c = {.b = {.shape = sh->kind, .mesh_up = 2}};
     if (sh->kind == RD_SHAPE_MESH) {
         char file[RD_PATH_MAX];
         if (read_text(P, "a mesh file", file, sizeof file))

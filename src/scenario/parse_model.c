@@ -179,7 +179,8 @@ static int read_spacing(parser *P, const token *kw, double *v)
 /* The keywords of the default `contact property` (no range). */
 static const char *const contact_names[] = {"stiffness-normal", "stiffness-shear", "friction",
                                             "cohesion",         "tension",         "spacing",
-                                            "restitution",      NULL};
+                                            "restitution",      "friction-coefficient", NULL};
+#define CK_MU 7 /* friction-coefficient: the friction as mu = tan(phi), the same setting as friction */
 
 int contact_property(parser *P)
 {
@@ -191,7 +192,7 @@ int contact_property(parser *P)
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
-        int rc = keyword_once(P, kw, names[k]);
+        int rc = keyword_once(P, kw, names[k == CK_MU ? 2 : k]); /* friction once, either way */
         if (rc)
             return -1;
         switch (k) {
@@ -201,6 +202,7 @@ int contact_property(parser *P)
         case 3: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->cohesion); break;
         case 4: rc = read_value(P, kw, R_NONNEG, U_PLAIN, &c->tension); break;
         case 5: rc = read_spacing(P, kw, &c->spacing); break;
+        case CK_MU: rc = read_value(P, kw, R_NONNEG, U_MU, &c->friction); break;
         default: rc = read_value(P, kw, R_UNIT, U_PLAIN, &c->restitution); break;
         }
         if (rc)

@@ -52,7 +52,10 @@ static int pulse_keywords(parser *P, rd_pulse_def *p, const token **tk)
         int rc = 0;
         tk[k] = kw;
         switch (k) {
-        case PK_AMPLITUDE: rc = read_value(P, kw, R_ANY, U_ACCEL, &p->amplitude); break;
+        case PK_AMPLITUDE:
+            rc = read_value(P, kw, R_ANY, U_ACCEL, &p->amplitude);
+            p->amplitude_in_g = rc == 0 && P->tok[P->cur - 1].s[P->tok[P->cur - 1].len - 1] == 'g';
+            break;
         case PK_FREQUENCY: rc = read_value(P, kw, R_POS, U_PLAIN, &p->frequency); break;
         case PK_DURATION: rc = read_value(P, kw, R_POS, U_PLAIN, &p->duration); break;
         case PK_CYCLES: rc = read_value(P, kw, R_POS, U_PLAIN, &p->cycles); break;
@@ -253,7 +256,7 @@ static int import_check(parser *P, rd_record_source src, const token *const *tk)
     if (src != RD_SOURCE_FEMA && tk[IK_RECORD])
         return perr(P, tk[IK_RECORD], "'record' applies only to FEMA P695 sets (format fema)");
     if (src != RD_SOURCE_TEXT && tk[IK_UNITS])
-        return perr(P, tk[IK_UNITS], "'units' applies only to text/CSV records (AT2 and FEMA are in g)");
+        return perr(P, tk[IK_UNITS], "'units' applies only to text/CSV records (an AT2 header states its units; FEMA sets are in g)");
     if (src != RD_SOURCE_TEXT && tk[IK_DT])
         return perr(P, tk[IK_DT], "'dt' applies only to text/CSV records");
     return 0;
@@ -278,7 +281,7 @@ int motion_import(parser *P)
         case IK_FORMAT:
             rc = (tk[k] = take(P)) ? 0 : perr(P, kw, "expected at2, csv, text or fema after 'format'");
             break;
-        case IK_UNITS: rc = read_units(P, kw, &d.unit); break;
+        case IK_UNITS: rc = read_units(P, kw, &d.unit); d.unit_given = 1; break;
         case IK_DT: rc = read_value(P, kw, R_POS, U_PLAIN, &d.dt); break;
         case IK_RECORD:
             id = P->cur < P->n ? &P->tok[P->cur] : NULL;

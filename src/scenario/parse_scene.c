@@ -82,7 +82,8 @@ static int joint_once(parser *P, const rd_joint_def *j, const char *const *names
     for (int k = 0; names[k]; k++) {
         if (!kw[k])
             continue;
-        snprintf(what, sizeof what, "'%s' of 'contact property ... range %s'", names[k], range);
+        const char *name = strcmp(names[k], "friction-coefficient") ? names[k] : "friction"; /* one setting */
+        snprintf(what, sizeof what, "'%s' of 'contact property ... range %s'", name, range);
         if (setting_once(P, kw[k], what))
             return -1;
     }
@@ -93,17 +94,20 @@ static int joint_once(parser *P, const rd_joint_def *j, const char *const *names
 int contact_joint(parser *P)
 {
     static const char *const names[] = {"stiffness-normal", "stiffness-shear", "friction", "cohesion",
-                                        "tension", "damping", "range", "spacing", "restitution", NULL};
+                                        "tension", "damping", "range", "spacing", "restitution",
+                                        "friction-coefficient", NULL};
     static const unsigned bit[] = {RD_JOINT_KN, RD_JOINT_KS, RD_JOINT_FRICTION, RD_JOINT_COHESION,
-                                   RD_JOINT_TENSION, RD_JOINT_DAMPING, 0, 0, RD_JOINT_RESTITUTION};
+                                   RD_JOINT_TENSION, RD_JOINT_DAMPING, 0, 0, RD_JOINT_RESTITUTION,
+                                   RD_JOINT_FRICTION};
     static const range ranges[] = {R_POS, R_POS, R_ANGLE, R_NONNEG, R_NONNEG, R_NONNEG, R_ANY,
-                                   R_ANY, R_UNIT};
+                                   R_ANY, R_UNIT, R_NONNEG};
+    enum { JK_FRICTION = 2, JK_MU = 9 }; /* the friction as an angle (deg) or as mu = tan(phi) */
     rd_scenario *sc = P->sc;
     if (sc->njoints == RD_MAX_JOINTS)
         return perr(P, verb_token(P), "too many contact property ranges (at most %d)", RD_MAX_JOINTS);
     rd_joint_def j = {.line = P->tok[0].line};
     double *field[] = {&j.kn, &j.ks, &j.friction, &j.cohesion, &j.tension, &j.damping, NULL, NULL,
-                       &j.restitution};
+                       &j.restitution, &j.friction};
     const token *kw, *given[sizeof names / sizeof names[0]] = {NULL};
     unsigned seen = 0;
     int k;
@@ -118,7 +122,9 @@ int contact_joint(parser *P)
                 return -1;
             break;
         }
-        if (read_value(P, kw, ranges[k], k == 2 ? U_DEG : U_PLAIN, field[k]))
+        if ((k == JK_MU && given[JK_FRICTION]) || (k == JK_FRICTION && given[JK_MU]))
+            return perr(P, kw, "give the friction once: 'friction' (degrees) or 'friction-coefficient' (mu)");
+        if (read_value(P, kw, ranges[k], k == JK_FRICTION ? U_DEG : k == JK_MU ? U_MU : U_PLAIN, field[k]))
             return -1;
         if (k == 5 && j.damping > 10)
             return perr(P, kw, "'damping' is a ratio of critical damping, at most 10");
@@ -128,8 +134,8 @@ int contact_joint(parser *P)
         return -1;
     if (!j.set)
         return perr(P, verb_token(P), "a contact property range sets no property (expected "
-                                      "stiffness-normal, stiffness-shear, friction, cohesion, tension, damping "
-                                      "or restitution)");
+                                      "stiffness-normal, stiffness-shear, friction, friction-coefficient, cohesion, "
+                                      "tension, damping or restitution)");
     if (joint_once(P, &j, names, given))
         return -1;
     sc->joint[sc->njoints++] = j;

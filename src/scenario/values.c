@@ -47,6 +47,7 @@ typedef struct keyword_limit {
 static const keyword_limit keyword_limits[] = {
     {"stiffness-normal", 1e4, 1e15, "Pa/m"}, /* below: cm-scale sinking of a 1 m block; above: dt < 1e-9 s */
     {"stiffness-shear", 1e4, 1e15, "Pa/m"},
+    {"friction-coefficient", 0, 100, ""},    /* mu = tan(phi): 100 is phi = 89.4 deg */
     {"cohesion", 0, 1e10, "Pa"},             /* stronger than any rock (granite: ~1e7 Pa) */
     {"tension", 0, 1e10, "Pa"},
     {"density", 1, 1e5, "kg/m^3"},           /* osmium: 22600 */
@@ -155,7 +156,11 @@ const char *range_error(double v, range r)
     return NULL;
 }
 
-double unit_scale(unit u) { return u == U_DEG ? RD_DEG : 1.0; }
+double unit_si(double v, unit u)
+{
+    if (u == U_MU) return atan(v);
+    return u == U_DEG ? v * RD_DEG : v;
+}
 
 int is_periodic(rd_pulse_kind k)
 {

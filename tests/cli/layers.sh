@@ -16,7 +16,7 @@ declare -A allowed=(
     [scenario]="base geometry records"
     [engine]="base geometry records scenario"
     [io]="base records engine"
-    [reference]="base records io"
+    [reference]="base records engine io"
     [ensembles]="base records scenario engine reference io"
     [assess]="base records scenario engine io"
 )

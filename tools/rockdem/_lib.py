@@ -78,7 +78,8 @@ class ThresholdOpts(ctypes.Structure):  # rd_threshold_opts
 class ThresholdResult(ctypes.Structure):  # rd_threshold_result
     _fields_ = [("found", ctypes.c_int), ("amplitude", ctypes.c_double),
                 ("below", ctypes.c_double), ("static_amp", ctypes.c_double),
-                ("w_over_p", ctypes.c_double), ("runs", ctypes.c_int)]
+                ("w_over_p", ctypes.c_double), ("runs", ctypes.c_int),
+                ("lifted_off", ctypes.c_int), ("own_scale", ctypes.c_int)]
 
 
 class JointSummary(ctypes.Structure):  # rd_joint_summary
