@@ -28,9 +28,9 @@ grep -v -E '^(;|[[:space:]]*$)' scenarios/default.dat > "$T/default_lines.txt"
 if diff -u "$T/readme_dat.txt" "$T/default_lines.txt" > "$T/diff.txt"; then judge readme-scenario ok
 else cat "$T/diff.txt"; judge readme-scenario "README's scenario differs from scenarios/default.dat"; fi
 
-# 3. the tutorial's scenario builds (beside the shipped rock's mesh, as the tutorial says)
+# 3. the tutorial's scenario passes check --strict (beside the shipped rock's mesh, as the tutorial says)
 block '## Tutorial: your own scanned rock' 1 > "$T/myrock.dat"
 cp scenarios/pbr.obj "$T/pbr.obj"
-if out=$("$BIN" check "$T/myrock.dat" 2>&1) && [ -s "$T/myrock.dat" ]; then judge readme-tutorial-check ok
+if out=$("$BIN" check --strict "$T/myrock.dat" 2>&1) && [ -s "$T/myrock.dat" ]; then judge readme-tutorial-check ok
 else printf '%s\n' "$out"; judge readme-tutorial-check "the tutorial's scenario fails check"; fi
 exit $fail
