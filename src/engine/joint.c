@@ -201,37 +201,82 @@ static void edge_measure(const rd_sim *s, const rd_side *sd, int t, double kn, d
         }
 }
 
+/* Side q of pair pr: its owner o, the other body t, the contact band tol (m) and the joint's
+ * normal in the owner's frame nb. */
+static void side_frame(const rd_sim *s, const rd_pair *pr, int q, int *o, int *t, double *tol,
+                       double nb[3])
+{
+    *o = pr->side[q].owner;
+    *t = *o == pr->a ? pr->b : pr->a;
+    *tol = RD_CONTACT_BAND * fmin(s->poly[*o].radius, s->poly[*t].radius);
+    rd_mat_tvec(s->R[*o], pr->n, nb);
+}
+
+/* Does face cf of body o turn towards the other body (joint normal nb in o's frame, to_other
+ * its sign)? Only such faces measure the joint's opening (the face's normal in the body frame:
+ * a mesh body's step leaves its world face normals alone). */
+static int face_turned(const rd_sim *s, int o, int cf, const double nb[3], double to_other)
+{
+    return to_other * rd_dot(s->poly[o].fn[s->cf_face[cf]], nb) > 0.5;
+}
+
+/* The joint's opening (m): the largest gap of a point on a face turned towards the other body
+ * and, against a convex body, lying over its face that meets the joint. */
+static double opening_scan(const rd_sim *s, const rd_pair *pr)
+{
+    double open = 0;
+    for (int q = 0; q < pr->nside; q++) {
+        const rd_side *sd = &pr->side[q];
+        int o, t;
+        double tol, nb[3], to_other = sd->owner == pr->a ? 1.0 : -1.0;
+        side_frame(s, pr, q, &o, &t, &tol, nb);
+        for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
+            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf] || !face_turned(s, o, cf, nb, to_other)) continue;
+            for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
+                int st = sd->state0 + (j - s->pt0[o]);
+                if (!(s->pj[st][1] < 1e300 && s->pj[st][1] > open)) continue;
+                double p[3];
+                point_world(s, o, j, p);
+                if (!s->convex[t] || over_face(s, t, pr->n, p, tol)) open = s->pj[st][1];
+            }
+        }
+    }
+    return open;
+}
+
 void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
 {
     memset(m, 0, sizeof *m);
     const rd_joint *jt = &s->joint[pr->joint];
     double fs_b[3] = {0, 0, 0}, fsum = 0, open = 0;
     int live = pr->seen == s->stamp; /* a pair whose boxes parted holds no contact */
+    int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
+    /* The opening is the largest gap of the points that may measure it: this runs every step,
+       so the deepest candidate is found first and tested alone against the face it must lie
+       over; only when it lies off that face does opening_scan look at them all (the same
+       answer: the largest gap of the points that pass). */
+    double best_gap = 0;
+    int best_q = -1, best_j = -1;
     for (int q = 0; q < pr->nside && live; q++) {
         const rd_side *sd = &pr->side[q];
-        int o = sd->owner;
+        int o, t;
+        double tol, nb[3];
+        side_frame(s, pr, q, &o, &t, &tol, nb);
         double sign = o == pr->b ? 1.0 : -1.0; /* stored forces act on the owner */
         double to_other = o == pr->a ? 1.0 : -1.0; /* pr->n points from a towards b */
-        int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
-        int t = o == pr->a ? pr->b : pr->a;
-        double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius), nb[3];
-        rd_mat_tvec(s->R[o], pr->n, nb); /* the joint's normal in the owner's frame (called every step:
-                                            one rotation per side, not one per face) */
         for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
             if (s->cf_pt0[cf + 1] == s->cf_pt0[cf]) continue; /* a face without points (most of a mesh's) */
-            /* only faces turned towards the other body measure the joint's opening (the face's
-               normal in the body frame: a mesh body's step leaves its world face normals alone) */
-            int facing = normal && to_other * rd_dot(s->poly[o].fn[s->cf_face[cf]], nb) > 0.5;
+            int facing = -1; /* asked once per face, and only when a point of it could count */
             for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
                 int st = sd->state0 + (j - s->pt0[o]);
                 int active = s->pstate[st] & RD_PT_ACTIVE;
-                int opens = facing && s->pj[st][1] < 1e300 && s->pj[st][1] > open;
-                if (!active && !opens) continue;
+                if (normal && s->pj[st][1] < 1e300 && s->pj[st][1] > best_gap) {
+                    if (facing < 0) facing = face_turned(s, o, cf, nb, to_other);
+                    if (facing) { best_gap = s->pj[st][1]; best_q = q; best_j = j; }
+                }
+                if (!active) continue;
                 double p[3];
                 point_world(s, o, j, p);
-                if (opens && (!s->convex[t] || over_face(s, t, pr->n, p, tol)))
-                    open = s->pj[st][1];
-                if (!active) continue;
                 double fn = s->pj[st][0], a = sd->weight * s->pa[j];
                 m->fn += fn;
                 m->area += a;
@@ -243,6 +288,13 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
             }
         }
         edge_measure(s, sd, t, jt->kn, sign, m, &fsum, fs_b);
+    }
+    if (best_q >= 0) {
+        int o, t;
+        double tol, nb[3], p[3];
+        side_frame(s, pr, best_q, &o, &t, &tol, nb);
+        point_world(s, o, best_j, p);
+        open = !s->convex[t] || over_face(s, t, pr->n, p, tol) ? best_gap : opening_scan(s, pr);
     }
     m->opening = live ? open : INFINITY;
     rd_copy3(fs_b, m->fs);
