@@ -23,6 +23,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "check.h"
 #include "contact/contact.h"
@@ -148,7 +149,7 @@ static void test_torsion_affine_grid(void **state)
 
 /* A square face of side a as 1 quad, 2 and 200 triangles, each against the same reference face:
  * the loads summed, and the twisting lever about the pieces' common centroid. */
-static void square_pieces(int pieces, double a, double d0, double gx, double gy, double out[7])
+static void square_pieces(int pieces, double a, double d0, double gx, double gy, double out[8])
 {
     rd_poly2 tri[200];
     int n = 0;
@@ -166,7 +167,7 @@ static void square_pieces(int pieces, double a, double d0, double gx, double gy,
     }
     rd_poly2 comp[200];
     double area = 0, sx = 0, sy = 0;
-    for (int k = 0; k < 7; k++) out[k] = 0;
+    for (int k = 0; k < 8; k++) out[k] = 0;
     for (int k = 0; k < n; k++) {
         rd_patch_load ld;
         rd_patch_load_of(&tri[k], d0, gx, gy, &ld, &comp[k]);
@@ -183,19 +184,34 @@ static void square_pieces(int pieces, double a, double d0, double gx, double gy,
     const double c[2] = {sx / area, sy / area};
     for (int k = 0; k < n; k++)
         if (comp[k].n) out[6] += rd_patch_torsion(&comp[k], c, d0, gx, gy);
+    /* the same over the pieces' union boundary (shared edges cancel) */
+    rd_poly2 live[200];
+    int nl = 0;
+    for (int k = 0; k < n; k++)
+        if (comp[k].n) live[nl++] = comp[k];
+    rd_patch_scratch sc = {0, NULL, NULL, NULL};
+    out[7] = rd_patch_torsion_set(live, nl, c, d0, gx, gy, &sc);
+    free(sc.slot); free(sc.count); free(sc.ends);
 }
 
 static void test_tessellation(void **state)
 {
     (void)state;
-    const char *what[7] = {"area", "force", "x-moment", "y-moment", "energy", "polar moment", "twisting lever"};
+    const char *what[8] = {"area", "force", "x-moment", "y-moment", "energy", "polar moment", "twisting lever",
+                           "twisting lever over the union's boundary"};
     /* a rocking base, compressed over part of it (the zero-gap line crosses the triangles) */
     const double a = 0.5, d0 = 2e-5, gx = -1e-4, gy = 3e-5;
-    double one[7], two[7], many[7];
+    double one[8], two[8], many[8];
     square_pieces(1, a, d0, gx, gy, one);
     square_pieces(2, a, d0, gx, gy, two);
     square_pieces(200, a, d0, gx, gy, many);
-    for (int k = 0; k < 7; k++) {
+    /* a uniform pressure: the common centroid is a vertex of the triangles, on their edges */
+    double one_u[8], many_u[8];
+    square_pieces(1, a, 1e-5, 0.0, 0.0, one_u);
+    square_pieces(200, a, 1e-5, 0.0, 0.0, many_u);
+    rd_check_rel("200 triangles vs the quad, uniform pressure, centre on their vertex: twisting lever", many_u[6],
+                 one_u[6], ROUNDOFF, RD_STRICT);
+    for (int k = 0; k < 8; k++) {
         char msg[96];
         snprintf(msg, sizeof msg, "2 triangles vs the quad: %s", what[k]);
         rd_check_rel(msg, two[k], one[k], ROUNDOFF, RD_STRICT);

@@ -7,6 +7,13 @@
 #include "base/vec.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A fan triangle whose doubled area is below this fraction of its squared size is taken as a
+ * line (rd_patch_torsion). */
+#define RD_PATCH_THIN 1e-13
 
 int rd_patch_clip_half(const rd_poly2 *in, double a, double b, double c, rd_poly2 *out)
 {
@@ -87,25 +94,119 @@ static void edge_root_integrals(double alpha, double beta, double gamma, double 
     *j1 = ((2.0 / 3.0) * (q1 * q1 * q1 - q0 * q0 * q0) - beta * *j0) / (2 * alpha);
 }
 
+/* The share of fan triangle (c, c + a, c + a + e) in the integral of (dc + g . (r - c)) |r - c|:
+ * as c + s (a + t e), s, t in [0, 1], dA = s (a x e) ds dt, |r - c| = s |w|, w = a + t e, and
+ * the depth dc + s g . w, so (a x e) [(dc / 3 + g . a / 4) J0 + (g . e / 4) J1], J0 and J1 the
+ * integrals of |w| and t |w| over t. */
+static double fan_share(const double a[2], const double e[2], double dc, double gx, double gy)
+{
+    double cr = a[0] * e[1] - a[1] * e[0];
+    double alpha = e[0] * e[0] + e[1] * e[1], gamma = a[0] * a[0] + a[1] * a[1];
+    /* a fan triangle of no area (c on the edge's line: c at a vertex, or on an edge of a face
+       cut into triangles), whose share is below the round-off of the others' */
+    if (!(fabs(cr) > RD_PATCH_THIN * (alpha + gamma))) return 0.0;
+    double j0, j1;
+    edge_root_integrals(alpha, 2 * (a[0] * e[0] + a[1] * e[1]), gamma, 4 * cr * cr, &j0, &j1);
+    double ga = gx * a[0] + gy * a[1], ge = gx * e[0] + gy * e[1];
+    return cr * ((dc / 3 + ga / 4) * j0 + (ge / 4) * j1);
+}
+
 double rd_patch_torsion(const rd_poly2 *p, const double c[2], double d0, double gx, double gy)
 {
-    /* a fan triangle (c, c + a, c + b) as c + s (a + t e), e = b - a, s, t in [0, 1]: dA = s (a x
-       b) ds dt, |r - c| = s |w|, w = a + t e, d = dc + s g.w, so its integral is
-       (a x b) [(dc / 3 + g.a / 4) J0 + (g.e / 4) J1], J0, J1 the integrals of |w| and t |w| */
     const double dc = d0 + gx * c[0] + gy * c[1];
     double sum = 0;
     for (int i = 0; i < p->n; i++) {
         const double *u = p->p[i], *v = p->p[(i + 1) % p->n];
-        double a[2] = {u[0] - c[0], u[1] - c[1]}, e[2] = {v[0] - u[0], v[1] - u[1]};
-        double cr = a[0] * e[1] - a[1] * e[0]; /* a x b = a x e */
-        double alpha = e[0] * e[0] + e[1] * e[1];
-        if (cr == 0 || alpha == 0) continue; /* a triangle of no area */
-        double j0, j1;
-        edge_root_integrals(alpha, 2 * (a[0] * e[0] + a[1] * e[1]), a[0] * a[0] + a[1] * a[1], 4 * cr * cr, &j0, &j1);
-        double ga = gx * a[0] + gy * a[1], ge = gx * e[0] + gy * e[1];
-        sum += cr * ((dc / 3 + ga / 4) * j0 + (ge / 4) * j1);
+        const double a[2] = {u[0] - c[0], u[1] - c[1]}, e[2] = {v[0] - u[0], v[1] - u[1]};
+        sum += fan_share(a, e, dc, gx, gy);
     }
     return sum;
+}
+
+static unsigned edge_hash(const double *lo, const double *hi)
+{
+    uint64_t h = 1469598103934665603ULL, w[4];
+    memcpy(w, lo, 2 * sizeof *lo);
+    memcpy(w + 2, hi, 2 * sizeof *hi);
+    for (int k = 0; k < 4; k++) { h ^= w[k]; h *= 1099511628211ULL; h ^= h >> 29; }
+    return (unsigned)h;
+}
+
+/* Is (x0, y0) before (x1, y1) in lexicographic order? */
+static int before(const double *p, const double *q) { return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]); }
+
+double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], double d0, double gx, double gy,
+                            rd_patch_scratch *sc)
+{
+    int ne = 0;
+    for (int k = 0; k < n; k++) ne += pieces[k].n;
+    int hcap = 16;
+    while (hcap < 2 * ne) hcap *= 2;
+    if (hcap > sc->cap) {
+        int *slot = realloc(sc->slot, (size_t)hcap * sizeof *slot);
+        int *cnt = slot ? realloc(sc->count, (size_t)hcap * sizeof *cnt) : NULL;
+        const double(**ends)[2] = cnt ? realloc(sc->ends, (size_t)hcap * 2 * sizeof *ends) : NULL;
+        if (slot) sc->slot = slot;
+        if (cnt) sc->count = cnt;
+        if (ends) sc->ends = ends;
+        if (!ends) { /* no room: each piece on its own (the same integral, more work) */
+            double sum = 0;
+            for (int k = 0; k < n; k++) sum += rd_patch_torsion(&pieces[k], c, d0, gx, gy);
+            return sum;
+        }
+        sc->cap = hcap;
+    }
+    for (int k = 0; k < hcap; k++) sc->slot[k] = -1;
+    /* each edge once, as (lo, hi) in lexicographic order, with its direction count: an edge
+       two pieces share runs both ways, and their fan triangles cancel exactly */
+    int nu = 0;
+    unsigned m = (unsigned)hcap - 1;
+    for (int k = 0; k < n; k++)
+        for (int i = 0; i < pieces[k].n; i++) {
+            const double *u = pieces[k].p[i], *v = pieces[k].p[(i + 1) % pieces[k].n];
+            int fwd = before(u, v);
+            const double *lo = fwd ? u : v, *hi = fwd ? v : u;
+            unsigned q = edge_hash(lo, hi) & m;
+            for (;; q = (q + 1) & m) {
+                int e = sc->slot[q];
+                if (e < 0) {
+                    sc->slot[q] = nu;
+                    sc->ends[2 * nu] = (const double(*)[2])lo;
+                    sc->ends[2 * nu + 1] = (const double(*)[2])hi;
+                    sc->count[nu++] = fwd ? 1 : -1;
+                    break;
+                }
+                const double *elo = *sc->ends[2 * e], *ehi = *sc->ends[2 * e + 1];
+                if (elo[0] == lo[0] && elo[1] == lo[1] && ehi[0] == hi[0] && ehi[1] == hi[1]) {
+                    sc->count[e] += fwd ? 1 : -1;
+                    break;
+                }
+            }
+        }
+    const double dc = d0 + gx * c[0] + gy * c[1];
+    double sum = 0;
+    for (int e = 0; e < nu; e++) {
+        if (sc->count[e] == 0) continue;
+        const double *lo = *sc->ends[2 * e], *hi = *sc->ends[2 * e + 1];
+        const double a[2] = {lo[0] - c[0], lo[1] - c[1]}, d[2] = {hi[0] - lo[0], hi[1] - lo[1]};
+        sum += sc->count[e] * fan_share(a, d, dc, gx, gy);
+    }
+    return sum;
+}
+
+void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd_patch_load *out)
+{
+    *out = (rd_patch_load){0, 0, 0, 0, 0, 0, 0, 0, 0};
+    if (!(m->a > 0)) return;
+    out->area = m->a;
+    out->cx = m->sx / m->a;
+    out->cy = m->sy / m->a;
+    out->polar = m->sxx + m->syy - m->a * (out->cx * out->cx + out->cy * out->cy);
+    out->f = d0 * m->a + gx * m->sx + gy * m->sy;
+    out->mx = d0 * m->sx + gx * m->sxx + gy * m->sxy;
+    out->my = d0 * m->sy + gx * m->sxy + gy * m->syy;
+    out->e2 = d0 * d0 * m->a + 2 * d0 * (gx * m->sx + gy * m->sy) + gx * gx * m->sxx + 2 * gx * gy * m->sxy +
+              gy * gy * m->syy;
 }
 
 void rd_patch_load_of(const rd_poly2 *p, double d0, double gx, double gy, rd_patch_load *out, rd_poly2 *comp)
@@ -115,16 +216,8 @@ void rd_patch_load_of(const rd_poly2 *p, double d0, double gx, double gy, rd_pat
     if (!rd_patch_clip_half(p, gx, gy, d0, q)) return;
     rd_moments m;
     rd_patch_moments(q, &m);
-    if (!(m.a > 0)) return;
-    out->area = m.a;
-    out->cx = m.sx / m.a;
-    out->cy = m.sy / m.a;
-    out->polar = m.sxx + m.syy - m.a * (out->cx * out->cx + out->cy * out->cy);
-    out->f = d0 * m.a + gx * m.sx + gy * m.sy;
-    out->mx = d0 * m.sx + gx * m.sxx + gy * m.sxy;
-    out->my = d0 * m.sy + gx * m.sxy + gy * m.syy;
-    out->e2 = d0 * d0 * m.a + 2 * d0 * (gx * m.sx + gy * m.sy) + gx * gx * m.sxx + 2 * gx * gy * m.sxy +
-              gy * gy * m.syy;
+    rd_patch_load_from(&m, d0, gx, gy, out);
+    if (!(out->area > 0)) return;
     const double c[2] = {out->cx, out->cy};
     out->tors = rd_patch_torsion(q, c, d0, gx, gy);
 }
