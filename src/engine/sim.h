@@ -406,6 +406,7 @@ double rd_contact_elastic_energy(const rd_sim *s);
 int rd_surface_init(rd_sim *s, rd_error *err);
 void rd_surface_step(rd_sim *s);
 double rd_surface_elastic_energy(const rd_sim *s);
+double rd_surface_contact_area(const rd_sim *s, int i);
 void rd_surface_reset(rd_sim *s, int body);
 void rd_surface_free(rd_sim *s);
 
