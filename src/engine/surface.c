@@ -392,9 +392,6 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     sum->area += ld->area;
     sum->nact++;
     sum->nslip += slip;
-    if (getenv("RD_SURF_DEBUG") && fabs(s->t - atof(getenv("RD_SURF_DEBUG"))) < 3e-4)
-        fprintf(stderr, "dbg t %.6f P %d g %d A %.4g J %.4g fn %.4g |fs| %.4g mt %.4g flim %.4g mlim %.4g slip %d Efs %.4g Emt %.4g En %.4g\n", s->t, P, g,
-                ld->area, ld->polar, fn, rd_norm(sp->fs), sp->mt, flim, mlim, slip, rd_dot(sp->fs, sp->fs) / (2 * kA), kJ > 0 ? sp->mt * sp->mt / (2 * kJ) : 0.0, 0.5 * j->kn * ld->e2);
     st->e2 = ld->e2;
     st->kn = j->kn;
     st->ks = j->ks;
