@@ -422,7 +422,7 @@ static void test_error_unknown_and_missing_verb(void **state)
     (void)state;
     parse_fails("  block crate brick\n",
                 "run.dat:1:9: unknown verb 'crate' for 'block' (expected create, import, initial)");
-    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation, preset)");
+    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation, preset, model)");
 }
 
 static void test_error_unknown_keyword(void **state)

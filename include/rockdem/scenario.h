@@ -81,7 +81,12 @@ typedef struct rd_contact_def {
                          a number written 0 is refused; < 0 = automatic per body: a
                          tenth of its narrowest contact face (a mesh: its own vertices) */
     rd_perturb_def perturb; /* interface perturbation (default: off) */
+    int model;        /* RD_CONTACT_VERTEX (default): vertex subcontacts; RD_CONTACT_SURFACE:
+                         patches from the touching faces (docs/CONTACT.md section 8) */
 } rd_contact_def;
+
+/* rd_contact_def.model */
+enum { RD_CONTACT_VERTEX = 0, RD_CONTACT_SURFACE = 1 };
 
 /* One end of a joint range: any body, the bodies of a group, or one body by name. */
 typedef enum rd_range_kind { RD_RANGE_ANY = 0, RD_RANGE_GROUP = 1, RD_RANGE_BLOCK = 2 } rd_range_kind;

@@ -872,6 +872,7 @@ static void reset_pair(rd_sim *s, rd_pair *pr)
 
 void rd_contact_reset_body(rd_sim *s, int body)
 {
+    if (s->surf) rd_surface_reset(s, body);
     for (int p = 0; p < s->npair; p++)
         if (s->pair[p].a == body || s->pair[p].b == body) reset_pair(s, &s->pair[p]);
 }
@@ -1331,8 +1332,9 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
 int rd_contact_step(rd_sim *s)
 {
     if (rd_pairs_update(s)) return -1;
-    reset_departed(s);
-    for (int k = 0; k < s->nlive; k++) {
+    if (s->surf) rd_surface_step(s); /* `contact model surface` */
+    else reset_departed(s);
+    for (int k = 0; !s->surf && k < s->nlive; k++) {
         rd_pair *pr = &s->pair[s->live[k]];
         double k_active = 0, nsum[3] = {0, 0, 0};
         for (int q = 0; q < pr->nside; q++) {
@@ -1362,6 +1364,7 @@ int rd_contact_step(rd_sim *s)
  * is taken, so the contact loop carries no division. */
 double rd_contact_elastic_energy(const rd_sim *s)
 {
+    if (s->surf) return rd_surface_elastic_energy(s);
     double e = 0;
     for (int k = 0; k < s->nlive_prev; k++) {
         const rd_pair *pr = &s->pair[s->live_prev[k]];

@@ -92,6 +92,10 @@ static int build_body(rd_sim *s, int i, rd_error *err)
     rd_copy3(d->position, s->x[i]); /* the centre of mass */
     s->fixed[i] = d->fixed;
     s->convex[i] = is_convex(&s->poly[i]);
+    /* the surface model takes a convex body of many faces as a mesh (surface.c: it is then the
+       integration side of its pairs, against a convex partner) */
+    if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES && s->sc.contact.model == RD_CONTACT_SURFACE)
+        s->convex[i] = 0;
     if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES)
         return rd_error_set(err, "%s:%d: block '%s' has %d faces; a convex body may have at most %d",
                             s->sc.file, d->line, d->name, s->poly[i].nf, RD_MAX_PLANES);
@@ -551,7 +555,8 @@ int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
     if (build_points(s, err) || build_step_vertices(s, err) || rd_edge_init(s, err) || rd_perturb_points(s, err) ||
-        rd_merge_points(s, err) || face_vertices(s, err) || share_points(s, err) || rd_pairs_init(s, err))
+        rd_merge_points(s, err) || face_vertices(s, err) || share_points(s, err) || rd_pairs_init(s, err) ||
+        rd_surface_init(s, err))
         return -1;
     return 0;
 }

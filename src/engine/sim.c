@@ -553,6 +553,7 @@ void rd_sim_free(rd_sim *s)
 {
     if (!s) return;
     rd_observe_release(s);
+    rd_surface_free(s);
     rd_scenario_free(&s->sc);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);

@@ -372,6 +372,8 @@ struct rd_sim {
     char errmsg[RD_ERROR_MAX];
     double floor_z;        /* lowest point of the fixed bodies, m (-INFINITY without any) */
     long nsteps_all;       /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
+    struct rd_surface *surf; /* `contact model surface`: the bodies' planes and the patches'
+                              state (surface.c); NULL with vertex subcontacts */
     double escape_reach;   /* travel of a centre of mass against another body between escape checks,
                               at most, m: half the smallest inradius of a convex body (monitor.c) */
     double escape_travel;  /* bound on that travel since the last escape check, m */
@@ -415,6 +417,14 @@ void rd_contact_reset_body(rd_sim *s, int body);
 void rd_contact_seat(rd_sim *s);
 void rd_contact_find_impacts(rd_sim *s);
 double rd_contact_elastic_energy(const rd_sim *s);
+
+/* surface.c: contact from the touching surfaces (`contact model surface`) */
+int rd_surface_init(rd_sim *s, rd_error *err);
+void rd_surface_step(rd_sim *s);
+double rd_surface_elastic_energy(const rd_sim *s);
+double rd_surface_contact_area(const rd_sim *s, int i);
+void rd_surface_reset(rd_sim *s, int body);
+void rd_surface_free(rd_sim *s);
 
 /* edge.c */
 int rd_edge_count(const rd_poly *p);

@@ -67,7 +67,7 @@ double rd_timestep_critical(const rd_sim *s)
             if (s->cf_facing[c]) late = fmax(late, a);
             else { bed += a; bed_max = fmax(bed_max, a); }
         }
-        double area = fmax(bed, late + 0.5 * bed_max);
+        double area = s->surf ? rd_surface_contact_area(s, i) : fmax(bed, late + 0.5 * bed_max);
         double w2 = k * area * (mobility(s, i) + other_mobility(&top, i));
         if (w2 > w2max) w2max = w2;
         double l = zeta * sqrt(s->mass[i] * mobility(s, i));

@@ -157,6 +157,7 @@ int model_reference(parser *P);
 int contact_property(parser *P);
 int contact_perturbation(parser *P);
 int contact_preset(parser *P);
+int contact_model(parser *P);
 int output_hdf5(parser *P);
 int block_create(parser *P);    /* parse_block.c */
 int block_import(parser *P);

@@ -283,3 +283,14 @@ int output_hdf5(parser *P)
             return -1;
     return k == KW_ERR ? -1 : 0;
 }
+
+/* contact model vertex|surface: vertex subcontacts (the default) or patches from the touching
+ * faces (engine/surface.c). */
+int contact_model(parser *P)
+{
+    static const char *const names[] = {"vertex", "surface", NULL};
+    int k = one_keyword(P, names);
+    if (k < 0 || command_once(P)) return -1;
+    P->sc->contact.model = k == 1 ? RD_CONTACT_SURFACE : RD_CONTACT_VERTEX;
+    return 0;
+}

@@ -43,6 +43,7 @@ static const struct command {
     {"contact", "property", contact_property},
     {"contact", "interface-perturbation", contact_perturbation},
     {"contact", "preset", contact_preset},
+    {"contact", "model", contact_model},
     {"ground-motion", "pulse", motion_pulse},
     {"ground-motion", "import", motion_import},
     {"ground-motion", "stochastic", motion_stochastic},
@@ -96,7 +97,7 @@ static int run_command(parser *P)
 int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
 {
     rd_contact_def keep = *c;
-    *c = (rd_contact_def){.perturb = keep.perturb};
+    *c = (rd_contact_def){.perturb = keep.perturb, .model = keep.model};
     if (!strcmp(name, "rigid")) {
         /* rigid rocking theory (Housner, Kounadis): corner subcontacts, perfectly plastic point
            impacts, and a shear spring stiff enough (KS = 10 KN) to give the impacting edge
