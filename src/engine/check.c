@@ -17,6 +17,7 @@
 
 #define RD_CHECK_STEPS 400     /* trial steps timed for the cost estimate */
 #define RD_CHECK_WALL_MAX 1.0  /* ... or fewer, when they take longer than this, s */
+#define RD_CHECK_PLAN_TOL 1e-9 /* overlap and level tolerance of the plan boxes, per m of size */
 
 static double body_volume(const rd_sim *s, int i)
 {
@@ -33,8 +34,17 @@ static void extent(const rd_sim *s, int i, double lo[3], double hi[3])
         for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], s->wv[v][k]); hi[k] = fmax(hi[k], s->wv[v][k]); }
 }
 
+/* Do the plan boxes a and b overlap by more than tol in x and in y? */
+static int plan_overlap(const double *a, const double *b, double tol)
+{
+    return fmin(a[3], b[3]) - fmax(a[0], b[0]) > tol && fmin(a[4], b[4]) - fmax(a[1], b[1]) > tol;
+}
+
 /* The nearest body under body i (see the header comment) and the gap to it; box[j] holds
- * body j's lowest corner (0..2) and highest (3..5). */
+ * body j's lowest corner (0..2) and highest (3..5). When that body lies lower than i's base
+ * (a gap), a body whose plan box overlaps i's and whose top is at or below i's base and higher
+ * is taken instead: a brick in running bond has its centre over the joint of the two bricks it
+ * rests on, and the body under its centre is the course below them. */
 static int below(const rd_sim *s, const double (*box)[6], int i, double *gap)
 {
     int best = -1;
@@ -45,7 +55,13 @@ static int below(const rd_sim *s, const double (*box)[6], int i, double *gap)
         int covers = s->x[i][0] >= l2[0] && s->x[i][0] <= h2[0] && s->x[i][1] >= l2[1] && s->x[i][1] <= h2[1];
         if (covers && l2[2] < s->x[i][2] && h2[2] > top) { top = h2[2]; best = j; }
     }
-    *gap = best >= 0 ? box[i][2] - top : INFINITY;
+    const double lo = box[i][2], tol = RD_CHECK_PLAN_TOL * (1.0 + s->poly[i].radius);
+    for (int j = 0; best >= 0 && lo - top > tol && j < s->nb; j++)
+        if (j != i && plan_overlap(box[i], box[j], tol) && box[j][5] <= lo + tol && box[j][5] > top) {
+            top = box[j][5];
+            best = j;
+        }
+    *gap = best >= 0 ? lo - top : INFINITY;
     return best;
 }
 
