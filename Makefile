@@ -45,7 +45,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test unit asan asan-unit debug fragility-example fuzz fuzz-bins bench bench-study bench-peers study deps clean check-yade mpi
+.PHONY: python all lib run test unit asan asan-unit debug fragility-example fuzz fuzz-bins bench bench-study bench-echo-cliff bench-peers study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -173,6 +173,11 @@ bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenari
 # projected to 2 cores: bench/pbr_study.sh (about 2-4 min on 2 idle cores)
 bench-study: $(BIN)/rockdem scenarios/pbr.obj
 	@bash bench/pbr_study.sh $(BIN)
+
+# an Echo Cliff-sized PBR study (seed 000: 140 records x 19 PGA levels x 8 directions = 21,280
+# runs of 20 s records) timed on a 76-run sample, projected to 2 cores (about 3-6 min on 2 idle cores)
+bench-echo-cliff: $(BIN)/rockdem scenarios/pbr.obj
+	@STUDY=echo-cliff bash bench/pbr_study.sh $(BIN)
 
 # time to solution at equal accuracy against PyBullet and MuJoCo (pip, into $(BUILD)/peers-venv;
 # skipped with the reason when offline) and YADE (Debian): bench/peers.sh, about 10-20 min

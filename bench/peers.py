@@ -15,12 +15,23 @@ Scenes and accuracy measures:
           threshold against the CVODE Kounadis reference (plastic impacts);
   column  tests/data/yade/column.dat (four 12-sided drums) under its 0.5 g 2 Hz pulse, 2.5 s:
           no rigid reference exists, so its row gives the cost and the top drum's peak tilt.
-Every code runs the same geometry at several fixed steps (rockdem: its contact preset `rigid` at
-KN 1e10 and at the preset's own 1e11, the automatic step; the column its file's fixed step); overturning is a tilt past 1.5 alpha in
-every code (the reference: certain overturning). The threshold search is rd_threshold's for
-all (24 coarse steps from 0.9 to 10 g tan(alpha), bisection to 0.005), run on one core
-(rockdem -j 1). "Meets" = first-impact error <= 1 % and threshold error <= 2 % (issues 10 and
-11: 1 % on event times, 2 % on amplitudes); time to solution = the wall time of that search.
+Every code runs the same geometry over the same kind of search of its settings, and is judged at
+its best: the cheapest setting that meets the accuracy asked. The settings searched:
+  PyBullet, MuJoCo  ground (an infinite plane, or a 20 x 20 x 1 m box) x friction (80 and 40 deg)
+                    x 4 fixed steps (their defaults first: 1/240 s and 2 ms);
+  rockdem           its contact preset `rigid` at KN 1e10 and at the preset's own 1e11 x friction
+                    (80 and 40 deg) x the automatic step's safety factor (the default 0.2, and
+                    1.0); its ground is always a fixed box (a pedestal); the column its file's own
+                    setting.
+Overturning is a tilt past 1.5 alpha in every code (the reference: certain overturning). The
+threshold search is rd_threshold's for all (24 coarse steps from 0.9 to 10 g tan(alpha),
+bisection to 0.005), run on one core (rockdem -j 1). "Meets" = first-impact error <= 1 %, block
+threshold error <= 2 % (issues 10 and 11: 1 % on event times, 2 % on amplitudes) and stack
+threshold error <= 3 % (issue 10); time to solution = the wall time of the block's search. The
+settings of the codes are run interleaved (one setting of each code in turn), so a change of
+the machine's load reaches every code alike; the load average is printed with the table.
+With --readme FILE the table and the sentence it supports replace the part of FILE between the
+lines `<!-- peers:begin -->` and `<!-- peers:end -->`.
 """
 import argparse
 import json
@@ -41,19 +52,27 @@ import ladder  # noqa: E402  (scenes and HDF5 helpers of the validation ladder)
 G0 = 9.80665         # m/s^2, the g of rockdem's "g" suffix
 FREQ = 2.0            # Hz, the threshold pulse
 TILT0 = 10.0          # deg, the free-rocking release
-IMPACT_TOL, THRESHOLD_TOL = 0.01, 0.02
+IMPACT_TOL, THRESHOLD_TOL, STACK_TOL = 0.01, 0.02, 0.03
+GROUNDS = ("plane", "box")          # the peers' fixed base
+FRICTIONS = (80.0, 40.0)             # deg, every code
+RD_SAFETY = (0.2, 1.0)               # rockdem's automatic step: the default safety factor, and 1
 OVERTURN = "model overturn tilt-ratio 1.5"
 PEER_DT = {"pybullet": (1 / 240, 1e-3, 2.5e-4, 1e-4),   # 1/240 s: PyBullet's default step
            "mujoco": (2e-3, 5e-4, 1e-4, 2.5e-5)}         # 2 ms: MuJoCo's default step
 YADE_DT = 5e-5        # s: the step of tests/data/yade/ (YADE's stability limit for this KN)
 
 
-def scene_text(kind, motion="", init="", T=3.0, rigid=True, kf=1.0):
+def scene_text(kind, motion="", init="", T=3.0, rigid=True, kf=1.0, friction=80.0, safety=None):
     """The ladder's block or stack scene at KN = kf x KN0 (the ladder's 1e10 Pa/m; the preset's
-    own KN is 10 KN0); rigid=False: the same without the preset (YADE's translator reads KN, KS
-    and friction only: KS 1e9, friction 80 deg, fixed step)."""
+    own KN is 10 KN0), friction in deg, the automatic step's safety factor (None: the default);
+    rigid=False: the same without the preset (YADE's translator reads KN, KS and friction only:
+    KS 1e9, friction 80 deg, fixed step)."""
     base = ladder.BLOCK if kind == "block" else ladder.STACK
     text = base.format(kn=kf * ladder.KN0, ks=10 * kf * ladder.KN0, damping=init, motion=motion, T=T)
+    if rigid:
+        text = re.sub(r"(contact property stiffness-normal \S+ stiffness-shear \S+)", r"\1 friction %g" % friction, text)
+        if safety is not None:
+            text += "model timestep auto safety %g\n" % safety
     if not rigid:
         text = re.sub(r"contact preset rigid\ncontact property .*\n",
                       "contact property stiffness-normal %g stiffness-shear 1e9 friction 80\n" % ladder.KN0, text)
@@ -108,8 +127,9 @@ def rel(a, b):
     return abs(a - b) / abs(b) if a is not None and b else float("nan")
 
 
-def peer(py, code, dt, *task):
-    p = subprocess.run([py, os.path.join(HERE, "peers_rigid.py"), code, repr(dt)] + [str(t) for t in task],
+def peer(py, code, dt, ground, friction, *task):
+    p = subprocess.run([py, os.path.join(HERE, "peers_rigid.py"), "--ground", ground, "--friction", repr(friction),
+                        code, repr(dt)] + [str(t) for t in task],
                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, stdin=subprocess.DEVNULL)
     if p.returncode:
         raise RuntimeError("%s %s: %s" % (code, task, p.stderr[-800:]))
@@ -171,6 +191,7 @@ def main(argv=None):
     ap.add_argument("--skip-reason", default="", help="why the peers in the venv are skipped")
     ap.add_argument("--no-yade", action="store_true")
     ap.add_argument("-o", "--out", help="also write the table (markdown) here")
+    ap.add_argument("--readme", help="replace the part of this file between the peers markers")
     a = ap.parse_args(argv)
     tmp = tempfile.mkdtemp(prefix="rd_peers_")
     B = Bench(os.path.abspath(a.bin), tmp)
@@ -189,44 +210,57 @@ def main(argv=None):
         print("CVODE reference: first impact %.6f s, 2 Hz threshold block %.4f g, stack %.4f g"
               % (t_ref, a_ref / G0, s_ref / G0), flush=True)
 
-        # ---- rockdem: the rigid preset at KN 1e10 and at its own 1e11 (its ladder of stiffness,
-        # as the peers' ladder of steps); the column is its file's own setting, run once ----------
+        # ---- rockdem and the peers, one setting of each in turn --------------------------------
         col = os.path.join(ROOT, "tests", "data", "yade", "column.dat")
         wps_c, pc = B.perf(col, "model.duration=2.5")
         peak_c = float(ladder.h5(pc, "summary:max_tilt")[-1])  # the top drum
-        for kf in (1.0, 10.0):
-            t1, _ = B.first_impact(B.write("free_rd", scene_text("block", init=init, T=1.5, kf=kf)), "run")
-            blk_k = B.write("block_rd", scene_text("block", motion=pulse, kf=kf))
-            stk_k = B.write("stack_rd", scene_text("stack", motion=pulse, kf=kf))
+
+        def rockdem_row(kf, friction, safety):
+            t1, _ = B.first_impact(B.write("free_rd", scene_text("block", init=init, T=1.5, kf=kf, friction=friction,
+                                                                 safety=safety)), "run")
+            blk_k = B.write("block_rd", scene_text("block", motion=pulse, kf=kf, friction=friction, safety=safety))
+            stk_k = B.write("stack_rd", scene_text("stack", motion=pulse, kf=kf, friction=friction, safety=safety))
             a1, n1, w1 = B.threshold(blk_k, "dem")
             s1, ns1, ws1 = B.threshold(stk_k, "dem")
             wps_b, p = B.perf(blk_k, "motion.amplitude=%.6g" % a_ref)
             wps_s, _ = B.perf(stk_k, "motion.amplitude=%.6g" % s_ref)
             dt_rd = float(ladder.h5(p, "summary:dt"))
-            rows.append(dict(code="rockdem (preset rigid, KN %g)" % (kf * ladder.KN0), dt=dt_rd, imp=rel(t1, t_ref),
-                             thr=rel(a1, a_ref), wps=wps_b, search=w1, runs=n1, sthr=rel(s1, s_ref), swps=wps_s,
-                             ssearch=ws1, cwps=wps_c, cpeak=peak_c))
-            print("rockdem KN %g done" % (kf * ladder.KN0), flush=True)
+            return dict(code="rockdem (preset rigid, KN %g, safety %g)" % (kf * ladder.KN0, safety), ground="box",
+                        friction=friction, dt=dt_rd, imp=rel(t1, t_ref), thr=rel(a1, a_ref), wps=wps_b, search=w1,
+                        runs=n1, sthr=rel(s1, s_ref), swps=wps_s, ssearch=ws1, cwps=wps_c, cpeak=peak_c)
 
-        # ---- PyBullet, MuJoCo -------------------------------------------------------------------
-        if a.venv_python:
-            for code, dts in PEER_DT.items():
-                for dt in dts:
-                    try:
-                        f = peer(a.venv_python, code, dt, "free")
-                        tb = peer(a.venv_python, code, dt, "threshold", "block", FREQ, static_b)
-                        ts = peer(a.venv_python, code, dt, "threshold", "stack", FREQ, static_s)
-                        c = peer(a.venv_python, code, dt, "history", "column", 0.5, 2.5)
-                    except RuntimeError as e:
-                        notes.append("%s at dt %g: failed (%s)" % (code, dt, str(e).splitlines()[-1]))
-                        continue
-                    rows.append(dict(code=code, dt=dt, imp=rel(f["impact_time"], t_ref), thr=rel(tb["threshold"], a_ref),
-                                     wps=tb["wall_s"] / tb["sim_s"], search=tb["search_wall_s"], runs=tb["runs"],
-                                     sthr=rel(ts["threshold"], s_ref), swps=ts["wall_s"] / ts["sim_s"],
-                                     ssearch=ts["search_wall_s"], cwps=c["wall_s"] / c["sim_s"], cpeak=c["max_tilt"][-1]))
-                    print("%s dt %g done" % (code, dt), flush=True)
-        else:
+        def peer_row(code, dt, ground, friction):
+            f = peer(a.venv_python, code, dt, ground, friction, "free")
+            tb = peer(a.venv_python, code, dt, ground, friction, "threshold", "block", FREQ, static_b)
+            ts = peer(a.venv_python, code, dt, ground, friction, "threshold", "stack", FREQ, static_s)
+            c = peer(a.venv_python, code, dt, ground, friction, "history", "column", 0.5, 2.5)
+            return dict(code=code, ground=ground, friction=friction, dt=dt, imp=rel(f["impact_time"], t_ref),
+                        thr=rel(tb["threshold"], a_ref), wps=tb["wall_s"] / tb["sim_s"], search=tb["search_wall_s"],
+                        runs=tb["runs"], sthr=rel(ts["threshold"], s_ref), swps=ts["wall_s"] / ts["sim_s"],
+                        ssearch=ts["search_wall_s"], cwps=c["wall_s"] / c["sim_s"], cpeak=c["max_tilt"][-1])
+
+        rd_grid = [(kf, fr, sf) for kf in (1.0, 10.0) for fr in FRICTIONS for sf in RD_SAFETY]
+        peer_grid = {code: [(dt, g, fr) for g in GROUNDS for fr in FRICTIONS for dt in dts]
+                     for code, dts in PEER_DT.items()} if a.venv_python else {}
+        if not a.venv_python:
             notes.append("PyBullet and MuJoCo skipped: %s" % (a.skip_reason or "no virtual environment"))
+        rounds = max([len(rd_grid)] + [len(g) for g in peer_grid.values()])
+        for i in range(rounds):
+            if i < len(rd_grid):
+                rows.append(rockdem_row(*rd_grid[i]))
+                print("rockdem KN %g friction %g safety %g done" % (rd_grid[i][0] * ladder.KN0, rd_grid[i][1],
+                                                                    rd_grid[i][2]), flush=True)
+            for code, grid in peer_grid.items():
+                if i >= len(grid):
+                    continue
+                dt, g, fr = grid[i]
+                try:
+                    rows.append(peer_row(code, dt, g, fr))
+                except RuntimeError as e:
+                    notes.append("%s at dt %g, %s ground, friction %g: failed (%s)"
+                                 % (code, dt, g, fr, str(e).splitlines()[-1]))
+                    continue
+                print("%s dt %g ground %s friction %g done" % (code, dt, g, fr), flush=True)
 
         # ---- YADE ---------------------------------------------------------------------------------
         if a.no_yade or not shutil.which("yade"):
@@ -239,12 +273,12 @@ def main(argv=None):
             ay, ny, wy, wpsy = yade_threshold(tmp, by, static_b)
             ays, nys, wys, wpsys = yade_threshold(tmp, sy, static_s)
             _, _, wpsc, _, peaks = yade_run(tmp, col, ["model.duration=2.5"])
-            rows.append(dict(code="YADE (Polyhedra, -j1)", dt=YADE_DT, imp=rel(ty, t_ref), thr=rel(ay, a_ref), wps=wpsy,
+            rows.append(dict(code="YADE (Polyhedra, -j1)", ground="box", friction=80.0, dt=YADE_DT, imp=rel(ty, t_ref), thr=rel(ay, a_ref), wps=wpsy,
                              search=wy, runs=ny, sthr=rel(ays, s_ref), swps=wpsys, ssearch=wys, cwps=wpsc, cpeak=peaks[-1]))
             print("yade done", flush=True)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    report(rows, notes, a.out)
+    report(rows, notes, a.out, a.readme)
     return 0
 
 
@@ -252,42 +286,87 @@ def pct(x):
     return "n/a" if x != x else "%.2f %%" % (100 * x)
 
 
-def report(rows, notes, out):
+def meets(r):
+    return r["imp"] <= IMPACT_TOL and r["thr"] <= THRESHOLD_TOL and r["sthr"] <= STACK_TOL
+
+
+def family(r):
+    return r["code"].split()[0]
+
+
+def report(rows, notes, out, readme=None):
     load = open("/proc/loadavg").read().split()[:3]
     cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "unknown")
-    lines = ["Time to solution at equal accuracy (bench/peers.sh), %s, %s (%d cpus), load average %s"
-             % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), cpu, os.cpu_count(), " ".join(load)), "",
-             "| code | step (s) | block: first impact err | block: 2 Hz threshold err | block wall-s / sim-s "
-             "| block threshold search (s, runs) | meets 1 % / 2 % | stack: 2 Hz threshold err | stack wall-s / sim-s "
-             "| stack search (s) | column wall-s / sim-s | column top drum peak tilt (rad) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        meets = r["imp"] <= IMPACT_TOL and r["thr"] <= THRESHOLD_TOL
-        lines.append("| %s | %.3g | %s | %s | %.3g | %.1f (%d) | %s | %s | %.3g | %.1f | %.3g | %.4f |"
-                     % (r["code"], r["dt"], pct(r["imp"]), pct(r["thr"]), r["wps"], r["search"], r["runs"],
-                        "yes" if meets else "no", pct(r["sthr"]), r["swps"], r["ssearch"], r["cwps"], r["cpeak"]))
+    head = ("Time to solution at equal accuracy (bench/peers.sh), %s, %s (%d cpus), load average %s at the end"
+            % (time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), cpu, os.cpu_count(), " ".join(load)))
+    cols = ("| code | ground | friction (deg) | step (s) | block: first impact err | block: 2 Hz threshold err "
+            "| block wall-s / sim-s | block threshold search (s, runs) | stack: 2 Hz threshold err | stack wall-s / sim-s "
+            "| column wall-s / sim-s | column top drum peak tilt (rad) | meets 1 % / 2 % / 3 % |")
+    rule = "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+
+    def line(r):
+        return ("| %s | %s | %g | %.3g | %s | %s | %.3g | %.1f (%d) | %s | %.3g | %.3g | %.4f | %s |"
+                % (r["code"], r["ground"], r["friction"], r["dt"], pct(r["imp"]), pct(r["thr"]), r["wps"], r["search"],
+                   r["runs"], pct(r["sthr"]), r["swps"], r["cwps"], r["cpeak"], "yes" if meets(r) else "no"))
     best = {}
     for r in rows:
-        if r["imp"] <= IMPACT_TOL and r["thr"] <= THRESHOLD_TOL:
-            k = r["code"].split()[0]
-            if k not in best or r["search"] < best[k]["search"]:
-                best[k] = r
-    lines.append("")
-    for k in sorted(set(r["code"].split()[0] for r in rows)):
+        k = family(r)
+        if meets(r) and (k not in best or r["search"] < best[k]["search"]):
+            best[k] = r
+    summary = []
+    for k in sorted(set(family(r) for r in rows)):
         if k in best:
-            lines.append("- %s: time to solution at the accuracy asked (block, 2 Hz threshold search): %.1f s at step %.3g s"
-                         % (k, best[k]["search"], best[k]["dt"]))
+            b = best[k]
+            summary.append("- %s at its best (%s ground, friction %g, step %.3g s): %.1f s to the block's threshold, "
+                           "%.3g wall-s per simulated s" % (b["code"], b["ground"], b["friction"], b["dt"],
+                                                            b["search"], b["wps"]))
         else:
-            rk = [r for r in rows if r["code"].split()[0] == k]
-            b = min(rk, key=lambda r: max(r["imp"] / IMPACT_TOL, r["thr"] / THRESHOLD_TOL))
-            lines.append("- %s: does not reach 1 %% / 2 %% at any step tried (best: first impact %s, threshold %s at %.3g s)"
-                         % (k, pct(b["imp"]), pct(b["thr"]), b["dt"]))
-    lines += ["- %s" % n for n in notes]
+            rk = [r for r in rows if family(r) == k]
+            b = min(rk, key=lambda r: max(r["imp"] / IMPACT_TOL, r["thr"] / THRESHOLD_TOL, r["sthr"] / STACK_TOL))
+            summary.append("- %s: meets 1 %% / 2 %% / 3 %% at no setting tried (closest: first impact %s, threshold %s, "
+                           "stack %s at %s ground, friction %g, step %.3g s)" % (k, pct(b["imp"]), pct(b["thr"]),
+                                                                              pct(b["sthr"]), b["ground"], b["friction"], b["dt"]))
+    claim = ""
+    if "rockdem" in best:
+        rd = best["rockdem"]
+        others = sorted((k for k in best if k != "rockdem"), key=lambda k: best[k]["search"])
+        faster = [k for k in others if best[k]["search"] < rd["search"]]
+        if faster:
+            claim = ("At equal accuracy %s %s faster than rockdem (time to solution %s against rockdem's %.1f s)"
+                     % (" and ".join(faster), "is" if len(faster) == 1 else "are",
+                        ", ".join("%s %.1f s, %.2gx" % (k, best[k]["search"], rd["search"] / best[k]["search"])
+                                  for k in faster), rd["search"]))
+            slower = [k for k in others if k not in faster]
+            if slower:
+                claim += "; rockdem is faster than %s" % " and ".join(
+                    "%s (%.2gx)" % (k, best[k]["search"] / rd["search"]) for k in slower)
+            claim += "."
+        elif others:
+            claim = ("At equal accuracy rockdem is the fastest: %s."
+                     % ", ".join("%.2gx faster than %s" % (best[k]["search"] / rd["search"], k) for k in others))
+        missing = sorted(set(family(r) for r in rows) - set(best))
+        if missing:
+            claim += " %s meet%s the accuracy at no setting tried." % (" and ".join(missing), "s" if len(missing) == 1 else "")
+    lines = [head, "", cols, rule] + [line(r) for r in rows] + [""] + summary + ["- %s" % n for n in notes]
+    if claim:
+        lines += ["", claim.strip()]
     text = "\n".join(lines)
     print(text)
     if out:
         with open(out, "w") as f:
             f.write(text + "\n")
+    if readme:
+        src = open(readme).read()
+        b, e = "<!-- peers:begin -->", "<!-- peers:end -->"
+        if b not in src or e not in src:
+            raise SystemExit("bench/peers.py: %s has no %s ... %s block" % (readme, b, e))
+        best_rows = [cols, rule] + [line(best[k]) for k in sorted(best)]
+        block = "\n".join([b, "_Generated by `make bench-peers` (bench/peers.py): %s. Each code at its best setting; "
+                                "the full search is in build/bench/peers.md._" % head[len("Time to solution at equal accuracy (bench/peers.sh), "):], ""]
+                          + best_rows + [""] + summary + ["- %s" % n for n in notes]
+                          + ([""] + [claim.strip()] if claim else []) + [e])
+        with open(readme, "w") as f:
+            f.write(src[:src.index(b)] + block + src[src.index(e) + len(e):])
 
 
 if __name__ == "__main__":

@@ -7,7 +7,9 @@
 # PyBullet and MuJoCo come from PyPI into a virtual environment under BUILDDIR (default build)
 # made here on the first run (BUILDDIR/peers-venv); without the network (or pip) they are skipped
 # and the table says why. YADE is Debian's (apt-get install yade); without it, skipped the same
-# way. Writes the table to BUILDDIR/bench/peers.md too. Environment: NO_YADE=1 skips YADE.
+# way. Writes the full table to BUILDDIR/bench/peers.md, and each code's best row with the
+# sentence they support into docs/PERFORMANCE.md (between its peers markers). Environment: NO_YADE=1
+# skips YADE; README=FILE writes that file instead (README= : none).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd); root=$(dirname "$here")
 bindir=${1:-bin}; case $bindir in /*) ;; *) bindir="$PWD/$bindir" ;; esac
@@ -28,6 +30,7 @@ fi
 [ -n "$py" ] && echo "peers: $("$py" -c 'import mujoco; print("mujoco", mujoco.__version__)' 2>/dev/null)," \
     "$("$py" -m pip show pybullet 2>/dev/null | sed -n 's/^Version: /pybullet /p')"
 yade=(); [ "${NO_YADE:-0}" = 1 ] && yade=(--no-yade)
+readme=${README-$root/docs/PERFORMANCE.md}; readme_opt=(); [ -z "$readme" ] || readme_opt=(--readme "$readme")
 mkdir -p "$build/bench"
 /usr/bin/python3 "$here/peers.py" --bin "$bindir/rockdem" --venv-python "$py" --skip-reason "$reason" \
-    "${yade[@]}" -o "$build/bench/peers.md"
+    "${yade[@]}" "${readme_opt[@]}" -o "$build/bench/peers.md"

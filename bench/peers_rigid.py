@@ -10,6 +10,9 @@ JSON line on stdout:
     python peers_rigid.py CODE DT history SCENE AMP_G T  max tilt per body under a one-sine pulse
 
 CODE: pybullet or mujoco; DT: the code's fixed step (s); SCENE: block, stack or column.
+Options before CODE: --ground plane|box (the fixed base: an infinite plane, or a 20 x 20 x 1 m
+box whose top is z = 0; default plane), --friction DEG (every contact's friction angle,
+default 80). bench/peers.py searches both, as it searches the step.
 Each code is used as a user would: its own contact model and solver defaults, the step the one
 setting varied (MuJoCo's contact time constant follows it at 2 dt, the stiffest its
 documentation recommends). Ground motion: the pulse enters as the inertial force -m ug''(t)
@@ -25,7 +28,8 @@ import time
 
 G = 9.81                  # m/s^2, the scenes' gravity
 DENSITY = 2700.0          # kg/m^3
-MU = math.tan(math.radians(80))  # friction 80 deg in every scene (rocking, no sliding)
+FRICTION_DEG = 80.0       # default friction angle of every contact, deg (--friction)
+GROUND_HALF = (10.0, 10.0, 0.5)  # m: the box ground's half extents (--ground box), top at z = 0
 OVER_RATIO = 1.5          # tilt / alpha that counts as overturned
 SETTLE = 0.2              # s at rest on the ground before the pulse (contact transients)
 NSCAN, RTOL = 24, 0.005   # rd_threshold's defaults
@@ -49,15 +53,16 @@ def prism(sides, radius, height, z, name):
             "mass": DENSITY * area * height, "alpha": math.atan(apothem / (height / 2))}
 
 
-def scene(name):
+def scene(name, friction_deg=FRICTION_DEG):
     """Free bodies of the scene (the fixed base: the plane z = 0): the ladder's 0.5 x 0.5 x 1.0 m
     block, its stack (a 0.4 x 0.4 x 0.8 m block on it), tests/data/yade/column.dat's drums."""
+    mu = math.tan(math.radians(friction_deg))
     if name == "block":
-        return [box(0.25, 0.25, 0.5, 0.5, "block")], MU
+        return [box(0.25, 0.25, 0.5, 0.5, "block")], mu
     if name == "stack":
-        return [box(0.25, 0.25, 0.5, 0.5, "lower"), box(0.2, 0.2, 0.4, 1.4, "upper")], MU
+        return [box(0.25, 0.25, 0.5, 0.5, "lower"), box(0.2, 0.2, 0.4, 1.4, "upper")], mu
     if name == "column":
-        return [prism(12, 0.3, 0.6, 0.3 + 0.6 * k, "d%d" % (k + 1)) for k in range(4)], MU
+        return [prism(12, 0.3, 0.6, 0.3 + 0.6 * k, "d%d" % (k + 1)) for k in range(4)], mu
     raise SystemExit("peers_rigid: unknown scene %r" % name)
 
 
@@ -69,14 +74,19 @@ def one_sine(amp, freq):
 
 # ---- PyBullet ------------------------------------------------------------------------------------
 class Bullet:
-    def __init__(self, bodies, mu, dt, tilt0=0.0):
+    def __init__(self, bodies, mu, dt, tilt0=0.0, ground="plane"):
         import pybullet as p
         self.p = p
         self.cid = p.connect(p.DIRECT)
         p.setGravity(0, 0, -G, physicsClientId=self.cid)
         p.setPhysicsEngineParameter(fixedTimeStep=dt, physicsClientId=self.cid)
-        plane = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, physicsClientId=self.cid),
-                                  physicsClientId=self.cid)
+        if ground == "box":
+            plane = p.createMultiBody(0, p.createCollisionShape(p.GEOM_BOX, halfExtents=GROUND_HALF,
+                                                                physicsClientId=self.cid),
+                                      basePosition=(0, 0, -GROUND_HALF[2]), physicsClientId=self.cid)
+        else:
+            plane = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, physicsClientId=self.cid),
+                                      physicsClientId=self.cid)
         # Bullet multiplies the two friction and restitution coefficients of a pair
         p.changeDynamics(plane, -1, lateralFriction=1.0, restitution=0.0, physicsClientId=self.cid)
         self.ids, self.mass = [], []
@@ -114,7 +124,7 @@ class Bullet:
 
 # ---- MuJoCo --------------------------------------------------------------------------------------
 class Mujoco:
-    def __init__(self, bodies, mu, dt, tilt0=0.0):
+    def __init__(self, bodies, mu, dt, tilt0=0.0, ground="plane"):
         import mujoco
         import numpy as np
         self.mj, self.np = mujoco, np
@@ -129,10 +139,12 @@ class Mujoco:
                 geom = '<geom type="mesh" mesh="m%d"/>' % k
             world.append('<body name="%s" pos="%.12g %.12g %.12g" quat="%.12g %.12g %.12g %.12g"><freejoint/>%s</body>'
                          % ((b["name"],) + tuple(pos) + tuple(q) + (geom,)))
+        floor = ('<geom type="box" size="%g %g %g" pos="0 0 %g"/>' % (GROUND_HALF + (-GROUND_HALF[2],))
+                 if ground == "box" else '<geom type="plane" size="10 10 0.1"/>')
         xml = ('<mujoco><option timestep="%g" gravity="0 0 %g"/>'
                '<default><geom density="%g" friction="%g 0.005 0.0001" solref="%g 1"/></default>'
-               '<asset>%s</asset><worldbody><geom type="plane" size="10 10 0.1"/>%s</worldbody></mujoco>'
-               % (dt, -G, DENSITY, mu, tc, "".join(assets), "".join(world)))
+               '<asset>%s</asset><worldbody>%s%s</worldbody></mujoco>'
+               % (dt, -G, DENSITY, mu, tc, "".join(assets), floor, "".join(world)))
         self.model = mujoco.MjModel.from_xml_string(xml)
         self.data = mujoco.MjData(self.model)
         self.bid = [self.model.body(b["name"]).id for b in bodies]
@@ -162,8 +174,11 @@ def placed(b, tilt0):
     return (x + hx - (hx * c - hz * s), y, hx * s + hz * c), (math.cos(tilt0 / 2), 0.0, math.sin(tilt0 / 2), 0.0)
 
 
+OPTS = {"ground": "plane", "friction": FRICTION_DEG}  # set by main from --ground, --friction
+
+
 def make(code, bodies, mu, dt, tilt0=0.0):
-    return (Bullet if code == "pybullet" else Mujoco)(bodies, mu, dt, tilt0)
+    return (Bullet if code == "pybullet" else Mujoco)(bodies, mu, dt, tilt0, OPTS["ground"])
 
 
 class Clock:
@@ -174,7 +189,7 @@ class Clock:
 
 def run_pulse(code, name, dt, amp, freq, T, clock, stop_on_over=True):
     """(overturned, max tilt per body, rad) under a one-sine pulse of amp (m/s^2)."""
-    bodies, mu = scene(name)
+    bodies, mu = scene(name, OPTS["friction"])
     sim = make(code, bodies, mu, dt)
     ag = one_sine(amp, freq)
     nset, n = int(round(SETTLE / dt)), int(round(T / dt))
@@ -203,7 +218,7 @@ def run_pulse(code, name, dt, amp, freq, T, clock, stop_on_over=True):
 def task_free(code, dt):
     """First impact time (s) of the block released from rest at 10 deg (tests/data/yade/free.dat):
     the first zero of its signed tilt, by linear interpolation between steps."""
-    bodies, mu = scene("block")
+    bodies, mu = scene("block", OPTS["friction"])
     sim = make(code, bodies, mu, dt, math.radians(10))
     clock = Clock()
     prev, t_imp = None, None
@@ -256,6 +271,15 @@ def task_history(code, dt, name, amp_g, T):
 
 
 def main(argv):
+    argv = list(argv)
+    while len(argv) > 2 and argv[1] in ("--ground", "--friction"):
+        if argv[1] == "--ground":
+            if argv[2] not in ("plane", "box"):
+                raise SystemExit("peers_rigid: --ground expects plane or box, got %r" % argv[2])
+            OPTS["ground"] = argv[2]
+        else:
+            OPTS["friction"] = float(argv[2])
+        del argv[1:3]
     if len(argv) < 4 or argv[1] not in ("pybullet", "mujoco"):
         raise SystemExit(__doc__)
     code, dt, task = argv[1], float(argv[2]), argv[3]

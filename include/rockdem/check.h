@@ -49,6 +49,9 @@ typedef struct rd_check_report {
     int has_records;      /* 1 when the motion comes from records */
     double wall_per_sim_s;/* measured: wall seconds per simulated second (trial steps) */
     int trial_steps;      /* steps timed for it */
+    int coarse_probe;     /* 1: what each body touches was found from its own corner points, the
+                             automatic bed used for it (check.c, touch_probe) being past the
+                             point budget or memory */
 } rd_check_report;
 
 /* Build the scene (no output file), place it, time a few steps. 0, or -1 with err set. */

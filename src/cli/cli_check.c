@@ -120,6 +120,10 @@ int rd_cli_check(rd_scenario *sc, int quiet, int strict)
     for (int i = 0; i < r.nbodies; i++) print_body(&r, &r.body[i]);
     printf("cost: %.3g s of wall time per simulated second (%d steps timed), about %.3g s for "
            "the run\n", r.wall_per_sim_s, r.trial_steps, r.wall_per_sim_s * r.duration);
+    if (r.coarse_probe)
+        printf("note: what each body rests on and overlaps was found from its own subcontact points: "
+               "the finer probe (an automatic bed) is past the point budget of %.0e; a block sunk into "
+               "an aligned one below may go unseen\n", RD_POINT_BUDGET);
     int n = warnings(sc, &r);
     if (n)
         printf("%s: %d warning%s (%d bodies, %d subcontact points, %.4g s; dt %.3g s, about %.3g steps; "

@@ -17,6 +17,7 @@
 
 #define RD_CHECK_STEPS 400     /* trial steps timed for the cost estimate */
 #define RD_CHECK_WALL_MAX 1.0  /* ... or fewer, when they take longer than this, s */
+#define RD_CHECK_PLAN_TOL 1e-9 /* overlap and level tolerance of the plan boxes, per m of size */
 
 /* Does free body j stand on body i, directly or through the bodies under it (at rest)? */
 static int stands_on(const rd_sim *s, int j, int i)
@@ -85,7 +86,7 @@ static double body_volume(const rd_sim *s, int i)
     return rd_poly_mass(&s->poly[i], &m, &e) ? 0.0 : m.volume;
 }
 
-/* Lowest and highest z of body i and its plan box. */
+/* Lowest and highest corner of body i's box. */
 static void extent(const rd_sim *s, int i, double lo[3], double hi[3])
 {
     for (int k = 0; k < 3; k++) { lo[k] = INFINITY; hi[k] = -INFINITY; }
@@ -93,20 +94,34 @@ static void extent(const rd_sim *s, int i, double lo[3], double hi[3])
         for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], s->wv[v][k]); hi[k] = fmax(hi[k], s->wv[v][k]); }
 }
 
-/* The nearest body under body i (see the header comment) and the gap to it. */
-static int below(const rd_sim *s, int i, double *gap)
+/* Do the plan boxes a and b overlap by more than tol in x and in y? */
+static int plan_overlap(const double *a, const double *b, double tol)
 {
-    double lo[3], hi[3], l2[3], h2[3];
-    extent(s, i, lo, hi);
+    return fmin(a[3], b[3]) - fmax(a[0], b[0]) > tol && fmin(a[4], b[4]) - fmax(a[1], b[1]) > tol;
+}
+
+/* The nearest body under body i (see the header comment) and the gap to it; box[j] holds
+ * body j's lowest corner (0..2) and highest (3..5). When that body lies lower than i's base
+ * (a gap), a body whose plan box overlaps i's and whose top is at or below i's base and higher
+ * is taken instead: a brick in running bond has its centre over the joint of the two bricks it
+ * rests on, and the body under its centre is the course below them. */
+static int below(const rd_sim *s, const double (*box)[6], int i, double *gap)
+{
     int best = -1;
     double top = -INFINITY;
     for (int j = 0; j < s->nb; j++) {
         if (j == i) continue;
-        extent(s, j, l2, h2);
+        const double *l2 = box[j], *h2 = box[j] + 3;
         int covers = s->x[i][0] >= l2[0] && s->x[i][0] <= h2[0] && s->x[i][1] >= l2[1] && s->x[i][1] <= h2[1];
         if (covers && l2[2] < s->x[i][2] && h2[2] > top) { top = h2[2]; best = j; }
     }
-    *gap = best >= 0 ? lo[2] - top : INFINITY;
+    const double lo = box[i][2], tol = RD_CHECK_PLAN_TOL * (1.0 + s->poly[i].radius);
+    for (int j = 0; best >= 0 && lo - top > tol && j < s->nb; j++)
+        if (j != i && plan_overlap(box[i], box[j], tol) && box[j][5] <= lo + tol && box[j][5] > top) {
+            top = box[j][5];
+            best = j;
+        }
+    *gap = best >= 0 ? lo - top : INFINITY;
     return best;
 }
 
@@ -145,13 +160,20 @@ static rd_sim *placed(const rd_scenario *sc, rd_error *err)
 /* The scene whose points tell what touches what as placed. Corner points (spacing 0, the
  * default) of a block placed into an aligned one below lie on that block's side faces, at
  * zero distance from them, so they show no penetration: the automatic bed's points, inside
- * the face, are used instead. Returns s itself when its own points serve, NULL with err. */
-static rd_sim *touch_probe(const rd_scenario *sc, rd_sim *s, rd_error *err)
+ * the face, are used instead. Returns s itself when its own points serve, NULL with err. A
+ * scene that its own points fit but the bed does not (past the point budget: a wall of some
+ * 2,000 bricks, 121 points a face; or out of memory) is probed with its own points, as run
+ * would build it, and *coarse is set: check then accepts what run accepts. */
+static rd_sim *touch_probe(const rd_scenario *sc, rd_sim *s, int *coarse, rd_error *err)
 {
+    *coarse = 0;
     if (sc->contact.spacing != 0) return s;
     rd_scenario bed = *sc; /* shallow: rd_sim_build copies what it keeps */
     bed.contact.spacing = -1;
-    return placed(&bed, err);
+    rd_sim *probe = placed(&bed, err);
+    if (probe) return probe;
+    *coarse = 1;
+    return s;
 }
 
 int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
@@ -159,15 +181,20 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
     memset(rep, 0, sizeof *rep);
     rd_sim *s = placed(sc, err);
     if (!s) return -1;
-    rd_sim *probe = touch_probe(sc, s, err);
+    int coarse;
+    rd_sim *probe = touch_probe(sc, s, &coarse, err);
     if (!probe) { rd_sim_free(s); return -1; }
     rep->nbodies = s->nb;
+    rep->coarse_probe = coarse;
     rep->body = calloc((size_t)s->nb, sizeof *rep->body);
-    if (!rep->body) {
+    double (*box)[6] = malloc((size_t)s->nb * sizeof *box);
+    if (!rep->body || !box) {
         if (probe != s) rd_sim_free(probe);
         rd_sim_free(s);
+        free(box);
         return rd_error_set(err, "out of memory");
     }
+    for (int i = 0; i < s->nb; i++) extent(s, i, box[i], box[i] + 3);
     s->sc.settle.enabled = 0; /* as placed: support polygons from the lowest vertices */
     rd_monitor_rest(s);
     for (int i = 0; i < s->nb; i++) {
@@ -183,7 +210,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
         for (int k = 0; k < 3; k++) cb->extent[k] = hi[k] - lo[k];
         cb->npoints = s->pt0[i + 1] - s->pt0[i];
         touching(probe, i, cb);
-        cb->below = s->fixed[i] ? -1 : below(s, i, &cb->gap);
+        cb->below = s->fixed[i] ? -1 : below(s, (const double (*)[6])box, i, &cb->gap);
         if (cb->rests_on < 0 && cb->below >= 0 && fabs(cb->gap) <= 1e-9 * (1.0 + s->poly[i].radius))
             cb->rests_on = cb->below; /* placed exactly on it: a closed joint at zero force */
         if (!s->fixed[i]) {
@@ -194,6 +221,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
         }
     }
     if (probe != s) rd_sim_free(probe);
+    free(box);
     rep->npoints = s->npts;
     rep->njoints = s->njoint;
     rep->dt = s->dt;

@@ -167,6 +167,7 @@ struct rd_h5 {
     struct stat id;   /* device and inode of the file at open: is it still at path? */
     int broken;       /* a write failed: nothing more is written; fault holds why */
     char fault[RD_ERROR_MAX];
+    struct ref_list *later; /* [DIM_COUNT] while the bodies are written (attach_later), else NULL */
 };
 
 /* ---- types ---- */
@@ -358,13 +359,127 @@ static hid_t index_scale(const rd_h5 *h, hid_t loc, const char *name, int n,
     return d;
 }
 
-/* Attach scales[k] to axis k of d (rank axes). */
+/* One entry of a dimension scale's REFERENCE_LIST attribute: HDF5 1.10's ds_list_t (H5DS
+ * writes it with this compound type: "dataset" an object reference, "dimension" an int). */
+typedef struct ds_ref {
+    hobj_ref_t ref;        /* the dataset the scale is attached to */
+    unsigned int dim_idx;  /* the axis of that dataset */
+} ds_ref;
+
+/* The attachments to a root scale gathered while the bodies are written. H5DSattach_scale
+ * reads and rewrites a scale's whole REFERENCE_LIST on every attach: with every body's vertex
+ * and triangle tables on the shared xyz and corner scales that is quadratic in the bodies (5
+ * CPU-s of a 10,000-brick wall's setup, perf). attach_later writes the dataset's side at once
+ * and keeps the scale's entry here; ref_list_write writes the list once, the same entries in
+ * the same order as H5DSattach_scale would have left. */
+typedef struct ref_list {
+    ds_ref *e;
+    size_t n, cap;
+} ref_list;
+
+static hid_t reflist_type(void)
+{
+    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(ds_ref));
+    if (t >= 0 && (H5Tinsert(t, "dataset", HOFFSET(ds_ref, ref), H5T_STD_REF_OBJ) < 0 ||
+                   H5Tinsert(t, "dimension", HOFFSET(ds_ref, dim_idx), H5T_NATIVE_INT) < 0)) {
+        H5Tclose(t);
+        return H5I_INVALID_HID;
+    }
+    return t;
+}
+
+/* d's DIMENSION_LIST (one variable-length list of scale references per axis) with a
+ * reference to scale added on axis k, as H5DSattach_scale writes it. 0 or -1. */
+static int dimension_list_add(hid_t d, hid_t scale, int k)
+{
+    hid_t space = H5Dget_space(d);
+    int rank = space >= 0 ? H5Sget_simple_extent_ndims(space) : -1;
+    if (space >= 0) H5Sclose(space);
+    if (rank <= k) return -1;
+    hobj_ref_t ref;
+    if (H5Rcreate(&ref, scale, ".", H5R_OBJECT, -1) < 0) return -1;
+    hvl_t buf[rank], old[rank];
+    hsize_t n = (hsize_t)rank;
+    hid_t vt = H5Tvlen_create(H5T_STD_REF_OBJ), as = H5Screate_simple(1, &n, NULL);
+    int exists = H5Aexists(d, "DIMENSION_LIST") > 0, rc = -1;
+    hid_t a = exists ? H5Aopen(d, "DIMENSION_LIST", H5P_DEFAULT) : H5I_INVALID_HID;
+    memset(old, 0, sizeof old);
+    if (vt >= 0 && as >= 0 && (!exists || (a >= 0 && H5Aread(a, vt, old) >= 0))) {
+        hobj_ref_t *list = malloc((old[k].len + 1) * sizeof *list);
+        if (list) {
+            memcpy(buf, old, sizeof buf);
+            if (old[k].len) memcpy(list, old[k].p, old[k].len * sizeof *list);
+            list[old[k].len] = ref;
+            buf[k] = (hvl_t){.len = old[k].len + 1, .p = list};
+            /* replaced, not written over: overwriting leaves the old lists in the global heap */
+            if (exists) {
+                H5Aclose(a);
+                a = H5Adelete(d, "DIMENSION_LIST") < 0 ? H5I_INVALID_HID
+                    : H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
+            } else {
+                a = H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
+            }
+            rc = a >= 0 && H5Awrite(a, vt, buf) >= 0 ? 0 : -1;
+            free(list);
+        }
+        if (exists) H5Dvlen_reclaim(vt, as, H5P_DEFAULT, old);
+    }
+    if (a >= 0) H5Aclose(a);
+    if (as >= 0) H5Sclose(as);
+    if (vt >= 0) H5Tclose(vt);
+    return rc;
+}
+
+static int attach_later(hid_t d, hid_t scale, int k, ref_list *l)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 64;
+        ds_ref *e = realloc(l->e, cap * sizeof *e);
+        if (!e) return -1;
+        l->e = e;
+        l->cap = cap;
+    }
+    ds_ref *r = &l->e[l->n];
+    if (H5Rcreate(&r->ref, d, ".", H5R_OBJECT, -1) < 0 || dimension_list_add(d, scale, k)) return -1;
+    r->dim_idx = (unsigned)k;
+    l->n++;
+    return 0;
+}
+
+/* Write the gathered attachments of root scale i as its REFERENCE_LIST (none yet: the bodies
+ * are the first datasets attached to it) and free them. 0 or -1 with err. */
+static int ref_list_write(rd_h5 *h, int i, rd_error *err)
+{
+    ref_list *l = &h->later[i];
+    int rc = 0;
+    if (l->n) {
+        hsize_t n = l->n;
+        hid_t t = reflist_type(), sp = H5Screate_simple(1, &n, NULL);
+        hid_t a = t >= 0 && sp >= 0 && H5Aexists(h->dims[i], "REFERENCE_LIST") == 0
+                      ? H5Acreate2(h->dims[i], "REFERENCE_LIST", t, sp, H5P_DEFAULT, H5P_DEFAULT)
+                      : H5I_INVALID_HID;
+        rc = a >= 0 && H5Awrite(a, t, l->e) >= 0 ? 0 : -1;
+        if (a >= 0) H5Aclose(a);
+        if (sp >= 0) H5Sclose(sp);
+        if (t >= 0) H5Tclose(t);
+    }
+    free(l->e);
+    *l = (ref_list){0};
+    return rc ? rd_error_set(err, "%s: cannot write the dimension scales' references", h->path) : 0;
+}
+
+/* Attach scales[k] to axis k of d (rank axes); a root scale while the bodies are written
+ * through attach_later. */
 static int attach(const rd_h5 *h, hid_t d, const hid_t *scales, int rank, const char *what,
                   rd_error *err)
 {
-    for (int k = 0; k < rank; k++)
-        if (H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
+    for (int k = 0; k < rank; k++) {
+        int root = -1;
+        for (int i = 0; h->later && i < DIM_COUNT; i++)
+            if (scales[k] == h->dims[i]) root = i;
+        if (root >= 0 ? attach_later(d, scales[k], k, &h->later[root]) : H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
             return rd_error_set(err, "%s: cannot attach dimension %d of '%s'", h->path, k, what);
+    }
     return 0;
 }
 
@@ -506,12 +621,23 @@ static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
     return 0;
 }
 
+/* Every body's group, its attachments to the root scales gathered and written once. */
+static int write_groups(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
+{
+    ref_list later[DIM_COUNT] = {{0}};
+    h->later = later;
+    int rc = 0;
+    for (int i = 0; !rc && i < h->nb; i++) rc = write_body(h, &m->bodies[i], err);
+    for (int i = 0; !rc && i < m->nfixed; i++) rc = write_body(h, &m->fixed_bodies[i], err);
+    for (int i = 0; i < DIM_COUNT; i++)
+        if (ref_list_write(h, i, err)) rc = -1;
+    h->later = NULL;
+    return rc;
+}
+
 static int write_bodies(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
 {
-    for (int i = 0; i < h->nb; i++)
-        if (write_body(h, &m->bodies[i], err)) return -1;
-    for (int i = 0; i < m->nfixed; i++)
-        if (write_body(h, &m->fixed_bodies[i], err)) return -1;
+    if (write_groups(h, m, err)) return -1;
     hsize_t n = (hsize_t)h->nb;
     hid_t space = H5Screate_simple(1, &n, NULL);
     hid_t d = space >= 0 ? H5Dcreate2(h->file, "/bodies/names", h->str_type, space, H5P_DEFAULT,

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Determinism over MPI: the sweep of tests/cli/determinism.sh run by rockdem-mpi on 2 ranks
-# (rank 0 coordinates, rank 1 runs the cases) gives the pinned DET_HASH. Skipped (exit 77)
+# (rank 0 coordinates; rank 0 and rank 1 both run cases) gives the pinned DET_HASH. Skipped (exit 77)
 # without mpicc/mpirun.
 set -u
 . "$(dirname "$0")/lib/check.sh"
