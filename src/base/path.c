@@ -5,7 +5,9 @@
 #include "base/path.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -93,5 +95,46 @@ int rd_path_check_output(const rd_scenario *sc, const char *path, const char *sa
     int no = rd_path_creatable(path, dir);
     if (no == 1) return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
     if (no == 2) return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
+    return 0;
+}
+
+int rd_path_temp(const char *path, char tmp[RD_PATH_MAX])
+{
+    if (snprintf(tmp, RD_PATH_MAX, "%s.tmp-XXXXXX", path) >= RD_PATH_MAX) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    int fd = mkstemp(tmp);
+    if (fd < 0) return -1;
+    mode_t mask = umask(0);
+    umask(mask);
+    if (fchmod(fd, 0666 & ~mask)) { /* mkstemp makes it 0600: an output is as open would make it */
+        int e = errno;
+        close(fd);
+        unlink(tmp);
+        errno = e;
+        return -1;
+    }
+    return fd;
+}
+
+/* fsync the file or folder at path. 0 or -1 (errno). */
+static int sync_path(const char *path, int flags)
+{
+    int fd = open(path, flags);
+    if (fd < 0) return -1;
+    int rc = fsync(fd);
+    int e = errno;
+    close(fd);
+    errno = e;
+    return rc;
+}
+
+int rd_path_commit(const char *tmp, const char *path)
+{
+    char dir[RD_PATH_MAX];
+    if (sync_path(tmp, O_RDONLY) || rename(tmp, path)) return -1;
+    rd_path_creatable(path, dir); /* only for its folder name */
+    sync_path(dir, O_RDONLY | O_DIRECTORY); /* best effort: some file systems refuse a folder's fsync */
     return 0;
 }

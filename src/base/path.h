@@ -48,4 +48,15 @@ int rd_path_check_save(const rd_scenario *sc, rd_error *err);
  * (one line naming the output). Used by check (engine/sim.c) and reference. */
 int rd_path_check_output(const rd_scenario *sc, const char *path, const char *save, rd_error *err);
 
+/* Atomic replacement: write the new content to rd_path_temp's file, then rd_path_commit renames
+ * it over the target, so a kill at any instant leaves the old file or the new one, never a mix.
+ * rd_path_temp creates "<path>.tmp-XXXXXX" in path's folder (rename cannot cross file systems)
+ * and returns its open descriptor (mode 0666 less the umask, as open would give), the name in tmp;
+ * -1 with errno. */
+int rd_path_temp(const char *path, char tmp[RD_PATH_MAX]);
+
+/* Make the finished temporary tmp durable (fsync) and rename it to path, then sync path's folder
+ * so the new name survives a crash. 0, or -1 with errno (tmp is left; the caller removes it). */
+int rd_path_commit(const char *tmp, const char *path);
+
 #endif
