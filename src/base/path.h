@@ -32,12 +32,23 @@ int rd_path_special(const char *path);
 #define RD_PATH_INPUT_NOT_FILE "not a regular file (a device, folder or pipe): rockdem reads meshes, " \
                                "records and checkpoints from files"
 
+/* What an output may replace: a run file (`rockdem run`, `rockdem reference`: root attribute
+ * program "rockdem" and a /bodies group, no /sweep) or a checkpoint (`model save`: /state). */
+typedef enum rd_path_output { RD_OUTPUT_RUN, RD_OUTPUT_CHECKPOINT } rd_path_output;
+
+/* Why an existing file at path must not be replaced by an output of kind `kind`: a symbolic link
+ * (rockdem never writes through one: its target may be any file), a file that is not HDF5, an
+ * HDF5 file rockdem did not write, a sweep table, or a file of the other kind; NULL when it
+ * may be (no file, an empty file, or one of that kind). The reason is one line, a constant. */
+const char *rd_path_replace_conflict(const char *path, rd_path_output kind);
+
 /* Why `path` must not be written as an output of scenario sc (its HDF5 output, its `model save`
- * checkpoint): "not a regular file ...", "it is the scenario file being read", ...; NULL when
- * it may be. `save` is the run's `model save` checkpoint ("" or NULL: none), which the HDF5
- * output must not be either. The reason is one line, in buf (n bytes) or a constant. */
+ * checkpoint, `kind`): "not a regular file ...", "it is the scenario file being read", a file
+ * rd_path_replace_conflict refuses, ...; NULL when it may be. `save` is the run's `model save`
+ * checkpoint ("" or NULL: none), which the HDF5 output must not be either. The reason is one
+ * line, in buf (n bytes) or a constant. */
 const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, const char *save,
-                                    char *buf, size_t n);
+                                    rd_path_output kind, char *buf, size_t n);
 
 /* The `model save` checkpoint of sc (none: 0) may be written: no conflict (above) and its
  * folder writable. 0, or -1 with err (one line naming the scenario and the checkpoint). */

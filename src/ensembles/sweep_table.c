@@ -28,6 +28,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
@@ -468,6 +469,12 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
 {
     if (rd_path_same(path, p->path)) {
         rd_error_set(err, "%s: cannot write the table there: it is the scenario file being read", path);
+        return NULL;
+    }
+    struct stat st;
+    if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
+        rd_error_set(err, "%s: cannot write the table there: it is a symbolic link (rockdem does not write "
+                          "through links: remove it or give the file's own path)", path);
         return NULL;
     }
     if (rd_path_special(path)) {
