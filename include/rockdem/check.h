@@ -36,6 +36,8 @@ typedef struct rd_check_report {
     int has_records;      /* 1 when the motion comes from records */
     double wall_per_sim_s;/* measured: wall seconds per simulated second (trial steps) */
     int trial_steps;      /* steps timed for it */
+    int dt_body;          /* the body whose bound sets dt_critical (-1: none) */
+    int dt_partner;       /* the most mobile body it may bear on (-1: fixed bodies only) */
 } rd_check_report;
 
 /* Build the scene (no output file), place it, time a few steps. 0, or -1 with err set. */

@@ -271,7 +271,8 @@ static void apply_initial_conditions(rd_sim *s)
 
 static int choose_timestep(rd_sim *s, rd_error *err)
 {
-    s->dt_crit = rd_timestep_critical(s);
+    s->dt_crit = rd_timestep_critical(s, s->dt_pair);
+    if (isnan(s->dt_crit)) return rd_error_set(err, "%s: out of memory for the time step bound", s->sc.file);
     const rd_timestep_def *ts = &s->sc.timestep;
     if (ts->kind == RD_TIMESTEP_FIXED) {
         if (ts->dt > s->dt_crit)
@@ -321,10 +322,12 @@ static int check_budget(const rd_sim *s, rd_error *err)
     if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
     char at[16] = "";
     if (s->sc.solve_line > 0) snprintf(at, sizeof at, ":%d", s->sc.solve_line);
-    return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s over %.4g s of settling, "
+    char by[2 * RD_NAME_MAX + 64];
+    rd_timestep_pair_text(s, by, sizeof by);
+    return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s%s, over %.4g s of settling, "
                              "shaking and tail), more than the budget of %.0e; check the contact stiffness, "
                              "masses and times, or force it ('model solve ... force on', or --force)",
-                        s->sc.file, at, n, s->dt, n * s->dt, RD_STEP_BUDGET);
+                        s->sc.file, at, n, s->dt, by, n * s->dt, RD_STEP_BUDGET);
 }
 
 /* Geometry, subcontact points, time step and budget: everything but the output file. */

@@ -309,6 +309,7 @@ struct rd_sim {
     double t;              /* s, 0 at the start of shaking */
     double dt;             /* s */
     double dt_crit;        /* estimated critical step, s */
+    int dt_pair[2];        /* the bodies that set it (timestep.c; -1: a fixed body) */
     long step;             /* steps taken while shaking */
     int settling;          /* 1 during the settle stage */
     double settle_time;    /* s */
@@ -419,7 +420,11 @@ void rd_integrate_drift(rd_sim *s);
 void rd_body_set_angular_velocity(rd_sim *s, int i, const double w[3]);
 
 /* timestep.c */
-double rd_timestep_critical(const rd_sim *s);
+/* The stable step bound, s (INFINITY: no contact; NAN: out of memory); pair: the body whose
+ * bound is the least and the most mobile other body it may bear on (-1: fixed bodies only). */
+double rd_timestep_critical(const rd_sim *s, int pair[2]);
+/* " set by block 'a' bearing on 'b'" (or "... on fixed bodies") for s->dt_pair, into buf; "" when none. */
+void rd_timestep_pair_text(const rd_sim *s, char *buf, size_t n);
 
 /* energy.c */
 void rd_energy_step(rd_sim *s);
