@@ -266,7 +266,8 @@ static void expect_faces_error(int nv, const int *start, const int *len, const i
     if (!strstr(err.msg, want)) fail_msg("got '%s', wanted '%s'", err.msg, want);
 }
 
-/* ---- convexity (rd_poly_convex) against the definition, every vertex behind every face plane ---- */
+/* ---- convexity (rd_poly_convex) against the definition, every vertex behind every face plane;
+ * bodies of more than 1e5 vertex-plane pairs take the edge and hull test ---- */
 
 static int convex_by_definition(const rd_poly *p, double tol)
 {
@@ -321,7 +322,7 @@ static void expect_convex(rd_poly *p, int want)
     rd_poly_free(p);
 }
 
-/* Convex: a brick, a 128-sided drum, a hull of random points, a 9,800-triangle sphere and the
+/* Convex: a brick, a 128-sided drum, a 2000-sided frustum, a hull of random points, a 9,800-triangle sphere and the
  * same with a vertex pushed 1e-12 m in or out (round-off, under the 2e-9 m tolerance). Not
  * convex: the L prism (a reflex edge and reflex corners in its caps), the sphere with a vertex
  * pushed 1e-6 m in (a dimple 500 x the tolerance) or out (the sphere's quads are split into two
@@ -335,6 +336,8 @@ static void test_convexity(void **state)
     assert_int_equal(rd_poly_brick(&p, size, &err), 0);
     expect_convex(&p, 1);
     assert_int_equal(rd_poly_prism(&p, 128, 0.5, 0.5, 1.0, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(rd_poly_prism(&p, 2000, 0.5, 0.3, 1.0, &err), 0); /* 2000-gon caps, the edge test */
     expect_convex(&p, 1);
     double pts[200][3];
     srand(7);
