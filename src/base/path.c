@@ -65,12 +65,15 @@ static const char *input_named(const rd_scenario *sc, const char *path, char *bu
 }
 
 /* Which of rockdem's files an HDF5 file is, from its root: 'r' run file, 'c' checkpoint, 's'
- * sweep table, 0 another program's (or unreadable). */
+ * sweep table, 'l' locked (open for writing elsewhere: HDF5's file lock), 0 another program's
+ * (or unreadable). */
 static int hdf5_kind(const char *path)
 {
     int kind = 0;
     H5E_BEGIN_TRY {
+        errno = 0;
         hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+        if (f < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) kind = 'l';
         if (f >= 0) {
             if (H5Lexists(f, "sweep", H5P_DEFAULT) > 0) kind = 's';
             else if (H5Lexists(f, "state", H5P_DEFAULT) > 0) kind = 'c';
@@ -93,6 +96,7 @@ const char *rd_path_replace_conflict(const char *path, rd_path_output kind)
     H5E_BEGIN_TRY { h5 = H5Fis_hdf5(path); } H5E_END_TRY;
     if (h5 <= 0) return "it exists and is not an HDF5 file of rockdem (remove it or choose another path)";
     int k = hdf5_kind(path);
+    if (k == 'l') return RD_PATH_LOCKED;
     if (k == 's') return "it is a sweep table (rockdem sweep): choose another path";
     if (k == 'r' && kind == RD_OUTPUT_RUN) return NULL;
     if (k == 'c' && kind == RD_OUTPUT_CHECKPOINT) return NULL;

@@ -23,6 +23,12 @@ int rd_path_creatable(const char *path, char dir[RD_PATH_MAX]);
 /* Why an output cannot go to an existing path that is not a regular file. */
 #define RD_PATH_NOT_FILE "not a regular file (a device, folder or pipe): rockdem writes its outputs to files"
 
+/* Why a file cannot be opened while HDF5's file lock is held by another process (EAGAIN from
+ * the lock, "Resource temporarily unavailable"), and what to do. */
+#define RD_PATH_LOCKED "it is open for writing in another program (HDF5's file lock: another rockdem, or " \
+                       "h5py or HDFView with the file open): close it there or wait for that run to end, " \
+                       "or choose another path"
+
 /* 1 when path exists and is not a regular file (a device such as /dev/null, a folder, a pipe). */
 int rd_path_special(const char *path);
 

@@ -315,13 +315,18 @@ static double step_estimate(const rd_sim *s)
     return ((sc->settle.enabled ? sc->settle.max_time : 0.0) + rd_run_length(s)) / s->dt;
 }
 
-/* Refuse a run whose step count exceeds RD_STEP_BUDGET unless forced. */
+/* Refuse a run whose step count exceeds RD_STEP_BUDGET unless forced, and one shorter than a
+ * single step (it ends before the first step: a 1e-6 s run of a seated cask reported that the
+ * cask fell freely). */
 static int check_budget(const rd_sim *s, rd_error *err)
 {
-    double n = step_estimate(s);
-    if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
     char at[16] = "";
     if (s->sc.solve_line > 0) snprintf(at, sizeof at, ":%d", s->sc.solve_line);
+    if (s->sc.duration < s->dt)
+        return rd_error_set(err, "%s%s: the run of %.3g s is shorter than one time step (%.3g s): nothing would "
+                                 "be computed; give a longer 'model solve time'", s->sc.file, at, s->sc.duration, s->dt);
+    double n = step_estimate(s);
+    if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
     char by[2 * RD_NAME_MAX + 64];
     rd_timestep_pair_text(s, by, sizeof by);
     return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s%s, over %.4g s of settling, "

@@ -272,7 +272,9 @@ static int flush_table(rd_sweep_table *t)
 static int h5fail_errno(rd_sweep_table *t, rd_error *err, const char *what)
 {
     int e = errno;
-    return rd_error_set(err, "rockdem sweep: %s: %s: %s", t->path, what, e ? strerror(e) : "HDF5 library error");
+    return rd_error_set(err, "rockdem sweep: %s: %s: %s", t->path, what,
+                        e ? strerror(e) : "HDF5 library error (the file may be damaged: check it with h5dump, "
+                                          "or choose another -o)");
 }
 
 /* A new, empty table at t->path; `excl`: the path must not exist yet (else it is a temporary
@@ -427,6 +429,8 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     if (is <= 0) return h5fail(t, err, "exists and is not an HDF5 file; choose another -o");
     errno = 0;
     t->file = H5Fopen(t->path, H5F_ACC_RDWR, H5P_DEFAULT);
+    if (t->file < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+        return rd_error_set(err, "rockdem sweep: %s: cannot resume it: %s", t->path, RD_PATH_LOCKED);
     if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot open for writing");
     if (check_same(t, "axes", t->plan->axes_text, "axes or --set overrides", err) ||
         check_same(t, "scenario", t->plan->text, NULL, err))

@@ -747,7 +747,8 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
     if (h->file < 0 || H5Fget_vfd_handle(h->file, H5P_DEFAULT, (void **)&fdp) < 0 || !fdp ||
         fstat(*fdp, &h->id)) {
         rd_error_set(err, "%s: cannot create file: %s", path,
-                     errno ? strerror(errno) : "HDF5 library error");
+                     errno == EAGAIN || errno == EWOULDBLOCK ? RD_PATH_LOCKED
+                     : errno ? strerror(errno) : "HDF5 library error (no system error: check the folder with df and ls)");
         destroy(h);
         return NULL;
     }
