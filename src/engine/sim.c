@@ -421,6 +421,7 @@ rd_status rd_sim_run(rd_sim *s)
     s->status = RD_STATUS_DONE;
     restore_or_settle(s);
     rd_bodies_refresh(s);
+    if (s->status == RD_STATUS_DONE) rd_overlap_at_rest(s);
     rd_monitor_rest(s);
     s->rested = 1;
     rd_observe_begin(s);
