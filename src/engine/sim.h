@@ -480,8 +480,8 @@ double rd_overlap_depth(const rd_sim *s, int i, int j);
 void rd_overlap_note(rd_sim *s, int i, int j);
 /* -1 with err naming the deepest overlap noted, else 0. */
 int rd_overlap_refuse(const rd_sim *s, rd_error *err);
-/* After settling: a pair deeper into each other than the contact band stops the run as
- * penetrated, the cause in s->errmsg. 1 when it does. */
+/* After settling: a pair deeper into each other than 1 % of the smaller radius (ten contact
+ * bands) stops the run as penetrated, the cause in s->errmsg. 1 when it does. */
 int rd_overlap_at_rest(rd_sim *s);
 
 /* merge.c: co-located points on faces that always act merged into one (summed area); faces left
