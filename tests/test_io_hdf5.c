@@ -48,7 +48,7 @@ static rd_h5_meta make_meta(rd_h5_body *bodies)
     }
     return (rd_h5_meta){SCENARIO, "test.dat", "writer test", 1e-5, 4e-5, "viscous 0.05",
                         "tilt-ratio 1.5", 1e10, 1e9, 0.6981317007977318, 0, 0, 0.1,
-                        NB, bodies, 0, NULL};
+                        NB, bodies, 0, NULL, NULL};
 }
 
 static void append_range(rd_h5 *h, int from, int to)

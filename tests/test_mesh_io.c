@@ -413,6 +413,12 @@ static void test_ply_stl_errors(void **state)
     write_stl(tmp_path("utm.stl"), &s, 1);
     expect_error("utm.stl", NULL, 0, "float32 coordinates up to 4.2e+06 m are resolved to 0.5 m");
     remove(tmp_path("utm.stl"));
+    /* a 400 m rock there (0.5 m is 0.14 % of its 346 m radius: more than the 0.1 % contact
+       band, issue 47; it was 0.07 % of its 693 m diagonal and accepted) */
+    octahedron(&s, (double[3]){5e5, 4.2e6, 100}, 200);
+    write_stl(tmp_path("utm_big.stl"), &s, 1);
+    expect_error("utm_big.stl", NULL, 0, "more than the contact band");
+    remove(tmp_path("utm_big.stl"));
     /* the same rock at 1 km from its origin: float32 resolves 6e-5 m, 0.006 % of its size */
     octahedron(&s, (double[3]){1000, 0, 0}, 0.5);
     write_stl(tmp_path("local.stl"), &s, 1);

@@ -65,6 +65,27 @@ static void parse_fails(const char *text, const char *msg)
     assert_null(sc->text);
 }
 
+/* A text with a NUL byte given with its length (Python's bytes): refused with the offset, where
+ * a C string would have ended at the NUL and the rest (here the ground motion) been lost. The
+ * same text without the NUL parses. */
+static void test_parse_n_nul(void **state)
+{
+    (void)state;
+    rd_error err = {""};
+    char text[512];
+    size_t n = (size_t)snprintf(text, sizeof text, "%s", BASE);
+    size_t at = strstr(text, "ground-motion") - text;
+    text[at - 1] = '\0';
+    assert_int_equal(rd_scenario_parse_n(sc, "run.dat", text, n, &err), -1);
+    char want[128];
+    snprintf(want, sizeof want, "run.dat: contains a NUL byte at offset %zu of %zu (not a text?)", at - 1, n);
+    assert_string_equal(err.msg, want);
+    assert_null(sc->text);
+    text[at - 1] = '\n';
+    assert_int_equal(rd_scenario_parse_n(sc, "run.dat", text, n, &err), 0);
+    assert_non_null(strstr(sc->text, "ground-motion"));
+}
+
 static void set_fails(const char *assignment, const char *msg)
 {
     rd_error err = {""};
@@ -847,6 +868,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_teardown(test_defaults, test_teardown),
+        cmocka_unit_test_teardown(test_parse_n_nul, test_teardown),
         cmocka_unit_test_teardown(test_full_scenario_model, test_teardown),
         cmocka_unit_test_teardown(test_full_scenario_blocks, test_teardown),
         cmocka_unit_test_teardown(test_full_scenario_contact_and_motion, test_teardown),

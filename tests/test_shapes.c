@@ -266,6 +266,99 @@ static void expect_faces_error(int nv, const int *start, const int *len, const i
     if (!strstr(err.msg, want)) fail_msg("got '%s', wanted '%s'", err.msg, want);
 }
 
+/* ---- convexity (rd_poly_convex) against the definition, every vertex behind every face plane;
+ * bodies of more than 1e5 vertex-plane pairs take the edge and hull test ---- */
+
+static int convex_by_definition(const rd_poly *p, double tol)
+{
+    for (int f = 0; f < p->nf; f++)
+        for (int v = 0; v < p->nv; v++)
+            if (p->fn[f][0] * p->v[v][0] + p->fn[f][1] * p->v[v][1] + p->fn[f][2] * p->v[v][2] - p->fd[f] > tol)
+                return 0;
+    return 1;
+}
+
+/* UV sphere of radius 1 m, nlat x nlon, triangles; vertex `dent` (-1: none) moved by `push` m
+ * along its radius (negative: inward). */
+static int uv_sphere(rd_poly *p, int nlat, int nlon, int dent, double push, rd_error *err)
+{
+    int nv = 2 + (nlat - 1) * nlon, nf = 2 * nlon * (nlat - 1), at = 0, f = 0;
+    double (*v)[3] = malloc((size_t)nv * sizeof *v);
+    int *idx = malloc((size_t)nf * 3 * sizeof *idx), *start = malloc((size_t)nf * sizeof *start);
+    int *len = malloc((size_t)nf * sizeof *len);
+    v[0][0] = v[0][1] = 0; v[0][2] = 1;
+    for (int i = 1; i < nlat; i++)
+        for (int j = 0; j < nlon; j++) {
+            double t = M_PI * i / nlat, ph = 2 * M_PI * j / nlon, *x = v[1 + (i - 1) * nlon + j];
+            x[0] = sin(t) * cos(ph); x[1] = sin(t) * sin(ph); x[2] = cos(t);
+        }
+    v[nv - 1][0] = v[nv - 1][1] = 0; v[nv - 1][2] = -1;
+    if (dent >= 0)
+        for (int k = 0; k < 3; k++) v[dent][k] *= 1 + push;
+#define ID(i, j) (1 + (i) * nlon + ((j) % nlon))
+#define TRI(a, b, c) (start[f] = at, len[f++] = 3, idx[at++] = (a), idx[at++] = (b), idx[at++] = (c))
+    for (int j = 0; j < nlon; j++) TRI(0, ID(0, j), ID(0, j + 1));
+    for (int i = 0; i + 2 < nlat; i++)
+        for (int j = 0; j < nlon; j++) {
+            TRI(ID(i, j), ID(i + 1, j), ID(i + 1, j + 1));
+            TRI(ID(i, j), ID(i + 1, j + 1), ID(i, j + 1));
+        }
+    for (int j = 0; j < nlon; j++) TRI(nv - 1, ID(nlat - 2, j + 1), ID(nlat - 2, j));
+#undef TRI
+#undef ID
+    int rc = rd_poly_from_faces(p, (const double (*)[3])v, nv, start, len, idx, nf, err);
+    free(v); free(idx); free(start); free(len);
+    return rc;
+}
+
+static void expect_convex(rd_poly *p, int want)
+{
+    rd_error err;
+    int c = -1;
+    double tol = 1e-9 * (1 + p->radius); /* engine/setup.c RD_CONVEX_TOL */
+    assert_int_equal(rd_poly_convex(p, tol, &c, &err), 0);
+    assert_int_equal(c, want);
+    assert_int_equal(convex_by_definition(p, tol), want);
+    rd_poly_free(p);
+}
+
+/* Convex: a brick, a 128-sided drum, a 2000-sided frustum, a hull of random points, a 9,800-triangle sphere and the
+ * same with a vertex pushed 1e-12 m in or out (round-off, under the 2e-9 m tolerance). Not
+ * convex: the L prism (a reflex edge and reflex corners in its caps), the sphere with a vertex
+ * pushed 1e-6 m in (a dimple 500 x the tolerance) or out (the sphere's quads are split into two
+ * coplanar triangles, so a bump of a corner folds a diagonal: 1.06e-6 m past a face plane). */
+static void test_convexity(void **state)
+{
+    (void)state;
+    rd_poly p;
+    rd_error err;
+    const double size[3] = {0.4, 0.5, 1.0};
+    assert_int_equal(rd_poly_brick(&p, size, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(rd_poly_prism(&p, 128, 0.5, 0.5, 1.0, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(rd_poly_prism(&p, 2000, 0.5, 0.3, 1.0, &err), 0); /* 2000-gon caps, the edge test */
+    expect_convex(&p, 1);
+    double pts[200][3];
+    srand(7);
+    for (int i = 0; i < 200; i++)
+        for (int k = 0; k < 3; k++) pts[i][k] = (double)rand() / RAND_MAX - 0.5;
+    assert_int_equal(rd_poly_hull(&p, (const double (*)[3])pts, 200, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(uv_sphere(&p, 50, 100, -1, 0, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(uv_sphere(&p, 50, 100, 1234, -1e-12, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(uv_sphere(&p, 50, 100, 1234, 1e-12, &err), 0);
+    expect_convex(&p, 1);
+    assert_int_equal(l_prism(&p, 0.75, 0, 0, &err), 0);
+    expect_convex(&p, 0);
+    assert_int_equal(uv_sphere(&p, 50, 100, 1234, -1e-6, &err), 0);
+    expect_convex(&p, 0);
+    assert_int_equal(uv_sphere(&p, 50, 100, 1234, 1e-6, &err), 0);
+    expect_convex(&p, 0);
+}
+
 static void test_from_faces_errors(void **state)
 {
     (void)state;
@@ -311,6 +404,7 @@ int main(void)
         cmocka_unit_test(test_from_faces_l_prism),
         cmocka_unit_test(test_hull_marks_l_prism),
         cmocka_unit_test(test_from_faces_errors),
+        cmocka_unit_test(test_convexity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

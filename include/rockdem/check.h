@@ -52,6 +52,8 @@ typedef struct rd_check_report {
     int coarse_probe;     /* 1: what each body touches was found from its own corner points, the
                              automatic bed used for it (check.c, touch_probe) being past the
                              point budget or memory */
+    int dt_body;          /* the body whose bound sets dt_critical (-1: none) */
+    int dt_partner;       /* the most mobile body it may bear on (-1: fixed bodies only) */
 } rd_check_report;
 
 /* Build the scene (no output file), place it, time a few steps. 0, or -1 with err set. */

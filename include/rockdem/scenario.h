@@ -8,6 +8,8 @@
 #include "rockdem/api.h"
 #include "rockdem/error.h"
 
+#include <stddef.h>
+
 #define RD_NAME_MAX 64
 #define RD_PATH_MAX 512
 #define RD_MAX_JOINTS 32     /* `contact property ... range` overrides */
@@ -323,6 +325,11 @@ RD_API int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err);
 
 /* Parse scenario text held in memory; `name` is used as the file name in messages. */
 RD_API int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_error *err);
+
+/* The same for the `len` bytes at text (no NUL needed at the end): a NUL byte among them is
+ * refused with its offset (a C string would end there and the rest be lost silently). For
+ * bindings that hold a length (Python's bytes). 0 or -1. */
+RD_API int rd_scenario_parse_n(rd_scenario *sc, const char *name, const char *text, size_t len, rd_error *err);
 
 /* Apply a command-line override "section.key=value", e.g. "contact.stiffness-normal=1e10",
  * "motion.amplitude=0.4g", "output.file=x.h5", "body.cask.density=2500". Returns 0 or -1. */

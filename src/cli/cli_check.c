@@ -76,9 +76,14 @@ static int warnings(const rd_scenario *sc, const rd_check_report *r)
         n += rd_cli_body_warnings(&sc->bodies[i], r->body[i].mass, r->body[i].extent, r->body[i].alpha_min);
     double per_sample = r->output_interval / r->dt;
     if (per_sample > RD_STEPS_PER_SAMPLE_MAX) {
-        printf("warning: the time step %.3g s (limit %.3g s) is %.0f times shorter than the output "
+        char by[2 * RD_NAME_MAX + 64] = "";
+        if (r->dt_body >= 0)
+            snprintf(by, sizeof by, ", set by block '%s' bearing on %s%s%s", r->body[r->dt_body].name,
+                     r->dt_partner >= 0 ? "'" : "fixed bodies", r->dt_partner >= 0 ? r->body[r->dt_partner].name : "",
+                     r->dt_partner >= 0 ? "'" : "");
+        printf("warning: the time step %.3g s (limit %.3g s%s) is %.0f times shorter than the output "
                "interval %.3g s: each simulated second costs about %.3g s of wall time; check the "
-               "contact stiffness and the smallest block\n", r->dt, r->dt_critical, per_sample,
+               "contact stiffness and the smallest block\n", r->dt, r->dt_critical, by, per_sample,
                r->output_interval, r->wall_per_sim_s);
         n++;
     }

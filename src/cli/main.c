@@ -159,6 +159,8 @@ static int cmd_run(int argc, char **argv, int check_only)
     rd_error err;
     if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }
     rd_sim *sim = rd_sim_create(&sc, &err);
+    char staged[RD_PATH_MAX]; /* where this run writes while an earlier file is at the output */
+    int replacing = rd_output_staging(sc.output.path, sc.force, staged, sizeof staged);
     if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         rd_sim_free(sim);
@@ -183,16 +185,22 @@ static int cmd_run(int argc, char **argv, int check_only)
         snprintf(unsettled, sizeof unsettled, "settling stopped at force ratio %.3g (asked %.3g)", ratio,
                  sc.settle.ratio);
     int rc = 0;
+    /* a run that did not succeed leaves an earlier file at the output as it was */
+    char kept[RD_PATH_MAX + 64] = "";
+    if (replacing && (rd_status_failed(st) || st == RD_STATUS_INTERRUPTED))
+        snprintf(kept, sizeof kept, " (%s keeps the earlier run)", sc.output.path);
+    const char *written = kept[0] ? staged : sc.output.path;
     if (rd_status_failed(st)) { /* one line: the failure, with the settling that preceded it */
-        fprintf(stderr, "%s: %s%s%s\n", sc.file, rd_sim_error(sim), unsettled[0] ? "; " : "", unsettled);
+        fprintf(stderr, "%s: %s%s%s%s%s%s\n", sc.file, rd_sim_error(sim), unsettled[0] ? "; " : "", unsettled,
+                kept[0] ? "; this run's output is in " : "", kept[0] ? staged : "", kept);
         rc = 3;
     } else if (st == RD_STATUS_INTERRUPTED) {
-        fprintf(stderr, "rockdem: interrupted at t = %.4g s; %s holds everything so far\n", s.end_time, sc.output.path);
+        fprintf(stderr, "rockdem: interrupted at t = %.4g s; %s holds everything so far%s\n", s.end_time, written, kept);
         rc = 130;
     } else if (unsettled[0]) {
         fprintf(stderr, "rockdem: warning: %s\n", unsettled);
     }
-    if (!quiet) printf("output: %s\n", sc.output.path);
+    if (!quiet) printf("output: %s\n", written);
     rd_sim_free(sim);
     rd_scenario_free(&sc);
     return rc;

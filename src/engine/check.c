@@ -226,6 +226,8 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
     rep->njoints = s->njoint;
     rep->dt = s->dt;
     rep->dt_critical = s->dt_crit;
+    rep->dt_body = s->dt_pair[0];
+    rep->dt_partner = s->dt_pair[1];
     rep->output_interval = s->sc.output.interval;
     rep->duration = s->sc.duration;
     rep->has_records = rd_motion_has_records(&s->sc.motion);

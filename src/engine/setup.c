@@ -64,16 +64,10 @@ static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
     return rd_error_set(err, "unknown shape");
 }
 
-/* Is the polyhedron convex (every vertex behind every face plane)? Only convex bodies can be
- * contact targets: a point's gap is measured against their face planes. */
-static int is_convex(const rd_poly *p)
-{
-    double tol = 1e-9 * (1.0 + p->radius);
-    for (int f = 0; f < p->nf; f++)
-        for (int v = 0; v < p->nv; v++)
-            if (rd_dot(p->fn[f], p->v[v]) - p->fd[f] > tol) return 0;
-    return 1;
-}
+/* Convex to this tolerance, m, for a body of radius r (m): only convex bodies can be contact
+ * targets (a point's gap is measured against their face planes); round-off of the face planes
+ * is ~1e-16 r. */
+#define RD_CONVEX_TOL(r) (1e-9 * (1.0 + (r)))
 
 static int build_body(rd_sim *s, int i, rd_error *err)
 {
@@ -91,7 +85,11 @@ static int build_body(rd_sim *s, int i, rd_error *err)
     initial_orientation(d->rotation, m.axes, s->q[i]);
     rd_copy3(d->position, s->x[i]); /* the centre of mass */
     s->fixed[i] = d->fixed;
-    s->convex[i] = is_convex(&s->poly[i]);
+    if (rd_poly_convex(&s->poly[i], RD_CONVEX_TOL(s->poly[i].radius), &s->convex[i], err)) {
+        char msg[RD_ERROR_MAX];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        return rd_error_set(err, "%s:%d: block '%s': %s", s->sc.file, d->line, d->name, msg);
+    }
     /* the surface model takes a convex body of many faces as a mesh (surface.c: it is then the
        integration side of its pairs, against a convex partner) */
     if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES && s->sc.contact.model == RD_CONTACT_SURFACE)

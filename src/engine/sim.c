@@ -271,7 +271,8 @@ static void apply_initial_conditions(rd_sim *s)
 
 static int choose_timestep(rd_sim *s, rd_error *err)
 {
-    s->dt_crit = rd_timestep_critical(s);
+    s->dt_crit = rd_timestep_critical(s, s->dt_pair);
+    if (isnan(s->dt_crit)) return rd_error_set(err, "%s: out of memory for the time step bound", s->sc.file);
     const rd_timestep_def *ts = &s->sc.timestep;
     if (ts->kind == RD_TIMESTEP_FIXED) {
         if (ts->dt > s->dt_crit)
@@ -314,17 +315,24 @@ static double step_estimate(const rd_sim *s)
     return ((sc->settle.enabled ? sc->settle.max_time : 0.0) + rd_run_length(s)) / s->dt;
 }
 
-/* Refuse a run whose step count exceeds RD_STEP_BUDGET unless forced. */
+/* Refuse a run whose step count exceeds RD_STEP_BUDGET unless forced, and one shorter than a
+ * single step (it ends before the first step: a 1e-6 s run of a seated cask reported that the
+ * cask fell freely). */
 static int check_budget(const rd_sim *s, rd_error *err)
 {
-    double n = step_estimate(s);
-    if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
     char at[16] = "";
     if (s->sc.solve_line > 0) snprintf(at, sizeof at, ":%d", s->sc.solve_line);
-    return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s over %.4g s of settling, "
+    if (s->sc.duration < s->dt)
+        return rd_error_set(err, "%s%s: the run of %.3g s is shorter than one time step (%.3g s): nothing would "
+                                 "be computed; give a longer 'model solve time'", s->sc.file, at, s->sc.duration, s->dt);
+    double n = step_estimate(s);
+    if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
+    char by[2 * RD_NAME_MAX + 64];
+    rd_timestep_pair_text(s, by, sizeof by);
+    return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s%s, over %.4g s of settling, "
                              "shaking and tail), more than the budget of %.0e; check the contact stiffness, "
                              "masses and times, or force it ('model solve ... force on', or --force)",
-                        s->sc.file, at, n, s->dt, n * s->dt, RD_STEP_BUDGET);
+                        s->sc.file, at, n, s->dt, by, n * s->dt, RD_STEP_BUDGET);
 }
 
 /* Geometry, subcontact points, time step and budget: everything but the output file. */
@@ -414,6 +422,7 @@ int rd_sim_start(rd_sim *s)
     s->status = RD_STATUS_DONE;
     restore_or_settle(s);
     rd_bodies_refresh(s);
+    if (s->status == RD_STATUS_DONE) rd_overlap_at_rest(s);
     rd_monitor_rest(s);
     s->rested = 1;
     rd_observe_begin(s);

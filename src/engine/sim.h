@@ -315,6 +315,7 @@ struct rd_sim {
     double t;              /* s, 0 at the start of shaking */
     double dt;             /* s */
     double dt_crit;        /* estimated critical step, s */
+    int dt_pair[2];        /* the bodies that set it (timestep.c; -1: a fixed body) */
     long step;             /* steps taken while shaking */
     int settling;          /* 1 during the settle stage */
     double settle_time;    /* s */
@@ -445,7 +446,11 @@ void rd_integrate_drift(rd_sim *s);
 void rd_body_set_angular_velocity(rd_sim *s, int i, const double w[3]);
 
 /* timestep.c */
-double rd_timestep_critical(const rd_sim *s);
+/* The stable step bound, s (INFINITY: no contact; NAN: out of memory); pair: the body whose
+ * bound is the least and the most mobile other body it may bear on (-1: fixed bodies only). */
+double rd_timestep_critical(const rd_sim *s, int pair[2]);
+/* " set by block 'a' bearing on 'b'" (or "... on fixed bodies") for s->dt_pair, into buf; "" when none. */
+void rd_timestep_pair_text(const rd_sim *s, char *buf, size_t n);
 
 /* energy.c */
 void rd_energy_step(rd_sim *s);
@@ -506,6 +511,9 @@ double rd_overlap_depth(const rd_sim *s, int i, int j);
 void rd_overlap_note(rd_sim *s, int i, int j);
 /* -1 with err naming the deepest overlap noted, else 0. */
 int rd_overlap_refuse(const rd_sim *s, rd_error *err);
+/* After settling: a pair deeper into each other than 1 % of the smaller radius (ten contact
+ * bands) stops the run as penetrated, the cause in s->errmsg. 1 when it does. */
+int rd_overlap_at_rest(rd_sim *s);
 
 /* merge.c: co-located points on faces that always act merged into one (summed area); faces left
  * without a point dropped from the candidates. Allocates pn and pmult. 0 or -1. */

@@ -16,6 +16,7 @@
  * public API (engine, scenario, reference) and io/.
  */
 #include "rockdem/sweep.h"
+#include "base/fault.h"
 #include "base/path.h"
 #include "io/h5_quiet.h"
 
@@ -27,6 +28,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
@@ -281,14 +283,18 @@ static int flush_table(rd_sweep_table *t)
 static int h5fail_errno(rd_sweep_table *t, rd_error *err, const char *what)
 {
     int e = errno;
-    return rd_error_set(err, "rockdem sweep: %s: %s: %s", t->path, what, e ? strerror(e) : "HDF5 library error");
+    return rd_error_set(err, "rockdem sweep: %s: %s: %s", t->path, what,
+                        e ? strerror(e) : "HDF5 library error (the file may be damaged: check it with h5dump, "
+                                          "or choose another -o)");
 }
 
-static int create_table(rd_sweep_table *t, rd_error *err)
+/* A new, empty table at t->path; `excl`: the path must not exist yet (else it is a temporary
+ * made for it). 0 or -1. */
+static int create_table(rd_sweep_table *t, int excl, rd_error *err)
 {
-    int fd = open(t->path, O_WRONLY | O_CREAT | O_EXCL, 0666); /* the system's reason, if any */
+    int fd = excl ? open(t->path, O_WRONLY | O_CREAT | O_EXCL, 0666) : 0; /* the system's reason, if any */
     if (fd < 0) return h5fail_errno(t, err, "cannot create the table");
-    close(fd);
+    if (excl) close(fd);
     t->file = H5Fcreate(t->path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot create the table");
     if (reserve(t, 0, err)) return -1;
@@ -365,6 +371,36 @@ static int set_rows(rd_sweep_table *t, rd_error *err)
     return 0;
 }
 
+/* Every committed row's swept values must be its case's values in the plan: a row whose
+ * values belong to another case (a table reordered in place by an older rockdem and killed
+ * mid-way, or edited) is damage, refused with one line. k: the rows' cases. 0 or -1. */
+static int verify_axes(rd_sweep_table *t, const long *k, long n, rd_error *err)
+{
+    for (int i = 0; i < t->ncols; i++) {
+        const column *c = &t->col[i];
+        if (c->axis < 0 || n == 0) continue;
+        const rd_sweep_axis *a = &t->plan->axis[c->axis];
+        char *v = malloc(c->size * (size_t)n);
+        if (!v || H5Dread(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0) {
+            free(v);
+            return h5fail(t, err, "cannot read a swept-value column");
+        }
+        long bad = -1;
+        for (long r = 0; r < n && bad < 0; r++) {
+            int x = rd_sweep_value_index(t->plan, k[r], c->axis);
+            const char *cellv = v + c->size * (size_t)r;
+            double num;
+            if (a->number) memcpy(&num, cellv, sizeof num);
+            if (a->number ? num != a->number[x] : strncmp(cellv, a->value[x], RD_SWEEP_TEXT - 1) != 0) bad = r;
+        }
+        free(v);
+        if (bad >= 0)
+            return rd_error_set(err, "rockdem sweep: %s is damaged: row %ld (case %ld) holds a '%s' value of another "
+                                     "case; choose another -o (the table cannot be resumed)", t->path, bad, k[bad], c->name);
+    }
+    return 0;
+}
+
 /* Mark done[] from the committed rows, checking each case's hash. Trailing rows that do not
  * match (partially written) are dropped; a mismatch before a good row is another sweep's. */
 static int read_done(rd_sweep_table *t, char *done, rd_error *err)
@@ -387,8 +423,12 @@ static int read_done(rd_sweep_table *t, char *done, rd_error *err)
         if (k[i] < 0 || k[i] >= t->plan->ncases || h[i] != rd_sweep_hash(t->plan, k[i]))
             rc = rd_error_set(err, "rockdem sweep: %s: row %ld (case %ld) does not match this sweep's "
                                    "overrides; choose another -o", t->path, i, k[i]);
+        else if (done[k[i]])
+            rc = rd_error_set(err, "rockdem sweep: %s is damaged: case %ld is in two rows; choose "
+                                   "another -o (the table cannot be resumed)", t->path, k[i]);
         else done[k[i]] = 1;
     }
+    if (!rc) rc = verify_axes(t, k, n, err);
     free(k);
     free(h);
     return rc;
@@ -400,6 +440,8 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     if (is <= 0) return h5fail(t, err, "exists and is not an HDF5 file; choose another -o");
     errno = 0;
     t->file = H5Fopen(t->path, H5F_ACC_RDWR, H5P_DEFAULT);
+    if (t->file < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+        return rd_error_set(err, "rockdem sweep: %s: cannot resume it: %s", t->path, RD_PATH_LOCKED);
     if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot open for writing");
     if (check_same(t, "axes", t->plan->axes_text, "axes or --set overrides", err) ||
         check_same(t, "scenario", t->plan->text, NULL, err))
@@ -415,18 +457,11 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     return trim(t, err) || read_done(t, done, err) ? -1 : 0;
 }
 
-static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+/* A table handle for plan p at path, with its types and column layout; no file yet. */
+static rd_sweep_table *new_table(const char *path, const rd_sweep_plan *p)
 {
-    if (rd_path_same(path, p->path)) {
-        rd_error_set(err, "%s: cannot write the table there: it is the scenario file being read", path);
-        return NULL;
-    }
-    if (rd_path_special(path)) {
-        rd_error_set(err, "%s: cannot write the table there: " RD_PATH_NOT_FILE, path);
-        return NULL;
-    }
     rd_sweep_table *t = calloc(1, sizeof *t);
-    if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
+    if (!t) return NULL;
     snprintf(t->path, sizeof t->path, "%s", path);
     t->plan = p;
     t->file = t->group = t->fd = -1;
@@ -440,8 +475,31 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
     for (unsigned char v = 0; v <= RD_STATUS_UNTRUSTED; v++)
         H5Tenum_insert(t->status_t, rd_status_name((rd_status)v), &v);
     layout(t);
+    return t;
+}
+
+static void sweep_table_close(rd_sweep_table *t);
+
+static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+{
+    if (rd_path_same(path, p->path)) {
+        rd_error_set(err, "%s: cannot write the table there: it is the scenario file being read", path);
+        return NULL;
+    }
+    struct stat st;
+    if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
+        rd_error_set(err, "%s: cannot write the table there: it is a symbolic link (rockdem does not write "
+                          "through links: remove it or give the file's own path)", path);
+        return NULL;
+    }
+    if (rd_path_special(path)) {
+        rd_error_set(err, "%s: cannot write the table there: " RD_PATH_NOT_FILE, path);
+        return NULL;
+    }
+    rd_sweep_table *t = new_table(path, p);
+    if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
     FILE *f = fopen(path, "rb");
-    int rc = f ? open_table(t, done, err) : create_table(t, err);
+    int rc = f ? open_table(t, done, err) : create_table(t, 1, err);
     if (f) fclose(f);
     if (rc) { rd_sweep_table_close(t); return NULL; }
     return t;
@@ -511,21 +569,54 @@ static int cmp_key(const void *a, const void *b)
     return (x[0] > y[0]) - (x[0] < y[0]);
 }
 
-/* Permute every column by perm (new row i = old row perm[i]). */
-static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
+/* Copy every column of t into the new table u, row i of u = row perm[i] of t. 0 or -1. */
+static int copy_sorted(rd_sweep_table *t, rd_sweep_table *u, const long *perm, rd_error *err)
 {
+    size_t bytes = 0;
+    for (int i = 0; i < t->ncols; i++) bytes += t->col[i].size * (size_t)t->col[i].width * (size_t)t->rows;
+    if (reserve(u, 2 * bytes, err)) return -1; /* the data and its chunk rounding, before HDF5 writes */
     for (int i = 0; i < t->ncols; i++) {
         column *c = &t->col[i];
         size_t row = c->size * (size_t)c->width;
+        hsize_t d[2] = {(hsize_t)t->rows, (hsize_t)c->width};
         char *a = malloc(row * (size_t)t->rows), *b = malloc(row * (size_t)t->rows);
         int rc = a && b && H5Dread(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 ? 0 : -1;
         for (long r = 0; !rc && r < t->rows; r++) memcpy(b + (size_t)r * row, a + (size_t)perm[r] * row, row);
-        if (!rc && H5Dwrite(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0) rc = -1;
+        errno = 0;
+        if (!rc && (H5Dset_extent(u->col[i].dset, d) < 0 ||
+                    H5Dwrite(u->col[i].dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0))
+            rc = -1;
         free(a);
         free(b);
-        if (rc) return h5fail(t, err, "cannot reorder the rows");
+        if (rc) return h5fail_errno(u, err, "cannot write the sorted rows");
+        rd_fault_point("sweep-sort-column");
     }
-    return flush_table(t) ? h5fail_errno(t, err, "cannot flush") : 0;
+    return flush_table(u) ? h5fail_errno(u, err, "cannot flush") : 0;
+}
+
+/* Reorder the rows by perm (new row i = old row perm[i]) out of place: the sorted table is
+ * written whole to a temporary beside t->path and renamed over it, so a kill or a fault at any
+ * instant leaves the unsorted table (every row whole; resume sorts it) or the sorted one. In
+ * place, a kill between two columns left rows whose swept values belonged to other cases. */
+static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
+{
+    char tmp[RD_PATH_MAX];
+    int fd = rd_path_temp(t->path, tmp);
+    if (fd < 0) return h5fail_errno(t, err, "cannot create a temporary file beside it to sort the rows");
+    close(fd);
+    rd_sweep_table *u = new_table(tmp, t->plan);
+    int rc = !u ? h5fail(t, err, "out of memory") : create_table(u, 0, err) || copy_sorted(t, u, perm, err);
+    sweep_table_close(u);
+    rd_fault_point("sweep-sort-rename");
+    if (!rc && rd_path_commit(tmp, t->path)) rc = h5fail_errno(t, err, "cannot rename the sorted table into place");
+    if (rc) {
+        unlink(tmp);
+        char why[RD_ERROR_MAX];
+        snprintf(why, sizeof why, "%s", err->msg);
+        return rd_error_set(err, "%s (the table keeps its rows unsorted; the same command sorts them)", why);
+    }
+    rd_fault_point("sweep-sort-renamed");
+    return 0;
 }
 
 static int sweep_table_sort(rd_sweep_table *t, rd_error *err)

@@ -31,7 +31,9 @@ typedef struct mesh {
  * coordinates (areas, volumes, inertia) lose all precision relative to a rock's size. */
 #define MESH_COORD_MAX 1e9
 /* A float32 mesh is refused when its coordinates' resolution (the float32 spacing at their
- * magnitude) exceeds this fraction of the mesh size: 0.1 % distorts contacts and inertia. */
+ * magnitude) exceeds this fraction of the mesh's radius (half its bounding-box diagonal): the
+ * contact band, RD_CONTACT_BAND of engine/sim.h, within which a point counts as touching; a
+ * coarser rounding moves contacts by more than the band. */
 #define MESH_F32_REL_MAX 1e-3
 
 static int grow(void **a, int *cap, int need, size_t size)
@@ -528,11 +530,12 @@ static double f32_ulp(double x) { return x > 0 ? ldexp(1.0, ilogb(x) - 23) : 0.0
 static int check_f32(const mesh *m, double size, rd_error *err)
 {
     double ulp = f32_ulp(m->f32_max);
-    if (m->f32_max == 0 || ulp <= MESH_F32_REL_MAX * size) return 0;
+    double radius = 0.5 * size;
+    if (m->f32_max == 0 || ulp <= MESH_F32_REL_MAX * radius) return 0;
     return rd_error_set(err, "%s: float32 coordinates up to %.3g m are resolved to %.3g m only, %.2g %% of the "
-                        "mesh's size %.3g m (more than %g %% is refused); export the scan in a local frame "
-                        "(subtract an origin) or in double precision (PLY 'property double')", m->path,
-                        m->f32_max, ulp, 100 * ulp / size, size, 100 * MESH_F32_REL_MAX);
+                        "mesh's radius %.3g m, more than the contact band (%g %%): export the scan in a local "
+                        "frame (subtract an origin) or in double precision (PLY 'property double')", m->path,
+                        m->f32_max, ulp, 100 * ulp / radius, radius, 100 * MESH_F32_REL_MAX);
 }
 
 /* Turn "path: message" into "path:line: message". */

@@ -39,6 +39,148 @@ int rd_poly_prism(rd_poly *p, int nsides, double radius_bottom, double radius_to
     return 0;
 }
 
+/* ---- convexity ---- */
+
+static void sub3(const double a[3], const double b[3], double out[3])
+{
+    for (int k = 0; k < 3; k++) out[k] = a[k] - b[k];
+}
+
+/* One side of a face: its vertices (a < b) and the face. */
+typedef struct side { int a, b, f, k; } side;
+
+static int by_vertices(const void *x, const void *y)
+{
+    const side *s = x, *t = y;
+    return s->a != t->a ? (s->a > t->a) - (s->a < t->a) : (s->b > t->b) - (s->b < t->b);
+}
+
+/* How far face f rises above the plane of face g across their shared side k of f (from vertex
+ * fidx[k] to the next), m: the vertex after the side, its height scaled from its distance to
+ * the side's line to the face's diameter w[f] (the height is linear across a planar face, so
+ * this bounds every vertex of f). */
+static double rise(const rd_poly *p, int f, int k, int g, const double *w)
+{
+    const int *fi = p->fidx + p->fstart[f];
+    int n = p->flen[f];
+    const double *a = p->v[fi[k]], *b = p->v[fi[(k + 1) % n]], *c = p->v[fi[(k + 2) % n]];
+    double h = rd_dot(p->fn[g], c) - p->fd[g], ab[3], ac[3], x[3];
+    sub3(b, a, ab);
+    sub3(c, a, ac);
+    rd_cross(ab, ac, x);
+    double d = rd_norm(x) / rd_norm(ab); /* c's distance to the line ab */
+    return d > 0 ? h * fmax(1.0, w[f] / d) : h;
+}
+
+/* The width bound of every face (the largest distance of its vertices from the first, m), and
+ * whether every face is a convex polygon to within tol (no corner more than tol past the line
+ * of the side before it): a face of a convex solid is its section by a supporting plane, so a
+ * reflex corner makes the solid non-convex. 1 when every face is convex. */
+static int face_widths(const rd_poly *p, double tol, double *w)
+{
+    int ok = 1;
+    for (int f = 0; f < p->nf; f++) {
+        const int *fi = p->fidx + p->fstart[f];
+        int n = p->flen[f];
+        double m = 0, d[3], ab[3], x[3];
+        for (int k = 0; k < n; k++) {
+            sub3(p->v[fi[k]], p->v[fi[0]], d);
+            m = fmax(m, rd_norm(d));
+            const double *a = p->v[fi[k]], *b = p->v[fi[(k + 1) % n]], *c = p->v[fi[(k + 2) % n]];
+            sub3(b, a, ab);
+            sub3(c, b, d);
+            rd_cross(ab, d, x); /* along the outward normal at a convex corner b */
+            if (-rd_dot(x, p->fn[f]) / rd_norm(ab) > tol) ok = 0;
+        }
+        w[f] = m;
+    }
+    return ok;
+}
+
+/* Volume and area of the convex hull of p's vertices (qhull). 0 or -1. */
+static int hull_measure(const rd_poly *p, double *volume, double *area, rd_error *err)
+{
+    coordT *xyz = malloc((size_t)p->nv * 3 * sizeof *xyz);
+    if (!xyz) return rd_error_set(err, "out of memory in the convexity test");
+    for (int i = 0; i < p->nv; i++)
+        for (int k = 0; k < 3; k++) xyz[3 * i + k] = p->v[i][k];
+    qhT qh_qh, *qh = &qh_qh;
+    FILE *devnull = fopen("/dev/null", "w");
+    qh_zero(qh, devnull);
+    int rc = qh_new_qhull(qh, 3, p->nv, xyz, False, (char *)"qhull", NULL, devnull);
+    if (rc == 0) {
+        qh_getarea(qh, qh->facet_list);
+        *volume = qh->totvol;
+        *area = qh->totarea;
+    }
+    int curlong, totlong;
+    qh_freeqhull(qh, !qh_ALL);
+    qh_memfreeshort(qh, &curlong, &totlong);
+    if (devnull) fclose(devnull);
+    free(xyz);
+    return rc ? rd_error_set(err, "the convex hull of the body's %d vertices failed (qhull code %d)", p->nv, rc) : 0;
+}
+
+/* Signed volume of p from its triangulation, m^3. */
+static double poly_volume(const rd_poly *p)
+{
+    double v = 0, x[3];
+    for (int t = 0; t < p->ntri; t++) {
+        rd_cross(p->v[p->tri[t][1]], p->v[p->tri[t][2]], x);
+        v += rd_dot(p->v[p->tri[t][0]], x);
+    }
+    return v / 6.0;
+}
+
+/* Up to this many vertex-plane pairs the definition itself (every vertex behind every face
+ * plane) is cheaper than the edge sort and qhull (a brick: 48 pairs, 0.2 us, where qhull takes
+ * 40 us; 1e5 pairs take about 0.1 ms). */
+#define RD_CONVEX_DIRECT 1e5
+
+static int convex_by_definition(const rd_poly *p, double tol)
+{
+    for (int f = 0; f < p->nf; f++)
+        for (int v = 0; v < p->nv; v++)
+            if (rd_dot(p->fn[f], p->v[v]) - p->fd[f] > tol) return 0;
+    return 1;
+}
+
+int rd_poly_convex(const rd_poly *p, double tol, int *convex, rd_error *err)
+{
+    if ((double)p->nf * p->nv <= RD_CONVEX_DIRECT) {
+        *convex = convex_by_definition(p, tol);
+        return 0;
+    }
+    int ns = 0;
+    for (int f = 0; f < p->nf; f++) ns += p->flen[f];
+    side *e = malloc((size_t)ns * sizeof *e);
+    double *w = malloc((size_t)p->nf * sizeof *w);
+    if (!e || !w) {
+        free(e);
+        free(w);
+        return rd_error_set(err, "out of memory in the convexity test");
+    }
+    *convex = face_widths(p, tol, w);
+    int m = 0;
+    for (int f = 0; f < p->nf; f++)
+        for (int k = 0; k < p->flen[f]; k++) {
+            int a = p->fidx[p->fstart[f] + k], b = p->fidx[p->fstart[f] + (k + 1) % p->flen[f]];
+            e[m++] = (side){a < b ? a : b, a < b ? b : a, f, k};
+        }
+    qsort(e, (size_t)m, sizeof *e, by_vertices);
+    /* a closed manifold (rd_poly_check): every side meets exactly one other, of another face */
+    for (int i = 0; i + 1 < m && *convex; i += 2)
+        if (rise(p, e[i].f, e[i].k, e[i + 1].f, w) > tol || rise(p, e[i + 1].f, e[i + 1].k, e[i].f, w) > tol)
+            *convex = 0;
+    free(e);
+    free(w);
+    double hv, ha;
+    if (!*convex) return 0;
+    if (hull_measure(p, &hv, &ha, err)) return -1;
+    *convex = hv - poly_volume(p) <= tol * ha;
+    return 0;
+}
+
 /* ---- convex hull ---- */
 
 typedef struct angled { double angle; int id; } angled;

@@ -14,13 +14,17 @@
  * Folder io/ owns the HDF5 files; it may call base/, records/, the engine's public API and its
  * state image (engine/state.h), never cli/.
  */
+#include "base/fault.h"
 #include "base/path.h"
 #include "engine/state.h"
 #include "io/io_table.h"
 #include "rockdem/observer.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 static rd_h5t_type h5t_type(rd_state_type t)
 {
@@ -62,13 +66,24 @@ static int write_image(rd_sim *s, long long f, rd_error *err)
     return rc ? rc : write_build(s, f, err);
 }
 
-/* The observer's begin: the scene has settled; write it to the path (user). */
+/* The observer's begin: the scene has settled; write it to the path (user), atomically: to a
+ * temporary beside it, renamed over it once whole (a kill leaves the earlier checkpoint or the
+ * new one, never a part). */
 static int save_at_rest(void *user, rd_sim *s, rd_error *err)
 {
     const char *path = user;
-    long long f = rd_h5t_create(path, err);
+    char tmp[RD_PATH_MAX];
+    int fd = rd_path_temp(path, tmp);
+    if (fd < 0) return rd_error_set(err, "%s: model save: cannot create a temporary file beside it: %s", path,
+                                    strerror(errno));
+    close(fd);
+    long long f = rd_h5t_create(tmp, err);
     int rc = f < 0 ? -1 : write_image(s, f, err);
     if (f >= 0) rd_h5t_close(f);
+    rd_fault_point("checkpoint-rename");
+    if (!rc && rd_path_commit(tmp, path))
+        rc = rd_error_set(err, "cannot rename the new checkpoint into place: %s", strerror(errno));
+    if (rc) unlink(tmp);
     if (rc) {
         char m[RD_ERROR_MAX];
         snprintf(m, sizeof m, "%s", err->msg);

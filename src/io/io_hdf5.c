@@ -26,6 +26,8 @@
  */
 #include "io/io_hdf5.h"
 #include "io/h5_quiet.h"
+#include "base/fault.h"
+#include "base/path.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -147,7 +149,8 @@ typedef struct rd_h5_event_buf {
 } rd_h5_event_buf;
 
 struct rd_h5 {
-    char *path;
+    char *path;        /* the file written: the output, or a temporary beside target */
+    char *target;      /* NULL, or the output the temporary replaces at rd_h5_commit */
     hid_t file;
     hid_t str_type;    /* variable-length UTF-8 string */
     hid_t status_type; /* enum of the run statuses */
@@ -756,13 +759,11 @@ static int create_events(rd_h5 *h, rd_error *err)
     return rc;
 }
 
-/* Release everything without writing. */
-static void destroy(rd_h5 *h)
+/* Close every HDF5 object and the file, without writing. */
+static void close_file(rd_h5 *h)
 {
-    for (int i = 0; i < SER_COUNT; i++) {
+    for (int i = 0; i < SER_COUNT; i++)
         if (h->ser[i].dset >= 0) H5Dclose(h->ser[i].dset);
-        free(h->ser[i].buf);
-    }
     for (int i = 0; i < EV_COUNT; i++)
         if (h->ev[i] >= 0) H5Dclose(h->ev[i]);
     for (int i = 0; i < DIM_COUNT; i++)
@@ -772,6 +773,17 @@ static void destroy(rd_h5 *h)
     if (h->status_type >= 0) H5Tclose(h->status_type);
     if (h->str_type >= 0) H5Tclose(h->str_type);
     if (h->file >= 0) H5Fclose(h->file);
+    h->file = h->str_type = h->status_type = h->event_type = h->body_dim = H5I_INVALID_HID;
+    for (int i = 0; i < SER_COUNT; i++) { h->ser[i].dset = H5I_INVALID_HID; free(h->ser[i].buf); h->ser[i].buf = NULL; }
+    for (int i = 0; i < EV_COUNT; i++) h->ev[i] = H5I_INVALID_HID;
+    for (int i = 0; i < DIM_COUNT; i++) h->dims[i] = H5I_INVALID_HID;
+}
+
+/* Release everything without writing. */
+static void destroy(rd_h5 *h)
+{
+    close_file(h);
+    free(h->target);
     free(h->names);
     free(h->name_list);
     free(h->path);
@@ -788,9 +800,10 @@ static rd_h5 *alloc_handle(const char *path, const rd_h5_meta *m)
     for (int i = 0; i < DIM_COUNT; i++) h->dims[i] = H5I_INVALID_HID;
     h->nb = m->nbodies;
     h->path = strdup(path);
+    h->target = m->target ? strdup(m->target) : NULL;
     h->names = calloc((size_t)h->nb, sizeof *h->names);
     h->name_list = calloc((size_t)h->nb, sizeof *h->name_list);
-    if (!h->path || !h->names || !h->name_list) {
+    if (!h->path || !h->names || !h->name_list || (m->target && !h->target)) {
         destroy(h);
         return NULL;
     }
@@ -858,7 +871,8 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
     if (h->file < 0 || H5Fget_vfd_handle(h->file, H5P_DEFAULT, (void **)&fdp) < 0 || !fdp ||
         fstat(*fdp, &h->id)) {
         rd_error_set(err, "%s: cannot create file: %s", path,
-                     errno ? strerror(errno) : "HDF5 library error");
+                     errno == EAGAIN || errno == EWOULDBLOCK ? RD_PATH_LOCKED
+                     : errno ? strerror(errno) : "HDF5 library error (no system error: check the folder with df and ls)");
         destroy(h);
         return NULL;
     }
@@ -992,6 +1006,7 @@ static int h5_flush(rd_h5 *h, rd_error *err)
     }
     if (nev > 0 && write_events(h, nev)) return fault_h5(h, err, "cannot write /events");
     if (flush_file(h)) return fault_h5(h, err, "cannot flush file");
+    rd_fault_point("run-flush");
     return 0;
 }
 
@@ -1172,11 +1187,25 @@ static int h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 
 long long rd_h5_file_id(const rd_h5 *h) { return (long long)h->file; }
 
+static int h5_commit(rd_h5 *h, int ok, rd_error *err)
+{
+    if (!h->target || !ok || h->broken) return 0;
+    if (h5_flush(h, err)) return -1;
+    close_file(h);
+    rd_fault_point("run-rename");
+    if (rd_path_commit(h->path, h->target))
+        return rd_error_set(err, "%s: cannot rename the finished run over %s: %s; the run's output is in %s",
+                            h->target, h->target, strerror(errno), h->path);
+    free(h->target);
+    h->target = NULL;
+    return 0;
+}
+
 static void h5_close(rd_h5 *h)
 {
     if (!h) return;
     rd_error ignored;
-    if (!h->broken) rd_h5_flush(h, &ignored);
+    if (!h->broken && h->file >= 0) rd_h5_flush(h, &ignored);
     destroy(h);
 }
 
@@ -1268,6 +1297,11 @@ int rd_h5_fail(rd_h5 *h, const char *what, rd_error *err)
     char why[RD_ERROR_MAX];
     snprintf(why, sizeof why, "%s", err->msg);
     RD_H5_QUIETLY(int, fault(h, err, what, why));
+}
+
+int rd_h5_commit(rd_h5 *h, int ok, rd_error *err)
+{
+    RD_H5_QUIETLY(int, h5_commit(h, ok, err));
 }
 
 void rd_h5_close(rd_h5 *h)

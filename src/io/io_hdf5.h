@@ -75,6 +75,8 @@ typedef struct rd_h5_meta {
     const rd_h5_body *bodies;
     int nfixed;                     /* fixed bodies (geometry only; may be 0) */
     const rd_h5_body *fixed_bodies;
+    const char *target;             /* NULL: the file is written at its path; else the path is a
+                                       temporary, renamed to target by rd_h5_commit */
 } rd_h5_meta;
 
 typedef struct rd_h5_sample {
@@ -114,6 +116,11 @@ int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n,
 /* Replace the attribute size [3] (m) of /bodies/<body> given at rd_h5_open by the body's
  * extents at rest (known once it rests on its support; alpha follows with the summary). */
 int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err);
+/* The run has ended (`ok`: done or overturned): a file written to a temporary (meta.target) is
+ * flushed, closed and renamed over its target, so the earlier file there is replaced only by a
+ * whole, successful run; with !ok, or written in place, nothing happens. 0, or -1 with err (the
+ * rename failed: the temporary stays, named in err). */
+int rd_h5_commit(rd_h5 *h, int ok, rd_error *err);
 /* Flush and close; safe on NULL. */
 void rd_h5_close(rd_h5 *h);
 /* The open file's HDF5 id, for the table writer (io_table.h): /history, /joints. */

@@ -14,6 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 static const char *damping_text(const rd_damping_def *d, char *buf, size_t n)
 {
@@ -70,8 +72,9 @@ static int on_end(void *user, rd_sim *sim, const rd_summary *s, rd_error *err)
 {
     /* the time series first, then the tables of histories, joints and outcomes (flushed when
        the file closes) */
+    int ok = s->status == RD_STATUS_DONE || s->status == RD_STATUS_OVERTURNED;
     return rd_h5_summary(user, s, err) || rd_h5_flush(user, err) ||
-           rd_h5_scene_tables(user, sim, s, err) ? -1 : 0;
+           rd_h5_scene_tables(user, sim, s, err) || rd_h5_commit(user, ok, err) ? -1 : 0;
 }
 
 static void on_release(void *user) { rd_h5_close(user); }
@@ -91,8 +94,9 @@ static rd_h5_body h5_body(rd_sim *sim, int k)
     return h;
 }
 
-/* Creates the file with the scenario, the contact law and the bodies as built. */
-static rd_h5 *open_file(rd_sim *sim, const char *path, rd_error *err)
+/* Creates the file with the scenario, the contact law and the bodies as built (at path; or at
+ * the temporary tmp, renamed to path when the run succeeds, where tmp is not NULL). */
+static rd_h5 *open_file(rd_sim *sim, const char *path, const char *tmp, rd_error *err)
 {
     const rd_scenario *sc = rd_sim_scenario(sim);
     int nfixed, nfree = rd_sim_body_count(sim, &nfixed);
@@ -112,8 +116,8 @@ static rd_h5 *open_file(rd_sim *sim, const char *path, rd_error *err)
                        .overturn_criterion = overturn_text(&sc->overturn, obuf, sizeof obuf),
                        .kn = c->kn, .ks = c->ks, .friction = c->friction, .cohesion = c->cohesion,
                        .tension = c->tension, .spacing = c->spacing, .nbodies = nfree, .bodies = hb,
-                       .nfixed = nfixed, .fixed_bodies = hb + nfree};
-    rd_h5 *h = rd_h5_open(path, &meta, err);
+                       .nfixed = nfixed, .fixed_bodies = hb + nfree, .target = tmp ? path : NULL};
+    rd_h5 *h = rd_h5_open(tmp ? tmp : path, &meta, err);
     free(hb);
     return h;
 }
@@ -122,9 +126,11 @@ int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err)
 {
     const rd_scenario *sc = rd_sim_scenario(sim);
     char why[RD_ERROR_MAX];
-    const char *bad = rd_path_output_conflict(sc, path, sc->save_path, why, sizeof why);
+    const char *bad = rd_path_output_conflict(sc, path, sc->save_path, RD_OUTPUT_RUN, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
-    rd_h5 *h = open_file(sim, path, err);
+    char tmp[RD_PATH_MAX];
+    int staged = rd_output_staging(path, sc->force, tmp, sizeof tmp);
+    rd_h5 *h = open_file(sim, path, staged ? tmp : NULL, err);
     if (!h) return -1;
     rd_observer o = {.user = h, .begin = on_begin, .sample = on_sample, .event = on_event,
                      .end = on_end, .release = on_release};
@@ -133,4 +139,11 @@ int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err)
         return -1;
     }
     return 0;
+}
+
+int rd_output_staging(const char *path, int force, char *buf, size_t n)
+{
+    struct stat st;
+    snprintf(buf, n, "%s.tmp-%ld", path, (long)getpid());
+    return !force && stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
 }

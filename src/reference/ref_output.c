@@ -8,6 +8,7 @@
  * base/, records/, io/ and the public API.
  */
 #include "rockdem/validate.h"
+#include "rockdem/output.h"
 #include "base/path.h"
 #include "io/io_hdf5.h"
 
@@ -109,7 +110,10 @@ static rd_h5 *open_file(const rd_scenario *sc, const rd_refscene *rs, const char
                        .title = sc->title, .damping = damping, .overturn_criterion =
                        "rigid: certain fall (energy above the saddle moving outward)",
                        .nbodies = rs->nblock, .bodies = hb};
-    return rd_h5_open(path, &meta, err);
+    char tmp[RD_PATH_MAX]; /* an earlier file at path is replaced once this one is whole */
+    int staged = rd_output_staging(path, sc->force, tmp, sizeof tmp);
+    meta.target = staged ? path : NULL;
+    return rd_h5_open(staged ? tmp : path, &meta, err);
 }
 
 static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
@@ -192,7 +196,7 @@ int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref
                       rd_error *err)
 {
     char why[RD_ERROR_MAX];
-    const char *bad = rd_path_output_conflict(sc, path, NULL, why, sizeof why);
+    const char *bad = rd_path_output_conflict(sc, path, NULL, RD_OUTPUT_RUN, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     double verts[2][8][3];
     rd_summary s = {0};
@@ -201,7 +205,7 @@ int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref
     if (!h5) return -1;
     fill_summary(sc, rs, res, &s, bs);
     int rc = write_samples(sc, rs, res, h5, bs, err) || write_events(rs, res, h5, err) ||
-             rd_h5_summary(h5, &s, err) || rd_h5_flush(h5, err);
+             rd_h5_summary(h5, &s, err) || rd_h5_flush(h5, err) || rd_h5_commit(h5, 1, err);
     rd_h5_close(h5);
     if (sum) {
         memcpy(body, bs, sizeof bs);

@@ -235,6 +235,23 @@ static int read_file(const char *path, char **out, size_t *len, rd_error *err)
     return 0;
 }
 
+int rd_scenario_parse_n(rd_scenario *sc, const char *name, const char *text, size_t len, rd_error *err)
+{
+    const char *nul = memchr(text, '\0', len);
+    if (nul) {
+        rd_scenario_defaults(sc);
+        return rd_error_set(err, "%s: contains a NUL byte at offset %zu of %zu (not a text?)", name,
+                            (size_t)(nul - text), len);
+    }
+    char *copy = malloc(len + 1);
+    if (!copy) return rd_error_set(err, "%s: out of memory", name);
+    memcpy(copy, text, len);
+    copy[len] = '\0';
+    int rc = rd_scenario_parse(sc, name, copy, err);
+    free(copy);
+    return rc;
+}
+
 int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err)
 {
     char *text = NULL;

@@ -5,6 +5,7 @@
 set -eu
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
 for sig in INT TERM HUP; do
+    rm -f "$T/int.h5"   # a new file each time (an earlier one would be kept, issue 47)
     "$BIN" run scenarios/default.dat --set model.duration=600 -o "$T/int.h5" > "$T/int.out" 2> "$T/int.err" &
     pid=$!
     sleep 1.5
