@@ -25,6 +25,7 @@
  * UTF-8 and enumerations (run status, event type, spacing rule) are HDF5 enums.
  */
 #include "io/io_hdf5.h"
+#include "io/io_table.h"
 #include "io/h5_quiet.h"
 #include "base/fault.h"
 #include "base/path.h"
@@ -510,6 +511,17 @@ static int make_group(const rd_h5 *h, const char *name, const char *long_name, r
     return rc;
 }
 
+/* The groups' outside dimension scales (/time, /xyz, /corner, ...) hard-linked into them, so
+ * each group opens in a netCDF reader (xarray) with its coordinates (io_table.h). */
+static int link_scales(const rd_h5 *h, rd_error *err)
+{
+    static const char *const groups[] = {"/bodies", "/ground", "/energy"};
+    for (size_t k = 0; k < sizeof groups / sizeof groups[0]; k++)
+        if (rd_h5t_link_scales(h->file, groups[k], err))
+            return rd_error_set(err, "%s: cannot link the dimension scales of %s", h->path, groups[k]);
+    return 0;
+}
+
 /* spacing < 0: automatic; 0: face vertices only; > 0: a fixed spacing, m. */
 static int write_spacing(const rd_h5 *h, double spacing, rd_error *err)
 {
@@ -893,7 +905,7 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
     if (reserve(h, tables, err) || write_root_attrs(h, meta, err) || write_status_attrs(h, err) ||
         create_dims(h, err) || make_group(h, "/bodies", "geometry and mass of every body", err) ||
         write_bodies(h, meta, err) || create_series(h, err) || create_events(h, err) ||
-        rd_h5_flush(h, err)) {
+        link_scales(h, err) || rd_h5_flush(h, err)) {
         destroy(h);
         return NULL;
     }

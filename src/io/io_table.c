@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 #include <hdf5_hl.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -229,4 +230,82 @@ int rd_h5t_string(long long loc, const char *name, int k, char *out, int size, r
     free(buf);
     H5Sclose(sp); H5Tclose(t); H5Dclose(d);
     return ok ? 0 : rd_error_set(err, "cannot read dataset '%s'", name);
+}
+
+/* ---- scales linked into the groups that use them ---- */
+
+enum { LINK_MAX = 32 };  /* distinct outside scales one group may use */
+
+typedef struct link_ctx {
+    hid_t group;               /* the group whose datasets are visited */
+    int n, failed;
+    char path[LINK_MAX][256];  /* the outside scales found, linked once the visit is over */
+} link_ctx;
+
+/* H5DSiterate_scales callback: note scale `sc` unless it is already a member of ctx->group. */
+static herr_t note_scale(hid_t did, unsigned dim, hid_t sc, void *op)
+{
+    (void)did; (void)dim;
+    link_ctx *c = op;
+    char path[256];
+    if (H5Iget_name(sc, path, sizeof path) <= 0) return 0;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    if (!base[0] || exists(c->group, base)) return 0;
+    for (int k = 0; k < c->n; k++)
+        if (!strcmp(c->path[k], path)) return 0;
+    if (c->n == LINK_MAX) { c->failed = 1; return 0; }
+    snprintf(c->path[c->n++], sizeof c->path[0], "%s", path);
+    return 0;
+}
+
+static int link_group(hid_t g);
+
+/* H5Literate callback over a group's members: a dataset's outside scales are noted, a
+ * subgroup is linked in turn. */
+static herr_t visit_member(hid_t g, const char *name, const H5L_info_t *info, void *op)
+{
+    link_ctx *c = op;
+    H5O_info_t oi;
+    if (info->type != H5L_TYPE_HARD || H5Oget_info_by_name2(g, name, &oi, H5O_INFO_BASIC, H5P_DEFAULT) < 0)
+        return 0;
+    if (oi.type == H5O_TYPE_GROUP) {
+        hid_t sub = H5Gopen2(g, name, H5P_DEFAULT);
+        if (sub < 0 || link_group(sub)) c->failed = 1;
+        if (sub >= 0) H5Gclose(sub);
+    } else if (oi.type == H5O_TYPE_DATASET) {
+        hid_t d = H5Dopen2(g, name, H5P_DEFAULT), sp = d < 0 ? -1 : H5Dget_space(d);
+        int rank = sp < 0 ? 0 : H5Sget_simple_extent_ndims(sp);
+        for (int k = 0; k < rank; k++)
+            if (H5DSget_num_scales(d, (unsigned)k) > 0) H5DSiterate_scales(d, (unsigned)k, NULL, note_scale, c);
+        if (sp >= 0) H5Sclose(sp);
+        if (d >= 0) H5Dclose(d);
+    }
+    return 0;
+}
+
+/* Link into group g the outside scales its datasets use, and do the same in its subgroups
+ * (the links are made after the visit: a group is not changed while it is listed). */
+static int link_group(hid_t g)
+{
+    link_ctx *c = calloc(1, sizeof *c);
+    if (!c) return -1;
+    c->group = g;
+    hsize_t idx = 0;
+    int rc = H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, visit_member, c) < 0 || c->failed;
+    for (int k = 0; k < c->n && !rc; k++) {
+        const char *base = strrchr(c->path[k], '/') + 1;
+        rc = H5Lcreate_hard(g, c->path[k], g, base, H5P_DEFAULT, H5P_DEFAULT) < 0;
+    }
+    free(c);
+    return rc ? -1 : 0;
+}
+
+int rd_h5t_link_scales(long long loc, const char *name, rd_error *err)
+{
+    hid_t g = H5Gopen2((hid_t)loc, name, H5P_DEFAULT);
+    if (g < 0) return rd_error_set(err, "cannot open group '%s'", name);
+    int rc = link_group(g);
+    H5Gclose(g);
+    return rc ? rd_error_set(err, "cannot link the dimension scales of group '%s'", name) : 0;
 }

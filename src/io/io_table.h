@@ -37,6 +37,12 @@ long long rd_h5t_group(long long loc, const char *name, rd_error *err);
 void rd_h5t_close_group(long long g);
 /* Make the existing 1-D dataset `name` a dimension scale. 0 or -1. */
 int rd_h5t_make_scale(long long loc, const char *name, rd_error *err);
+/* Hard-link into every group under `name` (recursively) each dimension scale that one of its
+ * datasets uses and that lives elsewhere, under the scale's own name: netCDF readers (xarray's
+ * h5netcdf engine) take a group's coordinates only from its own members, so /ground opens
+ * with `time` and `xyz`, /history/body/NAME with `time`. The data is shared, not copied. A
+ * name already taken in the group is left alone. 0 or -1. */
+int rd_h5t_link_scales(long long loc, const char *name, rd_error *err);
 /* Read dataset `name` of exactly n elements of type t into data. 0 or -1 (missing, wrong size). */
 int rd_h5t_read(long long loc, const char *name, rd_h5t_type t, void *data, long n, rd_error *err);
 /* Number of elements of dataset `name`, -1 when missing. */

@@ -140,7 +140,9 @@ int rd_h5_scene_tables(rd_h5 *h, const rd_sim *sim, const rd_summary *s, rd_erro
     if (rd_h5_reserve(h, scene_bytes(sim, s), err)) return -1;
     long long f = rd_h5_file_id(h);
     rd_h5_quiet q = rd_h5_quiet_begin();
-    int rc = history(f, sim, err) || joints(f, sim, err) || outcomes(f, s, err);
+    int rc = history(f, sim, err) || joints(f, sim, err) || outcomes(f, s, err) ||
+             (rd_h5t_count(f, "history/time") >= 0 && rd_h5t_link_scales(f, "history", err)) ||
+             rd_h5t_link_scales(f, "joints", err) || rd_h5t_link_scales(f, "outcomes", err);
     rd_h5_quiet_end(q);
     return rc ? rd_h5_fail(h, "cannot write the end-of-run tables", err) : 0;
 }

@@ -65,5 +65,11 @@ assert sw["body_max_tilt_ratio"].dims == ("case", "body")
 with h5py.File(sweep, "r") as f:
     assert f["sweep"].attrs["ncases"] == 4 and np.issubdtype(f["sweep"].attrs["ncases"].dtype, np.integer)
     assert h5py.check_enum_dtype(f["sweep/status"].dtype)
-print("xarray: %d run groups and the sweep table open with named dimensions" % len(groups(run)))
+# every group opens with a coordinate for each of its dimensions (its outside scales are
+# hard-linked into it: /ground has time and xyz, /history/body/NAME time)
+for g in groups(run):
+    ds = xr.open_dataset(run, engine="h5netcdf", group=g or None)
+    missing = [d for d in ds.dims if d not in ds.coords]
+    assert not missing, (g, missing)
+print("xarray: %d run groups and the sweep table open with named dimensions and coordinates" % len(groups(run)))
 PY
