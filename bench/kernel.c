@@ -32,22 +32,23 @@
 #include <string.h>
 #include <time.h>
 
-#define RD_LANES 8            /* points per SoA block (the inner loop width) */
-#define BLOCK_X 0.5           /* block size, m */
-#define BLOCK_Y 0.5
-#define BLOCK_Z 1.0
-#define DENSITY 2700.0        /* kg/m^3 */
-#define KN 1e10               /* normal stiffness, Pa/m (bench/block.dat) */
-#define KS 1e9                /* shear stiffness, Pa/m */
+#define RD_LANES     8   /* points per SoA block (the inner loop width) */
+#define BLOCK_X      0.5 /* block size, m */
+#define BLOCK_Y      0.5
+#define BLOCK_Z      1.0
+#define DENSITY      2700.0 /* kg/m^3 */
+#define KN           1e10   /* normal stiffness, Pa/m (bench/block.dat) */
+#define KS           1e9    /* shear stiffness, Pa/m */
 #define FRICTION_DEG 40.0
-#define GRAVITY 9.81          /* m/s^2 */
-#define DT 5e-5               /* s (bench/block.dat) */
-#define GROUND_AMP (0.3 * GRAVITY) /* m/s^2: below sliding (tan 40 g) and rigid uplift (b/h g = 0.5 g) */
-#define GROUND_FREQ 2.0       /* Hz */
-#define EPISODE 40000L        /* steps (2 s, bench/block.dat's window): then the block starts over */
+#define GRAVITY      9.81 /* m/s^2 */
+#define DT           5e-5 /* s (bench/block.dat) */
+#define GROUND_AMP                                                                                 \
+    (0.3 * GRAVITY)        /* m/s^2: below sliding (tan 40 g) and rigid uplift (b/h g = 0.5 g) */
+#define GROUND_FREQ 2.0    /* Hz */
+#define EPISODE     40000L /* steps (2 s, bench/block.dat's window): then the block starts over */
 /* two variants agree to this (m): both sum the same forces in another order, a relative
    round-off of ~1e-16 per step; over 1e6 steps of a stable oscillation this stays far below a nm */
-#define AGREE_TOL 1e-9
+#define AGREE_TOL   1e-9
 
 typedef struct body {
     double x[3], v[3];  /* centre of mass position (m), velocity (m/s) */
@@ -59,9 +60,9 @@ typedef struct body {
 } body;
 
 typedef struct point { /* scalar variant: array of structs */
-    double q[3];        /* body-frame offset from the centre of mass, m */
-    double us[2];       /* shear displacement, m */
-    double area;        /* m^2 */
+    double q[3];       /* body-frame offset from the centre of mass, m */
+    double us[2];      /* shear displacement, m */
+    double area;       /* m^2 */
 } point;
 
 typedef struct soa { /* vectorised variant: one array per coordinate, padded */
@@ -81,13 +82,21 @@ static void body_rotation(body *b)
 {
     const double w = b->q[0], x = b->q[1], y = b->q[2], z = b->q[3];
     double *R = b->R;
-    R[0] = 1 - 2 * (y * y + z * z); R[1] = 2 * (x * y - w * z);     R[2] = 2 * (x * z + w * y);
-    R[3] = 2 * (x * y + w * z);     R[4] = 1 - 2 * (x * x + z * z); R[5] = 2 * (y * z - w * x);
-    R[6] = 2 * (x * z - w * y);     R[7] = 2 * (y * z + w * x);     R[8] = 1 - 2 * (x * x + y * y);
+    R[0] = 1 - 2 * (y * y + z * z);
+    R[1] = 2 * (x * y - w * z);
+    R[2] = 2 * (x * z + w * y);
+    R[3] = 2 * (x * y + w * z);
+    R[4] = 1 - 2 * (x * x + z * z);
+    R[5] = 2 * (y * z - w * x);
+    R[6] = 2 * (x * z - w * y);
+    R[7] = 2 * (y * z + w * x);
+    R[8] = 1 - 2 * (x * x + y * y);
     /* w = R Ib^-1 R^T L */
     double lb[3];
-    for (int i = 0; i < 3; i++) lb[i] = (R[i] * b->L[0] + R[3 + i] * b->L[1] + R[6 + i] * b->L[2]) / b->ib[i];
-    for (int i = 0; i < 3; i++) b->w[i] = R[3 * i] * lb[0] + R[3 * i + 1] * lb[1] + R[3 * i + 2] * lb[2];
+    for (int i = 0; i < 3; i++)
+        lb[i] = (R[i] * b->L[0] + R[3 + i] * b->L[1] + R[6 + i] * b->L[2]) / b->ib[i];
+    for (int i = 0; i < 3; i++)
+        b->w[i] = R[3 * i] * lb[0] + R[3 * i + 1] * lb[1] + R[3 * i + 2] * lb[2];
 }
 
 /* The block at rest on its springs, tilted by a hair so the rotation is not trivial. */
@@ -110,7 +119,7 @@ static void body_init(body *b)
 static void body_step(body *b, const double f[3], const double t[3], long step)
 {
     double ag = GROUND_AMP * sin(2 * M_PI * GROUND_FREQ * (double)step * DT);
-    double acc[3] = {f[0] / b->mass - ag, f[1] / b->mass, f[2] / b->mass - GRAVITY};
+    double acc[3] = { f[0] / b->mass - ag, f[1] / b->mass, f[2] / b->mass - GRAVITY };
     for (int i = 0; i < 3; i++) {
         b->v[i] += acc[i] * DT;
         b->x[i] += b->v[i] * DT;
@@ -118,10 +127,15 @@ static void body_step(body *b, const double f[3], const double t[3], long step)
     }
     body_rotation(b); /* w from the new L */
     const double *w = b->w, *q = b->q;
-    double dq[4] = {-w[0] * q[1] - w[1] * q[2] - w[2] * q[3], w[0] * q[0] + w[1] * q[3] - w[2] * q[2],
-                    w[1] * q[0] + w[2] * q[1] - w[0] * q[3], w[2] * q[0] + w[0] * q[2] - w[1] * q[1]};
+    double dq[4] = { -w[0] * q[1] - w[1] * q[2] - w[2] * q[3],
+                     w[0] * q[0] + w[1] * q[3] - w[2] * q[2],
+                     w[1] * q[0] + w[2] * q[1] - w[0] * q[3],
+                     w[2] * q[0] + w[0] * q[2] - w[1] * q[1] };
     double norm = 0;
-    for (int i = 0; i < 4; i++) { b->q[i] += 0.5 * DT * dq[i]; norm += b->q[i] * b->q[i]; }
+    for (int i = 0; i < 4; i++) {
+        b->q[i] += 0.5 * DT * dq[i];
+        norm += b->q[i] * b->q[i];
+    }
     norm = 1 / sqrt(norm);
     for (int i = 0; i < 4; i++) b->q[i] *= norm;
     body_rotation(b);
@@ -147,21 +161,27 @@ static void scalar_forces(const body *b, point *p, int n, double f[3], double t[
     for (int k = 0; k < n; k++) {
         point *pk = &p[k];
         double r[3];
-        for (int i = 0; i < 3; i++) r[i] = R[3 * i] * pk->q[0] + R[3 * i + 1] * pk->q[1] + R[3 * i + 2] * pk->q[2];
+        for (int i = 0; i < 3; i++)
+            r[i] = R[3 * i] * pk->q[0] + R[3 * i + 1] * pk->q[1] + R[3 * i + 2] * pk->q[2];
         double gap = b->x[2] + r[2];
-        if (gap >= 0) { pk->us[0] = pk->us[1] = 0; continue; }
+        if (gap >= 0) {
+            pk->us[0] = pk->us[1] = 0;
+            continue;
+        }
         double vx = v[0] + w[1] * r[2] - w[2] * r[1], vy = v[1] + w[2] * r[0] - w[0] * r[2];
         pk->us[0] += vx * DT;
         pk->us[1] += vy * DT;
         double fn = -KN * pk->area * gap;
-        double fs[2] = {-KS * pk->area * pk->us[0], -KS * pk->area * pk->us[1]};
+        double fs[2] = { -KS * pk->area * pk->us[0], -KS * pk->area * pk->us[1] };
         double mag = sqrt(fs[0] * fs[0] + fs[1] * fs[1]), cap = mu * fn;
         if (mag > cap) { /* slip: the spring cut back to the Coulomb cap */
             double s = cap / mag;
-            fs[0] *= s; fs[1] *= s;
-            pk->us[0] *= s; pk->us[1] *= s;
+            fs[0] *= s;
+            fs[1] *= s;
+            pk->us[0] *= s;
+            pk->us[1] *= s;
         }
-        double fk[3] = {fs[0], fs[1], fn};
+        double fk[3] = { fs[0], fs[1], fn };
         for (int i = 0; i < 3; i++) f[i] += fk[i];
         t[0] += r[1] * fk[2] - r[2] * fk[1];
         t[1] += r[2] * fk[0] - r[0] * fk[2];
@@ -177,13 +197,15 @@ typedef struct frame { /* the body's state the point map reads, by value (no ali
 /* Per point k: new shear (ux, uy), force (ox, oy, oz) and torque (mx, my, mz) about the centre. */
 static void soa_map(frame fr, int n, const double *restrict px, const double *restrict py,
                     const double *restrict pz, const double *restrict kn, const double *restrict ks,
-                    double *restrict ux, double *restrict uy, double *restrict ox, double *restrict oy,
-                    double *restrict oz, double *restrict mx, double *restrict my, double *restrict mz)
+                    double *restrict ux, double *restrict uy, double *restrict ox,
+                    double *restrict oy, double *restrict oz, double *restrict mx,
+                    double *restrict my, double *restrict mz)
 {
     const double tiny = 1e-300; /* N: keeps 0 / 0 (no contact) at 0 */
     const double *R = fr.R;
     for (int k = 0; k < n; k++) {
-        double rx = R[0] * px[k] + R[1] * py[k] + R[2] * pz[k], ry = R[3] * px[k] + R[4] * py[k] + R[5] * pz[k],
+        double rx = R[0] * px[k] + R[1] * py[k] + R[2] * pz[k],
+               ry = R[3] * px[k] + R[4] * py[k] + R[5] * pz[k],
                rz = R[6] * px[k] + R[7] * py[k] + R[8] * pz[k];
         double gap = fr.z + rz;
         double on = gap < 0 ? 1.0 : 0.0;
@@ -192,7 +214,8 @@ static void soa_map(frame fr, int n, const double *restrict px, const double *re
         double fn = on * -kn[k] * gap;
         double fsx = -ks[k] * usx, fsy = -ks[k] * usy;
         double mag = sqrt(fsx * fsx + fsy * fsy) + tiny;
-        double ratio = fr.mu * fn / mag, sc = ratio < 1.0 ? ratio : 1.0; /* slip: cut back to the cap */
+        double ratio = fr.mu * fn / mag,
+               sc = ratio < 1.0 ? ratio : 1.0; /* slip: cut back to the cap */
         fsx *= sc;
         fsy *= sc;
         ux[k] = usx * sc;
@@ -209,7 +232,7 @@ static void soa_map(frame fr, int n, const double *restrict px, const double *re
 /* Sum of o[0..n) (n a multiple of RD_LANES) in RD_LANES partial sums. */
 static double lane_sum(int n, const double *restrict o)
 {
-    double lane[RD_LANES] = {0}, sum = 0;
+    double lane[RD_LANES] = { 0 }, sum = 0;
     for (int k0 = 0; k0 < n; k0 += RD_LANES)
         for (int l = 0; l < RD_LANES; l++) lane[l] += o[k0 + l];
     for (int l = 0; l < RD_LANES; l++) sum += lane[l];
@@ -218,8 +241,13 @@ static double lane_sum(int n, const double *restrict o)
 
 static void soa_forces(const body *b, soa *s, double f[3], double t[3])
 {
-    frame fr = {.z = b->x[2], .vx = b->v[0], .vy = b->v[1], .wx = b->w[0], .wy = b->w[1], .wz = b->w[2],
-                .mu = tan(FRICTION_DEG * M_PI / 180)};
+    frame fr = { .z = b->x[2],
+                 .vx = b->v[0],
+                 .vy = b->v[1],
+                 .wx = b->w[0],
+                 .wy = b->w[1],
+                 .wz = b->w[2],
+                 .mu = tan(FRICTION_DEG * M_PI / 180) };
     memcpy(fr.R, b->R, sizeof fr.R);
     soa_map(fr, s->npad, s->qx, s->qy, s->qz, s->kn, s->ks, s->usx, s->usy, s->out[0], s->out[1],
             s->out[2], s->out[3], s->out[4], s->out[5]);
@@ -232,7 +260,10 @@ static void soa_forces(const body *b, soa *s, double f[3], double t[3])
 static void *xcalloc(size_t n, size_t size)
 {
     void *p = calloc(n, size);
-    if (!p) { fprintf(stderr, "kernel: out of memory\n"); exit(2); }
+    if (!p) {
+        fprintf(stderr, "kernel: out of memory\n");
+        exit(2);
+    }
     return p;
 }
 
@@ -261,14 +292,17 @@ static double run_scalar(int n, int side, long steps, body *b)
 /* Runs the SoA variant; padding points sit far above the plane (never in contact). */
 static double run_soa(int n, int side, long steps, body *b)
 {
-    soa s = {.n = n, .npad = (n + RD_LANES - 1) / RD_LANES * RD_LANES};
-    double **arr[] = {&s.qx, &s.qy, &s.qz, &s.usx, &s.usy, &s.kn, &s.ks,
-                      &s.out[0], &s.out[1], &s.out[2], &s.out[3], &s.out[4], &s.out[5]};
-    for (size_t i = 0; i < sizeof arr / sizeof *arr; i++) *arr[i] = xcalloc((size_t)s.npad, sizeof(double));
+    soa s = { .n = n, .npad = (n + RD_LANES - 1) / RD_LANES * RD_LANES };
+    double **arr[] = { &s.qx,     &s.qy,     &s.qz,     &s.usx,    &s.usy,    &s.kn,    &s.ks,
+                       &s.out[0], &s.out[1], &s.out[2], &s.out[3], &s.out[4], &s.out[5] };
+    for (size_t i = 0; i < sizeof arr / sizeof *arr; i++)
+        *arr[i] = xcalloc((size_t)s.npad, sizeof(double));
     for (int k = 0; k < s.npad; k++) {
-        double q[3] = {0, 0, BLOCK_Z}; /* padding: the top face's centre */
+        double q[3] = { 0, 0, BLOCK_Z }; /* padding: the top face's centre */
         if (k < n) grid_point(k, side, q);
-        s.qx[k] = q[0]; s.qy[k] = q[1]; s.qz[k] = q[2];
+        s.qx[k] = q[0];
+        s.qy[k] = q[1];
+        s.qz[k] = q[2];
         s.kn[k] = KN * BLOCK_X * BLOCK_Y / n;
         s.ks[k] = KS * BLOCK_X * BLOCK_Y / n;
     }
@@ -302,7 +336,9 @@ static long arg_count(const char *what, const char *v, long min, long max)
 int main(int argc, char **argv)
 {
     if (argc != 3) {
-        fprintf(stderr, "usage: kernel N STEPS   (N >= 4 points on a square grid: rounded up to a square)\n");
+        fprintf(
+            stderr,
+            "usage: kernel N STEPS   (N >= 4 points on a square grid: rounded up to a square)\n");
         return 2;
     }
     int want = (int)arg_count("N", argv[1], 4, 1000000); /* 4: the block needs its corners */
@@ -317,7 +353,8 @@ int main(int argc, char **argv)
     printf("kernel: variant=soa n=%d steps=%ld ns_per_point_step=%.4g\n", n, steps, ns_v);
     printf("kernel: final z=%.9f m, variants differ by %.3g m\n", bs.x[2], dx);
     if (!(dx <= AGREE_TOL)) {
-        fprintf(stderr, "kernel: the scalar and soa variants disagree by %.3g m (> %.0e m)\n", dx, AGREE_TOL);
+        fprintf(stderr, "kernel: the scalar and soa variants disagree by %.3g m (> %.0e m)\n", dx,
+                AGREE_TOL);
         return 1;
     }
     return 0;

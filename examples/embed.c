@@ -42,7 +42,7 @@ int main(int argc, char **argv)
         return 2;
     }
     double peak = 0;
-    rd_observer obs = {.user = &peak, .sample = watch};
+    rd_observer obs = { .user = &peak, .sample = watch };
     rd_sim_add_observer(sim, &obs, &err);
     clock_t c0 = clock();
     rd_status st = rd_sim_run(sim);
@@ -51,14 +51,15 @@ int main(int argc, char **argv)
     rd_sim_summary(sim, &s);
     int nev, nfixed, nfree = rd_sim_body_count(sim, &nfixed);
     rd_sim_events(sim, &nev);
-    printf("status %d: %d free + %d fixed bodies, %ld steps of %.3g s, %d events\n", (int)st,
-           nfree, nfixed, s.steps, s.dt, nev);
+    printf("status %d: %d free + %d fixed bodies, %ld steps of %.3g s, %d events\n", (int)st, nfree,
+           nfixed, s.steps, s.dt, nev);
     printf("body 0: peak tilt %.4g rad (observer), %.4g rad (summary), alpha %.4g rad\n", peak,
            s.body[0].max_tilt, s.body[0].alpha);
     double all = s.steps + s.settle_time / s.dt; /* settling steps too */
     printf("cost: %.4g s wall for %ld shaking steps (%.4g us per step); %.4g s CPU for %.0f "
-           "settling + shaking steps: %.4g us per step\n", s.wall_seconds, s.steps,
-           s.steps ? 1e6 * s.wall_seconds / s.steps : 0, cpu, all, all > 0 ? 1e6 * cpu / all : 0);
+           "settling + shaking steps: %.4g us per step\n",
+           s.wall_seconds, s.steps, s.steps ? 1e6 * s.wall_seconds / s.steps : 0, cpu, all,
+           all > 0 ? 1e6 * cpu / all : 0);
     rd_sim_free(sim);
     return st == RD_STATUS_DONE || st == RD_STATUS_OVERTURNED ? 0 : 3;
 }

@@ -19,8 +19,11 @@ enum { RD_STRICT = 0, RD_XFAIL = 1 };
 static inline void rd_verdict(const char *what, bool ok, double err, double tol, int mode)
 {
     if (mode == RD_XFAIL) {
-        if (ok) print_message("XPASS: %s gap=%.4g tol=%.4g (remove RD_XFAIL: it is met now)\n", what, err, tol);
-        else print_message("XFAIL: %s gap=%.4g tol=%.4g\n", what, err, tol);
+        if (ok)
+            print_message("XPASS: %s gap=%.4g tol=%.4g (remove RD_XFAIL: it is met now)\n", what,
+                          err, tol);
+        else
+            print_message("XFAIL: %s gap=%.4g tol=%.4g\n", what, err, tol);
         return;
     }
     if (!ok) fail_msg("%s: error %.4g beyond tolerance %.4g", what, err, tol);
@@ -30,7 +33,8 @@ static inline void rd_verdict(const char *what, bool ok, double err, double tol,
 static inline void rd_check_rel(const char *what, double got, double want, double tol, int mode)
 {
     double e = fabs(got - want) / fabs(want);
-    print_message("CHECK %s: rockdem %.6g, reference %.6g, error %.3g, tol %.3g\n", what, got, want, e, tol);
+    print_message("CHECK %s: rockdem %.6g, reference %.6g, error %.3g, tol %.3g\n", what, got, want,
+                  e, tol);
     rd_verdict(what, e <= tol, e, tol, mode);
 }
 
@@ -38,7 +42,8 @@ static inline void rd_check_rel(const char *what, double got, double want, doubl
 static inline void rd_check_abs(const char *what, double got, double want, double tol, int mode)
 {
     double e = fabs(got - want);
-    print_message("CHECK %s: rockdem %.6g, reference %.6g, error %.3g, tol %.3g\n", what, got, want, e, tol);
+    print_message("CHECK %s: rockdem %.6g, reference %.6g, error %.3g, tol %.3g\n", what, got, want,
+                  e, tol);
     rd_verdict(what, e <= tol, e, tol, mode);
 }
 

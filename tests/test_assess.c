@@ -20,8 +20,8 @@
 #include "rockdem/assess.h"
 #include "rockdem/record.h"
 
-#define G 9.81          /* gravity of the scenes, m/s^2 */
-#define TOL_EXACT 1e-9  /* closed forms: round-off only */
+#define G         9.81     /* gravity of the scenes, m/s^2 */
+#define TOL_EXACT 1e-9     /* closed forms: round-off only */
 #define CASK_MASS 124800.0 /* seed 001: the 2 x 2 x 4 m cask, 124.8 t */
 
 static rd_assess_body cask(double mu)
@@ -43,11 +43,15 @@ static void test_en1998_spectrum(void **state)
     double ag = 0.3 * G;
     assert_int_equal(rd_spectrum_en1998(&s, 1, 'A', ag, &err), 0);
     rd_check_rel("EN type 1 A T=0", rd_spectrum_sa(&s, 0.0, 0.05), ag, TOL_EXACT, RD_STRICT);
-    rd_check_rel("EN type 1 A plateau", rd_spectrum_sa(&s, 0.3, 0.05), 2.5 * ag, TOL_EXACT, RD_STRICT);
-    rd_check_rel("EN type 1 A T=1 s", rd_spectrum_sa(&s, 1.0, 0.05), 2.5 * ag * 0.4, TOL_EXACT, RD_STRICT);
-    rd_check_rel("EN type 1 A T=3 s", rd_spectrum_sa(&s, 3.0, 0.05), 2.5 * ag * 0.8 / 9.0, TOL_EXACT, RD_STRICT);
+    rd_check_rel("EN type 1 A plateau", rd_spectrum_sa(&s, 0.3, 0.05), 2.5 * ag, TOL_EXACT,
+                 RD_STRICT);
+    rd_check_rel("EN type 1 A T=1 s", rd_spectrum_sa(&s, 1.0, 0.05), 2.5 * ag * 0.4, TOL_EXACT,
+                 RD_STRICT);
+    rd_check_rel("EN type 1 A T=3 s", rd_spectrum_sa(&s, 3.0, 0.05), 2.5 * ag * 0.8 / 9.0,
+                 TOL_EXACT, RD_STRICT);
     assert_int_equal(rd_spectrum_en1998(&s, 2, 'c', 0.2 * G, &err), 0);
-    rd_check_rel("EN type 2 C T=0.05 s", rd_spectrum_sa(&s, 0.05, 0.05), 0.2 * G * 1.5 * 1.75, TOL_EXACT, RD_STRICT);
+    rd_check_rel("EN type 2 C T=0.05 s", rd_spectrum_sa(&s, 0.05, 0.05), 0.2 * G * 1.5 * 1.75,
+                 TOL_EXACT, RD_STRICT);
     assert_int_equal(rd_spectrum_en1998(&s, 3, 'A', ag, &err), -1);
     assert_int_equal(rd_spectrum_en1998(&s, 1, 'F', ag, &err), -1);
     assert_int_equal(rd_spectrum_en1998(&s, 1, 'A', -1.0, &err), -1);
@@ -69,7 +73,7 @@ static void test_eta(void **state)
 static void test_table_spectrum(void **state)
 {
     (void)state;
-    double T[] = {0.0, 0.5, 1.0}, sa[] = {4.0, 10.0, 10.0};
+    double T[] = { 0.0, 0.5, 1.0 }, sa[] = { 4.0, 10.0, 10.0 };
     rd_spectrum s;
     rd_error err;
     assert_int_equal(rd_spectrum_table(&s, T, sa, 3, 0.05, &err), 0);
@@ -77,10 +81,10 @@ static void test_table_spectrum(void **state)
     rd_check_rel("table constant SD", rd_spectrum_sa(&s, 2.0, 0.05), 2.5, TOL_EXACT, RD_STRICT);
     double e = sqrt(2.0 / 3.0);
     rd_check_rel("table eta full", rd_spectrum_sa(&s, 0.75, 0.10), 10.0 * e, TOL_EXACT, RD_STRICT);
-    rd_check_rel("table eta half", rd_spectrum_sa(&s, 0.25, 0.10), 7.0 * (1.0 + 0.5 * (e - 1.0)), TOL_EXACT,
-                 RD_STRICT);
+    rd_check_rel("table eta half", rd_spectrum_sa(&s, 0.25, 0.10), 7.0 * (1.0 + 0.5 * (e - 1.0)),
+                 TOL_EXACT, RD_STRICT);
     rd_check_rel("table pga", rd_spectrum_pga(&s), 4.0, TOL_EXACT, RD_STRICT);
-    double bad[] = {0.1, 0.5, 1.0};
+    double bad[] = { 0.1, 0.5, 1.0 };
     assert_int_equal(rd_spectrum_table(&s, bad, sa, 3, 0.05, &err), -1);
 }
 
@@ -99,7 +103,8 @@ static void test_body(void **state)
     rd_check_rel("square prism = box (b)", p.b, 1.0, TOL_EXACT, RD_STRICT);
     rd_check_rel("square prism = box (I)", p.inertia, 832000.0, TOL_EXACT, RD_STRICT);
     rd_assess_body_prism(&c, 0, 1.0, 4.0, CASK_MASS, 0.7);
-    rd_check_rel("cylinder inertia", c.inertia, CASK_MASS * (0.25 + 16.0 / 12.0 + 5.0), TOL_EXACT, RD_STRICT);
+    rd_check_rel("cylinder inertia", c.inertia, CASK_MASS * (0.25 + 16.0 / 12.0 + 5.0), TOL_EXACT,
+                 RD_STRICT);
 }
 
 /* Seed 001 section 4: "For a homogeneous rectangular block with h/b = 2 the damping factor D
@@ -137,7 +142,7 @@ static void test_asce43_rocking(void **state)
     (void)state;
     rd_assess_body b = cask(0.7);
     double D = rd_assess_rocking_damping(rd_assess_restitution(&b));
-    double A = 0.1 / 0.3 * 4.0 * M_PI * M_PI, T[] = {0.0, 1.0}, sa[] = {A, A};
+    double A = 0.1 / 0.3 * 4.0 * M_PI * M_PI, T[] = { 0.0, 1.0 }, sa[] = { A, A };
     rd_spectrum h, v;
     rd_error err;
     rd_rocking o;
@@ -154,7 +159,7 @@ static void test_asce43_rocking(void **state)
     assert_int_equal(rd_assess_pga_rocking(&b, &h, 0.0, G, &pga, &err), 0);
     rd_check_rel("A.2 allowable PGA", pga, A * atan(0.5) / 0.2, 1e-9, RD_STRICT);
     /* a flat spectrum above g b / h: the balance grows with the angle and no angle holds */
-    double flat[] = {0.0, 100.0}, sf[] = {0.8 * G, 0.8 * G};
+    double flat[] = { 0.0, 100.0 }, sf[] = { 0.8 * G, 0.8 * G };
     assert_int_equal(rd_spectrum_table(&h, flat, sf, 2, D, &err), 0);
     assert_int_equal(rd_assess_rocking(&b, &h, NULL, G, &o, &err), 0);
     assert_true(o.overturns);
@@ -176,12 +181,13 @@ static void test_asce43_sliding(void **state)
     rd_check_rel("A.1 f_e", o.freq, 1.0 / 1.2, 1e-9, RD_STRICT);
     rd_check_rel("A.1 distance", o.distance, 0.5 * G * 1.44 / (4.0 * M_PI * M_PI), 1e-9, RD_STRICT);
     rd_check_rel("A.1 margin", o.margin, 1.0 / (2.0 * o.distance), TOL_EXACT, RD_STRICT);
-    double T[] = {0.0, 1.0}, sa[] = {5.0, 5.0};
+    double T[] = { 0.0, 1.0 }, sa[] = { 5.0, 5.0 };
     rd_assess_body c = cask(0.3);
     assert_int_equal(rd_spectrum_table(&s, T, sa, 2, 0.05, &err), 0);
     assert_int_equal(rd_assess_sliding(&c, &s, 0.5 * G, 0.05, 1.0, G, &o, &err), 0);
     rd_check_rel("A.1 mu_e", o.mu_e, 0.3 * 0.8, TOL_EXACT, RD_STRICT);
-    rd_check_rel("A.1 distance constant SD", o.distance, 5.0 / (4.0 * M_PI * M_PI), 1e-9, RD_STRICT);
+    rd_check_rel("A.1 distance constant SD", o.distance, 5.0 / (4.0 * M_PI * M_PI), 1e-9,
+                 RD_STRICT);
     rd_assess_body d = cask(0.6);
     assert_int_equal(rd_assess_sliding(&d, &s, 0.0, 0.05, 1.0, G, &o, &err), 0);
     assert_true(o.distance == 0.0);
@@ -209,9 +215,10 @@ static void test_static_table2(void **state)
     rd_static_check c;
     double kv = 2.0 / 3.0;
     rd_assess_static(&b, RD_CODE_ASCE7, 0.3 * G, 0.2 * G, kv, 0, G, &c);
-    rd_check_rel("Table 2 ASCE 7-10 rocking PGA", c.pga_rock, 0.9 * G / (2.0 + 2.0 / 3.0), TOL_EXACT, RD_STRICT);
-    rd_check_rel("Table 2 ASCE 7-10 sliding PGA", c.pga_slide, 0.7 * 0.9 * G / (1.0 + 0.7 * 2.0 / 3.0), TOL_EXACT,
-                 RD_STRICT);
+    rd_check_rel("Table 2 ASCE 7-10 rocking PGA", c.pga_rock, 0.9 * G / (2.0 + 2.0 / 3.0),
+                 TOL_EXACT, RD_STRICT);
+    rd_check_rel("Table 2 ASCE 7-10 sliding PGA", c.pga_slide,
+                 0.7 * 0.9 * G / (1.0 + 0.7 * 2.0 / 3.0), TOL_EXACT, RD_STRICT);
     rd_assess_static(&b, RD_CODE_EN1998, 0.3 * G, 0.2 * G, kv, 0, G, &c);
     rd_check_rel("Table 2 EN rocking PGA", c.pga_rock, G / 2.2, TOL_EXACT, RD_STRICT);
     rd_check_rel("Table 2 EN sliding PGA", c.pga_slide, 0.7 * G / 1.14, TOL_EXACT, RD_STRICT);
@@ -240,7 +247,8 @@ static void test_seed_pga_ratio(void **state)
     rd_assess_static(&b, RD_CODE_EN1998, G, 2.0 / 3.0 * G, 2.0 / 3.0, 0, G, &c);
     print_message("seed 001 Fig. 29: ASCE 43-05 allowable PGA %.4g g, EN static %.4g g\n", asce / G,
                   c.pga_rock / G);
-    rd_check_abs("seed 001: ASCE 43-05 / EN static allowable PGA (4.1)", asce / c.pga_rock, 4.1, 0.05, RD_STRICT);
+    rd_check_abs("seed 001: ASCE 43-05 / EN static allowable PGA (4.1)", asce / c.pga_rock, 4.1,
+                 0.05, RD_STRICT);
 }
 
 /* Spectral matching: a Kanai-Tajimi record matched to EN type 1 A at 0.3 g, 5 %, over

@@ -54,7 +54,8 @@ static rd_sim *make_pbr(const char *more)
              "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
              "%s"
              "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
-             "model solve time 0.01\n", obj, more);
+             "model solve time 0.01\n",
+             obj, more);
     rd_sim *s = make(text);
     unlink(obj);
     return s;
@@ -63,7 +64,9 @@ static rd_sim *make_pbr(const char *more)
 static uint64_t rng = 88172645463325252u;
 static double uniform(void) /* xorshift64, [-1, 1) */
 {
-    rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17;
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
     return (double)(rng >> 11) / 9007199254740992.0 * 2.0 - 1.0;
 }
 
@@ -73,14 +76,23 @@ static void exact_box(const rd_sim *s, int i, double bx[6])
 {
     double R[9];
     rd_quat_to_mat(s->q[i], R);
-    for (int k = 0; k < 3; k++) { bx[k] = INFINITY; bx[k + 3] = -INFINITY; }
+    for (int k = 0; k < 3; k++) {
+        bx[k] = INFINITY;
+        bx[k + 3] = -INFINITY;
+    }
     for (int v = 0; v < s->poly[i].nv; v++) {
         double w[3];
         rd_mat_vec(R, s->poly[i].v[v], w);
         rd_axpy(1.0, s->x[i], w);
-        for (int k = 0; k < 3; k++) { bx[k] = fmin(bx[k], w[k]); bx[k + 3] = fmax(bx[k + 3], w[k]); }
+        for (int k = 0; k < 3; k++) {
+            bx[k] = fmin(bx[k], w[k]);
+            bx[k + 3] = fmax(bx[k + 3], w[k]);
+        }
     }
-    for (int k = 0; k < 3; k++) { bx[k] -= s->margin; bx[k + 3] += s->margin; }
+    for (int k = 0; k < 3; k++) {
+        bx[k] -= s->margin;
+        bx[k + 3] += s->margin;
+    }
 }
 
 /* Does some vertex of body i lie within the contact band of convex body j (behind every plane of
@@ -136,15 +148,18 @@ static long check_walk(rd_sim *s, double box0[][3], double spread)
         walk(s, step % 37 == 36 ? 3.0 : 0.4, step / 50 % 2);
         for (int i = 0; i < n; i++) /* keep the bodies in their region, so pairs meet and part */
             for (int k = 0; k < 3 && !s->fixed[i]; k++)
-                if (fabs(s->x[i][k] - box0[i][k]) > spread) s->x[i][k] = box0[i][k] + copysign(spread, s->x[i][k] - box0[i][k]);
+                if (fabs(s->x[i][k] - box0[i][k]) > spread)
+                    s->x[i][k] = box0[i][k] + copysign(spread, s->x[i][k] - box0[i][k]);
         double pose_before[16][7];
         assert_true(n <= 16);
         memcpy(pose_before, s->box_pose, (size_t)n * sizeof *pose_before);
         rd_bodies_refresh_step(s);
         assert_int_equal(rd_pairs_update(s), 0);
-        for (int i = 0; i < n; i++) builds += memcmp(pose_before[i], s->box_pose[i], sizeof pose_before[i]) != 0;
+        for (int i = 0; i < n; i++)
+            builds += memcmp(pose_before[i], s->box_pose[i], sizeof pose_before[i]) != 0;
         memset(live, 0, (size_t)n * (size_t)n);
-        for (int k = 0; k < s->nlive; k++) live[s->pair[s->live[k]].a * n + s->pair[s->live[k]].b] = 1;
+        for (int k = 0; k < s->nlive; k++)
+            live[s->pair[s->live[k]].a * n + s->pair[s->live[k]].b] = 1;
         for (int i = 0; i < n; i++)
             for (int j = i + 1; j < n; j++) {
                 if (s->fixed[i] && s->fixed[j]) continue;
@@ -154,16 +169,19 @@ static long check_walk(rd_sim *s, double box0[][3], double spread)
                 int want = bi[0] <= bj[3] && bj[0] <= bi[3] && bi[1] <= bj[4] && bj[1] <= bi[4] &&
                            bi[2] <= bj[5] && bj[2] <= bi[5];
                 if (live[i * n + j] != want)
-                    fail_msg("step %d: pair %d-%d live %d, exact boxes overlap %d", step, i, j, live[i * n + j], want);
+                    fail_msg("step %d: pair %d-%d live %d, exact boxes overlap %d", step, i, j,
+                             live[i * n + j], want);
                 if ((touches(s, i, j) || touches(s, j, i)) && !live[i * n + j])
-                    fail_msg("step %d: bodies %d and %d touch but their pair is not live", step, i, j);
+                    fail_msg("step %d: bodies %d and %d touch but their pair is not live", step, i,
+                             j);
                 touching += touches(s, i, j) || touches(s, j, i);
                 live_pairs += want;
             }
     }
     free(live);
-    print_message("%d bodies, %d steps: %ld live pair-steps (%ld touching), %ld box builds of %ld body-steps\n",
-                  n, STEPS, live_pairs, touching, builds, (long)STEPS * n);
+    print_message(
+        "%d bodies, %d steps: %ld live pair-steps (%ld touching), %ld box builds of %ld body-steps\n",
+        n, STEPS, live_pairs, touching, builds, (long)STEPS * n);
     assert_true(live_pairs > 0 && touching > 0);
     assert_true(live_pairs < (long)STEPS * n * (n - 1) / 2); /* pairs also part */
     return builds;
@@ -189,13 +207,15 @@ static void test_sweep_pairs_exact(void **state)
 {
     (void)state;
     char text[4096];
-    int n = snprintf(text, sizeof text, "block create brick size 3 3 0.2 position 0 0 -0.1 fixed name pad\n");
+    int n = snprintf(text, sizeof text,
+                     "block create brick size 3 3 0.2 position 0 0 -0.1 fixed name pad\n");
     for (int k = 0; k < 12; k++)
         n += snprintf(text + n, sizeof text - (size_t)n,
                       "block create brick size 0.3 0.3 0.5 position %.4f %.4f 0.25 name b%d\n",
                       0.85 * cos(k * M_PI / 6), 0.85 * sin(k * M_PI / 6), k);
-    snprintf(text + n, sizeof text - (size_t)n,
-             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\nmodel solve time 0.01\n");
+    snprintf(
+        text + n, sizeof text - (size_t)n,
+        "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\nmodel solve time 0.01\n");
     rd_sim *s = make(text);
     assert_true(s->nb > 8);
     double box0[13][3];
@@ -218,7 +238,7 @@ static void test_far_planes_exact(void **state)
     double tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, s->poly[t].radius);
     double raise = s->sc.contact.perturb.raise, reach = 0.5 * tol - raise, out_band = tol + raise;
     long skipped = 0, checked = 0, reused = 0;
-    double pose_before[7] = {0}, x0[3];
+    double pose_before[7] = { 0 }, x0[3];
     memcpy(x0, s->x[o], sizeof x0);
     for (int step = 0; step < 600; step++) {
         double phi[3], dq[4], q[4], r = s->poly[o].radius, a = step % 41 == 40 ? 0.1 : 0.005;
@@ -244,21 +264,27 @@ static void test_far_planes_exact(void **state)
         for (int k = s->cv0[o], m = 0; k < s->cv0[o + 1]; k++, m++) {
             const uint64_t *mk = s->cv_mask + (size_t)m * 2 * RD_MASK_WORDS;
             /* the mesh's step keeps its candidate vertices in cv_world (integrate.c) */
-            const double x[3] = {s->cv_world[k], s->cv_world[ncv + k], s->cv_world[2 * ncv + k]};
+            const double x[3] = { s->cv_world[k], s->cv_world[ncv + k], s->cv_world[2 * ncv + k] };
             for (int qp = 0; qp < np; qp++) {
                 double dd = rd_dot(s->wn[s->face0[t] + qp], x) - s->wd[s->face0[t] + qp];
-                int out_bit = (int)((mk[qp >> 6] >> (qp & 63)) & 1), up_bit = (int)((mk[RD_MASK_WORDS + (qp >> 6)] >> (qp & 63)) & 1);
+                int out_bit = (int)((mk[qp >> 6] >> (qp & 63)) & 1),
+                    up_bit = (int)((mk[RD_MASK_WORDS + (qp >> 6)] >> (qp & 63)) & 1);
                 if (out_bit != !(dd <= out_band) || up_bit != (dd > reach))
-                    fail_msg("step %d vertex %d plane %d: bits %d %d, distance %g (band %g, reach %g)", step, m, qp,
-                             out_bit, up_bit, dd, out_band, reach);
+                    fail_msg(
+                        "step %d vertex %d plane %d: bits %d %d, distance %g (band %g, reach %g)",
+                        step, m, qp, out_bit, up_bit, dd, out_band, reach);
                 checked++;
             }
         }
-        for (int qp = 0; qp < np; qp++) skipped += sd->far_clear > 0 && ((sd->far[qp >> 6] >> (qp & 63)) & 1);
+        for (int qp = 0; qp < np; qp++)
+            skipped += sd->far_clear > 0 && ((sd->far[qp >> 6] >> (qp & 63)) & 1);
     }
-    print_message("far planes: %ld vertex-plane bits checked, %ld plane-steps marked far, far planes skipped "
-                  "in %ld of 600 steps\n", checked, skipped, reused);
-    assert_true(checked > 0 && skipped > 0 && reused > 0 && reused < 599); /* skipped, and re-measured */
+    print_message(
+        "far planes: %ld vertex-plane bits checked, %ld plane-steps marked far, far planes skipped "
+        "in %ld of 600 steps\n",
+        checked, skipped, reused);
+    assert_true(checked > 0 && skipped > 0 && reused > 0 &&
+                reused < 599); /* skipped, and re-measured */
     rd_sim_free(s);
 }
 

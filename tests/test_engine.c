@@ -75,7 +75,7 @@ static double tip_tilt(double factor)
              "model damping local 0.8\nground-motion pulse rectangular amplitude 1 duration 2\n"
              "model overturn angle 80\nmodel solve time 2\n");
     snprintf(amp, sizeof amp, "motion.amplitude=%.17g", factor * 9.81 * 0.25);
-    const char *sets[] = {amp, NULL};
+    const char *sets[] = { amp, NULL };
     rd_summary sum;
     rd_body_summary b0;
     run_summary(text, sets, &sum, &b0);
@@ -92,8 +92,8 @@ static void test_static_tipping_threshold(void **state)
     (void)state;
     double below = tip_tilt(0.99), above = tip_tilt(1.01);
     double alpha = atan(0.25);
-    assert_true(below < 1e-3 * alpha);  /* elastic rotation only */
-    assert_true(above > 2e-2 * alpha);  /* tipping: >= 20x the elastic tilt bound */
+    assert_true(below < 1e-3 * alpha); /* elastic rotation only */
+    assert_true(above > 2e-2 * alpha); /* tipping: >= 20x the elastic tilt bound */
     assert_true(above > 100 * below);
 }
 
@@ -112,7 +112,7 @@ static double slide_at(double factor)
              "model damping local 0.8\nground-motion pulse rectangular amplitude 1 duration 1\n"
              "model solve time 1\noutput hdf5 'x.h5' interval 0.01\n");
     snprintf(amp, sizeof amp, "motion.amplitude=%.17g", factor * 9.81 * tan(20 * M_PI / 180));
-    const char *sets[] = {amp, NULL};
+    const char *sets[] = { amp, NULL };
     rd_summary sum;
     rd_body_summary b0;
     run_summary(text, sets, &sum, &b0);
@@ -137,7 +137,9 @@ static void test_sliding_threshold(void **state)
  * 1/2 th'^2 + p^2 cos(alpha - th) = p^2 cos(alpha - th0), the time to reach th = 0 is
  * int_0^th0 dth / sqrt(2 p^2 (cos(alpha - th0) - cos(alpha - th))). With th = th0 - s^2 the
  * integrand is smooth; GSL's adaptive quadrature gives it to 1e-12. */
-typedef struct { double alpha, th0, p2; } rock_par;
+typedef struct {
+    double alpha, th0, p2;
+} rock_par;
 
 static double rock_integrand(double s, void *v)
 {
@@ -150,9 +152,9 @@ static double rock_integrand(double s, void *v)
 static double rigid_first_impact(double b, double h, double g, double th0)
 {
     double R = hypot(b, h);
-    rock_par r = {atan2(b, h), th0, 3 * g / (4 * R)};
+    rock_par r = { atan2(b, h), th0, 3 * g / (4 * R) };
     gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
-    gsl_function F = {rock_integrand, &r};
+    gsl_function F = { rock_integrand, &r };
     double t, e;
     gsl_integration_qag(&F, 0, sqrt(th0), 1e-13, 1e-12, 200, GSL_INTEG_GAUSS61, w, &t, &e);
     gsl_integration_workspace_free(w);
@@ -166,7 +168,7 @@ static double dem_first_impact(double kn)
              "block initial name b tilt 7.0181217 direction 0\nmodel solve time 0.6\n");
     snprintf(set_kn, sizeof set_kn, "contact.stiffness-normal=%g", kn);
     snprintf(set_ks, sizeof set_ks, "contact.stiffness-shear=%g", 0.1 * kn);
-    const char *sets[] = {set_kn, set_ks, NULL};
+    const char *sets[] = { set_kn, set_ks, NULL };
     rd_scenario sc;
     rd_status st;
     rd_sim *sim = run_scene(text, sets, &sc, &st);
@@ -193,16 +195,18 @@ static void test_free_rocking_first_impact(void **state)
     double alpha = atan(0.25), th0 = 7.0181217 * M_PI / 180;
     assert_true(fabs(th0 - 0.5 * alpha) < 1e-8);
     double tr = rigid_first_impact(0.2, 0.8, 9.81, th0);
-    const double kns[] = {1e8, 1e9, 1e10, 1e11};
+    const double kns[] = { 1e8, 1e9, 1e10, 1e11 };
     double err[4], tk[4];
     for (int k = 0; k < 4; k++) {
         double t = tk[k] = dem_first_impact(kns[k]);
         assert_true(t > 0);
         err[k] = fabs(t - tr) / tr;
-        print_message("KN %-5g first impact %.6f s, rigid %.6f s, error %.3e\n", kns[k], t, tr, err[k]);
+        print_message("KN %-5g first impact %.6f s, rigid %.6f s, error %.3e\n", kns[k], t, tr,
+                      err[k]);
     }
     for (int k = 0; k + 1 < 4; k++) assert_true(err[k + 1] < err[k]); /* converges with KN */
-    rd_check_rel("first impact time at KN 1e10", tk[2], tr, 1.5 * fabs(tk[2] - tk[3]) / tr + 1e-12, RD_STRICT);
+    rd_check_rel("first impact time at KN 1e10", tk[2], tr, 1.5 * fabs(tk[2] - tk[3]) / tr + 1e-12,
+                 RD_STRICT);
 }
 
 /* ---- energy balance, frictionless and undamped ------------------------------------------ */
@@ -218,7 +222,7 @@ static void test_energy_balance_frictionless(void **state)
     char text[1024];
     snprintf(text, sizeof text, "%s%s", slender,
              "block initial name b tilt 7 direction 30\nmodel solve time 1.5\n");
-    const char *sets[] = {"contact.friction=0", NULL, NULL};
+    const char *sets[] = { "contact.friction=0", NULL, NULL };
     rd_summary sum, half;
     rd_body_summary b0, b1;
     run_summary(text, sets, &sum, &b0);
@@ -226,8 +230,8 @@ static void test_energy_balance_frictionless(void **state)
     snprintf(dt, sizeof dt, "model.timestep=%.17g", 0.5 * sum.dt);
     sets[1] = dt;
     run_summary(text, sets, &half, &b1);
-    print_message("frictionless energy residual %.3e at dt %.3g s, %.3e at dt/2\n", sum.energy_residual_max,
-                  sum.dt, half.energy_residual_max);
+    print_message("frictionless energy residual %.3e at dt %.3g s, %.3e at dt/2\n",
+                  sum.energy_residual_max, sum.dt, half.energy_residual_max);
     rd_check_abs("energy residual (relative to the largest term)", sum.energy_residual_max, 0,
                  2 * fabs(sum.energy_residual_max - half.energy_residual_max) + 1e-12, RD_STRICT);
     assert_true(sum.body[0].uplifted);
@@ -253,7 +257,8 @@ static void test_rest_stays_at_rest(void **state)
     double v[3], w[3];
     rd_sim_body_state(sim, 0, NULL, NULL, v, w);
     print_message("60 s at rest: max tilt %.3e rad, max slide %.3e m, |v| %.3e m/s\n",
-                  sum.body[0].max_tilt, sum.body[0].max_slide, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+                  sum.body[0].max_tilt, sum.body[0].max_slide,
+                  sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     assert_int_equal(st, RD_STATUS_DONE);
     assert_true(sum.end_time > 59.99);
     assert_true(sum.body[0].max_tilt < 1e-9);
@@ -287,8 +292,11 @@ static uint64_t final_hash(void)
     rd_sim_body_state(sim, 0, x, q, v, w);
     rd_sim_energy(sim, e);
     uint64_t h = 1469598103934665603ull;
-    h = fnv1a(h, x, sizeof x); h = fnv1a(h, q, sizeof q);
-    h = fnv1a(h, v, sizeof v); h = fnv1a(h, w, sizeof w); h = fnv1a(h, e, sizeof e);
+    h = fnv1a(h, x, sizeof x);
+    h = fnv1a(h, q, sizeof q);
+    h = fnv1a(h, v, sizeof v);
+    h = fnv1a(h, w, sizeof w);
+    h = fnv1a(h, e, sizeof e);
     int n;
     const rd_event *ev = rd_sim_events(sim, &n);
     for (int k = 0; k < n; k++) h = fnv1a(h, &ev[k].time, sizeof ev[k].time);
@@ -312,7 +320,8 @@ static void test_fixed_step_limit(void **state)
     rd_scenario sc;
     rd_error err;
     char text[1024];
-    snprintf(text, sizeof text, "%s%s", slender, "model timestep fixed 1e-3\nmodel solve time 0.1\n");
+    snprintf(text, sizeof text, "%s%s", slender,
+             "model timestep fixed 1e-3\nmodel solve time 0.1\n");
     assert_int_equal(rd_scenario_parse(&sc, "t.dat", text, &err), 0);
     assert_null(rd_sim_create(&sc, &err));
     assert_non_null(strstr(err.msg, "above the stable limit"));
@@ -320,9 +329,10 @@ static void test_fixed_step_limit(void **state)
 
     /* the estimate is an upper bound on the stiffest frequency, so 0.99 of it must run a hard
        case (stiff contact, impacts) without blowing up */
-    snprintf(text, sizeof text, "%s%s", slender,
-             "block initial name b tilt 10 direction 0\nmodel timestep auto safety 0.99\nmodel solve time 1\n");
-    const char *sets[] = {"contact.stiffness-normal=1e12", "contact.stiffness-shear=1e12", NULL};
+    snprintf(
+        text, sizeof text, "%s%s", slender,
+        "block initial name b tilt 10 direction 0\nmodel timestep auto safety 0.99\nmodel solve time 1\n");
+    const char *sets[] = { "contact.stiffness-normal=1e12", "contact.stiffness-shear=1e12", NULL };
     rd_status st;
     rd_sim *sim = run_scene(text, sets, &sc, &st);
     assert_int_equal(st, RD_STATUS_DONE);
@@ -346,7 +356,7 @@ static void test_overturn_strong_not_weak(void **state)
     run_summary(text, NULL, &sum, &b0);
     assert_false(sum.body[0].overturned);
     assert_true(sum.body[0].max_tilt < 1e-3);
-    const char *strong[] = {"motion.amplitude=3g", NULL};
+    const char *strong[] = { "motion.amplitude=3g", NULL };
     run_summary(text, strong, &sum, &b0);
     assert_true(sum.body[0].overturned);
     assert_true(sum.body[0].overturn_time > 0);
@@ -375,7 +385,8 @@ static void test_spin_reports_twist(void **state)
     double a = 0.5, mu = tan(40 * M_PI / 180), rmean = a * (sqrt(2) + log(1 + sqrt(2))) / 6;
     double expect = 9.0 / (2 * mu * 9.81 * rmean * 6 / (a * a));
     print_message("spin: twist %.5f rad (Coulomb %.5f), rocking %.2e / %.2e rad\n",
-                  sum.body[0].final_twist, expect, sum.body[0].max_rocking_in, sum.body[0].max_rocking_out);
+                  sum.body[0].final_twist, expect, sum.body[0].max_rocking_in,
+                  sum.body[0].max_rocking_out);
     assert_true(fabs(sum.body[0].final_twist - expect) < 0.03 * expect);
     assert_true(sum.body[0].max_rocking_in < 1e-9 && sum.body[0].max_rocking_out < 1e-9);
     assert_false(sum.body[0].uplifted);
@@ -424,7 +435,7 @@ static double glued_tilt(const char *tension)
              "model damping local 0.8\nground-motion pulse rectangular amplitude 0.35g duration 1\n"
              "model overturn angle 80\nmodel solve time 1\noutput hdf5 'x.h5' interval 0.01\n");
     snprintf(set, sizeof set, "contact.tension=%s", tension);
-    const char *sets[] = {set, "contact.cohesion=5e5", NULL};
+    const char *sets[] = { set, "contact.cohesion=5e5", NULL };
     rd_summary sum;
     rd_body_summary b0;
     run_summary(text, sets, &sum, &b0);
@@ -435,7 +446,8 @@ static void test_bonded_joint(void **state)
 {
     (void)state;
     double bare = glued_tilt("0"), weak = glued_tilt("1e5"), glued = glued_tilt("5e5");
-    print_message("0.35 g: tilt bare %.3e, T 0.1 MPa %.3e, T 0.5 MPa %.3e rad\n", bare, weak, glued);
+    print_message("0.35 g: tilt bare %.3e, T 0.1 MPa %.3e, T 0.5 MPa %.3e rad\n", bare, weak,
+                  glued);
     assert_true(bare > 1e-2 && weak > 1e-2);
     assert_true(glued < 1e-3);
 }
@@ -454,7 +466,8 @@ static void restitution_case(const char *what, const char *size, const char *con
     char text[512];
     snprintf(text, sizeof text,
              "block create brick size 2 2 0.4 position 0 0 -0.2 fixed name floor\n"
-             "block create brick size %s position 0 0 0.5 name b\n%s\n", size, contact);
+             "block create brick size %s position 0 0 0.5 name b\n%s\n",
+             size, contact);
     rd_scenario sc;
     rd_error err;
     assert_int_equal(rd_scenario_parse(&sc, "test.dat", text, &err), 0);
@@ -471,8 +484,8 @@ static void restitution_case(const char *what, const char *size, const char *con
 static void test_restitution_two_measures(void **state)
 {
     (void)state;
-    restitution_case("restitution: speeds vs amplitude decay, rigid preset 0.5 x 1 m", "0.5 0.5 1.0",
-                     "contact preset rigid", 0, RD_STRICT);
+    restitution_case("restitution: speeds vs amplitude decay, rigid preset 0.5 x 1 m",
+                     "0.5 0.5 1.0", "contact preset rigid", 0, RD_STRICT);
     restitution_case("restitution: speeds vs amplitude decay, rigid preset 1/3 x 1 m",
                      "0.3333333 0.3333333 1.0", "contact preset rigid", 0, RD_STRICT);
     restitution_case("restitution: speeds vs amplitude decay, 11 x 11 bed 0.5 x 1 m", "0.5 0.5 1.0",
@@ -499,7 +512,8 @@ static void test_calibration_uneven_crossing(void **state)
     assert_int_equal(rd_scenario_parse(&sc, "test.dat", text, &err), 0);
     double e = -1, reached = -1;
     int rc = rd_restitution_calibrate(&sc, 0.5 * atan(0.5), 0.70, &e, &reached, &err);
-    print_message("3dec preset, target 0.70: return %d, closest r %.4f at e %.4f\n", rc, reached, e);
+    print_message("3dec preset, target 0.70: return %d, closest r %.4f at e %.4f\n", rc, reached,
+                  e);
     assert_true(rc == 0 || rc == 2);
     assert_true(e >= 0 && e <= 1 && reached > 0 && reached < 1);
     rd_scenario_free(&sc);
@@ -521,18 +535,21 @@ typedef struct hop_log {
 
 static int hop_sample(void *user, rd_sim *sim, const rd_sample *s, rd_error *err)
 {
-    (void)sim; (void)err;
+    (void)sim;
+    (void)err;
     hop_log *h = user;
     double t = s->tilt[0], low = s->position[2] - 0.25 * sin(t) - 0.5 * cos(t);
     if (low > h->hop) h->hop = low;
-    h->x = s->position[0]; h->y = s->position[1]; h->tilt = t;
+    h->x = s->position[0];
+    h->y = s->position[1];
+    h->tilt = t;
     return 0;
 }
 
 static void test_defaults_no_hop_no_slide(void **state)
 {
     (void)state;
-    static const char *friction[] = {"contact.friction=35", "contact.friction=40"};
+    static const char *friction[] = { "contact.friction=35", "contact.friction=40" };
     for (int k = 0; k < 2; k++) {
         const char *text = "block create brick size 2 2 0.4 position 0 0 -0.2 fixed name floor\n"
                            "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b\n"
@@ -547,15 +564,17 @@ static void test_defaults_no_hop_no_slide(void **state)
         assert_int_equal(rd_scenario_set(&sc, friction[k], &err), 0);
         rd_sim *sim = rd_sim_create(&sc, &err);
         if (!sim) fail_msg("%s", err.msg);
-        hop_log h = {-INFINITY, 0, 0, 0};
-        rd_observer obs = {.user = &h, .sample = hop_sample};
+        hop_log h = { -INFINITY, 0, 0, 0 };
+        rd_observer obs = { .user = &h, .sample = hop_sample };
         assert_int_equal(rd_sim_add_observer(sim, &obs, &err), 0);
         assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
         double slide = hypot(h.x, h.y);
         print_message("defaults, %s: lowest vertex at most %.4f mm above the ground, slide %.4f "
-                      "mm, final tilt %.1e rad\n", friction[k], 1e3 * h.hop, 1e3 * slide, h.tilt);
+                      "mm, final tilt %.1e rad\n",
+                      friction[k], 1e3 * h.hop, 1e3 * slide, h.tilt);
         print_message("CHECK defaults: highest lowest vertex (m; above 0 is a hop): rockdem %.6g, "
-                      "reference <= 0\n", h.hop);
+                      "reference <= 0\n",
+                      h.hop);
         rd_verdict("defaults: hop", h.hop <= 0, h.hop, 0.0, RD_STRICT);
         rd_check_abs("defaults: slide at rest (m)", slide, 0.0, 1e-3, RD_STRICT);
         rd_sim_free(sim);

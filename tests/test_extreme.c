@@ -58,9 +58,10 @@ static void check_case(const char *label, const char *text, const char *const *s
     rd_body_summary b0;
     char msg[512];
     rd_status st = run(text, sets, &s, &b0, msg, sizeof msg);
-    print_message("%-34s status %d, dt %.3g s (limit %.3g), %ld steps, residual %.2e, max tilt/alpha %.3g%s\n",
-                  label, st, s.dt, s.dt_critical, s.steps, s.energy_residual_max,
-                  s.body[0].max_tilt_ratio, s.any_overturned ? " (overturned)" : "");
+    print_message(
+        "%-34s status %d, dt %.3g s (limit %.3g), %ld steps, residual %.2e, max tilt/alpha %.3g%s\n",
+        label, st, s.dt, s.dt_critical, s.steps, s.energy_residual_max, s.body[0].max_tilt_ratio,
+        s.any_overturned ? " (overturned)" : "");
     if (st == RD_STATUS_UNSTABLE) fail_msg("%s: %s", label, msg);
     assert_true(st == RD_STATUS_DONE || st == RD_STATUS_OVERTURNED);
     assert_true(isfinite(s.energy_residual_max));
@@ -74,27 +75,29 @@ static void block_case(const char *label, double bx, double bz, const char *extr
                        const char *const *sets)
 {
     char text[1024];
-    snprintf(text, sizeof text,
-             "block create brick size %g %g %g position 0 0 %g fixed name base\n"
-             "block create brick size %g %g %g position 0 0 %g name b\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 spacing vertices\n"
-             "model damping viscous 0.3\n%s"
-             "output hdf5 'x.h5' interval 0.01\n",
-             8 * fmax(bx, bz), 8 * fmax(bx, bz), bz, -0.5 * bz, bx, bx, bz, 0.5 * bz, extra);
+    snprintf(
+        text, sizeof text,
+        "block create brick size %g %g %g position 0 0 %g fixed name base\n"
+        "block create brick size %g %g %g position 0 0 %g name b\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 spacing vertices\n"
+        "model damping viscous 0.3\n%s"
+        "output hdf5 'x.h5' interval 0.01\n",
+        8 * fmax(bx, bz), 8 * fmax(bx, bz), bz, -0.5 * bz, bx, bx, bz, 0.5 * bz, extra);
     check_case(label, text, sets);
 }
 
 static void test_stiffness_range(void **state)
 {
     (void)state;
-    const char *kn[] = {"1e7", "1e9", "1e11", "1e13"};
+    const char *kn[] = { "1e7", "1e9", "1e11", "1e13" };
     for (int k = 0; k < 4; k++) {
         char a[64], b[64], label[64];
         snprintf(a, sizeof a, "contact.stiffness-normal=%s", kn[k]);
         snprintf(b, sizeof b, "contact.stiffness-shear=%s", kn[k]);
         snprintf(label, sizeof label, "KN %s Pa/m", kn[k]);
-        const char *sets[] = {a, b, NULL};
-        block_case(label, 0.5, 1.0, "block initial name b tilt 15 direction 0\nmodel solve time 0.8\n", sets);
+        const char *sets[] = { a, b, NULL };
+        block_case(label, 0.5, 1.0,
+                   "block initial name b tilt 15 direction 0\nmodel solve time 0.8\n", sets);
     }
 }
 
@@ -105,14 +108,17 @@ static void test_slender_and_squat(void **state)
     block_case("slender alpha 0.05", 0.1, 2.0,
                "block initial name b tilt 1.5 direction 0\nmodel solve time 1\n", NULL);
     block_case("squat alpha 1.2 + 1 g pulse", 2.572, 1.0,
-               "ground-motion pulse one-sine amplitude 1g frequency 2\nmodel solve time 0.6\n", NULL);
+               "ground-motion pulse one-sine amplitude 1g frequency 2\nmodel solve time 0.6\n",
+               NULL);
 }
 
 static void test_tiny_and_huge(void **state)
 {
     (void)state;
-    block_case("1 cm body", 0.005, 0.01, "block initial name b tilt 10 direction 0\nmodel solve time 0.1\n", NULL);
-    block_case("10 m body", 5, 10, "block initial name b tilt 10 direction 0\nmodel solve time 1.5\n", NULL);
+    block_case("1 cm body", 0.005, 0.01,
+               "block initial name b tilt 10 direction 0\nmodel solve time 0.1\n", NULL);
+    block_case("10 m body", 5, 10,
+               "block initial name b tilt 10 direction 0\nmodel solve time 1.5\n", NULL);
 }
 
 static void test_mass_ratio_stack(void **state)
@@ -133,8 +139,9 @@ static void test_mass_ratio_stack(void **state)
 static void test_friction_limits(void **state)
 {
     (void)state;
-    const char *f0[] = {"contact.friction=0", NULL}, *f89[] = {"contact.friction=89", NULL};
-    const char *pulse = "ground-motion pulse one-sine amplitude 0.8g frequency 2\nmodel solve time 0.8\n";
+    const char *f0[] = { "contact.friction=0", NULL }, *f89[] = { "contact.friction=89", NULL };
+    const char *pulse =
+        "ground-motion pulse one-sine amplitude 0.8g frequency 2\nmodel solve time 0.8\n";
     block_case("frictionless", 0.5, 1.0, pulse, f0);
     block_case("friction 89 deg", 0.5, 1.0, pulse, f89);
 }
@@ -142,18 +149,24 @@ static void test_friction_limits(void **state)
 static void test_strong_and_fast_motion(void **state)
 {
     (void)state;
-    block_case("30 Hz harmonic 1 g, 10 cycles", 0.5, 1.0,
-               "ground-motion pulse harmonic amplitude 1g frequency 30 cycles 10\nmodel solve time 0.5\n", NULL);
+    block_case(
+        "30 Hz harmonic 1 g, 10 cycles", 0.5, 1.0,
+        "ground-motion pulse harmonic amplitude 1g frequency 30 cycles 10\nmodel solve time 0.5\n",
+        NULL);
     block_case("3 g PGA one-sine 2 Hz", 0.5, 1.0,
-               "ground-motion pulse one-sine amplitude 3g frequency 2\nmodel solve time 0.8\n", NULL);
-    block_case("long harmonic 0.3 g 1 Hz 20 cycles", 1.0, 1.0,
-               "ground-motion pulse harmonic amplitude 0.3g frequency 1 cycles 20\nmodel solve time 20\n", NULL);
+               "ground-motion pulse one-sine amplitude 3g frequency 2\nmodel solve time 0.8\n",
+               NULL);
+    block_case(
+        "long harmonic 0.3 g 1 Hz 20 cycles", 1.0, 1.0,
+        "ground-motion pulse harmonic amplitude 0.3g frequency 1 cycles 20\nmodel solve time 20\n",
+        NULL);
     /* a 10-minute record: generated, baseline-corrected and scaled in full (60 000 samples);
        the test runs its first 10 s (`--set model.duration=10` is the flag; a full run takes
        about a minute) */
-    const char *ten_s[] = {"model.duration=10", NULL};
+    const char *ten_s[] = { "model.duration=10", NULL };
     block_case("10-minute stochastic record, 0.4 g", 1.0, 1.0,
-               "ground-motion stochastic seed 7 pga 0.4g duration 600\nmodel solve time 600\n", ten_s);
+               "ground-motion stochastic seed 7 pga 0.4g duration 600\nmodel solve time 600\n",
+               ten_s);
 }
 
 /* A grazing landing: without gravity, a block skims a long base at 5 m/s while closing on it
@@ -217,14 +230,10 @@ static void test_blow_up_reported(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_stiffness_range),
-        cmocka_unit_test(test_slender_and_squat),
-        cmocka_unit_test(test_tiny_and_huge),
-        cmocka_unit_test(test_mass_ratio_stack),
-        cmocka_unit_test(test_friction_limits),
-        cmocka_unit_test(test_strong_and_fast_motion),
-        cmocka_unit_test(test_grazing_landing),
-        cmocka_unit_test(test_blow_up_reported),
+        cmocka_unit_test(test_stiffness_range), cmocka_unit_test(test_slender_and_squat),
+        cmocka_unit_test(test_tiny_and_huge),   cmocka_unit_test(test_mass_ratio_stack),
+        cmocka_unit_test(test_friction_limits), cmocka_unit_test(test_strong_and_fast_motion),
+        cmocka_unit_test(test_grazing_landing), cmocka_unit_test(test_blow_up_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

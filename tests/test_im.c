@@ -18,7 +18,7 @@
 
 #include "rockdem/record.h"
 
-#define AMP 2.0  /* sine amplitude, m/s^2 */
+#define AMP  2.0 /* sine amplitude, m/s^2 */
 #define FREQ 1.0 /* sine frequency, Hz */
 
 /* A * sin(2 pi f t) sampled at dt for `cycles` whole periods. */
@@ -28,8 +28,7 @@ static rd_record sine_record(double amp, double f, double cycles, double dt)
     rd_error err;
     size_t n = (size_t)llround(cycles / f / dt) + 1;
     assert_int_equal(rd_record_alloc(&r, n, dt, &err), 0);
-    for (size_t i = 0; i < n; i++)
-        r.acc[i] = amp * sin(2.0 * M_PI * f * (double)i * dt);
+    for (size_t i = 0; i < n; i++) r.acc[i] = amp * sin(2.0 * M_PI * f * (double)i * dt);
     rd_record_integrate(&r);
     return r;
 }
@@ -80,7 +79,7 @@ static double husid_minus_level(double t, void *p)
 static double husid_root(husid_ctx *c)
 {
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    gsl_function fn = {husid_minus_level, c};
+    gsl_function fn = { husid_minus_level, c };
     gsl_root_fsolver_set(s, &fn, 0.0, c->T);
     double lo, hi;
     do {
@@ -101,7 +100,7 @@ static void test_significant_duration_sine(void **state)
     rd_record r = sine_record(AMP, FREQ, 3.0, 0.001);
     rd_im im;
     rd_im_compute(&r, &im);
-    husid_ctx c = {2.0 * M_PI * FREQ, 3.0 / FREQ, 0.05};
+    husid_ctx c = { 2.0 * M_PI * FREQ, 3.0 / FREQ, 0.05 };
     double t5 = husid_root(&c);
     c.level = 0.95;
     double t95 = husid_root(&c);
@@ -120,14 +119,13 @@ static void test_significant_duration_closed_forms(void **state)
     rd_record r;
     rd_error err;
     assert_int_equal(rd_record_alloc(&r, 101, 0.1, &err), 0);
-    for (size_t i = 0; i < r.npts; i++)
-        r.acc[i] = 1.5;
+    for (size_t i = 0; i < r.npts; i++) r.acc[i] = 1.5;
     rd_record_integrate(&r);
     rd_im im;
     rd_im_compute(&r, &im);
-    assert_true(fabs(im.t5 - 0.5) <= 1e-12 && fabs(im.t95 - 9.5) <= 1e-12 && fabs(im.d5_95 - 9.0) <= 1e-12);
-    for (size_t i = 0; i < r.npts; i++)
-        r.acc[i] = (double)i * r.dt;
+    assert_true(fabs(im.t5 - 0.5) <= 1e-12 && fabs(im.t95 - 9.5) <= 1e-12 &&
+                fabs(im.d5_95 - 9.0) <= 1e-12);
+    for (size_t i = 0; i < r.npts; i++) r.acc[i] = (double)i * r.dt;
     rd_record_integrate(&r);
     rd_im_compute(&r, &im);
     assert_true(fabs(im.t5 - 10.0 * cbrt(0.05)) <= 1e-12);
@@ -166,15 +164,15 @@ static void check_sdof_vs_ode(double period, double zeta)
     rd_record r;
     rd_error err;
     assert_int_equal(rd_record_alloc(&r, 80, 0.04, &err), 0);
-    for (size_t i = 0; i < r.npts; i++)
-        r.acc[i] = irregular(i);
+    for (size_t i = 0; i < r.npts; i++) r.acc[i] = irregular(i);
     rd_record_integrate(&r);
     double *u = malloc(r.npts * sizeof *u), *du = malloc(r.npts * sizeof *du);
     assert_int_equal(rd_sdof_response(&r, period, zeta, u, du, &err), 0);
-    sdof_ctx c = {&r, 2.0 * M_PI / period, zeta};
-    gsl_odeiv2_system sys = {sdof_rhs, NULL, 2, &c};
-    gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-4, 1e-13, 1e-13);
-    double y[2] = {0.0, 0.0}, t = 0.0, scale = 3.0 / (c.w * c.w);
+    sdof_ctx c = { &r, 2.0 * M_PI / period, zeta };
+    gsl_odeiv2_system sys = { sdof_rhs, NULL, 2, &c };
+    gsl_odeiv2_driver *drv =
+        gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-4, 1e-13, 1e-13);
+    double y[2] = { 0.0, 0.0 }, t = 0.0, scale = 3.0 / (c.w * c.w);
     for (size_t i = 1; i < r.npts; i++) {
         gsl_odeiv2_driver_reset(drv);
         assert_int_equal(gsl_odeiv2_driver_apply(drv, &t, (double)i * r.dt, y), GSL_SUCCESS);
@@ -203,7 +201,7 @@ static void test_sdof_matches_ode(void **state)
 static void test_steady_state_amplification(void **state)
 {
     (void)state;
-    double zeta = 0.05, periods[3] = {0.5, 1.0, 2.0};
+    double zeta = 0.05, periods[3] = { 0.5, 1.0, 2.0 };
     rd_record r = sine_record(AMP, FREQ, 80.0, 0.005);
     double *u = malloc(r.npts * sizeof *u);
     rd_error err;
@@ -212,8 +210,7 @@ static void test_steady_state_amplification(void **state)
         double steady = AMP / (w * w) / hypot(1.0 - ratio * ratio, 2.0 * zeta * ratio);
         assert_int_equal(rd_sdof_response(&r, periods[k], zeta, u, NULL, &err), 0);
         double peak = 0.0;
-        for (size_t i = r.npts - 1000; i < r.npts; i++)
-            peak = fmax(peak, fabs(u[i]));
+        for (size_t i = r.npts - 1000; i < r.npts; i++) peak = fmax(peak, fabs(u[i]));
         assert_true(fabs(peak - steady) <= 5e-4 * steady);
     }
     free(u);
@@ -229,7 +226,7 @@ static void test_psa_resonance(void **state)
     (void)state;
     rd_record r = sine_record(AMP, FREQ, 80.0, 0.005);
     rd_error err;
-    double periods[2] = {1.0, 0.0}, psa[2];
+    double periods[2] = { 1.0, 0.0 }, psa[2];
     assert_int_equal(rd_im_psa(&r, periods, 2, 0.05, psa, &err), 0);
     assert_true(fabs(psa[0] - AMP / (2.0 * 0.05)) <= 5e-4 * AMP / (2.0 * 0.05));
     assert_true(fabs(psa[1] - AMP) <= 1e-9 * AMP);

@@ -16,48 +16,75 @@
 
 #include "io/io_hdf5.h"
 
-#define NB 2
+#define NB       2
 #define NSAMPLES 1000
-#define SCENARIO "; test scenario\nblock create brick size 1 1 2 name 'left'\n" \
-                 "model solve time 30\n"
+#define SCENARIO                                                                                   \
+    "; test scenario\nblock create brick size 1 1 2 name 'left'\n"                                 \
+    "model solve time 30\n"
 
 typedef struct fixture {
     char dir[64];
     char path[128];
 } fixture;
 
-static const double cube_vertices[8][3] = {
-    {-0.5, -0.5, -1}, {0.5, -0.5, -1}, {0.5, 0.5, -1}, {-0.5, 0.5, -1},
-    {-0.5, -0.5, 1},  {0.5, -0.5, 1},  {0.5, 0.5, 1},  {-0.5, 0.5, 1}};
-static const int cube_faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7},
-                                      {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
-                                      {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+static const double cube_vertices[8][3] = { { -0.5, -0.5, -1 }, { 0.5, -0.5, -1 }, { 0.5, 0.5, -1 },
+                                            { -0.5, 0.5, -1 },  { -0.5, -0.5, 1 }, { 0.5, -0.5, 1 },
+                                            { 0.5, 0.5, 1 },    { -0.5, 0.5, 1 } };
+static const int cube_faces[12][3] = { { 0, 2, 1 }, { 0, 3, 2 }, { 4, 5, 6 }, { 4, 6, 7 },
+                                       { 0, 1, 5 }, { 0, 5, 4 }, { 1, 2, 6 }, { 1, 6, 5 },
+                                       { 2, 3, 7 }, { 2, 7, 6 }, { 3, 0, 4 }, { 3, 4, 7 } };
 
 /* The value written for sample k, series s, body b, component c (exact in binary). */
-static double val(int k, int s, int b, int c)
-{
-    return k * 1024.0 + s * 64.0 + b * 8.0 + c + 0.25;
-}
+static double val(int k, int s, int b, int c) { return k * 1024.0 + s * 64.0 + b * 8.0 + c + 0.25; }
 
 static rd_h5_meta make_meta(rd_h5_body *bodies)
 {
-    static const char *names[NB] = {"left", "right"};
+    static const char *names[NB] = { "left", "right" };
     for (int i = 0; i < NB; i++) {
-        bodies[i] = (rd_h5_body){names[i], 2000.0 + i, {1, 2, 3}, {1, 1, 2}, 0.4636 + i,
-                                 8, &cube_vertices[0][0], 12, &cube_faces[0][0], 0, {0}, {0}};
+        bodies[i] = (rd_h5_body){ names[i],
+                                  2000.0 + i,
+                                  { 1, 2, 3 },
+                                  { 1, 1, 2 },
+                                  0.4636 + i,
+                                  8,
+                                  &cube_vertices[0][0],
+                                  12,
+                                  &cube_faces[0][0],
+                                  0,
+                                  { 0 },
+                                  { 0 } };
     }
-    return (rd_h5_meta){SCENARIO, "test.dat", "writer test", 1e-5, 4e-5, "viscous 0.05",
-                        "tilt-ratio 1.5", 1e10, 1e9, 0.6981317007977318, 0, 0, 0.1,
-                        NB, bodies, 0, NULL, NULL};
+    return (rd_h5_meta){ SCENARIO,
+                         "test.dat",
+                         "writer test",
+                         1e-5,
+                         4e-5,
+                         "viscous 0.05",
+                         "tilt-ratio 1.5",
+                         1e10,
+                         1e9,
+                         0.6981317007977318,
+                         0,
+                         0,
+                         0.1,
+                         NB,
+                         bodies,
+                         0,
+                         NULL,
+                         NULL };
 }
 
 static void append_range(rd_h5 *h, int from, int to)
 {
     double pos[NB][3], quat[NB][4], vel[NB][3], om[NB][3], tilt[NB];
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     for (int k = from; k < to; k++) {
-        rd_h5_sample s = {.time = k * 0.5, .position = &pos[0][0], .quaternion = &quat[0][0],
-                          .velocity = &vel[0][0], .angular_velocity = &om[0][0], .tilt = tilt};
+        rd_h5_sample s = { .time = k * 0.5,
+                           .position = &pos[0][0],
+                           .quaternion = &quat[0][0],
+                           .velocity = &vel[0][0],
+                           .angular_velocity = &om[0][0],
+                           .tilt = tilt };
         for (int b = 0; b < NB; b++) {
             for (int c = 0; c < 4; c++) quat[b][c] = val(k, 1, b, c);
             for (int c = 0; c < 3; c++) {
@@ -119,7 +146,7 @@ static hsize_t read_all(hid_t f, const char *name, double **out, int rank_expect
     int rank = -1;
     assert_true(H5LTget_dataset_ndims(f, name, &rank) >= 0);
     assert_int_equal(rank, rank_expected);
-    hsize_t dims[3] = {0, 0, 0};
+    hsize_t dims[3] = { 0, 0, 0 };
     assert_true(H5LTget_dataset_info(f, name, dims, NULL, NULL) >= 0);
     size_t n = dims[0];
     for (int k = 1; k < rank; k++) {
@@ -172,14 +199,14 @@ static void check_str_attr(hid_t loc, const char *obj, const char *name, const c
 /* Checks every series holds n samples, equal to those written by append_range. */
 static void check_series(hid_t f, hsize_t n)
 {
-    static const char *names[] = {"/position", "/quaternion", "/velocity", "/angular_velocity"};
-    static const int series[] = {0, 1, 2, 3}, width[] = {3, 4, 3, 3};
+    static const char *names[] = { "/position", "/quaternion", "/velocity", "/angular_velocity" };
+    static const int series[] = { 0, 1, 2, 3 }, width[] = { 3, 4, 3, 3 };
     double *d;
     assert_int_equal(read_all(f, "/time", &d, 1, NULL), n);
     for (hsize_t k = 0; k < n; k++) assert_true(d[k] == k * 0.5);
     free(d);
     for (int i = 0; i < 4; i++) {
-        hsize_t inner[2] = {NB, (hsize_t)width[i]};
+        hsize_t inner[2] = { NB, (hsize_t)width[i] };
         assert_int_equal(read_all(f, names[i], &d, 3, inner), n);
         for (hsize_t k = 0; k < n; k++)
             for (int b = 0; b < NB; b++)
@@ -192,7 +219,7 @@ static void check_series(hid_t f, hsize_t n)
     for (hsize_t k = 0; k < n; k++)
         for (int b = 0; b < NB; b++) assert_true(d[k * NB + b] == val(k, 4, b, 0));
     free(d);
-    const char *ground[3] = {"/ground/acceleration", "/ground/velocity", "/ground/displacement"};
+    const char *ground[3] = { "/ground/acceleration", "/ground/velocity", "/ground/displacement" };
     for (int g = 0; g < 3; g++) {
         assert_int_equal(read_all(f, ground[g], &d, 2, &three), n);
         for (hsize_t k = 0; k < n; k++)
@@ -407,7 +434,7 @@ static void check_layout(hid_t f)
     assert_true(maxd[0] == H5S_UNLIMITED);
     H5Sclose(sp);
     /* axes: /time, /body, /xyz dimension scales */
-    const char *axis[3] = {"/time", "/body", "/xyz"};
+    const char *axis[3] = { "/time", "/body", "/xyz" };
     for (unsigned k = 0; k < 3; k++) {
         hid_t sc = H5Dopen2(f, axis[k], H5P_DEFAULT);
         assert_true(H5DSis_scale(sc) > 0);
@@ -462,7 +489,7 @@ static void test_roundtrip(void **state)
     fixture *fx = *state;
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
     append_range(h, 0, 400);
@@ -507,7 +534,7 @@ static void test_crash_keeps_flushed(void **state)
     if (pid == 0) {
         rd_h5_body bodies[NB];
         rd_h5_meta meta = make_meta(bodies);
-        rd_error err = {{0}};
+        rd_error err = { { 0 } };
         rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
         if (!h) _exit(2);
         append_range(h, 0, 600);
@@ -521,7 +548,7 @@ static void test_crash_keeps_flushed(void **state)
     assert_int_equal(WEXITSTATUS(status), 1);
 
     hid_t f = reopen(fx->path);
-    hsize_t dims[3] = {0};
+    hsize_t dims[3] = { 0 };
     assert_true(H5LTget_dataset_info(f, "/time", dims, NULL, NULL) >= 0);
     assert_int_equal(dims[0], 600); /* the 10 unflushed samples died with the child */
     check_series(f, 600);
@@ -539,7 +566,7 @@ static void test_partial_flushes(void **state)
     fixture *fx = *state;
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
     append_range(h, 0, 10);
@@ -561,7 +588,7 @@ static void test_summary_twice_keeps_last(void **state)
     fixture *fx = *state;
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
     append_range(h, 0, 5);
@@ -580,7 +607,7 @@ static void test_summary_unknown_body(void **state)
     fixture *fx = *state;
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
     rd_body_summary sb[NB];
@@ -597,7 +624,7 @@ static void test_bad_event_body(void **state)
     fixture *fx = *state;
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
     assert_int_equal(rd_h5_event(h, 0, NB, "slip", 0, &err), -1);
@@ -612,7 +639,7 @@ static void test_unwritable_path(void **state)
     snprintf(path, sizeof path, "%s/no/such/dir/out.h5", fx->dir);
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     assert_null(rd_h5_open(path, &meta, &err));
     assert_non_null(strstr(err.msg, path));
     assert_non_null(strstr(err.msg, "cannot create file"));
@@ -624,7 +651,7 @@ static void test_bad_body_name(void **state)
     rd_h5_body bodies[NB];
     rd_h5_meta meta = make_meta(bodies);
     bodies[1].name = "a/b";
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     assert_null(rd_h5_open(fx->path, &meta, &err));
     assert_non_null(strstr(err.msg, "a/b"));
     bodies[1].name = "left"; /* duplicate */

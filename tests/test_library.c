@@ -71,7 +71,8 @@ static void test_stepped_run(void **state)
 {
     (void)state;
     rd_scenario sa, sb, sc;
-    rd_sim *a = create(&sa, "whole.h5"), *b = create(&sb, "stepped.h5"), *c = create(&sc, "early.h5");
+    rd_sim *a = create(&sa, "whole.h5"), *b = create(&sb, "stepped.h5"),
+           *c = create(&sc, "early.h5");
     assert_true(isnan(rd_sim_end_time(b)));
     assert_int_equal(rd_sim_run(a), RD_STATUS_DONE);
     assert_int_equal(rd_sim_start(b), 1);
@@ -209,10 +210,14 @@ static void test_observers_no_file(void **state)
     snprintf(sc.output.path, sizeof sc.output.path, "%s", path);
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) fail_msg("%s", err.msg);
-    seen all = {0}, fifth = {0};
-    rd_observer a = {.user = &all, .begin = count_begin, .sample = count_sample,
-                     .event = count_event, .end = count_end, .release = count_release};
-    rd_observer b = {.user = &fifth, .every = 5, .sample = count_sample};
+    seen all = { 0 }, fifth = { 0 };
+    rd_observer a = { .user = &all,
+                      .begin = count_begin,
+                      .sample = count_sample,
+                      .event = count_event,
+                      .end = count_end,
+                      .release = count_release };
+    rd_observer b = { .user = &fifth, .every = 5, .sample = count_sample };
     assert_int_equal(rd_sim_add_observer(sim, &a, &err), 0);
     assert_int_equal(rd_sim_add_observer(sim, &b, &err), 0);
     assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
@@ -256,7 +261,7 @@ static void owned_run(int free_first, rd_summary *sum, rd_body_summary *body)
     assert_int_equal(rd_scenario_parse(&sc, "own.dat", owned_scene, &err), 0);
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) fail_msg("%s", err.msg);
-    void *scribble[64] = {0};
+    void *scribble[64] = { 0 };
     if (free_first) {
         rd_scenario_free(&sc);
         memset(&sc, 0xab, sizeof sc);
@@ -289,7 +294,10 @@ static void test_free_scenario_before_run(void **state)
 
 /* Progress as a bar reads it (cli_progress.c's rule): a new run where t falls back; runs' worth
  * done = runs before this one + t / t_end of it. */
-typedef struct progress_seen { int runs, calls, backwards; double t_prev, done; } progress_seen;
+typedef struct progress_seen {
+    int runs, calls, backwards;
+    double t_prev, done;
+} progress_seen;
 static void count_progress(void *ctx, double t, double t_end)
 {
     progress_seen *p = ctx;
@@ -315,15 +323,20 @@ static void test_threshold_progress_jobs(void **state)
     snprintf(set, sizeof set, "output.file=%s/threshold.h5", tmpdir);
     assert_int_equal(rd_scenario_set(&sc, set, &err), 0);
     rd_threshold_opts o = rd_threshold_opts_default();
-    o.lo = 3.5; o.hi = 7; o.nscan = 12; o.jobs = 2; o.rtol = 0.01; /* bisection runs follow the scan */
-    progress_seen seen = {0};
+    o.lo = 3.5;
+    o.hi = 7;
+    o.nscan = 12;
+    o.jobs = 2;
+    o.rtol = 0.01; /* bisection runs follow the scan */
+    progress_seen seen = { 0 };
     rd_set_progress(count_progress, &seen);
     rd_threshold_result r;
     int rc = rd_threshold(&sc, RD_ENGINE_DEM, &o, &r, &err);
     rd_set_progress(NULL, NULL);
     rd_scenario_free(&sc);
     if (rc) fail_msg("%s", err.msg);
-    print_message("threshold -j 2: %d runs, %d counted from %d reports\n", r.runs, seen.runs, seen.calls);
+    print_message("threshold -j 2: %d runs, %d counted from %d reports\n", r.runs, seen.runs,
+                  seen.calls);
     assert_true(r.found && r.runs > o.jobs);
     assert_int_equal(seen.runs, r.runs);
     assert_int_equal(seen.backwards, 0);

@@ -44,12 +44,15 @@ static void octahedron(solid *s, const double c[3], double a)
     s->nv = 6;
     for (int k = 0; k < 3; k++) {
         for (int i = 0; i < 6; i++) s->v[i][k] = c[k];
-        s->v[2 * k][k] += a; s->v[2 * k + 1][k] -= a;
+        s->v[2 * k][k] += a;
+        s->v[2 * k + 1][k] -= a;
     }
     for (int o = 0; o < 8; o++) {
         int sx = o & 1, sy = (o >> 1) & 1, sz = (o >> 2) & 1; /* 1: negative side */
         int x = sx, y = 2 + sy, z = 4 + sz, *f = s->idx + 3 * o;
-        f[0] = x; f[1] = (sx + sy + sz) % 2 ? z : y; f[2] = (sx + sy + sz) % 2 ? y : z;
+        f[0] = x;
+        f[1] = (sx + sy + sz) % 2 ? z : y;
+        f[2] = (sx + sy + sz) % 2 ? y : z;
         s->len[o] = 3;
     }
     s->nf = 8;
@@ -63,8 +66,10 @@ static void octahedron(solid *s, const double c[3], double a)
  * (per unit scale): area 3, centroid (5/6, 5/6), int x^2 dA = 3, int x y dA = 7/4. */
 static void l_prism(solid *s, const double o[3], double q, double h)
 {
-    static const double L[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-    static const int caps[4][4] = {{0, 3, 2, 1}, {0, 5, 4, 3}, {6, 7, 8, 9}, {6, 9, 10, 11}};
+    static const double L[6][2] = { { 0, 0 }, { 2, 0 }, { 2, 1 }, { 1, 1 }, { 1, 2 }, { 0, 2 } };
+    static const int caps[4][4] = {
+        { 0, 3, 2, 1 }, { 0, 5, 4, 3 }, { 6, 7, 8, 9 }, { 6, 9, 10, 11 }
+    };
     memset(s, 0, sizeof *s);
     s->nv = 12;
     for (int k = 0; k < 6; k++)
@@ -74,19 +79,29 @@ static void l_prism(solid *s, const double o[3], double q, double h)
             s->v[6 * t + k][2] = o[2] + t * h;
         }
     int at = 0;
-    for (int f = 0; f < 4; f++) { memcpy(s->idx + at, caps[f], sizeof caps[f]); s->len[f] = 4; at += 4; }
+    for (int f = 0; f < 4; f++) {
+        memcpy(s->idx + at, caps[f], sizeof caps[f]);
+        s->len[f] = 4;
+        at += 4;
+    }
     for (int k = 0; k < 6; k++) {
         int *f = s->idx + at;
-        f[0] = k; f[1] = (k + 1) % 6; f[2] = 6 + (k + 1) % 6; f[3] = 6 + k;
-        s->len[4 + k] = 4; at += 4;
+        f[0] = k;
+        f[1] = (k + 1) % 6;
+        f[2] = 6 + (k + 1) % 6;
+        f[3] = 6 + k;
+        s->len[4 + k] = 4;
+        at += 4;
     }
     s->nf = 10;
     double A = 3 * q * q, V = A * h, cx = 5.0 / 6 * q;
     double Sxx = 3 * q * q * q * q * h - V * cx * cx, Sxy = 1.75 * q * q * q * q * h - V * cx * cx;
     double Szz = V * h * h / 12;
     s->volume = V;
-    s->centroid[0] = o[0] + cx; s->centroid[1] = o[1] + cx; s->centroid[2] = o[2] + h / 2;
-    double I[9] = {Sxx + Szz, -Sxy, 0, -Sxy, Sxx + Szz, 0, 0, 0, 2 * Sxx};
+    s->centroid[0] = o[0] + cx;
+    s->centroid[1] = o[1] + cx;
+    s->centroid[2] = o[2] + h / 2;
+    double I[9] = { Sxx + Szz, -Sxy, 0, -Sxy, Sxx + Szz, 0, 0, 0, 2 * Sxx };
     memcpy(s->inertia, I, sizeof I);
 }
 
@@ -95,11 +110,13 @@ static void write_obj(const char *path, const solid *s)
     FILE *f = fopen(path, "w");
     assert_non_null(f);
     fprintf(f, "# test solid\no solid\n");
-    for (int i = 0; i < s->nv; i++) fprintf(f, "v %.17g %.17g %.17g\nvn 0 0 1\n", s->v[i][0], s->v[i][1], s->v[i][2]);
+    for (int i = 0; i < s->nv; i++)
+        fprintf(f, "v %.17g %.17g %.17g\nvn 0 0 1\n", s->v[i][0], s->v[i][1], s->v[i][2]);
     fprintf(f, "vt 0 0\n");
     for (int fc = 0, at = 0; fc < s->nf; at += s->len[fc++]) {
         fputc('f', f);
-        for (int k = 0; k < s->len[fc]; k++) fprintf(f, fc % 2 ? " %d/1/%d" : " %d", s->idx[at + k] + 1, s->idx[at + k] + 1);
+        for (int k = 0; k < s->len[fc]; k++)
+            fprintf(f, fc % 2 ? " %d/1/%d" : " %d", s->idx[at + k] + 1, s->idx[at + k] + 1);
         fputc('\n', f);
     }
     fclose(f);
@@ -118,36 +135,48 @@ static void put(FILE *f, const void *x, int n, int big)
  * extra uchar property and an extra element; 2: big endian, float coordinates, int counts. */
 static void write_ply(const char *path, const solid *s, int format)
 {
-    static const char *fmt[] = {"ascii", "binary_little_endian", "binary_big_endian"};
+    static const char *fmt[] = { "ascii", "binary_little_endian", "binary_big_endian" };
     FILE *f = fopen(path, "wb");
     assert_non_null(f);
     fprintf(f, "ply\nformat %s 1.0\ncomment test solid\nelement vertex %d\n", fmt[format], s->nv);
     const char *t = format == 2 ? "float" : "double";
     fprintf(f, "property %s x\nproperty %s y\nproperty %s z\n", t, t, t);
     fprintf(f, format == 1 ? "property uchar red\n" : format == 0 ? "property float nx\n" : "");
-    fprintf(f, "element face %d\nproperty list %s int vertex_indices\n", s->nf, format == 2 ? "int" : "uchar");
+    fprintf(f, "element face %d\nproperty list %s int vertex_indices\n", s->nf,
+            format == 2 ? "int" : "uchar");
     if (format == 1) fprintf(f, "element material 1\nproperty list uchar float rgb\n");
     fprintf(f, "end_header\n");
     for (int i = 0; i < s->nv; i++) {
-        if (format == 0) { fprintf(f, "%.17g %.17g %.17g 0.5\n", s->v[i][0], s->v[i][1], s->v[i][2]); continue; }
+        if (format == 0) {
+            fprintf(f, "%.17g %.17g %.17g 0.5\n", s->v[i][0], s->v[i][1], s->v[i][2]);
+            continue;
+        }
         for (int k = 0; k < 3; k++) {
             float x32 = (float)s->v[i][k];
-            if (format == 1) put(f, &s->v[i][k], 8, 0); else put(f, &x32, 4, 1);
+            if (format == 1)
+                put(f, &s->v[i][k], 8, 0);
+            else
+                put(f, &x32, 4, 1);
         }
         if (format == 1) fputc(200, f);
     }
     for (int fc = 0, at = 0; fc < s->nf; at += s->len[fc++]) {
-        if (format == 0) fprintf(f, "%d", s->len[fc]);
-        else if (format == 1) fputc(s->len[fc], f);
-        else put(f, &s->len[fc], 4, 1);
+        if (format == 0)
+            fprintf(f, "%d", s->len[fc]);
+        else if (format == 1)
+            fputc(s->len[fc], f);
+        else
+            put(f, &s->len[fc], 4, 1);
         for (int k = 0; k < s->len[fc]; k++) {
-            if (format == 0) fprintf(f, " %d", s->idx[at + k]);
-            else put(f, &s->idx[at + k], 4, format == 2);
+            if (format == 0)
+                fprintf(f, " %d", s->idx[at + k]);
+            else
+                put(f, &s->idx[at + k], 4, format == 2);
         }
         if (format == 0) fputc('\n', f);
     }
     if (format == 1) {
-        float rgb[3] = {0.1f, 0.2f, 0.3f};
+        float rgb[3] = { 0.1f, 0.2f, 0.3f };
         fputc(3, f);
         for (int k = 0; k < 3; k++) put(f, &rgb[k], 4, 0);
     }
@@ -165,20 +194,27 @@ static void write_stl(const char *path, const solid *s, int binary)
         char header[80] = "solid but binary";
         fwrite(header, 1, 80, f);
         put(f, &nt, 4, 0);
-    } else fprintf(f, "solid test\n");
+    } else
+        fprintf(f, "solid test\n");
     for (int fc = 0, at = 0; fc < s->nf; at += s->len[fc++])
         for (int k = 1; k + 1 < s->len[fc]; k++) {
-            int tri[3] = {s->idx[at], s->idx[at + k], s->idx[at + k + 1]};
+            int tri[3] = { s->idx[at], s->idx[at + k], s->idx[at + k + 1] };
             if (binary) {
                 float zero = 0;
                 for (int i = 0; i < 3; i++) put(f, &zero, 4, 0);
                 for (int c = 0; c < 3; c++)
-                    for (int i = 0; i < 3; i++) { float x = (float)s->v[tri[c]][i]; put(f, &x, 4, 0); }
-                fputc(0, f); fputc(0, f);
+                    for (int i = 0; i < 3; i++) {
+                        float x = (float)s->v[tri[c]][i];
+                        put(f, &x, 4, 0);
+                    }
+                fputc(0, f);
+                fputc(0, f);
                 continue;
             }
             fprintf(f, "  facet normal 0 0 0\n    outer loop\n");
-            for (int c = 0; c < 3; c++) fprintf(f, "      vertex %.9g %.9g %.9g\n", s->v[tri[c]][0], s->v[tri[c]][1], s->v[tri[c]][2]);
+            for (int c = 0; c < 3; c++)
+                fprintf(f, "      vertex %.9g %.9g %.9g\n", s->v[tri[c]][0], s->v[tri[c]][1],
+                        s->v[tri[c]][2]);
             fprintf(f, "    endloop\n  endfacet\n");
         }
     if (!binary) fprintf(f, "endsolid test\n");
@@ -196,9 +232,11 @@ static void check_mass(const char *path, const solid *s, double tol)
     assert_int_equal(rd_poly_mass(&p, &m, &err), 0);
     double scale = fmax(fmax(s->inertia[0], s->inertia[4]), s->inertia[8]);
     double size = cbrt(s->volume);
-    if (fabs(m.volume - s->volume) > tol * s->volume) fail_msg("%s: volume %.17g, expected %.17g", path, m.volume, s->volume);
+    if (fabs(m.volume - s->volume) > tol * s->volume)
+        fail_msg("%s: volume %.17g, expected %.17g", path, m.volume, s->volume);
     for (int k = 0; k < 3; k++)
-        if (fabs(m.centroid[k] + off[k] - s->centroid[k]) > tol * size) fail_msg("%s: centroid[%d]", path, k);
+        if (fabs(m.centroid[k] + off[k] - s->centroid[k]) > tol * size)
+            fail_msg("%s: centroid[%d]", path, k);
     for (int i = 0; i < 9; i++)
         if (fabs(m.inertia[i] - s->inertia[i]) > tol * scale)
             fail_msg("%s: inertia[%d] %.17g, expected %.17g", path, i, m.inertia[i], s->inertia[i]);
@@ -208,13 +246,16 @@ static void check_mass(const char *path, const solid *s, double tol)
 static void check_all_formats(const solid *s, const char *stem)
 {
     char name[64];
-    static const char *ext[] = {".obj", "_a.ply", "_le.ply", "_be.ply", "_a.stl", "_b.stl"};
+    static const char *ext[] = { ".obj", "_a.ply", "_le.ply", "_be.ply", "_a.stl", "_b.stl" };
     for (int k = 0; k < 6; k++) {
         snprintf(name, sizeof name, "%s%s", stem, ext[k]);
         const char *path = tmp_path(name);
-        if (k == 0) write_obj(path, s);
-        else if (k <= 3) write_ply(path, s, k - 1);
-        else write_stl(path, s, k == 5);
+        if (k == 0)
+            write_obj(path, s);
+        else if (k <= 3)
+            write_ply(path, s, k - 1);
+        else
+            write_stl(path, s, k == 5);
         check_mass(path, s, 1e-12);
         remove(path);
     }
@@ -225,7 +266,7 @@ static void test_octahedron_all_formats(void **state)
 {
     (void)state;
     solid s;
-    octahedron(&s, (double[3]){1.5, -2.25, 3.0}, 0.5);
+    octahedron(&s, (double[3]){ 1.5, -2.25, 3.0 }, 0.5);
     check_all_formats(&s, "oct");
 }
 
@@ -233,7 +274,7 @@ static void test_l_prism_all_formats(void **state)
 {
     (void)state;
     solid s;
-    l_prism(&s, (double[3]){0.25, -0.75, 0.125}, 0.5, 0.75);
+    l_prism(&s, (double[3]){ 0.25, -0.75, 0.125 }, 0.5, 0.75);
     check_all_formats(&s, "ell");
 }
 
@@ -244,7 +285,7 @@ static void test_map_coordinates(void **state)
 {
     (void)state;
     solid s;
-    l_prism(&s, (double[3]){5e6 + 0.25, -3e6 - 0.75, 250.125}, 0.5, 0.75);
+    l_prism(&s, (double[3]){ 5e6 + 0.25, -3e6 - 0.75, 250.125 }, 0.5, 0.75);
     const char *path = tmp_path("map.obj");
     write_obj(path, &s);
     check_mass(path, &s, 1e-9);
@@ -266,11 +307,12 @@ static void test_obj_syntax(void **state)
     const char *path = tmp_path("syntax.obj");
     FILE *f = fopen(path, "w");
     fprintf(f, "# L prism\nmtllib x.mtl\nv 9 9 9\n");
-    static const double L[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    static const double L[6][2] = { { 0, 0 }, { 2, 0 }, { 2, 1 }, { 1, 1 }, { 1, 2 }, { 0, 2 } };
     for (int t = 0; t < 2; t++)
         for (int k = 0; k < 6; k++) fprintf(f, "v %g %g %d\n", L[k][0], L[k][1], t);
     fprintf(f, "vt 0.5 0.5\nvn 0 0 1\ns off\n\tf 2/1/1 7/1/1 6//1 5 4 3\nf -6 -5 -4 -3 -2 -1\n");
-    for (int k = 0; k < 6; k++) fprintf(f, "f %d %d %d %d\n", 2 + k, 2 + (k + 1) % 6, 8 + (k + 1) % 6, 8 + k);
+    for (int k = 0; k < 6; k++)
+        fprintf(f, "f %d %d %d %d\n", 2 + k, 2 + (k + 1) % 6, 8 + (k + 1) % 6, 8 + k);
     fclose(f);
     rd_poly p;
     rd_mass m;
@@ -306,50 +348,74 @@ static void expect_text_error(const char *name, const char *text, const char *wa
     expect_error(name, text, strlen(text), want);
 }
 
-static const char *cube_obj_v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n";
+static const char *cube_obj_v =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n";
 
 static void test_obj_errors(void **state)
 {
     (void)state;
     char buf[512];
     snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 900\n", cube_obj_v);
-    expect_text_error("bad.obj", buf, "bad.obj:10: face 2 uses vertex 900 but the file has 8 vertices");
-    snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\n", cube_obj_v);
-    expect_text_error("open.obj", buf, "open.obj:9: open mesh: edge (2, 4) belongs to 1 face (first: face 1)");
-    snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 5\n", cube_obj_v);
+    expect_text_error("bad.obj", buf,
+                      "bad.obj:10: face 2 uses vertex 900 but the file has 8 vertices");
+    snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\n",
+             cube_obj_v);
+    expect_text_error("open.obj", buf,
+                      "open.obj:9: open mesh: edge (2, 4) belongs to 1 face (first: face 1)");
+    snprintf(buf, sizeof buf,
+             "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 5\n", cube_obj_v);
     expect_text_error("twisted.obj", buf, "twisted.obj:14: face 6 is not planar (vertex ");
-    snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 6 8 4\n", cube_obj_v);
-    expect_text_error("orient.obj", buf, "orient.obj:9: inconsistent orientation: faces 1 and 6 both run edge (2, 4)");
-    snprintf(buf, sizeof buf, "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\nf 1 1 2\n", cube_obj_v);
+    snprintf(buf, sizeof buf,
+             "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 6 8 4\n", cube_obj_v);
+    expect_text_error("orient.obj", buf,
+                      "orient.obj:9: inconsistent orientation: faces 1 and 6 both run edge (2, 4)");
+    snprintf(buf, sizeof buf,
+             "%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\nf 1 1 2\n",
+             cube_obj_v);
     expect_text_error("degen.obj", buf, "degen.obj:15: degenerate face 7 (zero area)");
-    snprintf(buf, sizeof buf, "%sf 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n", cube_obj_v);
-    expect_text_error("inside.obj", buf, "inside.obj: inside-out mesh (volume -1 m^3); flip the face orientation (its 6 faces are on lines 9-14)");
+    snprintf(buf, sizeof buf,
+             "%sf 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n", cube_obj_v);
+    expect_text_error(
+        "inside.obj", buf,
+        "inside.obj: inside-out mesh (volume -1 m^3); flip the face orientation (its 6 faces are on lines 9-14)");
     /* issue 17: a NaN or overflowing coordinate was reported as "degenerate face 1 (zero area)" */
     snprintf(buf, sizeof buf, "v 0 0 0\nv 1 nan 0\n%sf 1 2 3\n", cube_obj_v);
-    expect_text_error("nan.obj", buf, "nan.obj:2: vertex 1: coordinate y = nan is not a finite number");
-    expect_text_error("inf.obj", "v 0 0 1e400\n", "inf.obj:1: vertex 0: coordinate z = inf is not a finite number");
-    expect_text_error("huge.obj", "v 1e300 0 0\n", "huge.obj:1: vertex 0: coordinate x = 1e+300 m is beyond the 1e9 m accepted");
+    expect_text_error("nan.obj", buf,
+                      "nan.obj:2: vertex 1: coordinate y = nan is not a finite number");
+    expect_text_error("inf.obj", "v 0 0 1e400\n",
+                      "inf.obj:1: vertex 0: coordinate z = inf is not a finite number");
+    expect_text_error("huge.obj", "v 1e300 0 0\n",
+                      "huge.obj:1: vertex 0: coordinate x = 1e+300 m is beyond the 1e9 m accepted");
     /* a flat (zero-volume) closed surface: two triangles back to back */
-    expect_text_error("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 1 3 2\nf 1 2 4\nf 1 4 2\n",
+    expect_text_error("flat.obj",
+                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 1 3 2\nf 1 2 4\nf 1 4 2\n",
                       "flat.obj:");
     expect_text_error("short.obj", "v 1 2\n", "short.obj:1: expected 3 coordinates after 'v'");
     /* a coordinate with a junk suffix was read as its numeric prefix (1.5.5 as 1.5, then "face 2
        is not planar"), or as hexadecimal (0x1) */
-    expect_text_error("suffix.obj", "v 0 0 0\nv 1 1 1x\n", "suffix.obj:2: bad coordinate '1x' after 'v'");
+    expect_text_error("suffix.obj", "v 0 0 0\nv 1 1 1x\n",
+                      "suffix.obj:2: bad coordinate '1x' after 'v'");
     expect_text_error("hex.obj", "v 1 1 0x1\n", "hex.obj:1: bad coordinate '0x1' after 'v'");
     snprintf(buf, sizeof buf, "%sv 1 1 1.5.5\nf 1 3 4 2\n", cube_obj_v);
     expect_text_error("dots.obj", buf, "dots.obj:9: bad coordinate '1.5.5' after 'v'");
-    expect_text_error("suffix.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 1x\n",
+    expect_text_error("suffix.stl",
+                      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 1x\n",
                       "suffix.stl:5: bad coordinate '1x' after 'vertex'");
-    expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "two.obj:3: face 1 has 2 vertices (at least 3 needed)");
+    expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n",
+                      "two.obj:3: face 1 has 2 vertices (at least 3 needed)");
     /* two closed cubes in one file (here the same cube twice, each with its own vertices): their
        volumes and masses were summed into one block (2 m^3 for a 1 m cube) */
     char twice[1024];
-    snprintf(twice, sizeof twice, "%s%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n"
-             "f 9 11 12 10\nf 13 14 16 15\nf 9 10 14 13\nf 11 15 16 12\nf 9 13 15 11\nf 10 12 16 14\n",
-             cube_obj_v, cube_obj_v);
-    expect_text_error("shells.obj", twice, "shells.obj:23: the mesh holds 2 separate closed surfaces (face 7 starts the second)");
-    expect_text_error("zero.obj", "v 0 0 0\nf 0 1 1\n", "zero.obj:2: face 1 uses vertex 0 but the file has 1 vertices");
+    snprintf(
+        twice, sizeof twice,
+        "%s%sf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n"
+        "f 9 11 12 10\nf 13 14 16 15\nf 9 10 14 13\nf 11 15 16 12\nf 9 13 15 11\nf 10 12 16 14\n",
+        cube_obj_v, cube_obj_v);
+    expect_text_error(
+        "shells.obj", twice,
+        "shells.obj:23: the mesh holds 2 separate closed surfaces (face 7 starts the second)");
+    expect_text_error("zero.obj", "v 0 0 0\nf 0 1 1\n",
+                      "zero.obj:2: face 1 uses vertex 0 but the file has 1 vertices");
     expect_text_error("empty.obj", "# nothing\n", "empty.obj: empty mesh (0 vertices, 0 faces)");
     expect_error("missing.obj", NULL, 0, "missing.obj: cannot open: No such file or directory");
     /* a folder, device or pipe is refused before it is opened (/dev/zero never ends, a pipe
@@ -358,9 +424,11 @@ static void test_obj_errors(void **state)
     rd_poly dp;
     rd_error de;
     assert_int_equal(rd_mesh_read(&dp, tmp_path("dir.obj"), NULL, &de), -1);
-    if (!strstr(de.msg, "dir.obj: not a regular file (a device, folder or pipe)")) fail_msg("got '%s'", de.msg);
+    if (!strstr(de.msg, "dir.obj: not a regular file (a device, folder or pipe)"))
+        fail_msg("got '%s'", de.msg);
     rmdir(tmp_path("dir.obj"));
-    expect_text_error("rock.xyz", "", "rock.xyz: unknown mesh format 'xyz' (expected .obj, .ply or .stl)");
+    expect_text_error("rock.xyz", "",
+                      "rock.xyz: unknown mesh format 'xyz' (expected .obj, .ply or .stl)");
 }
 
 /* Read a whole file written by a writer above. */
@@ -377,31 +445,42 @@ static void test_ply_stl_errors(void **state)
     (void)state;
     static char buf[4096];
     solid s;
-    octahedron(&s, (double[3]){0, 0, 0}, 0.5);
+    octahedron(&s, (double[3]){ 0, 0, 0 }, 0.5);
     write_ply(tmp_path("t.ply"), &s, 1);
     size_t n = slurp(tmp_path("t.ply"), buf, sizeof buf);
     expect_error("trunc.ply", buf, n - 20, "trunc.ply: truncated binary file (face 7 of 8)");
     write_stl(tmp_path("t.stl"), &s, 1);
     n = slurp(tmp_path("t.stl"), buf, sizeof buf);
     assert_int_equal(n, 84 + 8 * 50);
-    expect_error("trunc.stl", buf, n - 7, "trunc.stl: truncated binary STL: the header says 8 triangles (484 bytes) but the file has 477 bytes");
-    expect_error("tiny.stl", buf, 50, "tiny.stl: truncated binary STL (50 bytes; the header alone has 84)");
+    expect_error(
+        "trunc.stl", buf, n - 7,
+        "trunc.stl: truncated binary STL: the header says 8 triangles (484 bytes) but the file has 477 bytes");
+    expect_error("tiny.stl", buf, 50,
+                 "tiny.stl: truncated binary STL (50 bytes; the header alone has 84)");
     remove(tmp_path("t.ply"));
     remove(tmp_path("t.stl"));
     /* inside-out: every face reversed */
-    for (int f = 0; f < s.nf; f++) { int t = s.idx[3 * f + 1]; s.idx[3 * f + 1] = s.idx[3 * f + 2]; s.idx[3 * f + 2] = t; }
+    for (int f = 0; f < s.nf; f++) {
+        int t = s.idx[3 * f + 1];
+        s.idx[3 * f + 1] = s.idx[3 * f + 2];
+        s.idx[3 * f + 2] = t;
+    }
     write_ply(tmp_path("inout.ply"), &s, 0);
-    expect_error("inout.ply", NULL, 0, "inout.ply: inside-out mesh (volume -0.167 m^3); flip the face orientation");
+    expect_error("inout.ply", NULL, 0,
+                 "inout.ply: inside-out mesh (volume -0.167 m^3); flip the face orientation");
     /* two cubes sharing an edge, merged by coordinates: the edge has 4 faces */
     FILE *f = fopen(tmp_path("nm.stl"), "w");
-    static const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
+                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
     fprintf(f, "solid nm\n");
     for (int c = 0; c < 2; c++)
         for (int fc = 0; fc < 6; fc++)
             for (int t = 1; t <= 2; t++) {
                 fprintf(f, "facet normal 0 0 0\nouter loop\n");
-                int tri[3] = {q[fc][0], q[fc][t], q[fc][t + 1]};
-                for (int k = 0; k < 3; k++) fprintf(f, "vertex %d %d %d\n", (tri[k] & 1) + c, (tri[k] >> 1 & 1) + c, tri[k] >> 2);
+                int tri[3] = { q[fc][0], q[fc][t], q[fc][t + 1] };
+                for (int k = 0; k < 3; k++)
+                    fprintf(f, "vertex %d %d %d\n", (tri[k] & 1) + c, (tri[k] >> 1 & 1) + c,
+                            tri[k] >> 2);
                 fprintf(f, "endloop\nendfacet\n");
             }
     fprintf(f, "endsolid nm\n");
@@ -409,62 +488,83 @@ static void test_ply_stl_errors(void **state)
     expect_error("nm.stl", NULL, 0, "nm.stl:57: non-manifold mesh: edge (");
     /* issue 17: a float32 STL at map coordinates (y = 4.2e6 m: float32 spacing 0.5 m) was
        refused as "degenerate face 0 (zero area)"; the message now names the precision */
-    octahedron(&s, (double[3]){5e5, 4.2e6, 100}, 0.5);
+    octahedron(&s, (double[3]){ 5e5, 4.2e6, 100 }, 0.5);
     write_stl(tmp_path("utm.stl"), &s, 1);
     expect_error("utm.stl", NULL, 0, "float32 coordinates up to 4.2e+06 m are resolved to 0.5 m");
     remove(tmp_path("utm.stl"));
     /* a 400 m rock there (0.5 m is 0.14 % of its 346 m radius: more than the 0.1 % contact
        band, issue 47; it was 0.07 % of its 693 m diagonal and accepted) */
-    octahedron(&s, (double[3]){5e5, 4.2e6, 100}, 200);
+    octahedron(&s, (double[3]){ 5e5, 4.2e6, 100 }, 200);
     write_stl(tmp_path("utm_big.stl"), &s, 1);
     expect_error("utm_big.stl", NULL, 0, "more than the contact band");
     remove(tmp_path("utm_big.stl"));
     /* the same rock at 1 km from its origin: float32 resolves 6e-5 m, 0.006 % of its size */
-    octahedron(&s, (double[3]){1000, 0, 0}, 0.5);
+    octahedron(&s, (double[3]){ 1000, 0, 0 }, 0.5);
     write_stl(tmp_path("local.stl"), &s, 1);
     rd_poly p;
     rd_error e;
     assert_int_equal(rd_mesh_read(&p, tmp_path("local.stl"), NULL, &e), 0);
     rd_poly_free(&p);
     remove(tmp_path("local.stl"));
-    expect_text_error("cut.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n",
+    expect_text_error("cut.stl",
+                      "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n",
                       "cut.stl:6: truncated ASCII STL (facet without endfacet)");
-    expect_text_error("quad.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
-                      "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n", "quad.stl:9: facet 0 has 4 vertices (3 expected)");
-    expect_text_error("fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n", "fmt.ply:2: unknown PLY format 'binary_middle_endian'");
-    expect_text_error("noz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                      "element face 0\nproperty list uchar int vertex_indices\nend_header\n0 0\n", "noz.ply: PLY vertex element lacks x, y or z");
-    expect_text_error("short.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                      "property float z\nend_header\n0 0 0\n1 0 0\n", "short.ply:10: vertex 2 of 3 has fewer values than the header's properties (file ends)");
+    expect_text_error(
+        "quad.stl",
+        "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+        "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n",
+        "quad.stl:9: facet 0 has 4 vertices (3 expected)");
+    expect_text_error("fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n",
+                      "fmt.ply:2: unknown PLY format 'binary_middle_endian'");
+    expect_text_error(
+        "noz.ply",
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "element face 0\nproperty list uchar int vertex_indices\nend_header\n0 0\n",
+        "noz.ply: PLY vertex element lacks x, y or z");
+    expect_text_error(
+        "short.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nend_header\n0 0 0\n1 0 0\n",
+        "short.ply:10: vertex 2 of 3 has fewer values than the header's properties (file ends)");
     /* issue 17: one vertex line missing used to read the face line as a vertex and then
        report "face 0 has 1 vertices" */
-    expect_text_error("few.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
-                      "few.ply:13: vertex 3 of 4 has more values than the header's 3 properties (do the element counts match the data?)");
+    expect_text_error(
+        "few.ply",
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+        "few.ply:13: vertex 3 of 4 has more values than the header's 3 properties (do the element counts match the data?)");
     /* fuzzing found: a list count of 1e300 was converted to long (undefined behaviour) */
-    expect_text_error("list.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                      "property float z\nproperty list uchar int extra\nend_header\n0 0 0 1e300\n",
-                      "list.ply: vertex 0: list 'extra' has 1e+300 entries (0 to 1000000 allowed)");
-    expect_text_error("idx.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
-                      "idx.ply: face 0 uses vertex 3 but the file has 3 vertices");
+    expect_text_error(
+        "list.ply",
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nproperty list uchar int extra\nend_header\n0 0 0 1e300\n",
+        "list.ply: vertex 0: list 'extra' has 1e+300 entries (0 to 1000000 allowed)");
+    expect_text_error(
+        "idx.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+        "idx.ply: face 0 uses vertex 3 but the file has 3 vertices");
     expect_text_error("magic.ply", "solid\n", "magic.ply:1: not a PLY file");
     /* an ASCII PLY number must be the whole token, as OBJ's and STL's are (9617d77): '1.5.5 0'
        was read as the two values 1.5 and .5, '1-2 0' as 1 and -2, '0x1' as hexadecimal 1, and
        '1.0abc' and '2x' were refused without the token ("not a number", "more values") */
-    static const char *tet_ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                                 "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    static const char *tet_ply =
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
     static const char *tet_faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-    static const struct { const char *name, *v1, *face0, *want; } junk[] = {
-        {"dots.ply", "1.5.5 0", "3 0 2 1", "dots.ply:11: bad number '1.5.5' in vertex 1 of 4"},
-        {"minus.ply", "1-2 0", "3 0 2 1", "minus.ply:11: bad number '1-2' in vertex 1 of 4"},
-        {"hex.ply", "0x1 0 0", "3 0 2 1", "hex.ply:11: bad number '0x1' in vertex 1 of 4"},
-        {"suffix.ply", "1.0abc 0 0", "3 0 2 1", "suffix.ply:11: bad number '1.0abc' in vertex 1 of 4"},
-        {"index.ply", "1 0 0", "3 0 2 1x", "index.ply:14: bad number '1x' in face 0 of 4"},
+    static const struct {
+        const char *name, *v1, *face0, *want;
+    } junk[] = {
+        { "dots.ply", "1.5.5 0", "3 0 2 1", "dots.ply:11: bad number '1.5.5' in vertex 1 of 4" },
+        { "minus.ply", "1-2 0", "3 0 2 1", "minus.ply:11: bad number '1-2' in vertex 1 of 4" },
+        { "hex.ply", "0x1 0 0", "3 0 2 1", "hex.ply:11: bad number '0x1' in vertex 1 of 4" },
+        { "suffix.ply", "1.0abc 0 0", "3 0 2 1",
+          "suffix.ply:11: bad number '1.0abc' in vertex 1 of 4" },
+        { "index.ply", "1 0 0", "3 0 2 1x", "index.ply:14: bad number '1x' in face 0 of 4" },
     };
     for (size_t k = 0; k < sizeof junk / sizeof junk[0]; k++) {
-        snprintf(buf, sizeof buf, "%s0 0 0\n%s\n0 1 0\n0 0 1\n%s\n%s", tet_ply, junk[k].v1, junk[k].face0,
-                 tet_faces + strlen("3 0 2 1\n"));
+        snprintf(buf, sizeof buf, "%s0 0 0\n%s\n0 1 0\n0 0 1\n%s\n%s", tet_ply, junk[k].v1,
+                 junk[k].face0, tet_faces + strlen("3 0 2 1\n"));
         expect_text_error(junk[k].name, buf, junk[k].want);
     }
 }
@@ -478,10 +578,11 @@ static void test_pbr_generator(void **state)
     (void)state;
     static char a[1 << 20], b[1 << 20];
     char cmd[512];
-    const char *seed[3] = {"1", "1", "2"}, *name[3] = {"pbr1.obj", "pbr1b.obj", "pbr2.obj"};
+    const char *seed[3] = { "1", "1", "2" }, *name[3] = { "pbr1.obj", "pbr1b.obj", "pbr2.obj" };
     size_t n[3];
     for (int k = 0; k < 3; k++) {
-        snprintf(cmd, sizeof cmd, "/usr/bin/python3 tools/make_pbr.py --seed %s -o %s > /dev/null", seed[k], tmp_path(name[k]));
+        snprintf(cmd, sizeof cmd, "/usr/bin/python3 tools/make_pbr.py --seed %s -o %s > /dev/null",
+                 seed[k], tmp_path(name[k]));
         assert_int_equal(system(cmd), 0);
         n[k] = slurp(tmp_path(name[k]), k == 2 ? b : a, sizeof a);
         assert_true(n[k] < sizeof a);
@@ -493,16 +594,21 @@ static void test_pbr_generator(void **state)
     rd_poly p;
     rd_mass m;
     rd_error err;
-    double off[3], lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9}, target[3] = {0.30, 0.64, 0.80};
+    double off[3], lo[3] = { 1e9, 1e9, 1e9 }, hi[3] = { -1e9, -1e9, -1e9 },
+                   target[3] = { 0.30, 0.64, 0.80 };
     if (rd_mesh_read(&p, tmp_path("pbr1.obj"), off, &err)) fail_msg("%s", err.msg);
     assert_int_equal(rd_poly_mass(&p, &m, &err), 0);
     assert_true(fabs(m.volume * 2750 - 354) < 0.10 * 354);
     for (int i = 0; i < p.nv; i++)
-        for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], p.v[i][k]); hi[k] = fmax(hi[k], p.v[i][k]); }
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], p.v[i][k]);
+            hi[k] = fmax(hi[k], p.v[i][k]);
+        }
     for (int k = 0; k < 3; k++) assert_true(fabs(hi[k] - lo[k] - target[k]) < 0.15 * target[k]);
     double base = 0;
     for (int f = 0; f < p.nf; f++)
-        if (p.fn[f][2] < -1 + 1e-12 && fabs(p.fd[f] + lo[2]) < 1e-9) base += rd_poly_face_area(&p, f);
+        if (p.fn[f][2] < -1 + 1e-12 && fabs(p.fd[f] + lo[2]) < 1e-9)
+            base += rd_poly_face_area(&p, f);
     assert_true(base > 0.01 && base < 0.5 * (hi[0] - lo[0]) * (hi[1] - lo[1]));
     rd_poly_free(&p);
     for (int k = 0; k < 3; k++) remove(tmp_path(name[k]));

@@ -57,7 +57,8 @@ static void total_momenta(const rd_sim *s, double p[3], double J[3])
 
 static int momenta_sample(void *user, rd_sim *sim, const rd_sample *smp, rd_error *err)
 {
-    (void)smp; (void)err;
+    (void)smp;
+    (void)err;
     momenta *mo = user;
     double p[3], J[3];
     total_momenta(sim, p, J);
@@ -92,19 +93,26 @@ static void test_free_strike_keeps_momentum(void **state)
     assert_int_equal(rd_scenario_set(&sc, out, &err), 0);
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) fail_msg("%s", err.msg);
-    momenta mo = {.n = 0};
-    rd_observer obs = {.user = &mo, .sample = momenta_sample};
+    momenta mo = { .n = 0 };
+    rd_observer obs = { .user = &mo, .sample = momenta_sample };
     assert_int_equal(rd_sim_add_observer(sim, &obs, &err), 0);
     assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
     double e[7];
     rd_sim_energy(sim, e);
     double pscale = 0, jscale = 0;
-    for (int k = 0; k < 3; k++) { pscale = fmax(pscale, fabs(mo.p0[k])); jscale = fmax(jscale, fabs(mo.J0[k])); }
-    print_message("free strike: %d samples, friction %.4g J, damping %.4g J; |dp| %.3g of %.3g kg m/s, "
-                  "|dJ| %.3g of %.3g kg m^2/s\n", mo.n, e[3], e[4], mo.dp, pscale, mo.dJ, jscale);
+    for (int k = 0; k < 3; k++) {
+        pscale = fmax(pscale, fabs(mo.p0[k]));
+        jscale = fmax(jscale, fabs(mo.J0[k]));
+    }
+    print_message(
+        "free strike: %d samples, friction %.4g J, damping %.4g J; |dp| %.3g of %.3g kg m/s, "
+        "|dJ| %.3g of %.3g kg m^2/s\n",
+        mo.n, e[3], e[4], mo.dp, pscale, mo.dJ, jscale);
     assert_true(e[3] > 1e-3 && e[4] > 1e-3); /* they met: slid, and lost energy at the impact */
-    rd_check_abs("free strike: linear momentum change / its scale", mo.dp / pscale, 0.0, ROUNDOFF, RD_STRICT);
-    rd_check_abs("free strike: angular momentum change / its scale", mo.dJ / jscale, 0.0, ROUNDOFF, RD_STRICT);
+    rd_check_abs("free strike: linear momentum change / its scale", mo.dp / pscale, 0.0, ROUNDOFF,
+                 RD_STRICT);
+    rd_check_abs("free strike: angular momentum change / its scale", mo.dJ / jscale, 0.0, ROUNDOFF,
+                 RD_STRICT);
     rd_sim_free(sim);
     rd_scenario_free(&sc);
 }

@@ -48,10 +48,10 @@ static double pulse_v(double t, void *ctx)
 static double quad(double (*f)(double, void *), rd_pulse_def *p, double lo, double hi, double scale)
 {
     gsl_integration_workspace *w = gsl_integration_workspace_alloc(QUAD_LIMIT);
-    gsl_function fn = {f, p};
+    gsl_function fn = { f, p };
     double result, abserr;
-    int status = gsl_integration_qag(&fn, lo, hi, 1e-13 * scale, 1e-13, QUAD_LIMIT, GSL_INTEG_GAUSS61, w, &result,
-                                     &abserr);
+    int status = gsl_integration_qag(&fn, lo, hi, 1e-13 * scale, 1e-13, QUAD_LIMIT,
+                                     GSL_INTEG_GAUSS61, w, &result, &abserr);
     gsl_integration_workspace_free(w);
     assert_int_equal(status, 0);
     return result;
@@ -62,7 +62,7 @@ static double quad(double (*f)(double, void *), rd_pulse_def *p, double lo, doub
 static double integrate(double (*f)(double, void *), rd_pulse_def *p, double t, double scale)
 {
     double end = rd_pulse_end(p);
-    double breaks[5] = {0.0, p->start, 0.5 * (p->start + end), end, INFINITY};
+    double breaks[5] = { 0.0, p->start, 0.5 * (p->start + end), end, INFINITY };
     double sum = 0.0;
     for (int k = 0; k < 4 && breaks[k] < t; k++)
         sum += quad(f, p, breaks[k], fmin(breaks[k + 1], t), scale);
@@ -185,8 +185,8 @@ static void test_harmonic_cycles(void **state)
 static void test_zero_outside(void **state)
 {
     (void)state;
-    rd_pulse_kind kinds[] = {RD_PULSE_ONE_SINE, RD_PULSE_ONE_COSINE, RD_PULSE_RECTANGULAR, RD_PULSE_TRIANGLE,
-                             RD_PULSE_HARMONIC, RD_PULSE_NONE};
+    rd_pulse_kind kinds[] = { RD_PULSE_ONE_SINE, RD_PULSE_ONE_COSINE, RD_PULSE_RECTANGULAR,
+                              RD_PULSE_TRIANGLE, RD_PULSE_HARMONIC,   RD_PULSE_NONE };
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
         rd_pulse_def p = pulse(kinds[k]);
         double a, v, d;
@@ -240,18 +240,22 @@ static void test_motion_direction(void **state)
     memset(&none, 0, sizeof none);
     assert_true(rd_motion_end(&none) == 0.0);
     rd_motion_eval(&none, 1.0, acc, vel, disp);
-    for (int i = 0; i < 3; i++)
-        assert_true(acc[i] == 0.0 && vel[i] == 0.0 && disp[i] == 0.0);
+    for (int i = 0; i < 3; i++) assert_true(acc[i] == 0.0 && vel[i] == 0.0 && disp[i] == 0.0);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_integrals_one_sine),      cmocka_unit_test(test_integrals_one_cosine),
-        cmocka_unit_test(test_integrals_rectangular),   cmocka_unit_test(test_integrals_triangle),
-        cmocka_unit_test(test_integrals_harmonic),      cmocka_unit_test(test_key_instants_sine_cosine),
-        cmocka_unit_test(test_key_instants_rect_triangle), cmocka_unit_test(test_harmonic_cycles),
-        cmocka_unit_test(test_zero_outside),            cmocka_unit_test(test_pulse_end),
+        cmocka_unit_test(test_integrals_one_sine),
+        cmocka_unit_test(test_integrals_one_cosine),
+        cmocka_unit_test(test_integrals_rectangular),
+        cmocka_unit_test(test_integrals_triangle),
+        cmocka_unit_test(test_integrals_harmonic),
+        cmocka_unit_test(test_key_instants_sine_cosine),
+        cmocka_unit_test(test_key_instants_rect_triangle),
+        cmocka_unit_test(test_harmonic_cycles),
+        cmocka_unit_test(test_zero_outside),
+        cmocka_unit_test(test_pulse_end),
         cmocka_unit_test(test_motion_direction),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

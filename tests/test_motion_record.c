@@ -20,11 +20,11 @@
 #include "rockdem/motion.h"
 #include "rockdem/rockdem.h"
 
-static char g_dir[64];            /* the mkdtemp() directory */
-static char g_name[RD_PATH_MAX];  /* "<dir>/s.dat", the scenario's name in messages */
+static char g_dir[64];           /* the mkdtemp() directory */
+static char g_name[RD_PATH_MAX]; /* "<dir>/s.dat", the scenario's name in messages */
 
 /* at2 values in g; dt = 0.01 s */
-static const double at2_g[8] = {0.0, 0.1, -0.2, 0.05, 0.3, -0.1, 0.02, 0.0};
+static const double at2_g[8] = { 0.0, 0.1, -0.2, 0.05, 0.3, -0.1, 0.02, 0.0 };
 
 static void write_file(const char *name, const char *text)
 {
@@ -53,7 +53,7 @@ static void write_fema(void)
             t[i] = 0.01 * i;
             a[i] = (c ? -2.0 : 1.0) * at2_g[i];
         }
-        const char *what[2] = {"Time", "RecordedAcceleration"};
+        const char *what[2] = { "Time", "RecordedAcceleration" };
         for (int k = 0; k < 2; k++) {
             snprintf(name, sizeof name, "/_timeseries/7/%c/%s", c ? 'b' : 'a', what[k]);
             hid_t d = H5Dcreate2(f, name, H5T_IEEE_F64LE, sp, lcpl, H5P_DEFAULT, H5P_DEFAULT);
@@ -70,13 +70,13 @@ static int setup_dir(void **state)
 {
     (void)state;
     snprintf(g_dir, sizeof g_dir, "/tmp/rockdem_motion_record_XXXXXX");
-    if (!mkdtemp(g_dir))
-        return -1;
+    if (!mkdtemp(g_dir)) return -1;
     snprintf(g_name, sizeof g_name, "%s/s.dat", g_dir);
     char text[1024] = "PEER NGA STRONG MOTION DATABASE RECORD\nHand-made test record\n"
                       "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    8, DT=   .0100 SEC\n";
     for (int i = 0; i < 8; i++)
-        snprintf(text + strlen(text), sizeof text - strlen(text), "%.3f%s", at2_g[i], i % 4 == 3 ? "\n" : "  ");
+        snprintf(text + strlen(text), sizeof text - strlen(text), "%.3f%s", at2_g[i],
+                 i % 4 == 3 ? "\n" : "  ");
     write_file("rec.AT2", text);
     write_file("rec2.csv", "time,acc\n0,0\n0.01,1\n0.02,-1\n0.03,0.5\n0.04,0\n");
     write_fema();
@@ -91,10 +91,9 @@ static int remove_dir(void **state)
     return system(cmd) == 0 ? 0 : -1;
 }
 
-static const char *scene =
-    "block create brick size 1 1 0.2 position 0 0 -0.1 fixed name ped\n"
-    "block create brick size 0.3 0.3 0.6 position 0 0 0.3 name b\n"
-    "model solve time 1\n";
+static const char *scene = "block create brick size 1 1 0.2 position 0 0 -0.1 fixed name ped\n"
+                           "block create brick size 0.3 0.3 0.6 position 0 0 0.3 name b\n"
+                           "model solve time 1\n";
 
 /* Parses scene + `motion` (the ground-motion lines); asserts success. */
 static void parse_ok(rd_scenario *sc, const char *motion)
@@ -102,8 +101,7 @@ static void parse_ok(rd_scenario *sc, const char *motion)
     char text[2048];
     rd_error err;
     snprintf(text, sizeof text, "%s%s", scene, motion);
-    if (rd_scenario_parse(sc, g_name, text, &err))
-        fail_msg("parse failed: %s", err.msg);
+    if (rd_scenario_parse(sc, g_name, text, &err)) fail_msg("parse failed: %s", err.msg);
 }
 
 /* Parsing must fail with "<name>:line:col: ..." containing `what`. */
@@ -201,8 +199,7 @@ static double peak_acc(const rd_scenario *sc, int c)
 {
     const rd_record *r = sc->motion.record[c].applied;
     double p = 0;
-    for (size_t i = 0; i < r->npts; i++)
-        p = fmax(p, fabs(r->acc[i]));
+    for (size_t i = 0; i < r->npts; i++) p = fmax(p, fabs(r->acc[i]));
     return p;
 }
 
@@ -252,8 +249,7 @@ static void test_stochastic_baseline(void **state)
     parse_ok(&sc, "ground-motion stochastic seed 3 pga 0.3g duration 20\n");
     const rd_record *raw = sc.motion.record[RD_H1].raw, *r = sc.motion.record[RD_H1].applied;
     double pgv = 0;
-    for (size_t i = 0; i < r->npts; i++)
-        pgv = fmax(pgv, fabs(r->vel[i]));
+    for (size_t i = 0; i < r->npts; i++) pgv = fmax(pgv, fabs(r->vel[i]));
     assert_true(fabs(raw->vel[raw->npts - 1]) > 1e-4 * pgv);
     assert_double_equal(r->vel[r->npts - 1], 0.0, 1e-9 * pgv);
     double a[3], v[3], d[3];
@@ -276,13 +272,12 @@ static double run_end(const char *solve, double *motion_end)
              "block create brick size 1 1 0.2 position 0 0 -0.1 fixed name ped\n"
              "block create brick size 0.3 0.3 0.6 position 0 0 0.3 name b\n"
              "model damping viscous 0.3\n"
-             "ground-motion stochastic seed 1 pga 0.02g duration 0.6\n%s\noutput hdf5 '%s'\n", solve, out);
-    if (rd_scenario_parse(&sc, g_name, text, &err))
-        fail_msg("%s", err.msg);
+             "ground-motion stochastic seed 1 pga 0.02g duration 0.6\n%s\noutput hdf5 '%s'\n",
+             solve, out);
+    if (rd_scenario_parse(&sc, g_name, text, &err)) fail_msg("%s", err.msg);
     *motion_end = rd_motion_end(&sc.motion);
     rd_sim *sim = rd_sim_create(&sc, &err);
-    if (!sim)
-        fail_msg("%s", err.msg);
+    if (!sim) fail_msg("%s", err.msg);
     assert_int_equal(rd_sim_run(sim), RD_STATUS_DONE);
     rd_summary s;
     rd_sim_summary(sim, &s);
@@ -314,16 +309,18 @@ static void test_errors(void **state)
     parse_fails("ground-motion import 'rec.AT2' scale 2 scale-pga 0.3g\n", 4, 40,
                 "'scale-pga' cannot be combined with 'scale'");
     parse_fails("ground-motion import 'set.h5' record 99\n", 4, 38, "record id '99' not found");
-    parse_fails("ground-motion import 'set.h5' record 7 component h2\n", 4, 50, "expected a, b or v");
+    parse_fails("ground-motion import 'set.h5' record 7 component h2\n", 4, 50,
+                "expected a, b or v");
     parse_fails("ground-motion import 'set.h5'\n", 4, 15, "needs 'record <id>'");
     parse_fails("ground-motion import 'rec.AT2' baseline 9\n", 4, 41, "degree (2 to 8)");
     parse_fails("ground-motion import 'rec.AT2'\nground-motion import 'rec2.csv'\n", 5, 1,
                 "h1 record is already defined (line 4)");
-    parse_fails("ground-motion pulse one-sine amplitude 1 frequency 2\nground-motion import 'rec.AT2'\n",
-                5, 1, "horizontal pulse is already defined");
+    parse_fails(
+        "ground-motion pulse one-sine amplitude 1 frequency 2\nground-motion import 'rec.AT2'\n", 5,
+        1, "horizontal pulse is already defined");
     parse_fails("ground-motion import 'rec.AT2' direction 10\n"
-                "ground-motion import 'rec2.csv' component h2 direction 20\n", 5, 46,
-                "'direction' already given on line 4");
+                "ground-motion import 'rec2.csv' component h2 direction 20\n",
+                5, 46, "'direction' already given on line 4");
     parse_fails("ground-motion stochastic seed 1 pga 0.3g\n", 4, 15, "missing 'duration'");
     parse_fails("ground-motion stochastic seed 1.5 pga 0.3g duration 5\n", 4, 31, "whole number");
     parse_fails("model solve tail -1\n", 4, 18, "'tail' must be > 0");
@@ -339,7 +336,7 @@ static void write_fema_a(const char *name, const double *t, const double *acc, h
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
     H5Pset_create_intermediate_group(lcpl, 1);
     hid_t sp = H5Screate_simple(1, &n, NULL);
-    const char *what[2] = {"/_timeseries/1/a/Time", "/_timeseries/1/a/RecordedAcceleration"};
+    const char *what[2] = { "/_timeseries/1/a/Time", "/_timeseries/1/a/RecordedAcceleration" };
     for (int k = 0; k < 2; k++) {
         hid_t d = H5Dcreate2(f, what[k], H5T_IEEE_F64LE, sp, lcpl, H5P_DEFAULT, H5P_DEFAULT);
         H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, k ? acc : t);
@@ -357,14 +354,23 @@ static void test_fema_checks(void **state)
 {
     (void)state;
     enum { N = 8 };
-    static const struct { const char *name; int index; double t_step, t_bad, a_bad; const char *what; } cases[] = {
-        {"nan.h5", 3, 0.01, 0, NAN, "RecordedAcceleration: acceleration nan g at sample 3 is not a finite number"},
-        {"inf.h5", 3, 0.01, 0, INFINITY, "acceleration inf g at sample 3 is not a finite number"},
-        {"huge.h5", 5, 0.01, 0, 1e308, "acceleration 1e+308 g at sample 5 is outside the valid |acceleration| <= 1e+06"},
-        {"tnan.h5", 4, 0.01, NAN, 0, "/_timeseries/1/a/Time: time nan s at sample 4 is not a finite number"},
-        {"tiny.h5", -1, 1e-9, 0, 0, "/_timeseries/1/a/Time: time step 1e-09 s is outside [1e-06, 1] s"},
-        {"small.h5", -1, 5e-7, 0, 0, "time step 5e-07 s is outside [1e-06, 1] s"},
-        {"long.h5", -1, 100, 0, 0, "time step 100 s is outside [1e-06, 1] s"},
+    static const struct {
+        const char *name;
+        int index;
+        double t_step, t_bad, a_bad;
+        const char *what;
+    } cases[] = {
+        { "nan.h5", 3, 0.01, 0, NAN,
+          "RecordedAcceleration: acceleration nan g at sample 3 is not a finite number" },
+        { "inf.h5", 3, 0.01, 0, INFINITY, "acceleration inf g at sample 3 is not a finite number" },
+        { "huge.h5", 5, 0.01, 0, 1e308,
+          "acceleration 1e+308 g at sample 5 is outside the valid |acceleration| <= 1e+06" },
+        { "tnan.h5", 4, 0.01, NAN, 0,
+          "/_timeseries/1/a/Time: time nan s at sample 4 is not a finite number" },
+        { "tiny.h5", -1, 1e-9, 0, 0,
+          "/_timeseries/1/a/Time: time step 1e-09 s is outside [1e-06, 1] s" },
+        { "small.h5", -1, 5e-7, 0, 0, "time step 5e-07 s is outside [1e-06, 1] s" },
+        { "long.h5", -1, 100, 0, 0, "time step 100 s is outside [1e-06, 1] s" },
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         double t[N], a[N];

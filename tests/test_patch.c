@@ -32,7 +32,7 @@
 
 static rd_poly2 rect(double x0, double y0, double x1, double y1)
 {
-    rd_poly2 p = {4, {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
+    rd_poly2 p = { 4, { { x0, y0 }, { x1, y0 }, { x1, y1 }, { x0, y1 } } };
     return p;
 }
 
@@ -47,9 +47,12 @@ static void test_moments_rectangle(void **state)
     rd_check_rel("rectangle area (m^2)", m.a, w * h, ROUNDOFF, RD_STRICT);
     rd_check_rel("rectangle Sx (m^3)", m.sx, h * (x1 * x1 - x0 * x0) / 2, ROUNDOFF, RD_STRICT);
     rd_check_rel("rectangle Sy (m^3)", m.sy, w * (y1 * y1 - y0 * y0) / 2, ROUNDOFF, RD_STRICT);
-    rd_check_rel("rectangle Sxx (m^4)", m.sxx, h * (pow(x1, 3) - pow(x0, 3)) / 3, ROUNDOFF, RD_STRICT);
-    rd_check_rel("rectangle Syy (m^4)", m.syy, w * (pow(y1, 3) - pow(y0, 3)) / 3, ROUNDOFF, RD_STRICT);
-    rd_check_rel("rectangle Sxy (m^4)", m.sxy, (x1 * x1 - x0 * x0) * (y1 * y1 - y0 * y0) / 4, ROUNDOFF, RD_STRICT);
+    rd_check_rel("rectangle Sxx (m^4)", m.sxx, h * (pow(x1, 3) - pow(x0, 3)) / 3, ROUNDOFF,
+                 RD_STRICT);
+    rd_check_rel("rectangle Syy (m^4)", m.syy, w * (pow(y1, 3) - pow(y0, 3)) / 3, ROUNDOFF,
+                 RD_STRICT);
+    rd_check_rel("rectangle Sxy (m^4)", m.sxy, (x1 * x1 - x0 * x0) * (y1 * y1 - y0 * y0) / 4,
+                 ROUNDOFF, RD_STRICT);
 }
 
 /* d = d0 + gx x + gy y > 0 everywhere on [0, L] x [0, W]. */
@@ -67,8 +70,8 @@ static void test_load_affine_compressed(void **state)
     rd_check_rel("affine x-moment / KN (m^4)", ld.mx, mx, ROUNDOFF, RD_STRICT);
     rd_check_rel("affine y-moment / KN (m^4)", ld.my, my, ROUNDOFF, RD_STRICT);
     rd_check_rel("compressed area (m^2)", ld.area, L * W, ROUNDOFF, RD_STRICT);
-    rd_check_rel("polar moment about the centroid (m^4)", ld.polar, L * W * (L * L + W * W) / 12, ROUNDOFF,
-                 RD_STRICT);
+    rd_check_rel("polar moment about the centroid (m^4)", ld.polar, L * W * (L * L + W * W) / 12,
+                 ROUNDOFF, RD_STRICT);
 }
 
 /* A rocking block's base: d = delta - theta x on [0, L] x [0, W], compressed on [0, x*]. */
@@ -81,8 +84,10 @@ static void test_load_rocking_base(void **state)
     rd_patch_load_of(&p, delta, -theta, 0.0, &ld, NULL);
     rd_check_rel("rocking base: compressed area (m^2)", ld.area, W * xs, ROUNDOFF, RD_STRICT);
     rd_check_rel("rocking base: force / KN (m^3)", ld.f, W * delta * xs / 2, ROUNDOFF, RD_STRICT);
-    rd_check_rel("rocking base: x-moment / KN (m^4)", ld.mx, W * delta * xs * xs / 6, ROUNDOFF, RD_STRICT);
-    rd_check_rel("rocking base: energy integral (m^4)", ld.e2, W * delta * delta * xs / 3, ROUNDOFF, RD_STRICT);
+    rd_check_rel("rocking base: x-moment / KN (m^4)", ld.mx, W * delta * xs * xs / 6, ROUNDOFF,
+                 RD_STRICT);
+    rd_check_rel("rocking base: energy integral (m^4)", ld.e2, W * delta * delta * xs / 3, ROUNDOFF,
+                 RD_STRICT);
     rd_patch_load open;
     rd_patch_load_of(&p, -1e-6, -theta, 0.0, &open, NULL);
     assert_true(open.area == 0 && open.f == 0);
@@ -98,23 +103,23 @@ static void test_torsion_square(void **state)
     double want = a * a * a * (sqrt(2.0) + log(1 + sqrt(2.0))) / 6;
     rd_check_rel("square: integral of |r| (m^3)", ld.tors, want, ROUNDOFF, RD_STRICT);
     /* the mean lever, a (sqrt 2 + ln(1 + sqrt 2)) / 6 = 0.38260 a */
-    rd_check_rel("square: mean |r| / a", ld.tors / ld.area / a, (sqrt(2.0) + log(1 + sqrt(2.0))) / 6, ROUNDOFF,
-                 RD_STRICT);
+    rd_check_rel("square: mean |r| / a", ld.tors / ld.area / a,
+                 (sqrt(2.0) + log(1 + sqrt(2.0))) / 6, ROUNDOFF, RD_STRICT);
 }
 
 static void test_torsion_regular_polygon(void **state)
 {
     (void)state;
-    const int nsides[3] = {3, 12, 64};
+    const int nsides[3] = { 3, 12, 64 };
     for (int k = 0; k < 3; k++) {
         const int N = nsides[k];
         const double R = 0.7, b = M_PI / N, h = R * cos(b);
-        rd_poly2 p = {N, {{0}}};
+        rd_poly2 p = { N, { { 0 } } };
         for (int i = 0; i < N; i++) {
             p.p[i][0] = R * cos(2 * b * i);
             p.p[i][1] = R * sin(2 * b * i);
         }
-        const double c[2] = {0, 0};
+        const double c[2] = { 0, 0 };
         double got = rd_patch_torsion(&p, c, 1.0, 0.0, 0.0);
         double want = N * h * h * h * (tan(b) / cos(b) + log(1 / cos(b) + tan(b))) / 3;
         rd_check_rel("regular polygon: integral of |r| (m^3)", got, want, ROUNDOFF, RD_STRICT);
@@ -122,8 +127,8 @@ static void test_torsion_regular_polygon(void **state)
 }
 
 /* Midpoint sum of (d0 + gx x + gy y) |r - c| on n x n cells of the rectangle. */
-static double grid_torsion(double x0, double y0, double x1, double y1, int n, const double c[2], double d0,
-                           double gx, double gy)
+static double grid_torsion(double x0, double y0, double x1, double y1, int n, const double c[2],
+                           double d0, double gx, double gy)
 {
     double hx = (x1 - x0) / n, hy = (y1 - y0) / n, sum = 0;
     for (int i = 0; i < n; i++)
@@ -138,13 +143,14 @@ static void test_torsion_affine_grid(void **state)
 {
     (void)state;
     const double x0 = -0.2, y0 = -0.1, x1 = 0.3, y1 = 0.35, d0 = 1.0, gx = 0.8, gy = -1.1;
-    const double c[2] = {0.05, 0.02};
+    const double c[2] = { 0.05, 0.02 };
     rd_poly2 p = rect(x0, y0, x1, y1);
     double got = rd_patch_torsion(&p, c, d0, gx, gy);
     double coarse = grid_torsion(x0, y0, x1, y1, 500, c, d0, gx, gy);
     double fine = grid_torsion(x0, y0, x1, y1, 1000, c, d0, gx, gy);
     double bound = fabs(fine - coarse); /* second order: the finer sum's error is ~ a third of it */
-    rd_check_abs("affine pressure: integral of d |r - c| against the grid (m^4)", got, fine, bound, RD_STRICT);
+    rd_check_abs("affine pressure: integral of d |r - c| against the grid (m^4)", got, fine, bound,
+                 RD_STRICT);
 }
 
 /* A square face of side a as 1 quad, 2 and 200 triangles, each against the same reference face:
@@ -161,8 +167,8 @@ static void square_pieces(int pieces, double a, double d0, double gx, double gy,
         for (int i = 0; i < cells; i++)
             for (int j = 0; j < cells; j++) {
                 double xa = -a / 2 + i * hh, ya = -a / 2 + j * hh, xb = xa + hh, yb = ya + hh;
-                tri[n++] = (rd_poly2){3, {{xa, ya}, {xb, ya}, {xb, yb}}};
-                tri[n++] = (rd_poly2){3, {{xa, ya}, {xb, yb}, {xa, yb}}};
+                tri[n++] = (rd_poly2){ 3, { { xa, ya }, { xb, ya }, { xb, yb } } };
+                tri[n++] = (rd_poly2){ 3, { { xa, ya }, { xb, yb }, { xa, yb } } };
             }
     }
     rd_poly2 comp[200];
@@ -181,7 +187,7 @@ static void square_pieces(int pieces, double a, double d0, double gx, double gy,
         sx += ld.area * ld.cx;
         sy += ld.area * ld.cy;
     }
-    const double c[2] = {sx / area, sy / area};
+    const double c[2] = { sx / area, sy / area };
     for (int k = 0; k < n; k++)
         if (comp[k].n) out[6] += rd_patch_torsion(&comp[k], c, d0, gx, gy);
     /* the same over the pieces' union boundary (shared edges cancel) */
@@ -189,16 +195,20 @@ static void square_pieces(int pieces, double a, double d0, double gx, double gy,
     int nl = 0;
     for (int k = 0; k < n; k++)
         if (comp[k].n) live[nl++] = comp[k];
-    rd_patch_scratch sc = {0, NULL, NULL, NULL};
+    rd_patch_scratch sc = { 0, NULL, NULL, NULL };
     out[7] = rd_patch_torsion_set(live, nl, c, d0, gx, gy, &sc);
-    free(sc.slot); free(sc.count); free(sc.ends);
+    free(sc.slot);
+    free(sc.count);
+    free(sc.ends);
 }
 
 static void test_tessellation(void **state)
 {
     (void)state;
-    const char *what[8] = {"area", "force", "x-moment", "y-moment", "energy", "polar moment", "twisting lever",
-                           "twisting lever over the union's boundary"};
+    const char *what[8] = { "area",           "force",
+                            "x-moment",       "y-moment",
+                            "energy",         "polar moment",
+                            "twisting lever", "twisting lever over the union's boundary" };
     /* a rocking base, compressed over part of it (the zero-gap line crosses the triangles) */
     const double a = 0.5, d0 = 2e-5, gx = -1e-4, gy = 3e-5;
     double one[8], two[8], many[8];
@@ -209,8 +219,9 @@ static void test_tessellation(void **state)
     double one_u[8], many_u[8];
     square_pieces(1, a, 1e-5, 0.0, 0.0, one_u);
     square_pieces(200, a, 1e-5, 0.0, 0.0, many_u);
-    rd_check_rel("200 triangles vs the quad, uniform pressure, centre on their vertex: twisting lever", many_u[6],
-                 one_u[6], ROUNDOFF, RD_STRICT);
+    rd_check_rel(
+        "200 triangles vs the quad, uniform pressure, centre on their vertex: twisting lever",
+        many_u[6], one_u[6], ROUNDOFF, RD_STRICT);
     for (int k = 0; k < 8; k++) {
         char msg[96];
         snprintf(msg, sizeof msg, "2 triangles vs the quad: %s", what[k]);
@@ -226,11 +237,14 @@ static void test_faces_half_over(void **state)
 {
     (void)state;
     const double delta = 1e-4;
-    const double o[3] = {0.5, 0.5, -delta}, e1[3] = {0, 1, 0}, e2[3] = {1, 0, 0}, n[3] = {0, 0, -1};
+    const double o[3] = { 0.5, 0.5, -delta }, e1[3] = { 0, 1, 0 }, e2[3] = { 1, 0, 0 },
+                 n[3] = { 0, 0, -1 };
     /* S in its frame (x along e1 = y, y along e2 = x), counter-clockwise about n = e1 x e2 */
     rd_poly2 s = rect(-0.5, -0.5, 0.5, 0.5);
-    const double rv[4][3] = {{-5, -5, 0}, {0.5, -5, 0}, {0.5, 5, 0}, {-5, 5, 0}}; /* x <= 0.5 */
-    const double u[3] = {0, 0, 1};
+    const double rv[4][3] = {
+        { -5, -5, 0 }, { 0.5, -5, 0 }, { 0.5, 5, 0 }, { -5, 5, 0 }
+    }; /* x <= 0.5 */
+    const double u[3] = { 0, 0, 1 };
     rd_poly2 patch;
     double dep[3];
     assert_true(rd_patch_faces(o, e1, e2, n, &s, rv, 4, u, 0.0, &patch, dep) > 0);
@@ -240,7 +254,7 @@ static void test_faces_half_over(void **state)
     rd_check_rel("half over the edge: force / KN (m^3)", ld.f, 0.5 * delta, ROUNDOFF, RD_STRICT);
     rd_check_rel("half over the edge: centroid along e2 (m)", ld.cy, -0.25, ROUNDOFF, RD_STRICT);
     /* two faces that do not face each other give no patch */
-    const double up[3] = {0, 0, -1};
+    const double up[3] = { 0, 0, -1 };
     assert_int_equal(rd_patch_faces(o, e1, e2, n, &s, rv, 4, up, 0.0, &patch, dep), 0);
 }
 
@@ -253,10 +267,11 @@ static void test_faces_tilted(void **state)
     const double a = 0.5, th = 0.01, delta = 2e-5, st = sin(th), ct = cos(th);
     /* S: e1 = x, e2 = (0, cos, sin) rising, n = e1 x e2 = (0, -sin, cos)... facing down wants n
        ~ -z: take e1 = -x, e2 = (0, cos, sin): n = (0, sin, -cos) */
-    const double e1[3] = {-1, 0, 0}, e2[3] = {0, ct, st}, n[3] = {0, st, -ct};
-    const double o[3] = {0, 0, -delta}; /* the low edge's midpoint */
+    const double e1[3] = { -1, 0, 0 }, e2[3] = { 0, ct, st }, n[3] = { 0, st, -ct };
+    const double o[3] = { 0, 0, -delta }; /* the low edge's midpoint */
     rd_poly2 s = rect(-a / 2, 0, a / 2, a);
-    const double rv[4][3] = {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}, u[3] = {0, 0, 1};
+    const double rv[4][3] = { { -5, -5, 0 }, { 5, -5, 0 }, { 5, 5, 0 }, { -5, 5, 0 } },
+                 u[3] = { 0, 0, 1 };
     rd_poly2 patch;
     double dep[3];
     assert_true(rd_patch_faces(o, e1, e2, n, &s, rv, 4, u, 0.0, &patch, dep) > 0);
@@ -265,17 +280,21 @@ static void test_faces_tilted(void **state)
     const double ys = delta / st; /* where S's material line crosses z = 0 */
     rd_check_rel("tilted face: compressed area (m^2)", ld.area, a * ys, ROUNDOFF, RD_STRICT);
     rd_check_rel("tilted face: force / KN (m^3)", ld.f, a * delta * ys / 2, ROUNDOFF, RD_STRICT);
-    rd_check_rel("tilted face: moment along the slope / KN (m^4)", ld.my, a * delta * ys * ys / 6, ROUNDOFF,
-                 RD_STRICT);
+    rd_check_rel("tilted face: moment along the slope / KN (m^4)", ld.my, a * delta * ys * ys / 6,
+                 ROUNDOFF, RD_STRICT);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_moments_rectangle),      cmocka_unit_test(test_load_affine_compressed),
-        cmocka_unit_test(test_load_rocking_base),      cmocka_unit_test(test_torsion_square),
-        cmocka_unit_test(test_torsion_regular_polygon), cmocka_unit_test(test_torsion_affine_grid),
-        cmocka_unit_test(test_tessellation),           cmocka_unit_test(test_faces_half_over),
+        cmocka_unit_test(test_moments_rectangle),
+        cmocka_unit_test(test_load_affine_compressed),
+        cmocka_unit_test(test_load_rocking_base),
+        cmocka_unit_test(test_torsion_square),
+        cmocka_unit_test(test_torsion_regular_polygon),
+        cmocka_unit_test(test_torsion_affine_grid),
+        cmocka_unit_test(test_tessellation),
+        cmocka_unit_test(test_faces_half_over),
         cmocka_unit_test(test_faces_tilted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -63,7 +63,8 @@ static void test_corners_threshold(void **state)
 {
     (void)state;
     double g = 9.81, corners = tip_accel("vertices", ""), bed = tip_accel("0.1", "");
-    double kept = tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.99 keep-corners on");
+    double kept =
+        tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.99 keep-corners on");
     double random = tip_accel("0.1", "contact interface-perturbation seed 7 remove 0.9");
     assert_true(fabs(corners - 0.4 * g) < 1e-3 * g); /* g b/h, b/h = 0.4 */
     assert_true(fabs(bed - corners) < 1e-3 * g);
@@ -76,13 +77,17 @@ static void test_same_seed_same_points(void **state)
     (void)state;
     const char *p = "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4";
     rd_sim *a = make("0.1", p), *b = make("0.1", p), *c = make("0.1", "");
-    rd_sim *d = make("0.1", "contact interface-perturbation seed 12 remove 0.3 raise 0.001 scatter 0.4");
+    rd_sim *d =
+        make("0.1", "contact interface-perturbation seed 12 remove 0.3 raise 0.001 scatter 0.4");
     assert_int_equal(a->npts, b->npts);
     assert_int_equal(a->npts, c->npts - (int)floor(0.3 * c->npts));
     assert_memory_equal(a->pl, b->pl, (size_t)a->npts * sizeof *a->pl);
     assert_memory_equal(a->pa, b->pa, (size_t)a->npts * sizeof *a->pa);
     assert_true(a->npts != d->npts || memcmp(a->pl, d->pl, (size_t)a->npts * sizeof *a->pl) != 0);
-    rd_sim_free(a); rd_sim_free(b); rd_sim_free(c); rd_sim_free(d);
+    rd_sim_free(a);
+    rd_sim_free(b);
+    rd_sim_free(c);
+    rd_sim_free(d);
 }
 
 static void test_zero_scatter_noop(void **state)
@@ -93,7 +98,8 @@ static void test_zero_scatter_noop(void **state)
     assert_int_equal(a->npts, b->npts);
     assert_memory_equal(a->pl, b->pl, (size_t)a->npts * sizeof *a->pl);
     assert_memory_equal(a->pa, b->pa, (size_t)a->npts * sizeof *a->pa);
-    rd_sim_free(a); rd_sim_free(b);
+    rd_sim_free(a);
+    rd_sim_free(b);
 }
 
 /* Points at the same place share one kinematics slot (rd_sim.pkin, the contact finds their
@@ -119,7 +125,9 @@ static void check_places(rd_sim *s)
 static void test_shared_places(void **state)
 {
     (void)state;
-    rd_sim *a = make("vertices", ""), *b = make("0.1", "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4");
+    rd_sim *a = make("vertices", ""),
+           *b = make("0.1",
+                     "contact interface-perturbation seed 11 remove 0.3 raise 0.001 scatter 0.4");
     check_places(a);
     check_places(b);
     int shared = 0;
@@ -150,7 +158,8 @@ static void test_merged_mesh_points(void **state)
              "block create brick size 1.2 1.2 0.3 position 0 0 -0.15 fixed name pedestal\n"
              "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
              "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
-             "model solve time 0.01\noutput hdf5 '%s' interval 0.005\n", obj, path);
+             "model solve time 0.01\noutput hdf5 '%s' interval 0.005\n",
+             obj, path);
     rd_scenario sc;
     rd_error err;
     assert_int_equal(rd_scenario_parse(&sc, "merge.dat", text, &err), 0);
@@ -163,7 +172,10 @@ static void test_merged_mesh_points(void **state)
     for (int pt = s->pt0[1]; pt < s->pt0[2]; pt++) {
         int at_place = 0, first = 1; /* the faces the points at pt's place stand for */
         for (int q = s->pt0[1]; q < s->pt0[2]; q++)
-            if (!memcmp(s->pl[q], s->pl[pt], sizeof s->pl[pt])) { at_place += s->pmult[q]; first &= q >= pt; }
+            if (!memcmp(s->pl[q], s->pl[pt], sizeof s->pl[pt])) {
+                at_place += s->pmult[q];
+                first &= q >= pt;
+            }
         split += first && at_place > s->pmult[pt];
         int v = 0;
         while (v < p->nv && memcmp(p->v[v], s->pl[pt], sizeof p->v[v])) v++;
@@ -176,8 +188,10 @@ static void test_merged_mesh_points(void **state)
                 assert_int_equal(p->flen[f], 3); /* the OBJ's triangles are kept as faces */
                 const double *a = p->v[p->fidx[p->fstart[f]]], *b = p->v[p->fidx[p->fstart[f] + 1]],
                              *c = p->v[p->fidx[p->fstart[f] + 2]];
-                double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-                double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+                double e1[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] },
+                       e2[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+                double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                e1[0] * e2[1] - e1[1] * e2[0] };
                 area += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 6.0;
                 degree++;
             }
@@ -189,8 +203,9 @@ static void test_merged_mesh_points(void **state)
             assert_true(fabs(s->pa[pt] - area) <= 1e-12 * area);
         }
     }
-    print_message("PBR mesh: %d points, %d merged, %d carry their whole vertex area, %d places split\n",
-                  s->pt0[2] - s->pt0[1], merged, full, split);
+    print_message(
+        "PBR mesh: %d points, %d merged, %d carry their whole vertex area, %d places split\n",
+        s->pt0[2] - s->pt0[1], merged, full, split);
     assert_true(merged > 0 && full > 0 && 10 * split < s->pt0[2] - s->pt0[1]);
     rd_sim_free(s);
 }
@@ -200,7 +215,8 @@ static void test_bad_settings(void **state)
     (void)state;
     rd_scenario sc;
     rd_error err;
-    assert_int_equal(rd_scenario_parse(&sc, "p.dat", "contact interface-perturbation remove 1\n", &err), -1);
+    assert_int_equal(
+        rd_scenario_parse(&sc, "p.dat", "contact interface-perturbation remove 1\n", &err), -1);
     assert_non_null(strstr(err.msg, "p.dat:1:"));
     rd_scenario_free(&sc);
 }
@@ -209,12 +225,9 @@ int main(void)
 {
     snprintf(out, sizeof out, "/tmp/rd_perturb_%d", (int)getpid());
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_corners_threshold),
-        cmocka_unit_test(test_same_seed_same_points),
-        cmocka_unit_test(test_zero_scatter_noop),
-        cmocka_unit_test(test_shared_places),
-        cmocka_unit_test(test_merged_mesh_points),
-        cmocka_unit_test(test_bad_settings),
+        cmocka_unit_test(test_corners_threshold),  cmocka_unit_test(test_same_seed_same_points),
+        cmocka_unit_test(test_zero_scatter_noop),  cmocka_unit_test(test_shared_places),
+        cmocka_unit_test(test_merged_mesh_points), cmocka_unit_test(test_bad_settings),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     for (int k = 0; k < 4; k++) {

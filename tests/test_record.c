@@ -57,18 +57,17 @@ static void assert_error(const rd_error *err, const char *path, long line, const
 
 /* --- .AT2 ------------------------------------------------------------------------------------ */
 
-static const double at2_g[7] = {0.1, -0.2, 0.003, 4e-5, 0.0, -1.5e-3, 0.25}; /* the values, g */
+static const double at2_g[7] = { 0.1, -0.2, 0.003, 4e-5, 0.0, -1.5e-3, 0.25 }; /* the values, g */
 
 static void check_at2(const char *path, double dt)
 {
     rd_record r;
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_record_read_at2(&r, path, &err), 0);
     assert_int_equal(r.npts, 7);
     assert_true(r.dt == dt);
     /* Same decimal strings and the same single multiplication: bit-identical. */
-    for (int i = 0; i < 7; i++)
-        assert_true(r.acc[i] == at2_g[i] * RD_G_STANDARD);
+    for (int i = 0; i < 7; i++) assert_true(r.acc[i] == at2_g[i] * RD_G_STANDARD);
     assert_string_equal(r.source, "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180");
     assert_true(strstr(path, r.name) && r.name[0] != '/');
     rd_record_free(&r);
@@ -77,23 +76,25 @@ static void check_at2(const char *path, double dt)
 static void test_at2_keyed_header(void **state)
 {
     (void)state;
-    check_at2(write_file("keyed.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\n"
-                                      "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180\n"
-                                      "ACCELERATION TIME SERIES IN UNITS OF G\n"
-                                      "NPTS=     7, DT=   .0050 SEC\n"
-                                      "  .1000000E+00 -.2000000E+00  .3000000E-02  .4000000E-04  .0000000E+00\n"
-                                      " -.1500000E-02  .2500000E+00\n"),
+    check_at2(write_file("keyed.AT2",
+                         "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                         "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180\n"
+                         "ACCELERATION TIME SERIES IN UNITS OF G\n"
+                         "NPTS=     7, DT=   .0050 SEC\n"
+                         "  .1000000E+00 -.2000000E+00  .3000000E-02  .4000000E-04  .0000000E+00\n"
+                         " -.1500000E-02  .2500000E+00\n"),
               0.005);
 }
 
 static void test_at2_positional_header(void **state)
 {
     (void)state;
-    check_at2(write_file("positional.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\r\n"
-                                           "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180\r\n"
-                                           "ACCELERATION TIME SERIES IN UNITS OF G\r\n"
-                                           "7    0.0100    NPTS, DT\r\n"
-                                           "0.1 -0.2 0.003\r\n4E-5 0\r\n-1.5e-3\r\n0.25\r\n"),
+    check_at2(write_file("positional.AT2",
+                         "PEER NGA STRONG MOTION DATABASE RECORD\r\n"
+                         "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180\r\n"
+                         "ACCELERATION TIME SERIES IN UNITS OF G\r\n"
+                         "7    0.0100    NPTS, DT\r\n"
+                         "0.1 -0.2 0.003\r\n4E-5 0\r\n-1.5e-3\r\n0.25\r\n"),
               0.01);
 }
 
@@ -102,7 +103,7 @@ static void test_at2_positional_header(void **state)
 static void expect_at2_error(const char *name, const char *text, long line, const char *what)
 {
     rd_record r;
-    rd_error err = {""};
+    rd_error err = { "" };
     const char *path = write_file(name, text);
     assert_int_equal(rd_record_read_at2(&r, path, &err), -1);
     assert_error(&err, path, line, what);
@@ -113,29 +114,41 @@ static void test_at2_errors(void **state)
 {
     (void)state;
     expect_at2_error("e1.AT2", AT2_HEAD "7 values follow\n0.1\n", 4, "missing NPTS and DT");
-    expect_at2_error("e2.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 0.2\n", 5, "expected 3 values (NPTS), found 2");
+    expect_at2_error("e2.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 0.2\n", 5,
+                     "expected 3 values (NPTS), found 2");
     expect_at2_error("e3.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 0.2\n0.3\n0.4 0.5\n", 7,
                      "expected 3 values (NPTS), found 5");
-    expect_at2_error("e4.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1\n0.2 0.3x 0.4\n", 6, "non-numeric value '0.3x'");
-    expect_at2_error("e5.AT2", AT2_HEAD "NPTS= 3, DT= 0.0 SEC\n0.1 0.2 0.3\n", 4, "DT must be in [1e-06, 1] s, found 0 s");
-    expect_at2_error("e6.AT2", AT2_HEAD "3  -0.01  NPTS, DT\n0.1 0.2 0.3\n", 4, "DT must be in [1e-06, 1] s, found -0.01 s");
+    expect_at2_error("e4.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1\n0.2 0.3x 0.4\n", 6,
+                     "non-numeric value '0.3x'");
+    expect_at2_error("e5.AT2", AT2_HEAD "NPTS= 3, DT= 0.0 SEC\n0.1 0.2 0.3\n", 4,
+                     "DT must be in [1e-06, 1] s, found 0 s");
+    expect_at2_error("e6.AT2", AT2_HEAD "3  -0.01  NPTS, DT\n0.1 0.2 0.3\n", 4,
+                     "DT must be in [1e-06, 1] s, found -0.01 s");
     /* issue 17: a step of 1e300 s was accepted and failed later as "a record is zero" */
-    expect_at2_error("e10.AT2", AT2_HEAD "NPTS= 3, DT= 1e300 SEC\n0.1 0.2 0.3\n", 4, "DT must be in [1e-06, 1] s, found 1e+300 s");
-    expect_at2_error("e11.AT2", AT2_HEAD "NPTS= 1e300, DT= .01 SEC\n0.1\n", 4, "NPTS must be a whole number in [1, 1e+09], found 1e+300");
+    expect_at2_error("e10.AT2", AT2_HEAD "NPTS= 3, DT= 1e300 SEC\n0.1 0.2 0.3\n", 4,
+                     "DT must be in [1e-06, 1] s, found 1e+300 s");
+    expect_at2_error("e11.AT2", AT2_HEAD "NPTS= 1e300, DT= .01 SEC\n0.1\n", 4,
+                     "NPTS must be a whole number in [1, 1e+09], found 1e+300");
     expect_at2_error("e7.AT2", "PEER\nevent\n", 2, "expected 4 header lines, found 2");
-    expect_at2_error("e8.AT2", AT2_HEAD "NPTS= 2.5, DT= .01 SEC\n0.1 0.2\n", 4, "NPTS must be a whole number in [1, 1e+09]");
-    expect_at2_error("e9.AT2", AT2_HEAD "NPTS= 2, DT= .01 SEC\n0.1 nan\n", 5, "non-numeric value 'nan'");
+    expect_at2_error("e8.AT2", AT2_HEAD "NPTS= 2.5, DT= .01 SEC\n0.1 0.2\n", 4,
+                     "NPTS must be a whole number in [1, 1e+09]");
+    expect_at2_error("e9.AT2", AT2_HEAD "NPTS= 2, DT= .01 SEC\n0.1 nan\n", 5,
+                     "non-numeric value 'nan'");
     /* a header number with a junk suffix was read as its prefix */
-    expect_at2_error("e12.AT2", AT2_HEAD "NPTS=  3x, DT=   .0100 SEC\n0.1 0.2 0.3\n", 4, "NPTS '3x' is not a number");
-    expect_at2_error("e13.AT2", AT2_HEAD "NPTS=  3, DT=   .0100x SEC\n0.1 0.2 0.3\n", 4, "DT '.0100x' is not a number");
-    expect_at2_error("e14.AT2", AT2_HEAD "3  .0100x  NPTS, DT\n0.1 0.2 0.3\n", 4, "DT '.0100x' is not a number");
+    expect_at2_error("e12.AT2", AT2_HEAD "NPTS=  3x, DT=   .0100 SEC\n0.1 0.2 0.3\n", 4,
+                     "NPTS '3x' is not a number");
+    expect_at2_error("e13.AT2", AT2_HEAD "NPTS=  3, DT=   .0100x SEC\n0.1 0.2 0.3\n", 4,
+                     "DT '.0100x' is not a number");
+    expect_at2_error("e14.AT2", AT2_HEAD "3  .0100x  NPTS, DT\n0.1 0.2 0.3\n", 4,
+                     "DT '.0100x' is not a number");
     /* a sample of 1e308 g was accepted (Arias -nan, then "contact forces blew up") */
     expect_at2_error("e15.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1\n1e308 0.3\n", 6,
                      "acceleration '1e308' g is outside the valid |acceleration| <= 1e+06 m/s^2");
-    expect_at2_error("e16.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 -1e200 0.3\n", 5, "acceleration '-1e200' g is outside");
+    expect_at2_error("e16.AT2", AT2_HEAD "NPTS= 3, DT= .01 SEC\n0.1 -1e200 0.3\n", 5,
+                     "acceleration '-1e200' g is outside");
 
     rd_record r;
-    rd_error err = {""};
+    rd_error err = { "" };
     char missing[RD_PATH_MAX];
     snprintf(missing, sizeof missing, "%s/absent.AT2", g_dir);
     assert_int_equal(rd_record_read_at2(&r, missing, &err), -1);
@@ -147,15 +160,15 @@ static void test_at2_errors(void **state)
 static void test_csv_two_columns(void **state)
 {
     (void)state;
-    const char *path = write_file("two.csv", "# a comment\ntime,acc\n0.00,10\n0.01,-20\n\n0.02,30.5\n0.03,0\n");
+    const char *path =
+        write_file("two.csv", "# a comment\ntime,acc\n0.00,10\n0.01,-20\n\n0.02,30.5\n0.03,0\n");
     rd_record r;
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_CM_S2, 0.0, &err), 0);
     assert_int_equal(r.npts, 4);
     assert_true(fabs(r.dt - 0.01) <= 1e-15); /* (0.03 - 0.00)/3 in binary: a few ulp */
-    double expect[4] = {10 * 0.01, -20 * 0.01, 30.5 * 0.01, 0.0};
-    for (int i = 0; i < 4; i++)
-        assert_true(r.acc[i] == expect[i]);
+    double expect[4] = { 10 * 0.01, -20 * 0.01, 30.5 * 0.01, 0.0 };
+    for (int i = 0; i < 4; i++) assert_true(r.acc[i] == expect[i]);
     rd_record_free(&r);
     /* A matching given dt is accepted, a different one refused. */
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_CM_S2, 0.01, &err), 0);
@@ -169,7 +182,7 @@ static void test_text_one_column(void **state)
     (void)state;
     const char *path = write_file("one.txt", "0.5\n -1.25 \n\t2\n");
     rd_record r;
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_M_S2, 0.02, &err), 0);
     assert_int_equal(r.npts, 3);
     assert_true(r.dt == 0.02 && r.acc[0] == 0.5 && r.acc[1] == -1.25 && r.acc[2] == 2.0);
@@ -185,10 +198,11 @@ static void test_text_one_column(void **state)
     assert_error(&err, path, 2, "acceleration '2e5' is outside");
 }
 
-static void expect_text_error(const char *name, const char *text, double dt, long line, const char *what)
+static void expect_text_error(const char *name, const char *text, double dt, long line,
+                              const char *what)
 {
     rd_record r;
-    rd_error err = {""};
+    rd_error err = { "" };
     const char *path = write_file(name, text);
     assert_int_equal(rd_record_read_text(&r, path, RD_UNIT_M_S2, dt, &err), -1);
     assert_error(&err, path, line, what);
@@ -198,9 +212,11 @@ static void expect_text_error(const char *name, const char *text, double dt, lon
 static void test_text_errors(void **state)
 {
     (void)state;
-    expect_text_error("t1.csv", "t,a\n0,1\n0.01,2\n0.03,3\n", 0.0, 4, "non-uniform time step: 0.02 s here");
+    expect_text_error("t1.csv", "t,a\n0,1\n0.01,2\n0.03,3\n", 0.0, 4,
+                      "non-uniform time step: 0.02 s here");
     expect_text_error("t2.csv", "0,1\n0.01,2\n0.01,3\n", 0.0, 3, "does not increase");
-    expect_text_error("t3.csv", "0,1\n0.01,2\n0.005,3\n", 0.0, 3, "time step -0.005 s must be positive");
+    expect_text_error("t3.csv", "0,1\n0.01,2\n0.005,3\n", 0.0, 3,
+                      "time step -0.005 s must be positive");
     expect_text_error("t4.csv", "t,a\n0,1\n0.01,abc\n", 0.0, 3, "non-numeric value 'abc'");
     expect_text_error("t5.txt", "1\n2\n", 0.0, 1, "needs a time step dt > 0, got 0");
     expect_text_error("t6.txt", "1\n2\n", -0.01, 1, "needs a time step dt > 0, got -0.01");
@@ -233,7 +249,8 @@ static void test_text_errors(void **state)
                       "acceleration '1e308' is outside the valid |acceleration| <= 1e+06 m/s^2");
     expect_text_error("t13.csv", "0,0.1\n0.01,2e6\n", 0.0, 2, "acceleration '2e6' is outside");
     /* a bad first data row was dropped as a header */
-    expect_text_error("t14.txt", "0.1x 0.2\n0.01 0.1\n0.02 0.1\n", 0.0, 1, "non-numeric value '0.1x'");
+    expect_text_error("t14.txt", "0.1x 0.2\n0.01 0.1\n0.02 0.1\n", 0.0, 1,
+                      "non-numeric value '0.1x'");
     expect_text_error("t15.txt", "O 0.2\n0.01 0.1\n0.02 0.1\n", 0.0, 1,
                       "non-numeric value 'O' (a row of 2 fields like line 2, not a header)");
     expect_text_error("t16.txt", "0.1x\n0.1\n0.2\n", 0.01, 1, "non-numeric value '0.1x'");
@@ -249,8 +266,7 @@ static rd_record sampled(double (*f)(double), double T, double dt)
     rd_error err;
     size_t n = (size_t)llround(T / dt) + 1;
     assert_int_equal(rd_record_alloc(&r, n, dt, &err), 0);
-    for (size_t i = 0; i < n; i++)
-        r.acc[i] = f((double)i * dt);
+    for (size_t i = 0; i < n; i++) r.acc[i] = f((double)i * dt);
     rd_record_integrate(&r);
     return r;
 }
@@ -293,18 +309,18 @@ static void test_scaling_exact(void **state)
     rd_record r = sampled(wave, 3.0, 0.01), ref = sampled(wave, 3.0, 0.01);
     rd_record_scale(&r, 2.5);
     for (size_t i = 0; i < r.npts; i++) /* one multiplication each: exact to rounding */
-        assert_true(r.acc[i] == 2.5 * ref.acc[i] && r.vel[i] == 2.5 * ref.vel[i] && r.disp[i] == 2.5 * ref.disp[i]);
+        assert_true(r.acc[i] == 2.5 * ref.acc[i] && r.vel[i] == 2.5 * ref.vel[i] &&
+                    r.disp[i] == 2.5 * ref.disp[i]);
     double peak = 0.0;
     assert_int_equal(rd_record_scale_to_pga(&r, 0.4 * RD_G_STANDARD, &err), 0);
-    for (size_t i = 0; i < r.npts; i++)
-        peak = fmax(peak, fabs(r.acc[i]));
+    for (size_t i = 0; i < r.npts; i++) peak = fmax(peak, fabs(r.acc[i]));
     assert_true(fabs(peak - 0.4 * RD_G_STANDARD) <= 4e-16 * peak); /* x * (t/x): at most 2 ulp */
     assert_int_equal(rd_record_scale_to_pgv(&r, 0.3, &err), 0);
     peak = 0.0;
-    for (size_t i = 0; i < r.npts; i++)
-        peak = fmax(peak, fabs(r.vel[i]));
+    for (size_t i = 0; i < r.npts; i++) peak = fmax(peak, fabs(r.vel[i]));
     assert_true(fabs(peak - 0.3) <= 4e-16 * peak);
-    assert_true(rd_accel_unit_factor(RD_UNIT_G) == 9.80665 && rd_accel_unit_factor(RD_UNIT_CM_S2) == 0.01 &&
+    assert_true(rd_accel_unit_factor(RD_UNIT_G) == 9.80665 &&
+                rd_accel_unit_factor(RD_UNIT_CM_S2) == 0.01 &&
                 rd_accel_unit_factor(RD_UNIT_M_S2) == 1.0);
     rd_record zero;
     assert_int_equal(rd_record_alloc(&zero, 4, 0.01, &err), 0);
@@ -385,8 +401,7 @@ static void test_baseline_removes_offset(void **state)
 static double peak_abs(const double *x, size_t n)
 {
     double m = 0.0;
-    for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(x[i]));
+    for (size_t i = 0; i < n; i++) m = fmax(m, fabs(x[i]));
     return m;
 }
 
@@ -413,13 +428,11 @@ static void test_baseline_stochastic(void **state)
     double *clean = malloc(n * sizeof *clean);
     assert_non_null(clean);
     memcpy(clean, r.disp, n * sizeof *clean);
-    for (size_t i = 0; i < n; i++)
-        r.acc[i] += 0.01 + 0.002 * (double)i * r.dt;
+    for (size_t i = 0; i < n; i++) r.acc[i] += 0.01 + 0.002 * (double)i * r.dt;
     rd_record_integrate(&r);
     assert_true(fabs(r.disp[n - 1] - clean[n - 1]) > 10.0 * pgd);
     assert_int_equal(rd_record_baseline(&r, 6, &err), 0);
-    for (size_t i = 0; i < n; i++)
-        assert_true(fabs(r.disp[i] - clean[i]) <= 1e-9 * pgd);
+    for (size_t i = 0; i < n; i++) assert_true(fabs(r.disp[i] - clean[i]) <= 1e-9 * pgd);
     free(clean);
     rd_record_free(&r);
 }

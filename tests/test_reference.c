@@ -37,7 +37,7 @@ static void ramp_fn(void *ctx, double t, double *ug, double *vg)
 static rd_ground sine_ground(sine_pulse *p, double *brk)
 {
     *brk = 2.0 * M_PI / p->w;
-    rd_ground gm = {.fn = sine_fn, .ctx = p, .breaks = brk, .nbreaks = 1, .t_quiet = *brk};
+    rd_ground gm = { .fn = sine_fn, .ctx = p, .breaks = brk, .nbreaks = 1, .t_quiet = *brk };
     return gm;
 }
 
@@ -46,39 +46,33 @@ static size_t impact_times(const rd_ref_result *r, int j, double *t, size_t n)
 {
     size_t k = 0;
     for (size_t i = 0; i < r->nevents && k < n; i++)
-        if (r->events[i].kind == RD_REF_IMPACT && r->events[i].joint == j)
-            t[k++] = r->events[i].t;
+        if (r->events[i].kind == RD_REF_IMPACT && r->events[i].joint == j) t[k++] = r->events[i].t;
     return k;
 }
 
 static const rd_ref_event *first_event(const rd_ref_result *r, rd_ref_event_kind kind)
 {
     for (size_t i = 0; i < r->nevents; i++)
-        if (r->events[i].kind == kind)
-            return &r->events[i];
+        if (r->events[i].kind == kind) return &r->events[i];
     return NULL;
 }
 
-static rd_ref_result run_housner(const rd_housner_def *d, const rd_ground *gm,
-                                 const rd_ref_opts *o)
+static rd_ref_result run_housner(const rd_housner_def *d, const rd_ground *gm, const rd_ref_opts *o)
 {
     rd_ref_result r;
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_housner_solve(d, gm, o, &r, &err);
-    if (rc)
-        print_error("%s\n", err.msg);
+    if (rc) print_error("%s\n", err.msg);
     assert_int_equal(rc, 0);
     return r;
 }
 
-static rd_ref_result run_stack(const rd_kounadis_def *d, const rd_ground *gm,
-                               const rd_ref_opts *o)
+static rd_ref_result run_stack(const rd_kounadis_def *d, const rd_ground *gm, const rd_ref_opts *o)
 {
     rd_ref_result r;
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_kounadis_solve(d, gm, o, &r, &err);
-    if (rc)
-        print_error("%s\n", err.msg);
+    if (rc) print_error("%s\n", err.msg);
     assert_int_equal(rc, 0);
     return r;
 }
@@ -91,8 +85,8 @@ static rd_ref_result run_stack(const rd_kounadis_def *d, const rd_ground *gm,
 static void test_housner_quarter_period(void **state)
 {
     (void)state;
-    const double geom[2][2] = {{0.25, 0.5}, {0.1, 1.0}};
-    const double frac[3] = {0.1, 0.5, 0.95};
+    const double geom[2][2] = { { 0.25, 0.5 }, { 0.1, 1.0 } };
+    const double frac[3] = { 0.1, 0.5, 0.95 };
     for (int g = 0; g < 2; g++) {
         rd_housner_def d = rd_housner_def_default();
         d.b = geom[g][0];
@@ -124,7 +118,7 @@ static void test_housner_slender_limit(void **state)
 {
     (void)state;
     double errs[2];
-    const double alphas[2] = {0.2, 0.1};
+    const double alphas[2] = { 0.2, 0.1 };
     for (int i = 0; i < 2; i++) {
         double alpha = alphas[i], h = 1.0, b = tan(alpha) * h;
         double p = rd_housner_p(b, h, G), theta0 = 0.5 * alpha, t;
@@ -145,7 +139,7 @@ static void test_housner_restitution(void **state)
     (void)state;
     rd_housner_def d = rd_housner_def_default();
     double alpha = rd_housner_alpha(d.b, d.h);
-    const double es[2] = {-1.0, 0.85};
+    const double es[2] = { -1.0, 0.85 };
     for (int k = 0; k < 2; k++) {
         d.e = es[k];
         double e = es[k] < 0.0 ? rd_housner_r(alpha) : es[k];
@@ -163,8 +157,7 @@ static void test_housner_restitution(void **state)
                 assert_true(fabs(ev->omega_post[0] - e * ev->omega_pre[0]) <= 1e-14);
                 nimp++;
             }
-            if (ev->kind != RD_REF_PEAK)
-                continue;
+            if (ev->kind != RD_REF_PEAK) continue;
             double th = fabs(ev->theta[0]);
             double ratio = (cos(alpha - th) - cos(alpha)) / (cos(alpha - prev) - cos(alpha));
             assert_true(fabs(ratio - e * e) < 1e-7);
@@ -211,10 +204,10 @@ static void test_housner_static_uplift(void **state)
     (void)state;
     rd_housner_def d = rd_housner_def_default();
     double alpha = rd_housner_alpha(d.b, d.h);
-    const double rates[2] = {2.0, -5.0};
+    const double rates[2] = { 2.0, -5.0 };
     for (int i = 0; i < 2; i++) {
         double k = rates[i];
-        rd_ground gm = {.fn = ramp_fn, .ctx = &k, .t_quiet = INFINITY};
+        rd_ground gm = { .fn = ramp_fn, .ctx = &k, .t_quiet = INFINITY };
         rd_ref_opts o = rd_ref_opts_default();
         o.t_end = 1.1 * G * tan(alpha) / fabs(k);
         rd_ref_result r = run_housner(&d, &gm, &o);
@@ -230,7 +223,7 @@ static void test_housner_static_uplift(void **state)
 
 static int sine_overturns(const rd_housner_def *d, double a, double f)
 {
-    sine_pulse sp = {.a = a, .w = 2.0 * M_PI * f};
+    sine_pulse sp = { .a = a, .w = 2.0 * M_PI * f };
     double brk;
     rd_ground gm = sine_ground(&sp, &brk);
     rd_ref_opts o = rd_ref_opts_default();
@@ -266,11 +259,14 @@ static int rk4_overturns(double b, double h, double e, double a, double f, doubl
         }
 #define UG(tt) ((tt) <= T ? a * sin(w * (tt)) : 0.0)
         double k1t = om, k1w = rk4_acc(p2, alpha, s, th, UG(t));
-        double k2t = om + 0.5 * dt * k1w, k2w = rk4_acc(p2, alpha, s, th + 0.5 * dt * k1t, UG(t + 0.5 * dt));
-        double k3t = om + 0.5 * dt * k2w, k3w = rk4_acc(p2, alpha, s, th + 0.5 * dt * k2t, UG(t + 0.5 * dt));
+        double k2t = om + 0.5 * dt * k1w,
+               k2w = rk4_acc(p2, alpha, s, th + 0.5 * dt * k1t, UG(t + 0.5 * dt));
+        double k3t = om + 0.5 * dt * k2w,
+               k3w = rk4_acc(p2, alpha, s, th + 0.5 * dt * k2t, UG(t + 0.5 * dt));
         double k4t = om + dt * k3w, k4w = rk4_acc(p2, alpha, s, th + dt * k3t, UG(t + dt));
 #undef UG
-        double th1 = th + dt * (k1t + 2 * k2t + 2 * k3t + k4t) / 6, om1 = om + dt * (k1w + 2 * k2w + 2 * k3w + k4w) / 6;
+        double th1 = th + dt * (k1t + 2 * k2t + 2 * k3t + k4t) / 6,
+               om1 = om + dt * (k1w + 2 * k2w + 2 * k3w + k4w) / 6;
         if (th1 * s < 0) { /* impact inside the step: restart on the other corner at theta = 0 */
             double fr = th / (th - th1);
             om = e * (om + fr * (om1 - om));
@@ -324,7 +320,7 @@ static double bisect_threshold(overturn_fn fn, const rd_housner_def *d, double f
 static void test_housner_sine_threshold(void **state)
 {
     (void)state;
-    const double es[2] = {-1.0, 0.8};
+    const double es[2] = { -1.0, 0.8 };
     for (int k = 0; k < 2; k++) {
         rd_housner_def d = rd_housner_def_default();
         d.e = es[k];
@@ -335,8 +331,9 @@ static void test_housner_sine_threshold(void **state)
         if (dr.e < 0) dr.e = rd_housner_r(rd_housner_alpha(d.b, d.h));
         double r1 = bisect_threshold(rk4_overturns_def, &dr, 2.0, 2e-5);
         double r2 = bisect_threshold(rk4_overturns_def, &dr, 2.0, 1e-5);
-        print_message("one-sine 2 Hz threshold, e = %g: CVODE %.5f g, RK4 %.5f g (dt 2e-5) %.5f g (dt 1e-5)\n",
-                      dr.e, a / G, r1 / G, r2 / G);
+        print_message(
+            "one-sine 2 Hz threshold, e = %g: CVODE %.5f g, RK4 %.5f g (dt 2e-5) %.5f g (dt 1e-5)\n",
+            dr.e, a / G, r1 / G, r2 / G);
         double tol = 2 * THR_RES + fabs(r1 - r2);
         assert_true(fabs(a - r2) <= tol);
     }
@@ -359,8 +356,8 @@ static void drot(double th, double x, double y, double out[2])
 }
 
 /* Centres of mass (ground frame) and their velocities for pivots (s1, s2). */
-static void centres(const rd_kounadis_def *d, int s1, int s2, const double q[2],
-                    const double w[2], double c1[2], double c2[2], double v1[2], double v2[2])
+static void centres(const rd_kounadis_def *d, int s1, int s2, const double q[2], const double w[2],
+                    double c1[2], double c2[2], double v1[2], double v2[2])
 {
     double r[2], dr[2], pr[2], dpr[2], cr[2], dcr[2];
     rot(q[0], -s1 * d->b1, d->h1, r);
@@ -385,15 +382,15 @@ static double kinetic(const rd_kounadis_def *d, int s1, int s2, const double q[2
     centres(d, s1, s2, q, w, c1, c2, v1, v2);
     double i1 = d->m1 * (d->b1 * d->b1 + d->h1 * d->h1) / 3.0;
     double i2 = d->m2 * (d->b2 * d->b2 + d->h2 * d->h2) / 3.0;
-    return 0.5 * (d->m1 * (v1[0] * v1[0] + v1[1] * v1[1]) + d->m2 * (v2[0] * v2[0] + v2[1] * v2[1])
-                  + i1 * w[0] * w[0] + i2 * w[1] * w[1]);
+    return 0.5 * (d->m1 * (v1[0] * v1[0] + v1[1] * v1[1]) +
+                  d->m2 * (v2[0] * v2[0] + v2[1] * v2[1]) + i1 * w[0] * w[0] + i2 * w[1] * w[1]);
 }
 
 /* Potential of gravity and of the pseudo-force -m a_g in the ground frame. */
 static double potential(const rd_kounadis_def *d, int s1, int s2, const double q[2], double ug,
                         double vg)
 {
-    double c1[2], c2[2], v1[2], v2[2], w[2] = {0.0, 0.0};
+    double c1[2], c2[2], v1[2], v2[2], w[2] = { 0.0, 0.0 };
     centres(d, s1, s2, q, w, c1, c2, v1, v2);
     return d->m1 * ((d->g + vg) * c1[1] + ug * c1[0]) + d->m2 * ((d->g + vg) * c2[1] + ug * c2[0]);
 }
@@ -405,10 +402,10 @@ static double d5(double fm2, double fm1, double fp1, double fp2, double h)
 }
 
 /* dT/dw_i: exact by polarisation because T is quadratic in w. */
-static double dtdw(const rd_kounadis_def *d, int s1, int s2, const double q[2],
-                   const double w[2], int i)
+static double dtdw(const rd_kounadis_def *d, int s1, int s2, const double q[2], const double w[2],
+                   int i)
 {
-    double wp[2] = {w[0], w[1]}, wm[2] = {w[0], w[1]};
+    double wp[2] = { w[0], w[1] }, wm[2] = { w[0], w[1] };
     wp[i] += 1.0;
     wm[i] -= 1.0;
     return 0.5 * (kinetic(d, s1, s2, q, wp) - kinetic(d, s1, s2, q, wm));
@@ -416,24 +413,24 @@ static double dtdw(const rd_kounadis_def *d, int s1, int s2, const double q[2],
 
 /* Lagrange residual E_i = d/dt dT/dw_i - dT/dq_i + dV/dq_i along q + w t + a t^2/2. */
 static double lagrange_residual(const rd_kounadis_def *d, int s1, int s2, const double q[2],
-                                const double w[2], const double a[2], double ug, double vg,
-                                int i)
+                                const double w[2], const double a[2], double ug, double vg, int i)
 {
     const double h = 1e-3;
     double f[4], gt[4], gv[4];
-    const double steps[4] = {-2.0, -1.0, 1.0, 2.0};
+    const double steps[4] = { -2.0, -1.0, 1.0, 2.0 };
     for (int k = 0; k < 4; k++) {
         double t = steps[k] * h;
-        double qt[2] = {q[0] + w[0] * t + 0.5 * a[0] * t * t, q[1] + w[1] * t + 0.5 * a[1] * t * t};
-        double wt[2] = {w[0] + a[0] * t, w[1] + a[1] * t};
+        double qt[2] = { q[0] + w[0] * t + 0.5 * a[0] * t * t,
+                         q[1] + w[1] * t + 0.5 * a[1] * t * t };
+        double wt[2] = { w[0] + a[0] * t, w[1] + a[1] * t };
         f[k] = dtdw(d, s1, s2, qt, wt, i);
-        double qi[2] = {q[0], q[1]};
+        double qi[2] = { q[0], q[1] };
         qi[i] += t;
         gt[k] = kinetic(d, s1, s2, qi, w);
         gv[k] = potential(d, s1, s2, qi, ug, vg);
     }
-    return d5(f[0], f[1], f[2], f[3], h) - d5(gt[0], gt[1], gt[2], gt[3], h)
-           + d5(gv[0], gv[1], gv[2], gv[3], h);
+    return d5(f[0], f[1], f[2], f[3], h) - d5(gt[0], gt[1], gt[2], gt[3], h) +
+           d5(gv[0], gv[1], gv[2], gv[3], h);
 }
 
 static double urand(unsigned *s, double lo, double hi)
@@ -451,25 +448,29 @@ static double urand(unsigned *s, double lo, double hi)
 static void test_kounadis_lagrange(void **state)
 {
     (void)state;
-    const int pats[8][2] = {{1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    const int pats[8][2] = { { 1, 1 }, { 1, -1 }, { -1, 1 }, { -1, -1 },
+                             { 1, 0 }, { -1, 0 }, { 0, 1 },  { 0, -1 } };
     unsigned seed = 12345u;
     for (int n = 0; n < 40; n++) {
-        rd_kounadis_def d = {.b1 = urand(&seed, 0.1, 0.5), .h1 = urand(&seed, 0.2, 1.0),
-                             .m1 = urand(&seed, 0.5, 3.0), .b2 = 0.0, .h2 = urand(&seed, 0.2, 1.0),
-                             .m2 = urand(&seed, 0.2, 3.0), .g = G};
+        rd_kounadis_def d = { .b1 = urand(&seed, 0.1, 0.5),
+                              .h1 = urand(&seed, 0.2, 1.0),
+                              .m1 = urand(&seed, 0.5, 3.0),
+                              .b2 = 0.0,
+                              .h2 = urand(&seed, 0.2, 1.0),
+                              .m2 = urand(&seed, 0.2, 3.0),
+                              .g = G };
         d.b2 = d.b1 * urand(&seed, 0.3, 1.0);
         double scale = (d.m1 + d.m2) * d.g * (hypot(d.b1, d.h1) + hypot(d.b2, d.h2));
         for (int k = 0; k < 8; k++) {
             int s1 = pats[k][0], s2 = pats[k][1];
-            double th[2] = {urand(&seed, -0.4, 0.4), urand(&seed, -0.4, 0.4)};
-            double om[2] = {urand(&seed, -3.0, 3.0), urand(&seed, -3.0, 3.0)};
+            double th[2] = { urand(&seed, -0.4, 0.4), urand(&seed, -0.4, 0.4) };
+            double om[2] = { urand(&seed, -3.0, 3.0), urand(&seed, -3.0, 3.0) };
             double ug = urand(&seed, -8.0, 8.0), vg = urand(&seed, -4.0, 4.0);
             if (!s2) {
                 th[1] = th[0];
                 om[1] = om[0];
             }
-            if (!s1)
-                th[0] = om[0] = 0.0;
+            if (!s1) th[0] = om[0] = 0.0;
             rd_kounadis_eval ev;
             rd_error err;
             assert_int_equal(rd_kounadis_eval_mode(&d, s1, s2, th, om, ug, vg, &ev, &err), 0);
@@ -486,10 +487,8 @@ static void test_kounadis_lagrange(void **state)
                 assert_true(ev.acc[0] == 0.0);
                 assert_true(fabs(e1) < 1e-8 * scale);
             }
-            if (s1)
-                assert_true(fabs(ev.ground[1]) < 1e-10 * scale);
-            if (s2)
-                assert_true(fabs(ev.iface[1]) < 1e-10 * scale);
+            if (s1) assert_true(fabs(ev.ground[1]) < 1e-10 * scale);
+            if (s2) assert_true(fabs(ev.iface[1]) < 1e-10 * scale);
         }
     }
 }
@@ -501,14 +500,14 @@ static void test_kounadis_lagrange(void **state)
 static void test_kounadis_static_thresholds(void **state)
 {
     (void)state;
-    rd_kounadis_def defs[2] = {rd_kounadis_def_default(), rd_kounadis_def_default()};
+    rd_kounadis_def defs[2] = { rd_kounadis_def_default(), rd_kounadis_def_default() };
     defs[1].b2 = 0.1; /* slender upper block: b2/h2 = 0.2 < stack 0.25/0.75 */
     defs[1].m2 = 0.5;
     for (int k = 0; k < 2; k++) {
         const rd_kounadis_def *d = &defs[k];
         double lam_stack, lam_upper;
         rd_kounadis_uplift_thresholds(d, &lam_stack, &lam_upper);
-        double th[2] = {0.0, 0.0}, om[2] = {0.0, 0.0};
+        double th[2] = { 0.0, 0.0 }, om[2] = { 0.0, 0.0 };
         rd_kounadis_eval e0, e1;
         rd_error err;
         assert_int_equal(rd_kounadis_eval_mode(d, 0, 0, th, om, 0.0, 0.0, &e0, &err), 0);
@@ -521,7 +520,7 @@ static void test_kounadis_static_thresholds(void **state)
         assert_true(fabs(e0.ground[0] + e0.ground[1] - (d->m1 + d->m2) * G) < 1e-9 * G);
 
         double rate = 1.0;
-        rd_ground gm = {.fn = ramp_fn, .ctx = &rate, .t_quiet = INFINITY};
+        rd_ground gm = { .fn = ramp_fn, .ctx = &rate, .t_quiet = INFINITY };
         rd_ref_opts o = rd_ref_opts_default();
         double lam = fmin(lam_stack, lam_upper);
         o.t_end = 1.05 * lam * G / rate;
@@ -593,7 +592,7 @@ static void test_kounadis_light_top(void **state)
     d.h2 = 0.05;
     d.m2 = 1e-9;
     rd_housner_def h = rd_housner_def_default();
-    sine_pulse sp = {.a = 0.9 * G, .w = 2.0 * M_PI * 2.0};
+    sine_pulse sp = { .a = 0.9 * G, .w = 2.0 * M_PI * 2.0 };
     double brk;
     rd_ground pulse = sine_ground(&sp, &brk);
     for (int k = 0; k < 2; k++) {
@@ -607,8 +606,7 @@ static void test_kounadis_light_top(void **state)
         size_t ns = impact_times(&rs, 0, ts, 8), nh = impact_times(&rh, 0, th, 8);
         assert_true(nh >= 3);
         assert_int_equal(ns, nh);
-        for (size_t i = 0; i < nh; i++)
-            assert_true(fabs(ts[i] - th[i]) < 1e-6 * th[i]);
+        for (size_t i = 0; i < nh; i++) assert_true(fabs(ts[i] - th[i]) < 1e-6 * th[i]);
         assert_int_equal(rs.summary.overturned, rh.summary.overturned);
         assert_true(first_event(&rs, RD_REF_UPLIFT) == NULL || k == 1);
         rd_ref_result_free(&rs);
@@ -625,12 +623,13 @@ static void test_kounadis_locked_is_one_block(void **state)
 {
     (void)state;
     const double alpha1 = rd_housner_alpha(0.25, 0.5), alpha_t = rd_housner_alpha(0.25, 1.0);
-    const double rs_[3] = {0.0, 0.6, 0.75};
+    const double rs_[3] = { 0.0, 0.6, 0.75 };
     for (int k = 0; k < 3; k++) {
-        rd_kounadis_def d = {.b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.25, .h2 = 0.5, .m2 = 1.0,
-                             .g = G, .r = rs_[k]};
+        rd_kounadis_def d = {
+            .b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.25, .h2 = 0.5, .m2 = 1.0, .g = G, .r = rs_[k]
+        };
         double e = k ? rd_housner_r(alpha_t) * rs_[k] / rd_housner_r(alpha1) : -1.0;
-        rd_housner_def h = {.b = 0.25, .h = 1.0, .g = G, .e = e};
+        rd_housner_def h = { .b = 0.25, .h = 1.0, .g = G, .e = e };
         rd_ref_opts o = rd_ref_opts_default();
         o.theta0[0] = o.theta0[1] = 0.04;
         o.t_end = 1.5; /* before r = 0.6's rates fall to the rest threshold (Zeno end) */
@@ -647,8 +646,7 @@ static void test_kounadis_locked_is_one_block(void **state)
         size_t n = impact_times(&rh, 0, th, 6);
         assert_true(n >= 3);
         assert_int_equal(impact_times(&rs, 0, ts, 6), n);
-        for (size_t i = 0; i < n; i++)
-            assert_true(fabs(ts[i] - th[i]) < 1e-8 * th[i]);
+        for (size_t i = 0; i < n; i++) assert_true(fabs(ts[i] - th[i]) < 1e-8 * th[i]);
         rd_ref_result_free(&rs);
         rd_ref_result_free(&rh);
     }
@@ -661,14 +659,15 @@ static void test_kounadis_locked_is_one_block(void **state)
 static void test_kounadis_restitution_gain(void **state)
 {
     (void)state;
-    rd_kounadis_def d = {.b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.1, .h2 = 0.4, .m2 = 0.01,
-                         .g = G, .r = 1.0};
+    rd_kounadis_def d = {
+        .b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.1, .h2 = 0.4, .m2 = 0.01, .g = G, .r = 1.0
+    };
     rd_ref_opts o = rd_ref_opts_default();
     o.theta0[0] = 0.0;
     o.theta0[1] = 0.1;
     o.t_end = 2.0;
     rd_ref_result r;
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_kounadis_solve(&d, NULL, &o, &r, &err);
     assert_int_equal(rc, -1);
     assert_non_null(strstr(err.msg, "gains energy"));
@@ -683,7 +682,8 @@ static void test_kounadis_mirror(void **state)
     (void)state;
     rd_kounadis_def d = rd_kounadis_def_default();
     d.b2 = 0.15;
-    sine_pulse sp[2] = {{.a = 0.8 * G, .w = 2.0 * M_PI * 2.5}, {.a = -0.8 * G, .w = 2.0 * M_PI * 2.5}};
+    sine_pulse sp[2] = { { .a = 0.8 * G, .w = 2.0 * M_PI * 2.5 },
+                         { .a = -0.8 * G, .w = 2.0 * M_PI * 2.5 } };
     rd_ref_result r[2];
     for (int k = 0; k < 2; k++) {
         double brk;

@@ -15,7 +15,7 @@
 #include "rockdem/scenario.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
-#define G0 9.80665
+#define G0  9.80665
 #define EPS 1e-12
 
 static rd_scenario *sc; /* one on the heap for all tests */
@@ -49,17 +49,16 @@ static const char *BASE = "model solve time 3\n"
 
 static void parse_ok(const char *text)
 {
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_scenario_parse(sc, "run.dat", text, &err);
-    if (rc != 0)
-        print_error("unexpected error: %s\n", err.msg);
+    if (rc != 0) print_error("unexpected error: %s\n", err.msg);
     assert_int_equal(rc, 0);
 }
 
 /* text must fail to parse with exactly msg; nothing stays allocated. */
 static void parse_fails(const char *text, const char *msg)
 {
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_scenario_parse(sc, "run.dat", text, &err), -1);
     assert_string_equal(err.msg, msg);
     assert_null(sc->text);
@@ -71,14 +70,15 @@ static void parse_fails(const char *text, const char *msg)
 static void test_parse_n_nul(void **state)
 {
     (void)state;
-    rd_error err = {""};
+    rd_error err = { "" };
     char text[512];
     size_t n = (size_t)snprintf(text, sizeof text, "%s", BASE);
     size_t at = strstr(text, "ground-motion") - text;
     text[at - 1] = '\0';
     assert_int_equal(rd_scenario_parse_n(sc, "run.dat", text, n, &err), -1);
     char want[128];
-    snprintf(want, sizeof want, "run.dat: contains a NUL byte at offset %zu of %zu (not a text?)", at - 1, n);
+    snprintf(want, sizeof want, "run.dat: contains a NUL byte at offset %zu of %zu (not a text?)",
+             at - 1, n);
     assert_string_equal(err.msg, want);
     assert_null(sc->text);
     text[at - 1] = '\n';
@@ -88,23 +88,22 @@ static void test_parse_n_nul(void **state)
 
 static void set_fails(const char *assignment, const char *msg)
 {
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_scenario_set(sc, assignment, &err), -1);
     assert_string_equal(err.msg, msg);
 }
 
 static void set_ok(const char *assignment)
 {
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_scenario_set(sc, assignment, &err);
-    if (rc != 0)
-        print_error("unexpected error: %s\n", err.msg);
+    if (rc != 0) print_error("unexpected error: %s\n", err.msg);
     assert_int_equal(rc, 0);
 }
 
 static void validate_fails(const char *msg)
 {
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_scenario_validate(sc, &err), -1);
     assert_string_equal(err.msg, msg);
 }
@@ -323,7 +322,7 @@ static void test_load_file(void **state)
     (void)state;
     char path[] = "/tmp/rd_scenario_XXXXXX";
     write_temp(path, BASE, strlen(BASE));
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_scenario_load(sc, path, &err);
     unlink(path);
     assert_int_equal(rc, 0);
@@ -335,7 +334,7 @@ static void test_load_file(void **state)
 static void test_load_missing_file(void **state)
 {
     (void)state;
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_scenario_load(sc, "/nonexistent/run.dat", &err), -1);
     assert_string_equal(err.msg, "/nonexistent/run.dat: cannot open: No such file or directory");
     assert_null(sc->text);
@@ -346,7 +345,7 @@ static void test_load_reports_line_and_col(void **state)
     (void)state;
     char path[] = "/tmp/rd_scenario_XXXXXX";
     write_temp(path, "model solve time 1\nmodel solve tme 1\n", 37);
-    rd_error err = {""}, want = {""};
+    rd_error err = { "" }, want = { "" };
     assert_int_equal(rd_scenario_load(sc, path, &err), -1);
     unlink(path);
     snprintf(want.msg, sizeof want.msg,
@@ -362,11 +361,10 @@ static void test_load_large_file(void **state)
     size_t n = 200, clen = strlen(comment), blen = strlen(BASE);
     char *text = malloc(n * clen + blen + 1);
     assert_non_null(text);
-    for (size_t i = 0; i < n; i++)
-        memcpy(text + i * clen, comment, clen);
+    for (size_t i = 0; i < n; i++) memcpy(text + i * clen, comment, clen);
     memcpy(text + n * clen, BASE, blen + 1);
     write_temp(path, text, n * clen + blen);
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_scenario_load(sc, path, &err);
     unlink(path);
     assert_int_equal(rc, 0);
@@ -380,7 +378,7 @@ static void test_load_unreadable(void **state)
 {
     (void)state;
     char path[] = "/tmp/rd_scenario_XXXXXX", want[RD_ERROR_MAX];
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_scenario_load(sc, "/tmp", &err), -1);
     assert_string_equal(err.msg, "/tmp: cannot read: Is a directory");
     write_temp(path, "model solve time 1\n\0\n", 21);
@@ -443,16 +441,19 @@ static void test_error_unknown_and_missing_verb(void **state)
     (void)state;
     parse_fails("  block crate brick\n",
                 "run.dat:1:9: unknown verb 'crate' for 'block' (expected create, import, initial)");
-    parse_fails("contact\n", "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation, preset, model)");
+    parse_fails(
+        "contact\n",
+        "run.dat:1:1: missing verb after 'contact' (expected property, interface-perturbation, preset, model)");
 }
 
 static void test_error_unknown_keyword(void **state)
 {
     (void)state;
-    parse_fails("model solve time 1\n\n\n\n\n\n"
-                "   contact property frction 30\n",
-                "run.dat:7:21: unknown keyword 'frction' for 'contact property' (expected "
-                "stiffness-normal, stiffness-shear, friction, cohesion, tension, spacing, restitution, friction-coefficient)");
+    parse_fails(
+        "model solve time 1\n\n\n\n\n\n"
+        "   contact property frction 30\n",
+        "run.dat:7:21: unknown keyword 'frction' for 'contact property' (expected "
+        "stiffness-normal, stiffness-shear, friction, cohesion, tension, spacing, restitution, friction-coefficient)");
 }
 
 static void test_error_duplicate_keyword(void **state)
@@ -469,62 +470,75 @@ static void test_error_duplicate_keyword(void **state)
 static void test_error_repeated_setting(void **state)
 {
     (void)state;
-    parse_fails("contact property stiffness-normal 1e10\ncontact property stiffness-normal 2e10\n",
-                "run.dat:2:18: 'stiffness-normal' of 'contact property' already given on line 1; give each "
-                "setting once");
-    parse_fails("contact property friction 30 spacing 0.1\n; comment\ncontact property friction 35\n",
-                "run.dat:3:18: 'friction' of 'contact property' already given on line 1; give each setting once");
+    parse_fails(
+        "contact property stiffness-normal 1e10\ncontact property stiffness-normal 2e10\n",
+        "run.dat:2:18: 'stiffness-normal' of 'contact property' already given on line 1; give each "
+        "setting once");
+    parse_fails(
+        "contact property friction 30 spacing 0.1\n; comment\ncontact property friction 35\n",
+        "run.dat:3:18: 'friction' of 'contact property' already given on line 1; give each setting once");
     parse_fails("model timestep fixed 1e-5\nmodel timestep auto safety 0.1\n",
                 "run.dat:2:1: 'model timestep' already given on line 1; give each setting once");
-    parse_fails("model solve time 1\nmodel solve time 2 tail 1\n",
-                "run.dat:2:13: 'time' of 'model solve' already given on line 1; give each setting once");
+    parse_fails(
+        "model solve time 1\nmodel solve time 2 tail 1\n",
+        "run.dat:2:13: 'time' of 'model solve' already given on line 1; give each setting once");
     parse_fails("model gravity 9.81\nmodel gravity 1.62\n",
                 "run.dat:2:1: 'model gravity' already given on line 1; give each setting once");
-    parse_fails("model title 'a'\nmodel title 'b'\n", "run.dat:2:1: 'model title' already given on line 1; "
+    parse_fails("model title 'a'\nmodel title 'b'\n",
+                "run.dat:2:1: 'model title' already given on line 1; "
                 "give each setting once");
     parse_fails("model damping viscous 0.1\nmodel damping none\n",
                 "run.dat:2:1: 'model damping' already given on line 1; give each setting once");
-    parse_fails("model settle off\nmodel settle on ratio 1e-5\n",
-                "run.dat:2:14: 'on|off' of 'model settle' already given on line 1; give each setting once");
-    parse_fails("model overturn angle 30\nmodel overturn tilt-ratio 1\n",
-                "run.dat:2:16: 'tilt-ratio|angle|height|off-pedestal' of 'model overturn' already given on line "
-                "1; give each setting once");
+    parse_fails(
+        "model settle off\nmodel settle on ratio 1e-5\n",
+        "run.dat:2:14: 'on|off' of 'model settle' already given on line 1; give each setting once");
+    parse_fails(
+        "model overturn angle 30\nmodel overturn tilt-ratio 1\n",
+        "run.dat:2:16: 'tilt-ratio|angle|height|off-pedestal' of 'model overturn' already given on line "
+        "1; give each setting once");
     parse_fails("output hdf5 'a.h5'\noutput hdf5 'b.h5' interval 0.01\n",
                 "run.dat:2:1: 'output hdf5' already given on line 1; give each setting once");
     parse_fails("history interval 0.01\nhistory interval 0.02\n",
                 "run.dat:2:1: 'history interval' already given on line 1; give each setting once");
-    parse_fails("contact interface-perturbation seed 1 raise 0.001\ncontact interface-perturbation seed 2\n",
-                "run.dat:2:32: 'seed' of 'contact interface-perturbation' already given on line 1; give each "
-                "setting once");
-    parse_fails("model reference restitution 0.5\nmodel reference restitution 0.6\n",
-                "run.dat:2:17: 'restitution' of 'model reference' already given on line 1; give each setting once");
-    parse_fails("block create brick size 1 1 1 position 0 0 0.5 name b\nblock initial name b tilt 1\n"
-                "block initial name b velocity 1 0 0 tilt 2\n",
-                "run.dat:3:37: 'tilt' of 'block initial name b' already given on line 2; give each setting once");
-    parse_fails("block create brick size 1 1 1 position 0 0 0.5 name a\nblock create brick size 1 1 1 "
-                "position 0 0 1.5 name b\ncontact property friction 30 range block 'a' block 'b'\n"
-                "contact property friction 20 damping 0 range block 'b' block 'a'\n",
-                "run.dat:4:18: 'friction' of 'contact property ... range block 'a' block 'b'' already given on "
-                "line 3; give each setting once");
+    parse_fails(
+        "contact interface-perturbation seed 1 raise 0.001\ncontact interface-perturbation seed 2\n",
+        "run.dat:2:32: 'seed' of 'contact interface-perturbation' already given on line 1; give each "
+        "setting once");
+    parse_fails(
+        "model reference restitution 0.5\nmodel reference restitution 0.6\n",
+        "run.dat:2:17: 'restitution' of 'model reference' already given on line 1; give each setting once");
+    parse_fails(
+        "block create brick size 1 1 1 position 0 0 0.5 name b\nblock initial name b tilt 1\n"
+        "block initial name b velocity 1 0 0 tilt 2\n",
+        "run.dat:3:37: 'tilt' of 'block initial name b' already given on line 2; give each setting once");
+    parse_fails(
+        "block create brick size 1 1 1 position 0 0 0.5 name a\nblock create brick size 1 1 1 "
+        "position 0 0 1.5 name b\ncontact property friction 30 range block 'a' block 'b'\n"
+        "contact property friction 20 damping 0 range block 'b' block 'a'\n",
+        "run.dat:4:18: 'friction' of 'contact property ... range block 'a' block 'b'' already given on "
+        "line 3; give each setting once");
     parse_fails("contact preset rigid\ncontact preset 3dec\n",
                 "run.dat:2:1: 'contact preset' already given on line 1; give each setting once");
     /* a preset replaces the whole contact and the damping: one after them dropped them */
-    parse_fails("contact property friction 30\ncontact preset rigid\n",
-                "run.dat:2:1: 'contact preset' would replace 'friction' of 'contact property' given on line 1; "
-                "give the preset first");
-    parse_fails("model damping viscous 0.1\ncontact preset rigid\n",
-                "run.dat:2:1: 'contact preset' would replace 'model damping' given on line 1; give the preset first");
+    parse_fails(
+        "contact property friction 30\ncontact preset rigid\n",
+        "run.dat:2:1: 'contact preset' would replace 'friction' of 'contact property' given on line 1; "
+        "give the preset first");
+    parse_fails(
+        "model damping viscous 0.1\ncontact preset rigid\n",
+        "run.dat:2:1: 'contact preset' would replace 'model damping' given on line 1; give the preset first");
     /* allowed: different keys on separate lines, a preset then single values, overlapping ranges,
        histories that add up, another block's initial conditions */
-    parse_ok("block create brick size 1 1 1 position 0 0 0.5 name a group 'g'\n"
-             "block create brick size 1 1 1 position 0 0 1.5 name b\n"
-             "contact preset rigid\ncontact property friction 30\ncontact property stiffness-normal 2e10\n"
-             "model damping viscous 0.1\nmodel settle off\nmodel settle time-limit 2\n"
-             "model overturn angle 30\nmodel overturn stop off\n"
-             "contact property friction 20 range group 'g'\ncontact property friction 25 range block 'a' block 'b'\n"
-             "contact property stiffness-normal 1e9 range block 'b' block 'a'\n"
-             "block initial name a tilt 1\nblock initial name b tilt 2\nblock initial name a velocity 1 0 0\n"
-             "history body 'a' position\nhistory body 'a' velocity\nmodel solve time 1\nmodel solve tail 2\n");
+    parse_ok(
+        "block create brick size 1 1 1 position 0 0 0.5 name a group 'g'\n"
+        "block create brick size 1 1 1 position 0 0 1.5 name b\n"
+        "contact preset rigid\ncontact property friction 30\ncontact property stiffness-normal 2e10\n"
+        "model damping viscous 0.1\nmodel settle off\nmodel settle time-limit 2\n"
+        "model overturn angle 30\nmodel overturn stop off\n"
+        "contact property friction 20 range group 'g'\ncontact property friction 25 range block 'a' block 'b'\n"
+        "contact property stiffness-normal 1e9 range block 'b' block 'a'\n"
+        "block initial name a tilt 1\nblock initial name b tilt 2\nblock initial name a velocity 1 0 0\n"
+        "history body 'a' position\nhistory body 'a' velocity\nmodel solve time 1\nmodel solve tail 2\n");
     assert_float_equal(sc->contact.friction, 30 * M_PI / 180, EPS);
     assert_float_equal(sc->contact.kn, 2e10, EPS);
     assert_int_equal(sc->njoints, 3);
@@ -547,7 +561,8 @@ static void test_error_not_a_number(void **state)
                 "run.dat:1:35: expected a number after 'stiffness-normal', got '1e10x'");
     parse_fails("ground-motion pulse one-sine amplitude 1 frequency 2g\n",
                 "run.dat:1:52: expected a number after 'frequency', got '2g'");
-    parse_fails("model density nan\n", "run.dat:1:15: expected a number after 'density', got 'nan'");
+    parse_fails("model density nan\n",
+                "run.dat:1:15: expected a number after 'density', got 'nan'");
 }
 
 static void test_error_out_of_range(void **state)
@@ -566,7 +581,9 @@ static void test_error_out_of_range(void **state)
     parse_fails("model damping viscous 0\n", "run.dat:1:23: 'viscous' must be in (0, 10], got 0");
     parse_fails("model damping local 1\n", "run.dat:1:21: 'local' must be in (0, 1), got 1");
     parse_fails("output hdf5 x.h5 interval 0\n", "run.dat:1:27: 'interval' must be > 0, got 0");
-    parse_fails("contact property spacing -0.1\n", "run.dat:1:26: 'spacing' -0.1 is outside its valid range [1e-06, 10000] m (docs/LIMITS.md)");
+    parse_fails(
+        "contact property spacing -0.1\n",
+        "run.dat:1:26: 'spacing' -0.1 is outside its valid range [1e-06, 10000] m (docs/LIMITS.md)");
 }
 
 static void test_error_unexpected_token(void **state)
@@ -585,8 +602,9 @@ static void test_error_exclusive_keywords(void **state)
                 "run.dat:1:54: 'density' cannot be combined with 'mass'");
     parse_fails("model timestep fixed 1e-5 safety 0.5\n",
                 "run.dat:1:27: 'safety' applies only to 'model timestep auto'");
-    parse_fails("model damping\n",
-                "run.dat:1:7: missing keyword after 'model damping' (expected none, viscous, local)");
+    parse_fails(
+        "model damping\n",
+        "run.dat:1:7: missing keyword after 'model damping' (expected none, viscous, local)");
 }
 
 static void test_error_switch(void **state)
@@ -601,8 +619,9 @@ static void test_error_switch(void **state)
 static void test_error_block_shape_and_required(void **state)
 {
     (void)state;
-    parse_fails("block create sphere size 1\n",
-                "run.dat:1:14: unknown shape 'sphere' for 'block create' (expected brick, prism, polyhedron, column or stack)");
+    parse_fails(
+        "block create sphere size 1\n",
+        "run.dat:1:14: unknown shape 'sphere' for 'block create' (expected brick, prism, polyhedron, column or stack)");
     parse_fails("block create brick position 0 0 0\n",
                 "run.dat:1:14: missing 'size' for 'block create brick'");
     parse_fails("block create brick size 1 1 1\n",
@@ -636,10 +655,9 @@ static void test_many_blocks(void **state)
     size_t n = 5000, len = strlen(line);
     char *text = malloc(n * len + 1);
     assert_non_null(text);
-    for (size_t i = 0; i < n; i++)
-        memcpy(text + i * len, line, len);
+    for (size_t i = 0; i < n; i++) memcpy(text + i * len, line, len);
     text[n * len] = '\0';
-    rd_error err = {""};
+    rd_error err = { "" };
     int rc = rd_scenario_parse(sc, "run.dat", text, &err);
     free(text);
     if (rc) fail_msg("%s", err.msg);
@@ -658,8 +676,9 @@ static void test_error_block_initial(void **state)
                 "block initial tilt 5 name base\n",
                 "run.dat:2:27: block 'base' is fixed; 'block initial' applies only to free blocks");
     parse_fails("block initial tilt 5\n", "run.dat:1:7: missing 'name' for 'block initial'");
-    parse_fails("block create brick size 1 1 1 position 0 0 0 name a\nblock initial name a tilt 90\n",
-                "run.dat:2:27: 'tilt' must be in [0, 90) degrees, got 90");
+    parse_fails(
+        "block create brick size 1 1 1 position 0 0 0 name a\nblock initial name a tilt 90\n",
+        "run.dat:2:27: 'tilt' must be in [0, 90) degrees, got 90");
 }
 
 /* ---- ground-motion errors ---- */
@@ -750,8 +769,8 @@ static void test_set_records_in_text(void **state)
     set_ok("model.duration=4");
     set_ok("model.damping=none");
     assert_float_equal(sc->duration, 4.0, EPS);
-    assert_string_equal(sc->text,
-                        "model solve time 1\n; --set model.duration=4\n; --set model.damping=none\n");
+    assert_string_equal(
+        sc->text, "model solve time 1\n; --set model.duration=4\n; --set model.damping=none\n");
 }
 
 static void test_set_pulse_rederives_duration(void **state)
@@ -774,11 +793,12 @@ static void test_set_bad_key(void **state)
 {
     (void)state;
     parse_ok(BASE);
-    set_fails("contact.frction=30",
-              "--set contact.frction=30: unknown key 'contact.frction' (expected "
-              "contact.stiffness-normal, contact.stiffness-shear, contact.friction, contact.friction-coefficient, "
-              "contact.cohesion, contact.tension, contact.spacing, contact.restitution, contact.interface-seed, "
-              "contact.interface-remove, contact.interface-raise, contact.interface-scatter)");
+    set_fails(
+        "contact.frction=30",
+        "--set contact.frction=30: unknown key 'contact.frction' (expected "
+        "contact.stiffness-normal, contact.stiffness-shear, contact.friction, contact.friction-coefficient, "
+        "contact.cohesion, contact.tension, contact.spacing, contact.restitution, contact.interface-seed, "
+        "contact.interface-remove, contact.interface-raise, contact.interface-scatter)");
     set_fails("solver.dt=1", "--set solver.dt=1: unknown key 'solver.dt' (expected a key in "
                              "contact, model, motion, output or block.<name>)");
     set_fails("model.gravity", "--set model.gravity: expected section.key=value");
@@ -795,11 +815,13 @@ static void test_set_bad_value(void **state)
 {
     (void)state;
     parse_ok(BASE);
-    set_fails("contact.stiffness-normal=-1", "--set contact.stiffness-normal=-1: value must be > 0");
+    set_fails("contact.stiffness-normal=-1",
+              "--set contact.stiffness-normal=-1: value must be > 0");
     set_fails("contact.friction=abc", "--set contact.friction=abc: expected a number, got 'abc'");
     set_fails("contact.spacing=some",
               "--set contact.spacing=some: expected a number, auto or vertices, got 'some'");
-    set_fails("model.damping=viscous 12", "--set model.damping=viscous 12: value must be in (0, 10]");
+    set_fails("model.damping=viscous 12",
+              "--set model.damping=viscous 12: value must be in (0, 10]");
     set_fails("model.damping=sticky",
               "--set model.damping=sticky: expected none, viscous <ratio> or local <alpha>, got "
               "'sticky'");
@@ -811,9 +833,11 @@ static void test_set_bad_value(void **state)
     set_fails("motion.duration=1",
               "--set motion.duration=1: motion.duration applies only to rectangular and triangle "
               "pulses (set motion.frequency)");
-    set_fails("motion.cycles=2", "--set motion.cycles=2: motion.cycles applies only to harmonic pulses");
-    set_fails("motion.vertical-amplitude=1g",
-              "--set motion.vertical-amplitude=1g: the scenario has no vertical ground-motion pulse");
+    set_fails("motion.cycles=2",
+              "--set motion.cycles=2: motion.cycles applies only to harmonic pulses");
+    set_fails(
+        "motion.vertical-amplitude=1g",
+        "--set motion.vertical-amplitude=1g: the scenario has no vertical ground-motion pulse");
     assert_float_equal(sc->contact.kn, 1e10, 1.0);
 }
 
@@ -823,7 +847,7 @@ static void test_validate_ok(void **state)
 {
     (void)state;
     parse_ok(BASE);
-    rd_error err = {""};
+    rd_error err = { "" };
     assert_int_equal(rd_scenario_validate(sc, &err), 0);
     rd_scenario_free(sc);
     parse_ok(FULL);

@@ -18,7 +18,8 @@
 #include "check.h"
 
 /* A drum (n-sided prism) seated on the body `on`, axis above (x, y). */
-static void add_drum(rd_scenario *sc, const char *name, const char *on, double r, double h, int sides)
+static void add_drum(rd_scenario *sc, const char *name, const char *on, double r, double h,
+                     int sides)
 {
     rd_body_def *b = &sc->bodies[sc->nbodies++];
     memset(b, 0, sizeof *b);
@@ -38,7 +39,8 @@ static void column_scene(rd_scenario *sc, int n, const char *extra)
     snprintf(text, sizeof text,
              "block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base\n"
              "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40 spacing 0.15\n"
-             "output hdf5 '%s/col.h5' interval 0.01\n%s", tmpdir, extra);
+             "output hdf5 '%s/col.h5' interval 0.01\n%s",
+             tmpdir, extra);
     rd_error err;
     if (rd_scenario_parse(sc, "column.dat", text, &err)) fail_msg("%s", err.msg);
     char prev[RD_NAME_MAX] = "base", name[RD_NAME_MAX];
@@ -104,8 +106,9 @@ static void test_column_weak_strong(void **state)
 {
     (void)state;
     rd_scenario sc;
-    column_scene(&sc, 6, "ground-motion pulse one-sine amplitude 0.1g frequency 2\n"
-                         "model damping viscous 0.1\nmodel solve time 3\n");
+    column_scene(&sc, 6,
+                 "ground-motion pulse one-sine amplitude 0.1g frequency 2\n"
+                 "model damping viscous 0.1\nmodel solve time 3\n");
     rd_status st;
     rd_sim *sim = run(&sc, &st);
     rd_summary sum;
@@ -118,8 +121,9 @@ static void test_column_weak_strong(void **state)
     rd_sim_free(sim);
     rd_scenario_free(&sc);
 
-    column_scene(&sc, 6, "ground-motion pulse one-sine amplitude 1.5g frequency 1\n"
-                         "model damping viscous 0.1\nmodel solve time 4\n");
+    column_scene(&sc, 6,
+                 "ground-motion pulse one-sine amplitude 1.5g frequency 1\n"
+                 "model damping viscous 0.1\nmodel solve time 4\n");
     sim = run(&sc, &st);
     rd_sim_summary(sim, &sum);
     print_message("1.5 g: overturned %d, status %d\n", sum.any_overturned, st);
@@ -135,24 +139,28 @@ static void test_column_weak_strong(void **state)
  * a/g > b2 / h2; the lower threshold wins. 1 % below it nothing rotates beyond the elastic
  * level; 1 % above, the predicted body tips (its tilt grows by orders of magnitude) and the
  * other does not rock on its own joint. */
-typedef struct { double lower[3], upper[3]; } stack_geom;
+typedef struct {
+    double lower[3], upper[3];
+} stack_geom;
 
 static void stack_tilts(const stack_geom *g, double factor, double *t_low, double *t_up)
 {
     double b1 = g->lower[0] / 2, h1 = g->lower[2] / 2, b2 = g->upper[0] / 2, h2 = g->upper[2] / 2;
-    double m1 = g->lower[0] * g->lower[1] * g->lower[2], m2 = g->upper[0] * g->upper[1] * g->upper[2];
+    double m1 = g->lower[0] * g->lower[1] * g->lower[2],
+           m2 = g->upper[0] * g->upper[1] * g->upper[2];
     double stack = b1 * (m1 + m2) / (m1 * h1 + m2 * (2 * h1 + h2)), up = b2 / h2;
     double a = factor * 9.81 * fmin(stack, up);
     char text[2048];
-    snprintf(text, sizeof text,
-             "block create brick size 4 4 0.5 position 0 0 -0.25 fixed name base\n"
-             "block create brick size %g %g %g position 0 0 %g name lower\n"
-             "block create brick size %g %g %g position 0 0 %g name upper\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 60 spacing vertices\n"
-             "model damping local 0.8\nground-motion pulse rectangular amplitude %.17g duration 2\n"
-             "model overturn angle 80\nmodel solve time 2\noutput hdf5 '%s/stack.h5' interval 0.01\n",
-             g->lower[0], g->lower[1], g->lower[2], h1, g->upper[0], g->upper[1], g->upper[2],
-             2 * h1 + h2, a, tmpdir);
+    snprintf(
+        text, sizeof text,
+        "block create brick size 4 4 0.5 position 0 0 -0.25 fixed name base\n"
+        "block create brick size %g %g %g position 0 0 %g name lower\n"
+        "block create brick size %g %g %g position 0 0 %g name upper\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 60 spacing vertices\n"
+        "model damping local 0.8\nground-motion pulse rectangular amplitude %.17g duration 2\n"
+        "model overturn angle 80\nmodel solve time 2\noutput hdf5 '%s/stack.h5' interval 0.01\n",
+        g->lower[0], g->lower[1], g->lower[2], h1, g->upper[0], g->upper[1], g->upper[2],
+        2 * h1 + h2, a, tmpdir);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "stack.dat", text, &err)) fail_msg("%s", err.msg);
@@ -169,7 +177,7 @@ static void stack_tilts(const stack_geom *g, double factor, double *t_low, doubl
 static void test_stack_upper_tips_first(void **state)
 {
     (void)state;
-    stack_geom g = {{1.0, 1.0, 1.0}, {0.4, 0.4, 1.2}}; /* upper: 1/3 g; stack: 0.74 g */
+    stack_geom g = { { 1.0, 1.0, 1.0 }, { 0.4, 0.4, 1.2 } }; /* upper: 1/3 g; stack: 0.74 g */
     double l0, u0, l1, u1;
     stack_tilts(&g, 0.99, &l0, &u0);
     stack_tilts(&g, 1.01, &l1, &u1);
@@ -183,7 +191,7 @@ static void test_stack_upper_tips_first(void **state)
 static void test_stack_whole_tips_first(void **state)
 {
     (void)state;
-    stack_geom g = {{0.4, 0.4, 2.0}, {0.4, 0.4, 0.4}}; /* stack: 0.167 g; upper: 1 g */
+    stack_geom g = { { 0.4, 0.4, 2.0 }, { 0.4, 0.4, 0.4 } }; /* stack: 0.167 g; upper: 1 g */
     double l0, u0, l1, u1;
     stack_tilts(&g, 0.99, &l0, &u0);
     stack_tilts(&g, 1.01, &l1, &u1);
@@ -218,8 +226,14 @@ static int hull(double (*p)[2], int n, double (*h)[2])
     for (int pass = 0; pass < 2; pass++, k--)
         for (int c = 0, start = k; c < n; c++) {
             int i = pass ? n - 1 - c : c;
-            while (k >= start + 2 && (h[k-1][0]-h[k-2][0])*(p[i][1]-h[k-2][1]) - (h[k-1][1]-h[k-2][1])*(p[i][0]-h[k-2][0]) <= 0) k--;
-            h[k][0] = p[i][0]; h[k][1] = p[i][1]; k++;
+            while (k >= start + 2 &&
+                   (h[k - 1][0] - h[k - 2][0]) * (p[i][1] - h[k - 2][1]) -
+                           (h[k - 1][1] - h[k - 2][1]) * (p[i][0] - h[k - 2][0]) <=
+                       0)
+                k--;
+            h[k][0] = p[i][0];
+            h[k][1] = p[i][1];
+            k++;
         }
     return k;
 }
@@ -231,7 +245,8 @@ static double ray(double (*h)[2], int n, const double c[2], double dx, double dy
         const double *a = h[i], *b = h[(i + 1) % n];
         double ex = b[0] - a[0], ey = b[1] - a[1], den = dx * ey - dy * ex;
         if (fabs(den) < 1e-15) continue;
-        double t = ((a[0] - c[0]) * ey - (a[1] - c[1]) * ex) / den, u = ((a[0] - c[0]) * dy - (a[1] - c[1]) * dx) / den;
+        double t = ((a[0] - c[0]) * ey - (a[1] - c[1]) * ex) / den,
+               u = ((a[0] - c[0]) * dy - (a[1] - c[1]) * dx) / den;
         if (t >= 0 && u >= -1e-9 && u <= 1 + 1e-9) best = fmin(best, t);
     }
     return best;
@@ -252,14 +267,18 @@ static void test_pbr_mesh(void **state)
     int nv = 0, nt = 0;
     char line[256];
     while (fgets(line, sizeof line, f)) {
-        if (line[0] == 'v' && line[1] == ' ' && nv < 20000) sscanf(line + 2, "%lf %lf %lf", &v[nv][0], &v[nv][1], &v[nv][2]), nv++;
-        if (line[0] == 'f' && line[1] == ' ' && nt < 40000) sscanf(line + 2, "%d %d %d", &tri[nt][0], &tri[nt][1], &tri[nt][2]), nt++;
+        if (line[0] == 'v' && line[1] == ' ' && nv < 20000)
+            sscanf(line + 2, "%lf %lf %lf", &v[nv][0], &v[nv][1], &v[nv][2]), nv++;
+        if (line[0] == 'f' && line[1] == ' ' && nt < 40000)
+            sscanf(line + 2, "%d %d %d", &tri[nt][0], &tri[nt][1], &tri[nt][2]), nt++;
     }
     fclose(f);
-    double vol = 0, c[3] = {0}, zmin = INFINITY;
+    double vol = 0, c[3] = { 0 }, zmin = INFINITY;
     for (int t = 0; t < nt; t++) {
         const double *a = v[tri[t][0] - 1], *b = v[tri[t][1] - 1], *d = v[tri[t][2] - 1];
-        double v6 = (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0])) / 6;
+        double v6 = (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                     a[2] * (b[0] * d[1] - b[1] * d[0])) /
+                    6;
         vol += v6;
         for (int k = 0; k < 3; k++) c[k] += v6 * (a[k] + b[k] + d[k]) / 4;
     }
@@ -268,18 +287,24 @@ static void test_pbr_mesh(void **state)
     static double base[20000][2], h[40002][2];
     int nb = 0;
     for (int i = 0; i < nv; i++)
-        if (v[i][2] < zmin + 1e-9) { base[nb][0] = v[i][0]; base[nb][1] = v[i][1]; nb++; }
+        if (v[i][2] < zmin + 1e-9) {
+            base[nb][0] = v[i][0];
+            base[nb][1] = v[i][1];
+            nb++;
+        }
     int nh = hull(base, nb, h);
     double amin = INFINITY;
     for (int d = 0; d < 72; d++)
-        amin = fmin(amin, atan2(ray(h, nh, c, cos(d * M_PI / 36), sin(d * M_PI / 36)), c[2] - zmin));
+        amin =
+            fmin(amin, atan2(ray(h, nh, c, cos(d * M_PI / 36), sin(d * M_PI / 36)), c[2] - zmin));
 
     char text[1024];
     snprintf(text, sizeof text,
              "block create brick size 1.2 1.2 0.3 position 0 0 -0.15 fixed name pedestal\n"
              "block import mesh '%s' seat-on pedestal density 2750 name rock\n"
              "contact property stiffness-normal 1e10 stiffness-shear 1e9 friction 40\n"
-             "model solve time 1\noutput hdf5 '%s/pbr.h5' interval 0.01\n", obj, tmpdir);
+             "model solve time 1\noutput hdf5 '%s/pbr.h5' interval 0.01\n",
+             obj, tmpdir);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "pbr.dat", text, &err)) fail_msg("%s", err.msg);
@@ -288,8 +313,8 @@ static void test_pbr_mesh(void **state)
     rd_summary sum;
     rd_sim_summary(sim, &sum);
     const rd_body_summary *b = &sum.body[0];
-    print_message("PBR: alpha_min %.6f (independent %.6f) rad, rest tilt %.2e rad\n",
-                  b->alpha_min, amin, b->max_tilt);
+    print_message("PBR: alpha_min %.6f (independent %.6f) rad, rest tilt %.2e rad\n", b->alpha_min,
+                  amin, b->max_tilt);
     assert_int_equal(st, RD_STATUS_DONE);
     assert_true(fabs(b->alpha_min - amin) < 1e-3 * amin);
     assert_true(b->max_tilt < 1e-7);
@@ -319,13 +344,14 @@ static void test_pbr_mesh(void **state)
 static rd_sim *off_pedestal_sim(double duration, double kn_factor, rd_status *st)
 {
     char text[1024];
-    snprintf(text, sizeof text,
-             "block create brick size 0.6 0.6 0.5 position 0 0 -0.25 fixed name pedestal\n"
-             "block create brick size 0.5 0.5 0.3 position 0 0 0.15 name b\n"
-             "contact property stiffness-normal %g stiffness-shear %g friction 15\n"
-             "ground-motion pulse rectangular amplitude 0.5g duration 1.5\n"
-             "model settle on\nmodel overturn off-pedestal 0\nmodel solve time %g\noutput hdf5 '%s/off.h5' interval 0.01\n",
-             1e10 * kn_factor, 1e9 * kn_factor, duration, tmpdir);
+    snprintf(
+        text, sizeof text,
+        "block create brick size 0.6 0.6 0.5 position 0 0 -0.25 fixed name pedestal\n"
+        "block create brick size 0.5 0.5 0.3 position 0 0 0.15 name b\n"
+        "contact property stiffness-normal %g stiffness-shear %g friction 15\n"
+        "ground-motion pulse rectangular amplitude 0.5g duration 1.5\n"
+        "model settle on\nmodel overturn off-pedestal 0\nmodel solve time %g\noutput hdf5 '%s/off.h5' interval 0.01\n",
+        1e10 * kn_factor, 1e9 * kn_factor, duration, tmpdir);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "off.dat", text, &err)) fail_msg("%s", err.msg);
@@ -353,15 +379,17 @@ static void test_off_pedestal(void **state)
         rd_sim_free(s);
     }
     double want = 0.5 * a * t_end * t_end;
-    rd_check_abs("slide in 0.4 s under a 0.5 g step (m)", slid[0], want, 1.5 * fabs(slid[0] - slid[1]) + 1e-6, RD_STRICT);
+    rd_check_abs("slide in 0.4 s under a 0.5 g step (m)", slid[0], want,
+                 1.5 * fabs(slid[0] - slid[1]) + 1e-6, RD_STRICT);
     rd_check_abs("max tilt over the pedestal's edge by 0.4 s (rad)", tilt, 0.0, 1e-3, RD_STRICT);
 
     rd_sim *sim = off_pedestal_sim(3, 1.0, &st);
     rd_summary sum;
     rd_sim_summary(sim, &sum);
     double t_edge = sqrt(2 * 0.3 / a), t_gone = sqrt(2 * 0.55 / a);
-    print_message("off pedestal at %.4f s (centre of mass over the edge %.4f s, trailing edge off %.4f s)\n",
-                  sum.body[0].overturn_time, t_edge, t_gone);
+    print_message(
+        "off pedestal at %.4f s (centre of mass over the edge %.4f s, trailing edge off %.4f s)\n",
+        sum.body[0].overturn_time, t_edge, t_gone);
     assert_int_equal(st, RD_STATUS_OVERTURNED);
     assert_true(sum.body[0].overturn_time > t_edge && sum.body[0].overturn_time < t_gone);
     rd_sim_free(sim);
@@ -382,7 +410,8 @@ static void test_crossing_edges(void **state)
              "block create brick size 1 1 0.5 position 0 0 0.25 name lower\n"
              "block create brick size 1 1 0.5 position 0 0 0.75 rotation 0 0 45 name upper\n"
              "contact property stiffness-normal 1e8 stiffness-shear 1e7 friction 40 spacing 0.02\n"
-             "model solve time 2\noutput hdf5 '%s/cross.h5' interval 0.01\n", tmpdir);
+             "model solve time 2\noutput hdf5 '%s/cross.h5' interval 0.01\n",
+             tmpdir);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "cross.dat", text, &err)) fail_msg("%s", err.msg);
@@ -393,12 +422,14 @@ static void test_crossing_edges(void **state)
     double xl[3], xu[3];
     rd_sim_body_state(sim, 0, xl, NULL, NULL, NULL);
     rd_sim_body_state(sim, 1, xu, NULL, NULL, NULL);
-    double w = 2700 * 0.5 * 9.81;                       /* weight of one block, N */
-    double sink_lower = 0.25 - xl[2];                   /* base joint: area 1 m^2, load 2 w */
-    double sink_joint = (0.75 - xu[2]) - sink_lower;    /* octagon: 2 (sqrt 2 - 1) = 0.8284 m^2 */
+    double w = 2700 * 0.5 * 9.81;                    /* weight of one block, N */
+    double sink_lower = 0.25 - xl[2];                /* base joint: area 1 m^2, load 2 w */
+    double sink_joint = (0.75 - xu[2]) - sink_lower; /* octagon: 2 (sqrt 2 - 1) = 0.8284 m^2 */
     double oct = 2 * (sqrt(2) - 1);
-    print_message("crossing: tilt %.2e / %.2e rad, base sink %.4e (expect %.4e), joint %.4e (expect %.4e) m\n",
-                  sum.body[0].max_tilt, sum.body[1].max_tilt, sink_lower, 2 * w / 1e8, sink_joint, w / (1e8 * oct));
+    print_message(
+        "crossing: tilt %.2e / %.2e rad, base sink %.4e (expect %.4e), joint %.4e (expect %.4e) m\n",
+        sum.body[0].max_tilt, sum.body[1].max_tilt, sink_lower, 2 * w / 1e8, sink_joint,
+        w / (1e8 * oct));
     assert_int_equal(st, RD_STATUS_DONE);
     assert_true(sum.body[0].max_tilt < 1e-9 && sum.body[1].max_tilt < 1e-9);
     assert_true(fabs(sink_lower - 2 * w / 1e8) < 0.02 * 2 * w / 1e8);

@@ -22,7 +22,7 @@ static int rel_close(double a, double b, double tol) { return fabs(a - b) <= tol
 static void test_prism_mass(void **state)
 {
     (void)state;
-    const int ns[] = {3, 4, 6, 17, 64};
+    const int ns[] = { 3, 4, 6, 17, 64 };
     double r = 0.4, h = 1.3;
     for (size_t t = 0; t < sizeof ns / sizeof ns[0]; t++) {
         int n = ns[t];
@@ -93,18 +93,20 @@ static void test_prism_errors(void **state)
 static void test_hull_brick(void **state)
 {
     (void)state;
-    double a[3] = {0.3, 0.64, 0.8}, pts[125][3];
+    double a[3] = { 0.3, 0.64, 0.8 }, pts[125][3];
     int n = 0;
     for (int i = 0; i < 5; i++)
         for (int j = 0; j < 5; j++)
             for (int k = 0; k < 5; k++) {
-                pts[n][0] = 7 + a[0] * i / 4; pts[n][1] = -3 + a[1] * j / 4; pts[n][2] = a[2] * k / 4;
+                pts[n][0] = 7 + a[0] * i / 4;
+                pts[n][1] = -3 + a[1] * j / 4;
+                pts[n][2] = a[2] * k / 4;
                 n++;
             }
     rd_poly p;
     rd_mass m;
     rd_error err;
-    assert_int_equal(rd_poly_hull(&p, (const double (*)[3])pts, n, &err), 0);
+    assert_int_equal(rd_poly_hull(&p, (const double(*)[3])pts, n, &err), 0);
     assert_int_equal(p.nv, 8);
     assert_int_equal(p.nf, 6);
     for (int f = 0; f < 6; f++) assert_int_equal(p.flen[f], 4);
@@ -141,19 +143,23 @@ static void test_hull_random(void **state)
     rd_poly p;
     rd_mass m;
     rd_error err;
-    assert_int_equal(rd_poly_hull(&p, (const double (*)[3])pts, N, &err), 0);
+    assert_int_equal(rd_poly_hull(&p, (const double(*)[3])pts, N, &err), 0);
     assert_int_equal(rd_poly_check(&p, "hull", 0, &err), 0);
     assert_int_equal(rd_poly_mass(&p, &m, &err), 0);
     assert_true(m.volume > 0 && m.volume < 4.0 / 3.0 * M_PI);
     int edges2 = 0;
     for (int f = 0; f < p.nf; f++) {
         edges2 += p.flen[f];
-        for (int i = 0; i < N; i++) assert_true(p.fn[f][0] * pts[i][0] + p.fn[f][1] * pts[i][1] + p.fn[f][2] * pts[i][2] <= p.fd[f] + 1e-10);
+        for (int i = 0; i < N; i++)
+            assert_true(p.fn[f][0] * pts[i][0] + p.fn[f][1] * pts[i][1] + p.fn[f][2] * pts[i][2] <=
+                        p.fd[f] + 1e-10);
         for (int k = 0; k < p.flen[f]; k++) {
             const double *v = p.v[p.fidx[p.fstart[f] + k]];
-            assert_true(fabs(p.fn[f][0] * v[0] + p.fn[f][1] * v[1] + p.fn[f][2] * v[2] - p.fd[f]) < 1e-12 * 100);
+            assert_true(fabs(p.fn[f][0] * v[0] + p.fn[f][1] * v[1] + p.fn[f][2] * v[2] - p.fd[f]) <
+                        1e-12 * 100);
         }
-        double c = p.fn[f][0] * m.centroid[0] + p.fn[f][1] * m.centroid[1] + p.fn[f][2] * m.centroid[2];
+        double c =
+            p.fn[f][0] * m.centroid[0] + p.fn[f][1] * m.centroid[1] + p.fn[f][2] * m.centroid[2];
         assert_true(c < p.fd[f] - 0.01);
     }
     assert_int_equal(p.nv - edges2 / 2 + p.nf, 2);
@@ -168,19 +174,19 @@ static void test_hull_random(void **state)
 static void test_hull_errors(void **state)
 {
     (void)state;
-    double flat[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5, 0.5, 0}};
+    double flat[5][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 }, { 0.5, 0.5, 0 } };
     rd_poly p;
     rd_error err;
-    assert_int_equal(rd_poly_hull(&p, (const double (*)[3])flat, 3, &err), -1);
+    assert_int_equal(rd_poly_hull(&p, (const double(*)[3])flat, 3, &err), -1);
     assert_non_null(strstr(err.msg, "at least 4 points"));
-    assert_int_equal(rd_poly_hull(&p, (const double (*)[3])flat, 5, &err), -1);
+    assert_int_equal(rd_poly_hull(&p, (const double(*)[3])flat, 5, &err), -1);
     assert_non_null(strstr(err.msg, "coplanar"));
 }
 
 /* L-shaped prism: the L = [0,2]x[0,1] + [0,1]x[1,2] (as one star-shaped hexagon face, fanned
  * from (0,0)), extruded over z in [0, h]. By the two boxes: V = 3 h, centroid (5/6, 5/6, h/2),
  * int x^2 dV = h (8/3 + 1/3) = 3 h, int x y dV = h (1 + 3/4) = 7 h / 4. */
-static const double L_xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+static const double L_xy[6][2] = { { 0, 0 }, { 2, 0 }, { 2, 1 }, { 1, 1 }, { 1, 2 }, { 0, 2 } };
 
 static int l_prism(rd_poly *p, double h, int flip, int top_first, rd_error *err)
 {
@@ -189,20 +195,31 @@ static int l_prism(rd_poly *p, double h, int flip, int top_first, rd_error *err)
     for (int k = 0; k < 6; k++) {
         v[k][0] = v[6 + k][0] = L_xy[k][0];
         v[k][1] = v[6 + k][1] = L_xy[k][1];
-        v[k][2] = 0; v[6 + k][2] = h;
+        v[k][2] = 0;
+        v[6 + k][2] = h;
     }
-    start[0] = at; len[0] = 6;
+    start[0] = at;
+    len[0] = 6;
     for (int k = 0; k < 6; k++) idx[at++] = (6 - k) % 6; /* 0, 5, 4, ...: fanned from (0, 0) */
-    start[1] = at; len[1] = 6;
+    start[1] = at;
+    len[1] = 6;
     for (int k = 0; k < 6; k++) idx[at++] = 6 + (top_first + k) % 6;
     for (int k = 0; k < 6; k++) {
-        start[2 + k] = at; len[2 + k] = 4;
-        idx[at++] = k; idx[at++] = (k + 1) % 6; idx[at++] = 6 + (k + 1) % 6; idx[at++] = 6 + k;
+        start[2 + k] = at;
+        len[2 + k] = 4;
+        idx[at++] = k;
+        idx[at++] = (k + 1) % 6;
+        idx[at++] = 6 + (k + 1) % 6;
+        idx[at++] = 6 + k;
     }
     if (flip) /* reverse every face, keeping its first vertex */
         for (int f = 0; f < 8; f++)
-            for (int a = start[f] + 1, b = start[f] + len[f] - 1; a < b; a++, b--) { int t = idx[a]; idx[a] = idx[b]; idx[b] = t; }
-    return rd_poly_from_faces(p, (const double (*)[3])v, 12, start, len, idx, 8, err);
+            for (int a = start[f] + 1, b = start[f] + len[f] - 1; a < b; a++, b--) {
+                int t = idx[a];
+                idx[a] = idx[b];
+                idx[b] = t;
+            }
+    return rd_poly_from_faces(p, (const double(*)[3])v, 12, start, len, idx, 8, err);
 }
 
 static void test_from_faces_l_prism(void **state)
@@ -214,7 +231,7 @@ static void test_from_faces_l_prism(void **state)
     rd_error err;
     assert_int_equal(l_prism(&p, h, 0, 0, &err), 0);
     assert_int_equal(rd_poly_mass(&p, &m, &err), 0);
-    double V = 3 * h, c[3] = {5.0 / 6, 5.0 / 6, h / 2};
+    double V = 3 * h, c[3] = { 5.0 / 6, 5.0 / 6, h / 2 };
     assert_true(rel_close(m.volume, V, 1e-12));
     for (int i = 0; i < 3; i++) assert_true(fabs(m.centroid[i] - c[i]) < 1e-12);
     double Sxx = 3 * h - V * c[0] * c[0], Sxy = 7 * h / 4 - V * c[0] * c[1];
@@ -225,7 +242,8 @@ static void test_from_faces_l_prism(void **state)
     assert_int_equal(p.flen[0], 6);
     rd_poly_free(&p);
     assert_int_equal(l_prism(&p, h, 1, 0, &err), -1);
-    assert_string_equal(err.msg, "faces: inside-out mesh (volume -2.25 m^3); flip the face orientation");
+    assert_string_equal(err.msg,
+                        "faces: inside-out mesh (volume -2.25 m^3); flip the face orientation");
     /* the top hexagon fanned from (2, 1) instead of (0, 0): the fan folds over at (1, 1) */
     assert_int_equal(l_prism(&p, h, 0, 2, &err), -1);
     assert_non_null(strstr(err.msg, "faces: face 1 folds over when fanned from its first vertex"));
@@ -246,19 +264,23 @@ static void test_hull_marks_l_prism(void **state)
 }
 
 /* Unit cube faces, outward; edits of them exercise each failure of rd_poly_check. */
-static const double cube_v[9][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
-                                    {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}, {2, 2, 2}};
+static const double cube_v[9][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 },
+                                     { 1, 1, 0 }, { 0, 0, 1 }, { 1, 0, 1 },
+                                     { 0, 1, 1 }, { 1, 1, 1 }, { 2, 2, 2 } };
 static int cube_faces(int *idx, int *start, int *len)
 {
-    static const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
+                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
     for (int f = 0; f < 6; f++) {
-        start[f] = 4 * f; len[f] = 4;
+        start[f] = 4 * f;
+        len[f] = 4;
         memcpy(idx + 4 * f, q[f], sizeof q[f]);
     }
     return 6;
 }
 
-static void expect_faces_error(int nv, const int *start, const int *len, const int *idx, int nf, const char *want)
+static void expect_faces_error(int nv, const int *start, const int *len, const int *idx, int nf,
+                               const char *want)
 {
     rd_poly p;
     rd_error err;
@@ -273,7 +295,9 @@ static int convex_by_definition(const rd_poly *p, double tol)
 {
     for (int f = 0; f < p->nf; f++)
         for (int v = 0; v < p->nv; v++)
-            if (p->fn[f][0] * p->v[v][0] + p->fn[f][1] * p->v[v][1] + p->fn[f][2] * p->v[v][2] - p->fd[f] > tol)
+            if (p->fn[f][0] * p->v[v][0] + p->fn[f][1] * p->v[v][1] + p->fn[f][2] * p->v[v][2] -
+                    p->fd[f] >
+                tol)
                 return 0;
     return 1;
 }
@@ -283,20 +307,25 @@ static int convex_by_definition(const rd_poly *p, double tol)
 static int uv_sphere(rd_poly *p, int nlat, int nlon, int dent, double push, rd_error *err)
 {
     int nv = 2 + (nlat - 1) * nlon, nf = 2 * nlon * (nlat - 1), at = 0, f = 0;
-    double (*v)[3] = malloc((size_t)nv * sizeof *v);
+    double(*v)[3] = malloc((size_t)nv * sizeof *v);
     int *idx = malloc((size_t)nf * 3 * sizeof *idx), *start = malloc((size_t)nf * sizeof *start);
     int *len = malloc((size_t)nf * sizeof *len);
-    v[0][0] = v[0][1] = 0; v[0][2] = 1;
+    v[0][0] = v[0][1] = 0;
+    v[0][2] = 1;
     for (int i = 1; i < nlat; i++)
         for (int j = 0; j < nlon; j++) {
             double t = M_PI * i / nlat, ph = 2 * M_PI * j / nlon, *x = v[1 + (i - 1) * nlon + j];
-            x[0] = sin(t) * cos(ph); x[1] = sin(t) * sin(ph); x[2] = cos(t);
+            x[0] = sin(t) * cos(ph);
+            x[1] = sin(t) * sin(ph);
+            x[2] = cos(t);
         }
-    v[nv - 1][0] = v[nv - 1][1] = 0; v[nv - 1][2] = -1;
+    v[nv - 1][0] = v[nv - 1][1] = 0;
+    v[nv - 1][2] = -1;
     if (dent >= 0)
         for (int k = 0; k < 3; k++) v[dent][k] *= 1 + push;
-#define ID(i, j) (1 + (i) * nlon + ((j) % nlon))
-#define TRI(a, b, c) (start[f] = at, len[f++] = 3, idx[at++] = (a), idx[at++] = (b), idx[at++] = (c))
+#define ID(i, j) (1 + (i)*nlon + ((j) % nlon))
+#define TRI(a, b, c)                                                                               \
+    (start[f] = at, len[f++] = 3, idx[at++] = (a), idx[at++] = (b), idx[at++] = (c))
     for (int j = 0; j < nlon; j++) TRI(0, ID(0, j), ID(0, j + 1));
     for (int i = 0; i + 2 < nlat; i++)
         for (int j = 0; j < nlon; j++) {
@@ -306,8 +335,11 @@ static int uv_sphere(rd_poly *p, int nlat, int nlon, int dent, double push, rd_e
     for (int j = 0; j < nlon; j++) TRI(nv - 1, ID(nlat - 2, j + 1), ID(nlat - 2, j));
 #undef TRI
 #undef ID
-    int rc = rd_poly_from_faces(p, (const double (*)[3])v, nv, start, len, idx, nf, err);
-    free(v); free(idx); free(start); free(len);
+    int rc = rd_poly_from_faces(p, (const double(*)[3])v, nv, start, len, idx, nf, err);
+    free(v);
+    free(idx);
+    free(start);
+    free(len);
     return rc;
 }
 
@@ -332,18 +364,19 @@ static void test_convexity(void **state)
     (void)state;
     rd_poly p;
     rd_error err;
-    const double size[3] = {0.4, 0.5, 1.0};
+    const double size[3] = { 0.4, 0.5, 1.0 };
     assert_int_equal(rd_poly_brick(&p, size, &err), 0);
     expect_convex(&p, 1);
     assert_int_equal(rd_poly_prism(&p, 128, 0.5, 0.5, 1.0, &err), 0);
     expect_convex(&p, 1);
-    assert_int_equal(rd_poly_prism(&p, 2000, 0.5, 0.3, 1.0, &err), 0); /* 2000-gon caps, the edge test */
+    assert_int_equal(rd_poly_prism(&p, 2000, 0.5, 0.3, 1.0, &err),
+                     0); /* 2000-gon caps, the edge test */
     expect_convex(&p, 1);
     double pts[200][3];
     srand(7);
     for (int i = 0; i < 200; i++)
         for (int k = 0; k < 3; k++) pts[i][k] = (double)rand() / RAND_MAX - 0.5;
-    assert_int_equal(rd_poly_hull(&p, (const double (*)[3])pts, 200, &err), 0);
+    assert_int_equal(rd_poly_hull(&p, (const double(*)[3])pts, 200, &err), 0);
     expect_convex(&p, 1);
     assert_int_equal(uv_sphere(&p, 50, 100, -1, 0, &err), 0);
     expect_convex(&p, 1);
@@ -368,15 +401,22 @@ static void test_from_faces_errors(void **state)
     int nf = cube_faces(idx, start, len);
     assert_int_equal(rd_poly_from_faces(&p, cube_v, 8, start, len, idx, nf, &err), 0);
     rd_poly_free(&p);
-    expect_faces_error(8, start, len, idx, 5, "faces: open mesh: edge (1, 3) belongs to 1 face (first: face 0)");
+    expect_faces_error(8, start, len, idx, 5,
+                       "faces: open mesh: edge (1, 3) belongs to 1 face (first: face 0)");
     expect_faces_error(9, start, len, idx, 6, "faces: vertex 8 is used by no face");
-    int t = idx[5]; idx[5] = idx[7]; idx[7] = t; /* reverse face 1 */
-    expect_faces_error(8, start, len, idx, 6, "faces: inconsistent orientation: faces 1 and 2 both run edge (4, 5) from vertex 5");
+    int t = idx[5];
+    idx[5] = idx[7];
+    idx[7] = t; /* reverse face 1 */
+    expect_faces_error(
+        8, start, len, idx, 6,
+        "faces: inconsistent orientation: faces 1 and 2 both run edge (4, 5) from vertex 5");
     cube_faces(idx, start, len);
     idx[3] = 9;
-    expect_faces_error(8, start, len, idx, 6, "faces: face 0 uses vertex 9 but there are 8 vertices");
+    expect_faces_error(8, start, len, idx, 6,
+                       "faces: face 0 uses vertex 9 but there are 8 vertices");
     cube_faces(idx, start, len);
-    idx[2] = 2; idx[3] = 0; /* (0, 2, 2, 0): zero area */
+    idx[2] = 2;
+    idx[3] = 0; /* (0, 2, 2, 0): zero area */
     expect_faces_error(8, start, len, idx, 6, "faces: degenerate face 0 (zero area)");
     cube_faces(idx, start, len);
     idx[3] = 8; /* (0, 2, 3, 8): not planar */
@@ -386,25 +426,24 @@ static void test_from_faces_errors(void **state)
     expect_faces_error(8, start, len, idx, 6, "faces: face 0 has 2 vertices");
     /* a fourth face on edge (0, 1): the triangle (0, 1, 8) and its reverse */
     cube_faces(idx, start, len);
-    int extra[6] = {0, 1, 8, 8, 1, 0};
+    int extra[6] = { 0, 1, 8, 8, 1, 0 };
     memcpy(idx + 24, extra, sizeof extra);
-    start[6] = 24; len[6] = 3; start[7] = 27; len[7] = 3;
-    expect_faces_error(9, start, len, idx, 8, "faces: non-manifold mesh: edge (0, 1) belongs to 4 faces (first: face 0)");
+    start[6] = 24;
+    len[6] = 3;
+    start[7] = 27;
+    len[7] = 3;
+    expect_faces_error(9, start, len, idx, 8,
+                       "faces: non-manifold mesh: edge (0, 1) belongs to 4 faces (first: face 0)");
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_prism_mass),
-        cmocka_unit_test(test_frustum_mass),
-        cmocka_unit_test(test_prism_errors),
-        cmocka_unit_test(test_hull_brick),
-        cmocka_unit_test(test_hull_random),
-        cmocka_unit_test(test_hull_errors),
-        cmocka_unit_test(test_from_faces_l_prism),
-        cmocka_unit_test(test_hull_marks_l_prism),
-        cmocka_unit_test(test_from_faces_errors),
-        cmocka_unit_test(test_convexity),
+        cmocka_unit_test(test_prism_mass),         cmocka_unit_test(test_frustum_mass),
+        cmocka_unit_test(test_prism_errors),       cmocka_unit_test(test_hull_brick),
+        cmocka_unit_test(test_hull_random),        cmocka_unit_test(test_hull_errors),
+        cmocka_unit_test(test_from_faces_l_prism), cmocka_unit_test(test_hull_marks_l_prism),
+        cmocka_unit_test(test_from_faces_errors),  cmocka_unit_test(test_convexity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -31,8 +31,8 @@
 #include "rockdem/observer.h"
 
 #define HOUSNER_R 0.7000 /* h/b = 2: r = 1 - 1.5 sin^2(alpha), alpha = atan(1/2): 0.70 */
-#define R_TOL 0.01       /* issue 39: the same restitution within 1 % on every tessellation */
-#define SPIN_TOL 0.02    /* issue 39: spin-down within 2 % of uniform pressure */
+#define R_TOL     0.01   /* issue 39: the same restitution within 1 % on every tessellation */
+#define SPIN_TOL  0.02   /* issue 39: spin-down within 2 % of uniform pressure */
 
 static const char *const SHAPES[4] = {
     "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b",
@@ -40,7 +40,8 @@ static const char *const SHAPES[4] = {
     "block import mesh 'box_cut10.obj' position 0 0 0.5 name b",
     "block import mesh 'box_remesh.obj' position 0 0 0.5 name b",
 };
-static const char *const SHAPE_NAME[4] = {"brick", "8-vertex mesh", "10 x 10 cut mesh", "5,120-triangle remesh"};
+static const char *const SHAPE_NAME[4] = { "brick", "8-vertex mesh", "10 x 10 cut mesh",
+                                           "5,120-triangle remesh" };
 
 /* Free rocking from theta0 toward +x: the signed in-plane rocking at every sample, its swings
  * (runs of one sign beyond a thousandth of theta0) and their amplitudes. */
@@ -52,12 +53,17 @@ typedef struct rock_log {
 
 static int rock_sample(void *user, rd_sim *sim, const rd_sample *s, rd_error *err)
 {
-    (void)sim; (void)err;
+    (void)sim;
+    (void)err;
     rock_log *lg = user;
     double th = s->rotation[0];
     int sg = th > lg->eps ? 1 : th < -lg->eps ? -1 : 0;
-    if (sg != 0 && sg != lg->sign && lg->swings < 8) { lg->sign = sg; lg->amp[lg->swings++] = 0; }
-    if (lg->swings > 0 && lg->swings <= 8) lg->amp[lg->swings - 1] = fmax(lg->amp[lg->swings - 1], fabs(th));
+    if (sg != 0 && sg != lg->sign && lg->swings < 8) {
+        lg->sign = sg;
+        lg->amp[lg->swings++] = 0;
+    }
+    if (lg->swings > 0 && lg->swings <= 8)
+        lg->amp[lg->swings - 1] = fmax(lg->amp[lg->swings - 1], fabs(th));
     return 0;
 }
 
@@ -78,20 +84,21 @@ static double rocking_r(int k, double zeta)
     char damping[64] = "";
     if (zeta > 0) snprintf(damping, sizeof damping, "model damping viscous %.4g\n", zeta);
     char text[1024];
-    snprintf(text, sizeof text,
-             "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n%s\n"
-             "contact model surface\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
-             "%sblock initial name b tilt %.10g direction 0\nmodel solve time 3\n"
-             "output hdf5 'rock.h5' interval 0.0002\n",
-             SHAPES[k], damping, theta0 * 180 / M_PI);
+    snprintf(
+        text, sizeof text,
+        "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n%s\n"
+        "contact model surface\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
+        "%sblock initial name b tilt %.10g direction 0\nmodel solve time 3\n"
+        "output hdf5 'rock.h5' interval 0.0002\n",
+        SHAPES[k], damping, theta0 * 180 / M_PI);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "tests/data/surface/rock.dat", text, &err)) fail_msg("%s", err.msg);
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) fail_msg("%s", err.msg);
-    rock_log lg = {1e-3 * theta0, 0, 0, {0}};
-    rd_observer obs = {.user = &lg, .sample = rock_sample};
+    rock_log lg = { 1e-3 * theta0, 0, 0, { 0 } };
+    rd_observer obs = { .user = &lg, .sample = rock_sample };
     assert_int_equal(rd_sim_add_observer(sim, &obs, &err), 0);
     rd_status st = rd_sim_run(sim);
     assert_false(rd_status_failed(st));
@@ -121,7 +128,7 @@ static void test_restitution_tessellation(void **state)
 static void test_restitution_range(void **state)
 {
     (void)state;
-    const double zeta[3] = {0.0, 0.3, 1.0};
+    const double zeta[3] = { 0.0, 0.3, 1.0 };
     double r[3];
     for (int k = 0; k < 3; k++) {
         r[k] = rocking_r(0, zeta[k]);
@@ -129,10 +136,11 @@ static void test_restitution_range(void **state)
     }
     /* the loss model must reach Housner's r (to the issue's 1 %) and 0.95 */
     double lo = fmin(fmin(r[0], r[1]), r[2]), hi = fmax(fmax(r[0], r[1]), r[2]);
-    rd_check_abs("lowest free-rocking r reachable vs Housner's", fmax(lo - HOUSNER_R, 0.0), 0.0, R_TOL * HOUSNER_R,
-                 RD_XFAIL);
+    rd_check_abs("lowest free-rocking r reachable vs Housner's", fmax(lo - HOUSNER_R, 0.0), 0.0,
+                 R_TOL * HOUSNER_R, RD_XFAIL);
     /* the elastic joint is the least loss a dashpot allows: its r is the highest reachable */
-    rd_check_abs("highest free-rocking r reachable vs 0.95", fmax(0.95 - hi, 0.0), 0.0, R_TOL * 0.95, RD_XFAIL);
+    rd_check_abs("highest free-rocking r reachable vs 0.95", fmax(0.95 - hi, 0.0), 0.0,
+                 R_TOL * 0.95, RD_XFAIL);
 }
 
 /* Time at which the cube's spin first falls below a thousandth of omega0. */
@@ -142,7 +150,8 @@ typedef struct spin_log {
 
 static int spin_sample(void *user, rd_sim *sim, const rd_sample *s, rd_error *err)
 {
-    (void)sim; (void)err;
+    (void)sim;
+    (void)err;
     spin_log *lg = user;
     if (lg->t_stop < 0 && fabs(s->angular_velocity[2]) < 1e-3 * lg->w0) lg->t_stop = s->time;
     return 0;
@@ -151,20 +160,21 @@ static int spin_sample(void *user, rd_sim *sim, const rd_sample *s, rd_error *er
 static double spin_down(const char *shape, double w0)
 {
     char text[1024];
-    snprintf(text, sizeof text,
-             "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n%s\n"
-             "contact model surface\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
-             "block initial name b angular-velocity 0 0 %.6g\n"
-             "model solve time 0.2\noutput hdf5 'spin.h5' interval 0.0001\n",
-             shape, w0);
+    snprintf(
+        text, sizeof text,
+        "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n%s\n"
+        "contact model surface\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
+        "block initial name b angular-velocity 0 0 %.6g\n"
+        "model solve time 0.2\noutput hdf5 'spin.h5' interval 0.0001\n",
+        shape, w0);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "tests/data/surface/spin.dat", text, &err)) fail_msg("%s", err.msg);
     rd_sim *sim = rd_sim_create(&sc, &err);
     if (!sim) fail_msg("%s", err.msg);
-    spin_log lg = {w0, -1};
-    rd_observer obs = {.user = &lg, .sample = spin_sample};
+    spin_log lg = { w0, -1 };
+    rd_observer obs = { .user = &lg, .sample = spin_sample };
     assert_int_equal(rd_sim_add_observer(sim, &obs, &err), 0);
     rd_status st = rd_sim_run(sim);
     assert_false(rd_status_failed(st));
@@ -178,10 +188,10 @@ static void test_spin_down(void **state)
     (void)state;
     const double a = 0.5, w0 = 4.0, mu = tan(40 * M_PI / 180), g = 9.81;
     const double rho = a * (sqrt(2.0) + log(1 + sqrt(2.0))) / 6; /* mean |r| over the square */
-    const double t_uniform = (a * a / 6) * w0 / (mu * g * rho);   /* I = m a^2 / 6 */
-    const char *const cubes[2] = {"block create brick size 0.5 0.5 0.5 position 0 0 0.25 name b",
-                                  "block import mesh 'cube_cut10.obj' position 0 0 0.25 name b"};
-    const char *const names[2] = {"brick", "10 x 10 cut mesh"};
+    const double t_uniform = (a * a / 6) * w0 / (mu * g * rho);  /* I = m a^2 / 6 */
+    const char *const cubes[2] = { "block create brick size 0.5 0.5 0.5 position 0 0 0.25 name b",
+                                   "block import mesh 'cube_cut10.obj' position 0 0 0.25 name b" };
+    const char *const names[2] = { "brick", "10 x 10 cut mesh" };
     for (int k = 0; k < 2; k++) {
         double t = spin_down(cubes[k], w0);
         char what[128];
@@ -195,12 +205,13 @@ static void test_spin_down(void **state)
 static int overturns(int k, double a)
 {
     char text[1024];
-    snprintf(text, sizeof text,
-             "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n%s\n"
-             "contact model surface\n"
-             "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
-             "ground-motion pulse one-sine amplitude %.6gg frequency 2 direction 0\nmodel solve time 4\n",
-             SHAPES[k], a);
+    snprintf(
+        text, sizeof text,
+        "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n%s\n"
+        "contact model surface\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
+        "ground-motion pulse one-sine amplitude %.6gg frequency 2 direction 0\nmodel solve time 4\n",
+        SHAPES[k], a);
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "tests/data/surface/pulse.dat", text, &err)) fail_msg("%s", err.msg);
@@ -209,7 +220,8 @@ static int overturns(int k, double a)
     rd_status st = rd_sim_run(sim);
     rd_sim_free(sim);
     rd_scenario_free(&sc);
-    if (st != RD_STATUS_DONE && st != RD_STATUS_OVERTURNED) fail_msg("status %s at %g g", rd_status_name(st), a);
+    if (st != RD_STATUS_DONE && st != RD_STATUS_OVERTURNED)
+        fail_msg("status %s at %g g", rd_status_name(st), a);
     return st == RD_STATUS_OVERTURNED;
 }
 
@@ -224,15 +236,19 @@ static void test_threshold_tessellation(void **state)
     assert_true(overturns(0, hi));
     for (int k = 0; k < 7; k++) {
         double mid = 0.5 * (lo + hi);
-        if (overturns(0, mid)) hi = mid;
-        else lo = mid;
+        if (overturns(0, mid))
+            hi = mid;
+        else
+            lo = mid;
     }
     const double thr = 0.5 * (lo + hi);
-    print_message("surface model, brick: 2 Hz one-sine threshold %.4f g (+- %.4f)\n", thr, 0.5 * (hi - lo));
+    print_message("surface model, brick: 2 Hz one-sine threshold %.4f g (+- %.4f)\n", thr,
+                  0.5 * (hi - lo));
     for (int k = 1; k < 4; k++) {
         char what[160];
         int stands = !overturns(k, 0.98 * thr), falls = overturns(k, 1.02 * thr);
-        snprintf(what, sizeof what, "%s stands at 0.98 and overturns at 1.02 times the brick's threshold",
+        snprintf(what, sizeof what,
+                 "%s stands at 0.98 and overturns at 1.02 times the brick's threshold",
                  SHAPE_NAME[k]);
         rd_check_abs(what, (double)(!stands + !falls), 0.0, 0.5, RD_STRICT);
     }
@@ -246,12 +262,13 @@ static void test_threshold_tessellation(void **state)
 static void test_free_joint_stiffness(void **state)
 {
     (void)state;
-    const char *text = "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
-                       "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower\n"
-                       "block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper\n"
-                       "contact model surface\n"
-                       "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
-                       "model damping viscous 0.5\nmodel solve time 0.3\n";
+    const char *text =
+        "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+        "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name lower\n"
+        "block create brick size 0.4 0.4 0.8 position 0 0 1.4 name upper\n"
+        "contact model surface\n"
+        "contact property stiffness-normal 1e10 stiffness-shear 1e11 friction 40 restitution 1\n"
+        "model damping viscous 0.5\nmodel solve time 0.3\n";
     rd_scenario sc;
     rd_error err;
     if (rd_scenario_parse(&sc, "tests/data/surface/stack.dat", text, &err)) fail_msg("%s", err.msg);
@@ -264,9 +281,10 @@ static void test_free_joint_stiffness(void **state)
     rd_sim_free(sim);
     rd_scenario_free(&sc);
     const double g = 9.81, KN = 1e10, ml = 0.25 * 1.0 * 2700, mu = 0.16 * 0.8 * 2700;
-    rd_check_rel("lower block's closure on the base (m)", 0.5 - xl[2], (ml + mu) * g / (KN * 0.25), 1e-3, RD_STRICT);
-    rd_check_rel("upper block's closure on the lower (m)", xl[2] + 0.5 + 0.4 - xu[2], mu * g / (KN * 0.16), 1e-3,
-                 RD_STRICT);
+    rd_check_rel("lower block's closure on the base (m)", 0.5 - xl[2], (ml + mu) * g / (KN * 0.25),
+                 1e-3, RD_STRICT);
+    rd_check_rel("upper block's closure on the lower (m)", xl[2] + 0.5 + 0.4 - xu[2],
+                 mu * g / (KN * 0.16), 1e-3, RD_STRICT);
 }
 
 /* What the surface model cannot model yet is refused with one line, never run silently. */
@@ -274,19 +292,20 @@ static void test_refusals(void **state)
 {
     (void)state;
     static const char *const scenes[2][2] = {
-        {"block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
-         "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b\ncontact model surface\n"
-         "model solve time 0.1\n",
-         "restitution 0 is not modelled"},
-        {"block import mesh 'box_cut10.obj' position 0 0 -0.5 fixed name base\n"
-         "block import mesh 'box_cut10.obj' position 0 0 0.5 name b\ncontact model surface\n"
-         "contact property restitution 1\nmodel solve time 0.1\n",
-         "are both non-convex"},
+        { "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+          "block create brick size 0.5 0.5 1.0 position 0 0 0.5 name b\ncontact model surface\n"
+          "model solve time 0.1\n",
+          "restitution 0 is not modelled" },
+        { "block import mesh 'box_cut10.obj' position 0 0 -0.5 fixed name base\n"
+          "block import mesh 'box_cut10.obj' position 0 0 0.5 name b\ncontact model surface\n"
+          "contact property restitution 1\nmodel solve time 0.1\n",
+          "are both non-convex" },
     };
     for (int k = 0; k < 2; k++) {
         rd_scenario sc;
         rd_error err;
-        if (rd_scenario_parse(&sc, "tests/data/surface/refuse.dat", scenes[k][0], &err)) fail_msg("%s", err.msg);
+        if (rd_scenario_parse(&sc, "tests/data/surface/refuse.dat", scenes[k][0], &err))
+            fail_msg("%s", err.msg);
         rd_sim *sim = rd_sim_create(&sc, &err);
         assert_null(sim);
         if (!strstr(err.msg, scenes[k][1])) fail_msg("unexpected message: %s", err.msg);

@@ -24,7 +24,8 @@ static rd_body_summary body(int overturned, int uplifted, double tilt_ratio, dou
 static void each_mode(void **state)
 {
     (void)state;
-    const double slip = 2 * RD_MODE_SLIP_MIN, tilt = 2 * RD_MODE_TILT_MIN, twist = 2 * RD_MODE_TWIST_MIN;
+    const double slip = 2 * RD_MODE_SLIP_MIN, tilt = 2 * RD_MODE_TILT_MIN,
+                 twist = 2 * RD_MODE_TWIST_MIN;
     rd_body_summary b;
     b = body(0, 0, 0.0, 0.0);
     assert_int_equal(rd_sweep_mode_of(&b, 0.0), RD_MODE_REST);
@@ -56,8 +57,8 @@ static void thresholds(void **state)
 static void names(void **state)
 {
     (void)state;
-    static const char *const want[RD_MODE_COUNT] = {"rest", "slide", "rock", "rock-slide", "rock-twist",
-                                                    "overturn"};
+    static const char *const want[RD_MODE_COUNT] = { "rest",       "slide",      "rock",
+                                                     "rock-slide", "rock-twist", "overturn" };
     for (int m = 0; m < RD_MODE_COUNT; m++)
         assert_string_equal(rd_sweep_mode_name((rd_sweep_mode)m), want[m]);
     assert_string_equal(rd_sweep_mode_name(RD_MODE_COUNT), "unknown");

@@ -25,35 +25,36 @@ typedef struct rd_check_body {
                              about its pivot edge on the side of alpha_tower (I_O its moment of
                              inertia about the edge, R the distance to it): Housner's p for a
                              rigid body of this mass, R and pivot inertia, rad/s (free) */
-    double R_tower;       /* that assembly's distance from its centre of mass to the pivot edge, m */
-    double lean_tower;    /* the direction it tips to first (the pulse's or the opposite), rad
+    double R_tower;    /* that assembly's distance from its centre of mass to the pivot edge, m */
+    double lean_tower; /* the direction it tips to first (the pulse's or the opposite), rad
                              from +x */
-    int npoints;          /* its subcontact points */
-    int rests_on;         /* index of the body it rests on as placed, -1: none */
-    int below;            /* index of the nearest body under it, -1: nothing under it */
-    double gap;           /* its lowest point above the top of `below`, m (< 0: inside it) */
-    double overlap;       /* deepest overlap with another body as placed (a vertex of one inside the other), m */
-    int overlaps;         /* index of the body it penetrates most, -1: none */
+    int npoints;       /* its subcontact points */
+    int rests_on;      /* index of the body it rests on as placed, -1: none */
+    int below;         /* index of the nearest body under it, -1: nothing under it */
+    double gap;        /* its lowest point above the top of `below`, m (< 0: inside it) */
+    double
+        overlap; /* deepest overlap with another body as placed (a vertex of one inside the other), m */
+    int overlaps; /* index of the body it penetrates most, -1: none */
 } rd_check_body;
 
 typedef struct rd_check_report {
     int nbodies;
-    rd_check_body *body;  /* [nbodies] (owned; rd_check_free) */
-    int npoints;          /* subcontact points, all bodies */
-    int njoints;          /* distinct joint property sets */
-    double dt;            /* the step the run will use, s */
-    double dt_critical;   /* its stability limit, s */
+    rd_check_body *body;    /* [nbodies] (owned; rd_check_free) */
+    int npoints;            /* subcontact points, all bodies */
+    int njoints;            /* distinct joint property sets */
+    double dt;              /* the step the run will use, s */
+    double dt_critical;     /* its stability limit, s */
     double output_interval; /* s */
-    double duration;      /* requested shaking time, s */
-    double motion_end;    /* end of the ground motion, s (0: none) */
-    int has_records;      /* 1 when the motion comes from records */
-    double wall_per_sim_s;/* measured: wall seconds per simulated second (trial steps) */
-    int trial_steps;      /* steps timed for it */
-    int coarse_probe;     /* 1: what each body touches was found from its own corner points, the
+    double duration;        /* requested shaking time, s */
+    double motion_end;      /* end of the ground motion, s (0: none) */
+    int has_records;        /* 1 when the motion comes from records */
+    double wall_per_sim_s;  /* measured: wall seconds per simulated second (trial steps) */
+    int trial_steps;        /* steps timed for it */
+    int coarse_probe;       /* 1: what each body touches was found from its own corner points, the
                              automatic bed used for it (check.c, touch_probe) being past the
                              point budget or memory */
-    int dt_body;          /* the body whose bound sets dt_critical (-1: none) */
-    int dt_partner;       /* the most mobile body it may bear on (-1: fixed bodies only) */
+    int dt_body;            /* the body whose bound sets dt_critical (-1: none) */
+    int dt_partner;         /* the most mobile body it may bear on (-1: fixed bodies only) */
 } rd_check_report;
 
 /* Build the scene (no output file), place it, time a few steps. 0, or -1 with err set. */

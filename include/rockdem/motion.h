@@ -20,7 +20,8 @@ RD_API double rd_pulse_end(const rd_pulse_def *p);
 /* The whole ground motion at time t as 3-vectors (x, y, z): the horizontal pulse along its
  * direction plus the applied records (h1 along m->direction, h2 at +90 deg, vertical up).
  * Records cost O(1) per call (the sample index is t / dt). */
-RD_API void rd_motion_eval(const rd_motion_def *m, double t, double acc[3], double vel[3], double disp[3]);
+RD_API void rd_motion_eval(const rd_motion_def *m, double t, double acc[3], double vel[3],
+                           double disp[3]);
 
 /* Time at which all motion has ended, s (0 when there is none). */
 RD_API double rd_motion_end(const rd_motion_def *m);
@@ -48,7 +49,8 @@ RD_API int rd_motion_copy(rd_motion_def *dst, const rd_motion_def *src, rd_error
 /* Intensity measures of one applied component: peaks, Arias, D5-95 (im) and the 5 %-damped
  * pseudo-spectral accelerations at 0.2 s and 1 s (sa[0], sa[1], m/s^2; the record is padded with
  * 2 s of rest so long-period oscillators reach their peak). 0, or -1 (no record, no memory). */
-RD_API int rd_motion_im(const rd_motion_def *m, int c, struct rd_im *im, double sa[2], rd_error *err);
+RD_API int rd_motion_im(const rd_motion_def *m, int c, struct rd_im *im, double sa[2],
+                        rd_error *err);
 
 /* Short name of component c: "h1", "h2", "vertical". */
 RD_API const char *rd_motion_component_name(int c);

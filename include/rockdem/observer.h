@@ -35,12 +35,12 @@ typedef struct rd_sample {
     const double *rotation;         /* [nbodies][3] in-plane rocking, out-of-plane rocking,
                                        twist (unwrapped), rad */
     double ground_acc[3], ground_vel[3], ground_disp[3]; /* m/s^2, m/s, m */
-    double energy[RD_NENERGY];      /* J */
+    double energy[RD_NENERGY];                           /* J */
 } rd_sample;
 
 typedef struct rd_observer {
-    void *user;  /* handed back to every callback */
-    int every;   /* receive every n-th sample (0 or 1: each one) */
+    void *user; /* handed back to every callback */
+    int every;  /* receive every n-th sample (0 or 1: each one) */
     int (*begin)(void *user, rd_sim *sim, rd_error *err);
     int (*sample)(void *user, rd_sim *sim, const rd_sample *s, rd_error *err);
     int (*event)(void *user, rd_sim *sim, const rd_event *e, rd_error *err);
@@ -54,21 +54,21 @@ RD_API int rd_sim_add_observer(rd_sim *sim, const rd_observer *obs, rd_error *er
 /* A body as observers see it. */
 typedef struct rd_body_info {
     const char *name;
-    int fixed;               /* 1: a fixed body (pedestal), not in the samples */
-    double position[3];      /* centre of mass now, ground frame, m (a fixed body's never moves) */
-    double quaternion[4];    /* orientation now (w, x, y, z), body -> ground frame */
-    double mass;             /* kg */
-    double inertia[3];       /* principal moments, kg m^2 */
-    double size[3];          /* extents of the body at rest along ground x, y, z, m (a brick
+    int fixed;            /* 1: a fixed body (pedestal), not in the samples */
+    double position[3];   /* centre of mass now, ground frame, m (a fixed body's never moves) */
+    double quaternion[4]; /* orientation now (w, x, y, z), body -> ground frame */
+    double mass;          /* kg */
+    double inertia[3];    /* principal moments, kg m^2 */
+    double size[3];       /* extents of the body at rest along ground x, y, z, m (a brick
                                 placed without rotation: its edge lengths) */
-    double alpha;            /* static tipping angle about the edge of its support polygon at
+    double alpha;         /* static tipping angle about the edge of its support polygon at
                                 rest, least of the +-x, +-y leans, rad (0 before the run and for
                                 fixed bodies) */
     int nvert;
-    const double *vertices;  /* [nvert][3] body frame (centre of mass, principal axes), m */
+    const double *vertices; /* [nvert][3] body frame (centre of mass, principal axes), m */
     int ntri;
-    const int *triangles;    /* [ntri][3] vertex indices, outward */
-    int nprec;               /* rows of precariousness (0 before the run) */
+    const int *triangles;         /* [ntri][3] vertex indices, outward */
+    int nprec;                    /* rows of precariousness (0 before the run) */
     const double *precariousness; /* [nprec][3]: lean direction (rad from +x), alpha (rad),
                                      quasi-static tipping acceleration g tan(alpha) (m/s^2) */
 } rd_body_info;

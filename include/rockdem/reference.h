@@ -24,7 +24,7 @@ typedef struct rd_ground {
     void *ctx;            /* passed to fn */
     const double *breaks; /* s, times where the input is non-smooth (pulse start/end); any order */
     size_t nbreaks;
-    double t_quiet;       /* s, ug'' = vg'' = 0 for all t >= t_quiet (free motion); INFINITY if never */
+    double t_quiet; /* s, ug'' = vg'' = 0 for all t >= t_quiet (free motion); INFINITY if never */
 } rd_ground;
 
 /* Run options shared by both solvers; start from rd_ref_opts_default(). */
@@ -52,7 +52,7 @@ typedef enum rd_ref_event_kind {
 } rd_ref_event_kind;
 
 typedef struct rd_ref_event {
-    double t;             /* s */
+    double t; /* s */
     rd_ref_event_kind kind;
     int joint;            /* 0: ground joint / lower block, 1: interface / upper block */
     int s1, s2;           /* configuration after the event (Housner: s1 only, s2 = 0) */
@@ -69,13 +69,13 @@ typedef struct rd_ref_sample {
 } rd_ref_sample;
 
 typedef struct rd_ref_summary {
-    int overturned;       /* 1 when overturning became certain */
-    int overturn_joint;   /* 0 lower block / stack / single block, 1 upper block; -1 if none */
-    double t_overturn;    /* s, when it became certain; -1 if never */
-    int lifted_off;       /* 1 when a pivot lifted off (run stopped, model invalid beyond) */
-    double t_stop;        /* s, time reached */
-    double max_ratio[2];  /* max |theta_i| / alpha_i over the run */
-    size_t nimpacts;      /* impacts at either joint */
+    int overturned;      /* 1 when overturning became certain */
+    int overturn_joint;  /* 0 lower block / stack / single block, 1 upper block; -1 if none */
+    double t_overturn;   /* s, when it became certain; -1 if never */
+    int lifted_off;      /* 1 when a pivot lifted off (run stopped, model invalid beyond) */
+    double t_stop;       /* s, time reached */
+    double max_ratio[2]; /* max |theta_i| / alpha_i over the run */
+    size_t nimpacts;     /* impacts at either joint */
 } rd_ref_summary;
 
 /* Output of a solve: a time history at dt_out (plus the final state), events, summary. */
@@ -123,7 +123,7 @@ RD_API int rd_housner_free_time(double alpha, double p, double theta0, double *t
 
 /* Integrate one block from opts->theta0[0], omega0[0] (rest when both are 0). */
 RD_API int rd_housner_solve(const rd_housner_def *def, const rd_ground *gm, const rd_ref_opts *opts,
-                     rd_ref_result *res, rd_error *err);
+                            rd_ref_result *res, rd_error *err);
 
 /* ---- Kounadis: two stacked blocks ------------------------------------------------------- */
 
@@ -143,26 +143,27 @@ RD_API rd_kounadis_def rd_kounadis_def_default(void);
 /* M(theta) and rest(theta, theta', ug'', vg'') of the 2-DOF pattern (s1, s2), s1, s2 = +-1,
  * exactly as in ROCKING-EQUATIONS.md section 2: M theta'' + rest = 0. */
 RD_API void rd_kounadis_matrix(const rd_kounadis_def *d, int s1, int s2, const double th[2],
-                        const double om[2], double ug, double vg, double m[2][2], double rest[2]);
+                               const double om[2], double ug, double vg, double m[2][2],
+                               double rest[2]);
 
 /* Accelerations and contact forces of pattern (s1, s2), s in {-1, 0, 1}; (0, 0) is rest. */
 typedef struct rd_kounadis_eval {
-    double acc[2];   /* theta1'', theta2'' (rad/s^2); locked: equal; lower at rest: acc[0] = 0 */
+    double acc[2];    /* theta1'', theta2'' (rad/s^2); locked: equal; lower at rest: acc[0] = 0 */
     double ground[2]; /* closed: corner forces (left, right), N; pivot: normal force (N) and the
                          moment about the pivot (N m, zero up to round-off: a consistency check) */
     double iface[2];  /* the same for the interface (normal = top face of the lower block) */
 } rd_kounadis_eval;
 
 RD_API int rd_kounadis_eval_mode(const rd_kounadis_def *d, int s1, int s2, const double th[2],
-                          const double om[2], double ug, double vg, rd_kounadis_eval *out,
-                          rd_error *err);
+                                 const double om[2], double ug, double vg, rd_kounadis_eval *out,
+                                 rd_error *err);
 
 /* Static uplift thresholds |ug''|/g from rest: whole stack and upper block alone. */
 RD_API void rd_kounadis_uplift_thresholds(const rd_kounadis_def *d, double *stack, double *upper);
 
 /* Integrate the stack from opts->theta0, omega0 (pattern inferred from signs; rest when all 0).
  * A lift-off is reported (event, summary) and ends the run with status 0. */
-RD_API int rd_kounadis_solve(const rd_kounadis_def *def, const rd_ground *gm, const rd_ref_opts *opts,
-                      rd_ref_result *res, rd_error *err);
+RD_API int rd_kounadis_solve(const rd_kounadis_def *def, const rd_ground *gm,
+                             const rd_ref_opts *opts, rd_ref_result *res, rd_error *err);
 
 #endif

@@ -51,43 +51,43 @@ RD_API int rd_status_failed(rd_status st);
 /* What a run found, per free body and overall (written as HDF5 summary attributes). */
 typedef struct rd_body_summary {
     char name[RD_NAME_MAX];
-    int overturned;        /* 1 if the overturn criterion was met */
-    double overturn_time;  /* s, -1 if never */
-    double max_tilt;       /* max angle between the body's initial and current vertical axis, rad */
-    double alpha;          /* static tipping angle about its base edge (least of +-x, +-y), rad */
-    double alpha_min;      /* least static tipping angle over all lean directions, rad */
+    int overturned;       /* 1 if the overturn criterion was met */
+    double overturn_time; /* s, -1 if never */
+    double max_tilt;      /* max angle between the body's initial and current vertical axis, rad */
+    double alpha;         /* static tipping angle about its base edge (least of +-x, +-y), rad */
+    double alpha_min;     /* least static tipping angle over all lean directions, rad */
     double alpha_min_direction; /* lean direction of alpha_min, rad from +x */
-    double tip_accel_min;  /* quasi-static tipping acceleration g tan(alpha_min), m/s^2 */
-    double max_tilt_ratio; /* max_tilt / alpha */
-    double max_slide;      /* max horizontal displacement of the base centre from its start, m */
-    double final_slide;    /* same, at the end, m */
-    int uplifted;          /* 1 if the body ever lost contact over part of its base */
-    int slid;              /* 1 if the body slid as a whole (every active subcontact slipping) */
-    double max_rocking_in; /* max |in-plane rocking| (about the axis normal to the motion), rad */
-    double max_rocking_out;/* max |out-of-plane rocking| (about the motion direction), rad */
-    double max_twist;      /* max |twist about the vertical|, rad */
-    double final_twist;    /* twist at the end (residual), rad */
-    int unsupported;       /* 1 if it touched nothing at rest or during the run: it fell freely */
+    double tip_accel_min;       /* quasi-static tipping acceleration g tan(alpha_min), m/s^2 */
+    double max_tilt_ratio;      /* max_tilt / alpha */
+    double max_slide;       /* max horizontal displacement of the base centre from its start, m */
+    double final_slide;     /* same, at the end, m */
+    int uplifted;           /* 1 if the body ever lost contact over part of its base */
+    int slid;               /* 1 if the body slid as a whole (every active subcontact slipping) */
+    double max_rocking_in;  /* max |in-plane rocking| (about the axis normal to the motion), rad */
+    double max_rocking_out; /* max |out-of-plane rocking| (about the motion direction), rad */
+    double max_twist;       /* max |twist about the vertical|, rad */
+    double final_twist;     /* twist at the end (residual), rad */
+    int unsupported;        /* 1 if it touched nothing at rest or during the run: it fell freely */
     double final_position[3]; /* centre of mass at the end, ground frame, m */
-    double travel;         /* horizontal distance of the centre of mass from its rest position at
+    double travel;            /* horizontal distance of the centre of mass from its rest position at
                               the end, m (where an overturned or falling body ended up) */
-    double drop;           /* fall of the centre of mass from where it was placed to the end, m */
+    double drop; /* fall of the centre of mass from where it was placed to the end, m */
 } rd_body_summary;
 
 /* What one joint (pair of bodies that came into contact) had and did. */
 typedef struct rd_joint_summary {
     char a[RD_NAME_MAX], b[RD_NAME_MAX]; /* its two bodies */
-    double kn, ks;        /* Pa/m */
-    double friction;      /* rad */
-    double cohesion, tension; /* Pa */
-    double damping;       /* viscous ratio of its normal dashpot */
-    int closed;           /* 1 if it carried load while shaking */
-    double max_opening;   /* largest opening while shaking beyond the gaps it had when it first
+    double kn, ks;                       /* Pa/m */
+    double friction;                     /* rad */
+    double cohesion, tension;            /* Pa */
+    double damping;                      /* viscous ratio of its normal dashpot */
+    int closed;                          /* 1 if it carried load while shaking */
+    double max_opening; /* largest opening while shaking beyond the gaps it had when it first
                              closed and beyond its springs' static compression (0: it never
                              opened), every step, m */
-    double max_slip;      /* largest relative slip of b against a at the joint's centre of
+    double max_slip;    /* largest relative slip of b against a at the joint's centre of
                              pressure (not a body's sway), every step, m */
-    double final_slip;    /* slip at the end, m */
+    double final_slip;  /* slip at the end, m */
 } rd_joint_summary;
 
 /* What a run found. body[] is borrowed, as rd_sim_events' array is: it points into the
@@ -97,13 +97,13 @@ typedef struct rd_summary {
     int nbodies;                 /* free bodies, all of them (output order) */
     const rd_body_summary *body; /* [nbodies] */
     int any_overturned;
-    double end_time;             /* simulated time reached, s */
-    double dt;                   /* time step used, s */
-    double dt_critical;          /* estimated critical step, s */
-    long steps;                  /* steps taken in the shaking stage */
-    double settle_time;          /* simulated settling time, s */
-    double energy_residual_max;  /* max |balance residual| / energy scale */
-    double wall_seconds;         /* wall-clock time of the shaking stage, s */
+    double end_time;            /* simulated time reached, s */
+    double dt;                  /* time step used, s */
+    double dt_critical;         /* estimated critical step, s */
+    long steps;                 /* steps taken in the shaking stage */
+    double settle_time;         /* simulated settling time, s */
+    double energy_residual_max; /* max |balance residual| / energy scale */
+    double wall_seconds;        /* wall-clock time of the shaking stage, s */
     rd_status status;
 } rd_summary;
 
@@ -205,7 +205,8 @@ RD_API const rd_event *rd_sim_events(const rd_sim *sim, int *n);
 
 /* State of free body k (output order): centre of mass x (m), orientation q (w,x,y,z),
  * velocity v (m/s) and angular velocity w (rad/s), ground frame. Any pointer may be NULL. */
-RD_API void rd_sim_body_state(const rd_sim *sim, int k, double x[3], double q[4], double v[3], double w[3]);
+RD_API void rd_sim_body_state(const rd_sim *sim, int k, double x[3], double q[4], double v[3],
+                              double w[3]);
 
 /* Energies of the last step, J, in the order kinetic, gravitational, elastic, friction,
  * damping, ground_work, residual. */

@@ -10,10 +10,10 @@
 
 #include <stddef.h>
 
-#define RD_NAME_MAX 64
-#define RD_PATH_MAX 512
-#define RD_MAX_JOINTS 32     /* `contact property ... range` overrides */
-#define RD_MAX_HISTORIES 64  /* `history` commands */
+#define RD_NAME_MAX      64
+#define RD_PATH_MAX      512
+#define RD_MAX_JOINTS    32 /* `contact property ... range` overrides */
+#define RD_MAX_HISTORIES 64 /* `history` commands */
 
 typedef enum rd_shape_kind {
     RD_SHAPE_BRICK = 0, /* rectangular box, edge lengths size[0..2] along its local x, y, z */
@@ -24,28 +24,28 @@ typedef enum rd_shape_kind {
 } rd_shape_kind;
 
 typedef struct rd_body_def {
-    char name[RD_NAME_MAX];     /* unique; default "block<k>" (k = 1-based creation order) */
-    rd_shape_kind shape;        /* RD_SHAPE_* */
-    int sides;                  /* prism: number of sides (>= 3) */
-    double radius, radius_top;  /* prism: circumradius of the base and of the top, m */
-    int nverts;                 /* hull: number of points */
-    double *verts;              /* hull: points [nverts][3], m (owned by the scenario) */
-    char mesh[RD_PATH_MAX];     /* mesh: file path (relative paths: to the scenario's folder) */
-    double mesh_unit;           /* mesh: metres per file unit (`units mm|cm|m`: 0.001, 0.01, 1);
+    char name[RD_NAME_MAX];    /* unique; default "block<k>" (k = 1-based creation order) */
+    rd_shape_kind shape;       /* RD_SHAPE_* */
+    int sides;                 /* prism: number of sides (>= 3) */
+    double radius, radius_top; /* prism: circumradius of the base and of the top, m */
+    int nverts;                /* hull: number of points */
+    double *verts;             /* hull: points [nverts][3], m (owned by the scenario) */
+    char mesh[RD_PATH_MAX];    /* mesh: file path (relative paths: to the scenario's folder) */
+    double mesh_unit;          /* mesh: metres per file unit (`units mm|cm|m`: 0.001, 0.01, 1);
                                    0 = not declared (read as m) */
-    int mesh_up;                /* mesh: the file's up axis, 2 = z (default), 1 = y (`up y`: the
+    int mesh_up;               /* mesh: the file's up axis, 2 = z (default), 1 = y (`up y`: the
                                    file's +y becomes +z, its +z becomes -y) */
-    char group[RD_NAME_MAX];    /* joint group (`group 'pad'`), "" = none: selects the body in
+    char group[RD_NAME_MAX];   /* joint group (`group 'pad'`), "" = none: selects the body in
                                    `contact property ... range group 'pad'` */
-    char seat_on[RD_NAME_MAX];  /* if set: place the body so its lowest point rests on the top of
+    char seat_on[RD_NAME_MAX]; /* if set: place the body so its lowest point rests on the top of
                                    this body, centre of mass above position[0..1] */
-    double size[3];             /* brick edge lengths, m (> 0) */
-    double position[3];         /* centre of mass in the ground frame, m (z up) */
-    double rotation[3];         /* initial orientation: rotations about world x, then y, then z, rad */
-    double density;             /* kg/m^3; <= 0 means "use rd_scenario.density" */
-    double mass;                /* kg; > 0 overrides density (density = mass / volume) */
-    int fixed;                  /* 1: pedestal, rigidly attached to the shaking ground */
-    double velocity[3];         /* initial velocity of the centre of mass, m/s */
+    double size[3];            /* brick edge lengths, m (> 0) */
+    double position[3];        /* centre of mass in the ground frame, m (z up) */
+    double rotation[3]; /* initial orientation: rotations about world x, then y, then z, rad */
+    double density;     /* kg/m^3; <= 0 means "use rd_scenario.density" */
+    double mass;        /* kg; > 0 overrides density (density = mass / volume) */
+    int fixed;          /* 1: pedestal, rigidly attached to the shaking ground */
+    double velocity[3]; /* initial velocity of the centre of mass, m/s */
     double angular_velocity[3]; /* initial angular velocity, world frame, rad/s */
     double tilt;                /* initial tilt about the base edge (pivot) on the side of
                                    tilt_direction, rad (>= 0); 0 = none */
@@ -69,21 +69,21 @@ typedef struct rd_perturb_def {
 
 /* Contact law: 3DEC Coulomb-slip joint (seed 002 eqs. 1-2), one property set for all pairs. */
 typedef struct rd_contact_def {
-    double kn;        /* normal stiffness per unit area, Pa/m (default 1e10) */
-    double ks;        /* shear stiffness per unit area, Pa/m (default 1e11 = 10 KN) */
-    double friction;  /* friction angle, rad (default 40 deg) */
-    double cohesion;  /* peak cohesion, Pa (default 0); drops to 0 at the first slip */
-    double tension;   /* peak tensile strength, Pa (default 0); drops to 0 at the first opening */
+    double kn;          /* normal stiffness per unit area, Pa/m (default 1e10) */
+    double ks;          /* shear stiffness per unit area, Pa/m (default 1e11 = 10 KN) */
+    double friction;    /* friction angle, rad (default 40 deg) */
+    double cohesion;    /* peak cohesion, Pa (default 0); drops to 0 at the first slip */
+    double tension;     /* peak tensile strength, Pa (default 0); drops to 0 at the first opening */
     double restitution; /* impact loss: a new subcontact keeps this fraction of its normal
                            stretch when it first unloads (a point mass rebounds with this
                            ratio of speeds); 0 = perfectly plastic impacts (rigid rocking
                            theory), 1 = elastic, no loss (3DEC's joint); in [0, 1] */
-    double spacing;   /* subcontact spacing on contact faces, m; 0 (default, written
+    double spacing;     /* subcontact spacing on contact faces, m; 0 (default, written
                          'vertices') = face vertices only (3DEC's fewest-triangle layout),
                          a number written 0 is refused; < 0 = automatic per body: a
                          tenth of its narrowest contact face (a mesh: its own vertices) */
     rd_perturb_def perturb; /* interface perturbation (default: off) */
-    int model;        /* RD_CONTACT_VERTEX (default): vertex subcontacts; RD_CONTACT_SURFACE:
+    int model;              /* RD_CONTACT_VERTEX (default): vertex subcontacts; RD_CONTACT_SURFACE:
                          patches from the touching faces (docs/CONTACT.md section 8) */
 } rd_contact_def;
 
@@ -91,7 +91,11 @@ typedef struct rd_contact_def {
 enum { RD_CONTACT_VERTEX = 0, RD_CONTACT_SURFACE = 1 };
 
 /* One end of a joint range: any body, the bodies of a group, or one body by name. */
-typedef enum rd_range_kind { RD_RANGE_ANY = 0, RD_RANGE_GROUP = 1, RD_RANGE_BLOCK = 2 } rd_range_kind;
+typedef enum rd_range_kind {
+    RD_RANGE_ANY = 0,
+    RD_RANGE_GROUP = 1,
+    RD_RANGE_BLOCK = 2
+} rd_range_kind;
 
 typedef struct rd_range_def {
     rd_range_kind kind;
@@ -99,8 +103,15 @@ typedef struct rd_range_def {
 } rd_range_def;
 
 /* Properties a joint override sets (rd_joint_def.set); the others come from the default. */
-enum { RD_JOINT_KN = 1, RD_JOINT_KS = 2, RD_JOINT_FRICTION = 4, RD_JOINT_COHESION = 8,
-       RD_JOINT_TENSION = 16, RD_JOINT_DAMPING = 32, RD_JOINT_RESTITUTION = 64 };
+enum {
+    RD_JOINT_KN = 1,
+    RD_JOINT_KS = 2,
+    RD_JOINT_FRICTION = 4,
+    RD_JOINT_COHESION = 8,
+    RD_JOINT_TENSION = 16,
+    RD_JOINT_DAMPING = 32,
+    RD_JOINT_RESTITUTION = 64
+};
 
 /* A per-range joint (3DEC `block contact property ... range group A group B`):
  * `contact property stiffness-normal 5e9 friction 20 range group 'pad' group 'cask'`.
@@ -108,36 +119,40 @@ enum { RD_JOINT_KN = 1, RD_JOINT_KS = 2, RD_JOINT_FRICTION = 4, RD_JOINT_COHESIO
  * override whose range holds it, in file order (a later one wins where both set a property).
  * range[1] of kind ANY: the pair needs only one of its bodies in range[0]. */
 typedef struct rd_joint_def {
-    unsigned set;      /* RD_JOINT_* bits */
-    double kn, ks;     /* Pa/m */
-    double friction;   /* rad */
-    double cohesion;   /* Pa */
-    double tension;    /* Pa */
-    double damping;    /* ratio of critical damping of the joint's normal dashpot (0 = none);
+    unsigned set;       /* RD_JOINT_* bits */
+    double kn, ks;      /* Pa/m */
+    double friction;    /* rad */
+    double cohesion;    /* Pa */
+    double tension;     /* Pa */
+    double damping;     /* ratio of critical damping of the joint's normal dashpot (0 = none);
                           default: the model's `damping viscous` ratio, else 0 */
-    double restitution;/* impact loss of its subcontacts, [0, 1] (rd_contact_def.restitution) */
+    double restitution; /* impact loss of its subcontacts, [0, 1] (rd_contact_def.restitution) */
     rd_range_def range[2];
-    int line;          /* scenario line */
+    int line; /* scenario line */
 } rd_joint_def;
 
 /* Histories (`history ...`): sampled every rd_scenario.history_interval, written under
  * /history in the output with units. */
-typedef enum rd_history_kind { RD_HISTORY_BODY = 0, RD_HISTORY_JOINT = 1, RD_HISTORY_ENERGY = 2 } rd_history_kind;
+typedef enum rd_history_kind {
+    RD_HISTORY_BODY = 0,
+    RD_HISTORY_JOINT = 1,
+    RD_HISTORY_ENERGY = 2
+} rd_history_kind;
 
-enum { /* what a body history records */
-    RD_HB_POSITION = 1,         /* centre of mass, m */
-    RD_HB_ROTATION = 2,         /* in-plane rocking, out-of-plane rocking, twist, rad */
-    RD_HB_VELOCITY = 4,         /* m/s */
-    RD_HB_ANGULAR_VELOCITY = 8  /* rad/s */
+enum {                            /* what a body history records */
+       RD_HB_POSITION = 1,        /* centre of mass, m */
+       RD_HB_ROTATION = 2,        /* in-plane rocking, out-of-plane rocking, twist, rad */
+       RD_HB_VELOCITY = 4,        /* m/s */
+       RD_HB_ANGULAR_VELOCITY = 8 /* rad/s */
 };
-enum { /* what a joint history records (joint = the pair of bodies) */
-    RD_HJ_NORMAL_FORCE = 1,     /* compression, N */
-    RD_HJ_SHEAR_FORCE = 2,      /* on the second body, x y z and magnitude, N */
-    RD_HJ_OPENING = 4,          /* largest gap of the joint's subcontacts, m */
-    RD_HJ_SLIP = 8,             /* relative tangential displacement at the joint, elastic part
+enum {                            /* what a joint history records (joint = the pair of bodies) */
+       RD_HJ_NORMAL_FORCE = 1,    /* compression, N */
+       RD_HJ_SHEAR_FORCE = 2,     /* on the second body, x y z and magnitude, N */
+       RD_HJ_OPENING = 4,         /* largest gap of the joint's subcontacts, m */
+       RD_HJ_SLIP = 8,            /* relative tangential displacement at the joint, elastic part
                                    removed, m (x y z and magnitude) */
-    RD_HJ_AREA = 16,            /* active contact area, m^2 */
-    RD_HJ_PRESSURE_CENTRE = 32  /* centre of pressure (normal-force weighted), ground frame, m */
+       RD_HJ_AREA = 16,           /* active contact area, m^2 */
+       RD_HJ_PRESSURE_CENTRE = 32 /* centre of pressure (normal-force weighted), ground frame, m */
 };
 
 typedef struct rd_history_def {
@@ -182,18 +197,18 @@ typedef struct rd_pulse_def {
 
 /* Kanai-Tajimi synthetic record (stochastic.c; `ground-motion stochastic`). */
 typedef struct rd_stochastic_def {
-    double duration;  /* record length, s (default 20) */
-    double dt;        /* sample step, s (default 0.005) */
-    double frequency; /* Kanai-Tajimi ground frequency f_g, Hz (default 2.5: firm soil) */
-    double damping;   /* Kanai-Tajimi ground damping ratio zeta_g (default 0.6) */
-    double highpass;  /* Clough-Penzien high-pass frequency f_f, Hz, removing the long-period
+    double duration;         /* record length, s (default 20) */
+    double dt;               /* sample step, s (default 0.005) */
+    double frequency;        /* Kanai-Tajimi ground frequency f_g, Hz (default 2.5: firm soil) */
+    double damping;          /* Kanai-Tajimi ground damping ratio zeta_g (default 0.6) */
+    double highpass;         /* Clough-Penzien high-pass frequency f_f, Hz, removing the long-period
                          content Kanai-Tajimi keeps (default 0.25 = f_g/10; 0 = pure Kanai-Tajimi) */
     double highpass_damping; /* Clough-Penzien damping ratio zeta_f (default 0.6) */
-    double peak_time; /* Saragoni-Hart envelope: time of its peak as a fraction of the
+    double peak_time;        /* Saragoni-Hart envelope: time of its peak as a fraction of the
                          duration (default 0.2) */
-    double end_level; /* envelope at the end relative to its peak (default 0.05) */
-    double pga;       /* the record is scaled to this PGA, m/s^2 (default 0.3 g) */
-    unsigned long seed; /* gsl_rng_mt19937 seed (default 1) */
+    double end_level;        /* envelope at the end relative to its peak (default 0.05) */
+    double pga;              /* the record is scaled to this PGA, m/s^2 (default 0.3 g) */
+    unsigned long seed;      /* gsl_rng_mt19937 seed (default 1) */
 } rd_stochastic_def;
 
 /* Where one recorded component comes from (`ground-motion import` / `stochastic`). */
@@ -208,17 +223,17 @@ typedef enum rd_record_source {
 enum { RD_H1 = 0, RD_H2 = 1, RD_VERTICAL = 2, RD_NCOMPONENTS = 3 };
 
 typedef struct rd_component_def {
-    rd_record_source source;  /* NONE = this component is absent */
-    char path[RD_PATH_MAX];   /* file, resolved against the scenario file's directory */
-    double unit;              /* m/s^2 per unit of the file's values (text files; default g) */
-    int unit_given;           /* text files: 1 when the scenario declared `units` (else g by default) */
-    double dt;                /* text files: sample step, s (0 = from the time column) */
+    rd_record_source source; /* NONE = this component is absent */
+    char path[RD_PATH_MAX];  /* file, resolved against the scenario file's directory */
+    double unit;             /* m/s^2 per unit of the file's values (text files; default g) */
+    int unit_given; /* text files: 1 when the scenario declared `units` (else g by default) */
+    double dt;      /* text files: sample step, s (0 = from the time column) */
     char record[RD_NAME_MAX]; /* FEMA: record id (e.g. "1") */
-    int fema_b;               /* FEMA: 0 = component a, 1 = component b, 2 = component v (vertical) */
+    int fema_b; /* FEMA: 0 = component a, 1 = component b, 2 = component v (vertical) */
     rd_stochastic_def stochastic; /* STOCHASTIC: generator parameters */
-    int line;                 /* scenario line that defined it */
-    struct rd_record *raw;     /* as read or generated, m/s^2 (owned; rd_scenario_free) */
-    struct rd_record *applied; /* baseline-corrected and scaled: the ground's motion (owned) */
+    int line;                     /* scenario line that defined it */
+    struct rd_record *raw;        /* as read or generated, m/s^2 (owned; rd_scenario_free) */
+    struct rd_record *applied;    /* baseline-corrected and scaled: the ground's motion (owned) */
 } rd_component_def;
 
 typedef enum rd_scale_kind {
@@ -229,17 +244,17 @@ typedef enum rd_scale_kind {
 } rd_scale_kind;
 
 typedef struct rd_motion_def {
-    rd_pulse_def horizontal; /* kind NONE = no horizontal motion */
-    rd_pulse_def vertical;   /* kind NONE = no vertical motion; + is up */
+    rd_pulse_def horizontal;                 /* kind NONE = no horizontal motion */
+    rd_pulse_def vertical;                   /* kind NONE = no vertical motion; + is up */
     rd_component_def record[RD_NCOMPONENTS]; /* h1, h2, vertical records (motion_record.c) */
-    double direction;        /* records: direction of +h1, rad from +x; h2 points at +90 deg */
-    rd_scale_kind scale;     /* one factor for every record component: for PGA/PGV targets it
+    double direction;    /* records: direction of +h1, rad from +x; h2 points at +90 deg */
+    rd_scale_kind scale; /* one factor for every record component: for PGA/PGV targets it
                                 is target / geometric mean of the horizontal peaks (the vertical
                                 peak when there is no horizontal record) */
-    double scale_value;      /* factor, m/s^2 or m/s as scale says */
-    int baseline;            /* degree of the polynomial baseline correction, 2..8; 0 = off
+    double scale_value;  /* factor, m/s^2 or m/s as scale says */
+    int baseline;        /* degree of the polynomial baseline correction, 2..8; 0 = off
                                 (default 4) */
-    double factor;           /* the factor applied by the last rd_motion_prepare (output) */
+    double factor;       /* the factor applied by the last rd_motion_prepare (output) */
 } rd_motion_def;
 
 typedef enum rd_timestep_kind { RD_TIMESTEP_AUTO = 0, RD_TIMESTEP_FIXED = 1 } rd_timestep_kind;
@@ -257,10 +272,11 @@ typedef struct rd_settle_def {
 } rd_settle_def;
 
 typedef enum rd_overturn_kind {
-    RD_OVERTURN_TILT_RATIO = 0, /* tilt of the body's vertical axis / its alpha >= value (default 1.5) */
-    RD_OVERTURN_ANGLE = 1,      /* tilt >= value, rad */
-    RD_OVERTURN_HEIGHT = 2,     /* centre of mass below value times its initial height */
-    RD_OVERTURN_OFF = 3         /* centre of mass no longer above the body it rested on (its
+    RD_OVERTURN_TILT_RATIO =
+        0,                 /* tilt of the body's vertical axis / its alpha >= value (default 1.5) */
+    RD_OVERTURN_ANGLE = 1, /* tilt >= value, rad */
+    RD_OVERTURN_HEIGHT = 2, /* centre of mass below value times its initial height */
+    RD_OVERTURN_OFF = 3     /* centre of mass no longer above the body it rested on (its
                                    bounding box at rest, grown by value times the body's size) */
 } rd_overturn_kind;
 
@@ -284,7 +300,7 @@ typedef struct rd_scenario {
     int nbodies;
     rd_body_def *bodies;    /* [nbodies] (owned; grown by the parser and rd_scenario_add_body) */
     int cap_bodies;         /* bodies allocated */
-    rd_contact_def contact;      /* the default joint */
+    rd_contact_def contact; /* the default joint */
     int njoints;
     rd_joint_def joint[RD_MAX_JOINTS]; /* per-range overrides, file order */
     rd_damping_def damping;
@@ -302,8 +318,8 @@ typedef struct rd_scenario {
     rd_output_def output;
     int nhistories;
     rd_history_def history[RD_MAX_HISTORIES];
-    double history_interval; /* s between history samples (`history interval`; default 0.001) */
-    char save_path[RD_PATH_MAX];    /* `model save 'f.h5'`: checkpoint after settling ("" = none) */
+    double history_interval;     /* s between history samples (`history interval`; default 0.001) */
+    char save_path[RD_PATH_MAX]; /* `model save 'f.h5'`: checkpoint after settling ("" = none) */
     char restore_path[RD_PATH_MAX]; /* `model restore 'f.h5'`: start from a checkpoint instead
                                        of settling ("" = none) */
     double ref_restitution; /* rigid reference solvers only (`model reference restitution e`):
@@ -329,7 +345,8 @@ RD_API int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text
 /* The same for the `len` bytes at text (no NUL needed at the end): a NUL byte among them is
  * refused with its offset (a C string would end there and the rest be lost silently). For
  * bindings that hold a length (Python's bytes). 0 or -1. */
-RD_API int rd_scenario_parse_n(rd_scenario *sc, const char *name, const char *text, size_t len, rd_error *err);
+RD_API int rd_scenario_parse_n(rd_scenario *sc, const char *name, const char *text, size_t len,
+                               rd_error *err);
 
 /* Apply a command-line override "section.key=value", e.g. "contact.stiffness-normal=1e10",
  * "motion.amplitude=0.4g", "output.file=x.h5", "body.cask.density=2500". Returns 0 or -1. */

@@ -15,18 +15,18 @@
 #include "rockdem/rockdem.h"
 
 #define RD_SWEEP_MAX_AXES 16
-#define RD_SWEEP_TEXT 128 /* bytes of a text column value (record names, text axis values) */
-#define RD_SWEEP_MSG 200  /* bytes of a case's error message */
+#define RD_SWEEP_TEXT     128 /* bytes of a text column value (record names, text axis values) */
+#define RD_SWEEP_MSG      200 /* bytes of a case's error message */
 /* Free bodies a sweep tabulates per case: a case's result travels as one fixed-size record
  * (pipe or MPI), so its per-body columns are arrays of this length (about 10 kB a result). */
-#define RD_SWEEP_BODIES 256
+#define RD_SWEEP_BODIES   256
 
 typedef enum rd_axis_kind {
-    RD_AXIS_SET = 0,    /* --axis section.key=v1,v2: rd_scenario_set("section.key=v") */
-    RD_AXIS_RECORD,     /* --records: motion.file (path as given, relative to the current dir) */
-    RD_AXIS_SCALE,      /* --scales: "0.3g" = target PGA, "2" = factor (see rd_sweep_assignment) */
-    RD_AXIS_DIRECTION,  /* --directions: motion.direction, degrees */
-    RD_AXIS_INTERFACE   /* --axis interface=K: contact.interface-seed = 1..K */
+    RD_AXIS_SET = 0,   /* --axis section.key=v1,v2: rd_scenario_set("section.key=v") */
+    RD_AXIS_RECORD,    /* --records: motion.file (path as given, relative to the current dir) */
+    RD_AXIS_SCALE,     /* --scales: "0.3g" = target PGA, "2" = factor (see rd_sweep_assignment) */
+    RD_AXIS_DIRECTION, /* --directions: motion.direction, degrees */
+    RD_AXIS_INTERFACE  /* --axis interface=K: contact.interface-seed = 1..K */
 } rd_axis_kind;
 
 typedef struct rd_sweep_axis {
@@ -40,24 +40,33 @@ typedef struct rd_sweep_axis {
 } rd_sweep_axis;
 
 typedef struct rd_sweep_plan {
-    const char *path;       /* scenario file */
-    char *text;             /* the scenario file as read (owned) */
+    const char *path; /* scenario file */
+    char *text;       /* the scenario file as read (owned) */
     int nsets;
-    char **sets;            /* base --set assignments (argv strings) */
+    char **sets; /* base --set assignments (argv strings) */
     int naxes;
     rd_sweep_axis axis[RD_SWEEP_MAX_AXES];
-    long ncases;            /* product of the axis lengths */
-    char *axes_text;        /* canonical "key=v1,v2\n" per axis, then "--set a\n" (owned) */
-    int nbodies;            /* free bodies */
+    long ncases;     /* product of the axis lengths */
+    char *axes_text; /* canonical "key=v1,v2\n" per axis, then "--set a\n" (owned) */
+    int nbodies;     /* free bodies */
     char body[RD_SWEEP_BODIES][RD_NAME_MAX];
-    int pulse;              /* 1: the scenario's horizontal motion is a pulse (no records) */
-    double amplitude;       /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
-    int perturbed;          /* 1: the scenario's interface perturbation removes, raises or scatters */
-    const char *keep_dir;   /* --keep-runs DIR: each case's HDF5 file there; NULL: no file */
+    int pulse;            /* 1: the scenario's horizontal motion is a pulse (no records) */
+    double amplitude;     /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
+    int perturbed;        /* 1: the scenario's interface perturbation removes, raises or scatters */
+    const char *keep_dir; /* --keep-runs DIR: each case's HDF5 file there; NULL: no file */
 } rd_sweep_plan;
 
-enum { RD_IM_PGA, RD_IM_PGV, RD_IM_PGD, RD_IM_PGV_PGA, RD_IM_ARIAS, RD_IM_D5_95, RD_IM_SA_0_2, RD_IM_SA_1,
-       RD_SWEEP_NIM };
+enum {
+    RD_IM_PGA,
+    RD_IM_PGV,
+    RD_IM_PGD,
+    RD_IM_PGV_PGA,
+    RD_IM_ARIAS,
+    RD_IM_D5_95,
+    RD_IM_SA_0_2,
+    RD_IM_SA_1,
+    RD_SWEEP_NIM
+};
 
 /* Response mode of a free body in one run (docs/FRAGILITY.md "Response modes"), most severe
  * last; a run's mode is the most severe over its bodies. */
@@ -72,31 +81,32 @@ typedef enum rd_sweep_mode {
 } rd_sweep_mode;
 
 /* Thresholds of the modes (justified in docs/FRAGILITY.md). */
-#define RD_MODE_TILT_MIN 1e-3  /* max tilt / alpha (with uplift): rocking; the brick of
+#define RD_MODE_TILT_MIN                                                                           \
+    1e-3                       /* max tilt / alpha (with uplift): rocking; the brick of
                                   tests/cli/data/sweep_brick.dat reaches 5.4e-4 at 0.38 g, below its
                                   tipping 0.4 g, and 2.7e-3 at 0.42 g */
-#define RD_MODE_SLIP_MIN 1e-3  /* m of joint slip: sliding (seed 002's mm displacement resolution) */
+#define RD_MODE_SLIP_MIN  1e-3 /* m of joint slip: sliding (seed 002's mm displacement resolution) */
 #define RD_MODE_TWIST_MIN 0.05 /* rad of max |twist|: rock-twist (2.9 deg) */
 
 /* What one case found: sent through a pipe or MPI as raw bytes (a homogeneous machine set). */
 typedef struct rd_sweep_result {
-    long index;                  /* case index */
-    unsigned long long hash;     /* rd_sweep_hash of the case */
-    int status;                  /* rd_status; -1: the case could not be set up (message) */
+    long index;              /* case index */
+    unsigned long long hash; /* rd_sweep_hash of the case */
+    int status;              /* rd_status; -1: the case could not be set up (message) */
     char message[RD_SWEEP_MSG];
-    double im[RD_SWEEP_NIM];     /* pga m/s^2, pgv m/s, pgd m, pgv/pga s, arias m/s, d5-95 s,
+    double im[RD_SWEEP_NIM];  /* pga m/s^2, pgv m/s, pgd m, pgv/pga s, arias m/s, d5-95 s,
                                     5 %-damped Sa(0.2 s), Sa(1 s) m/s^2 */
-    int overturned;              /* 1 if any free body overturned */
-    double overturn_time;        /* first overturn, s (-1 if none) */
-    double max_tilt_ratio;       /* max over bodies of max tilt / alpha */
-    double max_slide;            /* max over bodies, m */
-    double final_twist;          /* the largest |twist at the end| over bodies, signed, rad */
-    double max_twist;            /* max over bodies of max |twist about the vertical|, rad */
-    double max_slip;             /* max over joints of a free body of its joint slip, m */
-    char mode[RD_SWEEP_TEXT];    /* rd_sweep_mode_name of the most severe body mode */
-    double energy_residual;      /* max |balance residual| / energy scale */
-    double end_time;             /* simulated time reached, s */
-    double wall_seconds;         /* wall time of the whole case (setup + run), s */
+    int overturned;           /* 1 if any free body overturned */
+    double overturn_time;     /* first overturn, s (-1 if none) */
+    double max_tilt_ratio;    /* max over bodies of max tilt / alpha */
+    double max_slide;         /* max over bodies, m */
+    double final_twist;       /* the largest |twist at the end| over bodies, signed, rad */
+    double max_twist;         /* max over bodies of max |twist about the vertical|, rad */
+    double max_slip;          /* max over joints of a free body of its joint slip, m */
+    char mode[RD_SWEEP_TEXT]; /* rd_sweep_mode_name of the most severe body mode */
+    double energy_residual;   /* max |balance residual| / energy scale */
+    double end_time;          /* simulated time reached, s */
+    double wall_seconds;      /* wall time of the whole case (setup + run), s */
     int nbodies;
     int b_overturned[RD_SWEEP_BODIES];
     double b_overturn_time[RD_SWEEP_BODIES], b_max_tilt_ratio[RD_SWEEP_BODIES];
@@ -144,12 +154,12 @@ RD_API void rd_sweep_request_stop(void);
 typedef struct rd_sweep_pool {
     int nworkers;
     void *ctx;
-    int (*send)(void *ctx, int worker, long index);   /* index -1: stop; 0 or -1 */
+    int (*send)(void *ctx, int worker, long index); /* index -1: stop; 0 or -1 */
     /* Wait up to wait_ms for a result: 1 (r, *worker set), 0 (none yet), -1 (worker *worker
        died; its case is lost) */
     int (*recv)(void *ctx, int wait_ms, int *worker, rd_sweep_result *r);
-    void (*interrupt)(void *ctx);                     /* pass Ctrl-C on to the workers */
-    void (*finish)(void *ctx);                        /* stop and reap the workers, free ctx */
+    void (*interrupt)(void *ctx); /* pass Ctrl-C on to the workers */
+    void (*finish)(void *ctx);    /* stop and reap the workers, free ctx */
 } rd_sweep_pool;
 
 /* Fork n workers. -1 with err. */
@@ -161,7 +171,8 @@ typedef struct rd_sweep_table rd_sweep_table;
 
 /* Create the table, or open an existing one for the same scenario and axes (done[k] = 1 for
  * cases already in it; done has ncases entries). NULL with err. */
-RD_API rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err);
+RD_API rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done,
+                                           rd_error *err);
 
 /* Append one result row and flush the file. Atomic: the space is reserved first
  * (posix_fallocate), so a full disk or a file-size limit fails before anything is written and

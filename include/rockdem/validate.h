@@ -54,15 +54,15 @@ RD_API int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err
 
 /* Solve the mapped model over [0, sc->duration] with samples every output interval. */
 RD_API int rd_refscene_solve(const rd_scenario *sc, const rd_refscene *rs, rd_ref_result *res,
-                      rd_error *err);
+                             rd_error *err);
 
 /* Write a solution in the DEM's HDF5 layout (src/io_hdf5.h) to path: poses from the rigid
  * rotation about the active pivot, tilt, ground, events, summary; energies kinetic and
  * gravitational (the others zero). When sum is not NULL, fills it and body[0..nblock), the
  * caller's storage that sum->body then points at. */
 RD_API int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
-                      const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
-                      rd_error *err);
+                             const char *path, rd_summary *sum, rd_body_summary body[RD_REF_BLOCKS],
+                             rd_error *err);
 
 /* Can rd_refscene_write write path? The checks `rockdem run` makes of its output before any
  * work (never a device, folder or pipe, nor a file the scene reads; its folder writable), for
@@ -76,11 +76,11 @@ typedef enum rd_engine { RD_ENGINE_DEM = 0, RD_ENGINE_REFERENCE = 1 } rd_engine;
 typedef struct rd_threshold_opts {
     double lo, hi; /* amplitude range searched, m/s^2; <= 0: defaults 0.9 and 10 times the
                       static uplift threshold g tan(alpha) (stack: the lower of item 2) */
-    int nscan;     /* coarse steps from lo to hi (<= 0: default 24; at most RD_THRESHOLD_SCAN_MAX) */
-    int jobs;      /* runs of the coarse scan at once, each in a worker process (fork); <= 0
+    int nscan;   /* coarse steps from lo to hi (<= 0: default 24; at most RD_THRESHOLD_SCAN_MAX) */
+    int jobs;    /* runs of the coarse scan at once, each in a worker process (fork); <= 0
                       (default): the number of online cores; 1: all in the calling process.
                       The result is the serial scan's whatever the number (runs may be more) */
-    double rtol;   /* bisection stops when (hi - lo) / hi < rtol (default 0.005), in
+    double rtol; /* bisection stops when (hi - lo) / hi < rtol (default 0.005), in
                       [RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX] */
 } rd_threshold_opts;
 
@@ -106,17 +106,17 @@ RD_API int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *op
                               double *hi, rd_error *err);
 
 typedef struct rd_threshold_result {
-    int found;          /* 0: nothing in [lo, hi] overturned */
-    double amplitude;   /* m/s^2, upper end of the final bracket (overturns) */
-    double below;       /* m/s^2, lower end (does not overturn) */
-    double static_amp;  /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
-    double w_over_p;    /* 2 pi f / p of block 1 (0 without a frequency) */
-    int runs;           /* simulations made (a parallel scan may run up to jobs - 1 past the
+    int found;         /* 0: nothing in [lo, hi] overturned */
+    double amplitude;  /* m/s^2, upper end of the final bracket (overturns) */
+    double below;      /* m/s^2, lower end (does not overturn) */
+    double static_amp; /* m/s^2, static uplift threshold g tan(alpha) of block 1 (or stack) */
+    double w_over_p;   /* 2 pi f / p of block 1 (0 without a frequency) */
+    int runs;          /* simulations made (a parallel scan may run up to jobs - 1 past the
                            first bracket) */
-    int lifted_off;     /* reference only: 1 when the upper end of the bracket is the onset of
+    int lifted_off;    /* reference only: 1 when the upper end of the bracket is the onset of
                            pivot lift-off (the block jumps; the rigid model stops there), not
                            of overturning */
-    int own_scale;      /* 1: static_amp and w_over_p are the scene's own (no brick or stack the
+    int own_scale;     /* 1: static_amp and w_over_p are the scene's own (no brick or stack the
                            rigid reference maps exactly): the least g tan(alpha) along the shaking
                            over its free bodies and the assemblies standing on them, p of that
                            one's rocking (last: tools/rockdem/_lib.py mirrors the layout) */
@@ -129,7 +129,7 @@ typedef struct rd_threshold_result {
  * criterion; reference: certain overturning of either block, or RD_LIFTS_OFF when a pivot
  * lifts off first. The DEM writes no file. */
 RD_API int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitude, int *over,
-                 rd_error *err);
+                        rd_error *err);
 
 /* Minimum overturning amplitude of the scenario's horizontal pulse. Overturning is not
  * monotonic in amplitude in general (a stronger pulse can throw the block back before it
@@ -138,7 +138,7 @@ RD_API int rd_overturns(const rd_scenario *sc, rd_engine engine, double amplitud
  * that first bracket. It finds the lowest overturning amplitude of that bracket, not a global
  * minimum below an island narrower than one coarse step. */
 RD_API int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opts *opts,
-                 rd_threshold_result *out, rd_error *err);
+                        rd_threshold_result *out, rd_error *err);
 
 /* ---- restitution of the discretised contact --------------------------------------------- */
 
@@ -158,14 +158,14 @@ RD_API int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_thresh
  * corners) loses energy later and shows a speed ratio above the amplitude decay. r is the
  * geometric mean of the first n ratios. */
 typedef struct rd_restitution {
-    int nimpacts;       /* impacts seen */
-    int n;              /* ratios averaged (<= 3) */
-    double ratio[3];    /* r_1 .. r_n from the amplitude decay */
+    int nimpacts;          /* impacts seen */
+    int n;                 /* ratios averaged (<= 3) */
+    double ratio[3];       /* r_1 .. r_n from the amplitude decay */
     double speed_ratio[3]; /* r_1 .. r_n from the speeds either side, carried to theta = 0 */
-    double amplitude[4];/* rad: release angle, then the amplitude after each impact */
-    double r;           /* geometric mean of ratio[], or -1 when fewer than 2 impacts */
-    double r_speed;     /* geometric mean of speed_ratio[] */
-    double t_impact[4]; /* s, first impact times */
+    double amplitude[4];   /* rad: release angle, then the amplitude after each impact */
+    double r;              /* geometric mean of ratio[], or -1 when fewer than 2 impacts */
+    double r_speed;        /* geometric mean of speed_ratio[] */
+    double t_impact[4];    /* s, first impact times */
 } rd_restitution;
 
 /* The rigid-body scales of a scene's free rocking: one free body's tipping angle alpha (rad)
@@ -187,7 +187,7 @@ RD_API int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, r
 RD_API double rd_rigid_restitution(const rd_rocking_scales *s, double gravity);
 
 RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
-                           rd_error *err);
+                                  rd_error *err);
 
 /* The contact restitution (`contact property restitution e`, the impact loss of contact.c)
  * that gives the block restitution `target` in free rocking to |r - target| < RD_CAL_RTOL:
@@ -199,7 +199,7 @@ RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_resti
  * (r(e) too uneven there: the block slides or bounces, e.g. the `3dec` preset's KS = KN / 10).
  * Not reached, *e and *reached are the closest e and r measured. */
 RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
-                             double *reached, rd_error *err);
+                                    double *reached, rd_error *err);
 
 /* Intervals of the calibration's first scan over e in [0, 1]. */
 #define RD_CAL_GRID 4
@@ -212,7 +212,7 @@ RD_API int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, d
                                          rd_restitution *at, rd_error *err);
 
 /* |r - target| at which the calibration stops (the specification, issue 11). */
-#define RD_CAL_RTOL 0.002
+#define RD_CAL_RTOL   0.002
 /* Relative difference up to which the amplitude-decay and speed measures of one run agree when
  * its impacts are complete (the specification, issue 11; measured 0.04 % on the rigid preset
  * and on the 11 x 11 bed, 0.00 % on the defaults, docs/CONTACT.md). */

@@ -28,14 +28,14 @@
 #include <string.h>
 
 /* The angle scan of A.2: log-spaced from alpha * PHI_SCAN_MIN to alpha. */
-#define PHI_SCAN_N 4000
-#define PHI_SCAN_MIN 1e-6
+#define PHI_SCAN_N           4000
+#define PHI_SCAN_MIN         1e-6
 /* Bisection steps (each halves the bracket: 60 reach round-off from any bracket). */
-#define BISECT_STEPS 60
+#define BISECT_STEPS         60
 /* Period scan of A.1 (s): log-spaced over [SLIDE_T_MIN, SLIDE_T_MAX]. */
-#define SLIDE_T_N 4000
-#define SLIDE_T_MIN 1e-3
-#define SLIDE_T_MAX 100.0
+#define SLIDE_T_N            4000
+#define SLIDE_T_MIN          1e-3
+#define SLIDE_T_MAX          100.0
 /* Share of the vertical acceleration that lightens the body in A.1 (100-40-40 rule). */
 #define SLIDE_VERTICAL_SHARE 0.4
 
@@ -59,8 +59,8 @@ double rd_assess_rocking_stiffness(const rd_assess_body *b, double phi, double g
 }
 
 /* The oscillator at angle phi: frequency, spectral accelerations and the angles they give. */
-static void rocking_at(const rd_assess_body *b, const rd_spectrum *h, const rd_spectrum *v, double g, double D,
-                       double phi, rd_rocking *o)
+static void rocking_at(const rd_assess_body *b, const rd_spectrum *h, const rd_spectrum *v,
+                       double g, double D, double phi, rd_rocking *o)
 {
     double K = rd_assess_rocking_stiffness(b, phi, g);
     double w = sqrt(K / b->inertia);
@@ -72,8 +72,8 @@ static void rocking_at(const rd_assess_body *b, const rd_spectrum *h, const rd_s
 }
 
 /* SRSS angle over the trial angle: 1 at a consistent angle. */
-static double rocking_ratio(const rd_assess_body *b, const rd_spectrum *h, const rd_spectrum *v, double g,
-                            double D, double phi)
+static double rocking_ratio(const rd_assess_body *b, const rd_spectrum *h, const rd_spectrum *v,
+                            double g, double D, double phi)
 {
     rd_rocking o;
     rocking_at(b, h, v, g, D, phi, &o);
@@ -88,8 +88,11 @@ static double scan_phi(double alpha, int k)
 static int check_body(const rd_assess_body *b, rd_error *err)
 {
     if (!(b->b > 0 && b->h > 0 && b->mass > 0 && b->inertia > 0) || !(b->mu >= 0))
-        return rd_error_set(err, "assess: body b %g m, h %g m, mass %g kg, inertia %g kg m^2 must be positive and "
-                            "mu %g >= 0", b->b, b->h, b->mass, b->inertia, b->mu);
+        return rd_error_set(
+            err,
+            "assess: body b %g m, h %g m, mass %g kg, inertia %g kg m^2 must be positive and "
+            "mu %g >= 0",
+            b->b, b->h, b->mass, b->inertia, b->mu);
     return 0;
 }
 
@@ -99,8 +102,10 @@ int rd_assess_rocking(const rd_assess_body *b, const rd_spectrum *h, const rd_sp
     if (check_body(b, err)) return -1;
     double r = rd_assess_restitution(b);
     if (!(r > 0))
-        return rd_error_set(err, "assess: the body's restitution r = %.3g <= 0 (too squat to rock: "
-                            "b/h >= sqrt 2 for a box, seed 001 section 2)", r);
+        return rd_error_set(err,
+                            "assess: the body's restitution r = %.3g <= 0 (too squat to rock: "
+                            "b/h >= sqrt 2 for a box, seed 001 section 2)",
+                            r);
     memset(out, 0, sizeof *out);
     double D = rd_assess_rocking_damping(r), alpha = rd_assess_alpha(b);
     out->damping = D;
@@ -126,12 +131,14 @@ int rd_assess_rocking(const rd_assess_body *b, const rd_spectrum *h, const rd_sp
     return 0;
 }
 
-int rd_assess_pga_rocking(const rd_assess_body *b, const rd_spectrum *h, double kv, double g, double *pga,
-                          rd_error *err)
+int rd_assess_pga_rocking(const rd_assess_body *b, const rd_spectrum *h, double kv, double g,
+                          double *pga, rd_error *err)
 {
     if (check_body(b, err)) return -1;
     double r = rd_assess_restitution(b);
-    if (!(r > 0)) return rd_error_set(err, "assess: the body's restitution r = %.3g <= 0: it does not rock", r);
+    if (!(r > 0))
+        return rd_error_set(err, "assess: the body's restitution r = %.3g <= 0: it does not rock",
+                            r);
     rd_spectrum hs = *h, vs = *h;
     hs.scale = 1.0;
     vs.scale = kv;
@@ -148,22 +155,28 @@ int rd_assess_pga_rocking(const rd_assess_body *b, const rd_spectrum *h, double 
 }
 
 /* A.1 at the spectrum as given: fills out, returns 0. */
-static void sliding_at(const rd_assess_body *b, const rd_spectrum *h, double a_v, double zeta, double g,
-                       rd_sliding *out)
+static void sliding_at(const rd_assess_body *b, const rd_spectrum *h, double a_v, double zeta,
+                       double g, rd_sliding *out)
 {
     out->mu_e = b->mu * (1.0 - SLIDE_VERTICAL_SHARE * a_v / g);
     out->damping = zeta;
     out->freq = 0.0;
     out->distance = 0.0;
     double target = out->mu_e * g; /* m/s^2 */
-    if (!(target > 0)) { out->distance = INFINITY; return; }
+    if (!(target > 0)) {
+        out->distance = INFINITY;
+        return;
+    }
     if (rd_spectrum_sa(h, 0.0, zeta) <= target) return; /* the pad holds it: no sliding */
     /* the last period of the scan at which Sa still reaches mu_e g; the crossing after it */
     double lo = 0.0, hi = 0.0;
     for (int k = SLIDE_T_N - 1; k >= 0 && hi == 0.0; k--) {
         double T = SLIDE_T_MIN * pow(SLIDE_T_MAX / SLIDE_T_MIN, (double)k / (SLIDE_T_N - 1));
         if (rd_spectrum_sa(h, T, zeta) >= target) {
-            if (k == SLIDE_T_N - 1) { out->distance = INFINITY; return; }
+            if (k == SLIDE_T_N - 1) {
+                out->distance = INFINITY;
+                return;
+            }
             lo = T;
             hi = SLIDE_T_MIN * pow(SLIDE_T_MAX / SLIDE_T_MIN, (double)(k + 1) / (SLIDE_T_N - 1));
         }
@@ -177,20 +190,22 @@ static void sliding_at(const rd_assess_body *b, const rd_spectrum *h, double a_v
     out->distance = target * lo * lo / (4.0 * M_PI * M_PI);
 }
 
-int rd_assess_sliding(const rd_assess_body *b, const rd_spectrum *h, double a_v, double zeta, double limit,
-                      double g, rd_sliding *out, rd_error *err)
+int rd_assess_sliding(const rd_assess_body *b, const rd_spectrum *h, double a_v, double zeta,
+                      double limit, double g, rd_sliding *out, rd_error *err)
 {
     if (check_body(b, err)) return -1;
-    if (!(zeta > 0 && zeta < 1)) return rd_error_set(err, "assess: sliding damping %g must be in (0, 1)", zeta);
-    if (!(limit > 0)) return rd_error_set(err, "assess: allowable sliding distance %g m must be positive", limit);
+    if (!(zeta > 0 && zeta < 1))
+        return rd_error_set(err, "assess: sliding damping %g must be in (0, 1)", zeta);
+    if (!(limit > 0))
+        return rd_error_set(err, "assess: allowable sliding distance %g m must be positive", limit);
     sliding_at(b, h, a_v, zeta, g, out);
     out->limit = limit;
     out->margin = out->distance > 0 ? limit / (RD_ASCE43_SF_SLIDE * out->distance) : INFINITY;
     return 0;
 }
 
-int rd_assess_pga_sliding(const rd_assess_body *b, const rd_spectrum *h, double kv, double zeta, double limit,
-                          double g, double *pga, rd_error *err)
+int rd_assess_pga_sliding(const rd_assess_body *b, const rd_spectrum *h, double kv, double zeta,
+                          double limit, double g, double *pga, rd_error *err)
 {
     rd_sliding o;
     if (rd_assess_sliding(b, h, 0.0, zeta, limit, g, &o, err)) return -1;

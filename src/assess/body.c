@@ -19,7 +19,8 @@ void rd_assess_body_brick(rd_assess_body *b, double width, double height, double
     b->mu = mu;
 }
 
-void rd_assess_body_prism(rd_assess_body *b, int sides, double radius, double height, double mass, double mu)
+void rd_assess_body_prism(rd_assess_body *b, int sides, double radius, double height, double mass,
+                          double mu)
 {
     double c = sides >= 3 ? cos(M_PI / sides) : 1.0;
     /* centroidal in-plane moment of area of the regular n-gon: R^2 (1 + 2 cos^2(pi/n)) / 12
@@ -32,7 +33,4 @@ void rd_assess_body_prism(rd_assess_body *b, int sides, double radius, double he
     b->mu = mu;
 }
 
-double rd_assess_alpha(const rd_assess_body *b)
-{
-    return atan2(b->b, b->h);
-}
+double rd_assess_alpha(const rd_assess_body *b) { return atan2(b->b, b->h); }

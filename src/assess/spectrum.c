@@ -21,10 +21,16 @@
 
 /* S, TB, TC, TD (s) for ground types A..E: EN 1998-1 Table 3.2 (type 1) and 3.3 (type 2). */
 static const double en_table[2][5][4] = {
-    {{1.00, 0.15, 0.4, 2.0}, {1.20, 0.15, 0.5, 2.0}, {1.15, 0.20, 0.6, 2.0},
-     {1.35, 0.20, 0.8, 2.0}, {1.40, 0.15, 0.5, 2.0}},
-    {{1.00, 0.05, 0.25, 1.2}, {1.35, 0.05, 0.25, 1.2}, {1.50, 0.10, 0.25, 1.2},
-     {1.80, 0.10, 0.30, 1.2}, {1.60, 0.05, 0.25, 1.2}},
+    { { 1.00, 0.15, 0.4, 2.0 },
+      { 1.20, 0.15, 0.5, 2.0 },
+      { 1.15, 0.20, 0.6, 2.0 },
+      { 1.35, 0.20, 0.8, 2.0 },
+      { 1.40, 0.15, 0.5, 2.0 } },
+    { { 1.00, 0.05, 0.25, 1.2 },
+      { 1.35, 0.05, 0.25, 1.2 },
+      { 1.50, 0.10, 0.25, 1.2 },
+      { 1.80, 0.10, 0.30, 1.2 },
+      { 1.60, 0.05, 0.25, 1.2 } },
 };
 
 int rd_spectrum_en1998(rd_spectrum *s, int type, char ground, double ag, rd_error *err)
@@ -33,7 +39,8 @@ int rd_spectrum_en1998(rd_spectrum *s, int type, char ground, double ag, rd_erro
     if (type != 1 && type != 2)
         return rd_error_set(err, "EN 1998 spectrum: type %d, expected 1 or 2", type);
     if (g < 0 || g > 4)
-        return rd_error_set(err, "EN 1998 spectrum: ground type '%c', expected A, B, C, D or E", ground);
+        return rd_error_set(err, "EN 1998 spectrum: ground type '%c', expected A, B, C, D or E",
+                            ground);
     if (!(ag > 0) || !isfinite(ag))
         return rd_error_set(err, "EN 1998 spectrum: a_g %g m/s^2 must be positive", ag);
     memset(s, 0, sizeof *s);
@@ -50,17 +57,21 @@ int rd_spectrum_en1998(rd_spectrum *s, int type, char ground, double ag, rd_erro
     return 0;
 }
 
-int rd_spectrum_table(rd_spectrum *s, const double *T, const double *sa, int n, double damping, rd_error *err)
+int rd_spectrum_table(rd_spectrum *s, const double *T, const double *sa, int n, double damping,
+                      rd_error *err)
 {
     if (n < 2 || n > RD_SPECTRUM_MAX)
         return rd_error_set(err, "spectrum table: %d points, expected 2 to %d", n, RD_SPECTRUM_MAX);
     if (T[0] != 0.0)
-        return rd_error_set(err, "spectrum table: the first period is %g s, expected 0 (its Sa is the PGA)", T[0]);
+        return rd_error_set(
+            err, "spectrum table: the first period is %g s, expected 0 (its Sa is the PGA)", T[0]);
     for (int i = 0; i < n; i++) {
         if (i > 0 && !(T[i] > T[i - 1]))
-            return rd_error_set(err, "spectrum table: period %g s at point %d does not increase", T[i], i + 1);
+            return rd_error_set(err, "spectrum table: period %g s at point %d does not increase",
+                                T[i], i + 1);
         if (!(sa[i] > 0) || !isfinite(sa[i]) || !isfinite(T[i]))
-            return rd_error_set(err, "spectrum table: Sa %g at point %d must be positive", sa[i], i + 1);
+            return rd_error_set(err, "spectrum table: Sa %g at point %d must be positive", sa[i],
+                                i + 1);
     }
     if (!(damping > 0 && damping < 1))
         return rd_error_set(err, "spectrum table: damping %g must be a ratio in (0, 1)", damping);
@@ -77,7 +88,8 @@ int rd_spectrum_table(rd_spectrum *s, const double *T, const double *sa, int n, 
 /* Next number of a table line (blanks or commas between), or -1 at the end, -2 on junk. */
 static int next_number(char **p, double *v)
 {
-    while (**p == ' ' || **p == '\t' || **p == ',' || **p == ';' || **p == '\r' || **p == '\n') (*p)++;
+    while (**p == ' ' || **p == '\t' || **p == ',' || **p == ';' || **p == '\r' || **p == '\n')
+        (*p)++;
     if (!**p) return -1;
     char *end;
     errno = 0;
@@ -105,7 +117,8 @@ int rd_spectrum_read(rd_spectrum *s, const char *path, double damping, rd_error 
         while (k < 3 && (got = next_number(&p, &v[k])) == 0) k++;
         if (k == 0 && got == -1) continue;
         if (got == -2 || k != 2 || next_number(&p, &v[2]) != -1)
-            rc = rd_error_set(err, "%s:%d: expected two numbers, period (s) and Sa (g)", path, lineno);
+            rc = rd_error_set(err, "%s:%d: expected two numbers, period (s) and Sa (g)", path,
+                              lineno);
         else if (n == RD_SPECTRUM_MAX)
             rc = rd_error_set(err, "%s:%d: more than %d points", path, lineno, RD_SPECTRUM_MAX);
         else if (n > 0 && !(v[0] > T[n - 1]))
@@ -113,8 +126,9 @@ int rd_spectrum_read(rd_spectrum *s, const char *path, double damping, rd_error 
         else if (!(v[1] > 0))
             rc = rd_error_set(err, "%s:%d: Sa %g g must be positive", path, lineno, v[1]);
         else if (n == 0 && v[0] != 0.0)
-            rc = rd_error_set(err, "%s:%d: the first period is %g s, expected 0 (its Sa is the PGA)", path,
-                              lineno, v[0]);
+            rc =
+                rd_error_set(err, "%s:%d: the first period is %g s, expected 0 (its Sa is the PGA)",
+                             path, lineno, v[0]);
         else {
             T[n] = v[0];
             sa[n++] = v[1] * RD_G_STANDARD;
@@ -122,7 +136,8 @@ int rd_spectrum_read(rd_spectrum *s, const char *path, double damping, rd_error 
     }
     fclose(f);
     if (rc) return rc;
-    if (n < 2) return rd_error_set(err, "%s: %d points, a spectrum table needs at least 2", path, n);
+    if (n < 2)
+        return rd_error_set(err, "%s: %d points, a spectrum table needs at least 2", path, n);
     if (rd_spectrum_table(s, T, sa, n, damping, err)) {
         char msg[RD_ERROR_MAX];
         snprintf(msg, sizeof msg, "%s", err->msg);
@@ -131,10 +146,7 @@ int rd_spectrum_read(rd_spectrum *s, const char *path, double damping, rd_error 
     return 0;
 }
 
-double rd_spectrum_eta(double zeta)
-{
-    return fmax(sqrt(10.0 / (5.0 + 100.0 * zeta)), EN_ETA_MIN);
-}
+double rd_spectrum_eta(double zeta) { return fmax(sqrt(10.0 / (5.0 + 100.0 * zeta)), EN_ETA_MIN); }
 
 /* EN 1998-1 eqs. (3.2)-(3.5) at period T with correction eta. */
 static double en_sa(const rd_spectrum *s, double T, double eta)
@@ -168,7 +180,4 @@ double rd_spectrum_sa(const rd_spectrum *s, double T, double zeta)
     return s->scale * table_sa(s, T) * (1.0 + u * (ratio - 1.0));
 }
 
-double rd_spectrum_pga(const rd_spectrum *s)
-{
-    return rd_spectrum_sa(s, 0.0, s->damping);
-}
+double rd_spectrum_pga(const rd_spectrum *s) { return rd_spectrum_sa(s, 0.0, s->damping); }

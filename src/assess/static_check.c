@@ -17,15 +17,12 @@
  * the vertical as two thirds of the horizontal where none is given, which the caller's kv
  * does); EN permits neglecting a vertical PGA under 0.25 g (EN 1998-1 4.3.3.5.2 (1)). */
 static const rd_code_factors codes[RD_NCODES] = {
-    {"ASCE/SEI 7-10", 0.9, 2.0 / 3.0, 0.0, 0.0},
-    {"EN 1990/1998-1", 1.0, 0.0, 0.3, 0.25},
-    {"KTA 2201.1/2201.4", 0.95, 0.0, 0.3, 0.0},
+    { "ASCE/SEI 7-10", 0.9, 2.0 / 3.0, 0.0, 0.0 },
+    { "EN 1990/1998-1", 1.0, 0.0, 0.3, 0.25 },
+    { "KTA 2201.1/2201.4", 0.95, 0.0, 0.3, 0.0 },
 };
 
-void rd_code_get(rd_code c, rd_code_factors *f)
-{
-    *f = codes[c];
-}
+void rd_code_get(rd_code c, rd_code_factors *f) { *f = codes[c]; }
 
 /* Upward acceleration for a_h, a_v (EN's neglect applied when asked). */
 static double upward(const rd_code_factors *f, double a_h, double a_v, int neglect)
@@ -42,8 +39,8 @@ static double with_neglect(double p_v, double p0, double lim)
     return p0 < lim ? p0 : p_v >= lim ? p_v : lim;
 }
 
-void rd_assess_static(const rd_assess_body *b, rd_code c, double a_h, double a_v, double kv, int neglect,
-                      double g, rd_static_check *out)
+void rd_assess_static(const rd_assess_body *b, rd_code c, double a_h, double a_v, double kv,
+                      int neglect, double g, rd_static_check *out)
 {
     rd_code_factors f;
     rd_code_get(c, &f);
@@ -60,7 +57,9 @@ void rd_assess_static(const rd_assess_body *b, rd_code c, double a_h, double a_v
     out->pga_slide = b->mu * f.dead * g / (1.0 + b->mu * k);
     if (neglect && f.neglect_v > 0) {
         double lim = f.neglect_v * RD_G_STANDARD / fmax(kv, 1e-300); /* p at which a_v = 0.25 g */
-        out->pga_rock = with_neglect(out->pga_rock, f.dead * g * b->b / (b->h + f.up_h * b->b), lim);
-        out->pga_slide = with_neglect(out->pga_slide, b->mu * f.dead * g / (1.0 + b->mu * f.up_h), lim);
+        out->pga_rock =
+            with_neglect(out->pga_rock, f.dead * g * b->b / (b->h + f.up_h * b->b), lim);
+        out->pga_slide =
+            with_neglect(out->pga_slide, b->mu * f.dead * g / (1.0 + b->mu * f.up_h), lim);
     }
 }

@@ -25,7 +25,7 @@
  * only when it is back above RD_UPLIFT_AREA_OFF (and nearly upright). Two thresholds, not one,
  * so that the area's small step-to-step noise under full contact (subcontact points flickering
  * at zero overlap) does not fire an uplift event every step. */
-#define RD_UPLIFT_AREA_ON 0.6
+#define RD_UPLIFT_AREA_ON  0.6
 #define RD_UPLIFT_AREA_OFF 0.9
 
 /* ---- stepping (engine/sim.c) ---- */

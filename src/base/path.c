@@ -16,7 +16,8 @@
 int rd_path_same(const char *a, const char *b)
 {
     struct stat sa, sb;
-    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
     return strcmp(a, b) == 0;
 }
 
@@ -24,9 +25,12 @@ int rd_path_creatable(const char *path, char dir[RD_PATH_MAX])
 {
     snprintf(dir, RD_PATH_MAX, "%s", path);
     char *slash = strrchr(dir, '/');
-    if (slash == dir) slash[1] = '\0';
-    else if (slash) *slash = '\0';
-    else snprintf(dir, RD_PATH_MAX, ".");
+    if (slash == dir)
+        slash[1] = '\0';
+    else if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, RD_PATH_MAX, ".");
     if (access(dir, W_OK | X_OK)) return 1;
     return access(path, F_OK) == 0 && access(path, W_OK) ? 2 : 0;
 }
@@ -70,17 +74,22 @@ static const char *input_named(const rd_scenario *sc, const char *path, char *bu
 static int hdf5_kind(const char *path)
 {
     int kind = 0;
-    H5E_BEGIN_TRY {
+    H5E_BEGIN_TRY
+    {
         errno = 0;
         hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
         if (f < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) kind = 'l';
         if (f >= 0) {
-            if (H5Lexists(f, "sweep", H5P_DEFAULT) > 0) kind = 's';
-            else if (H5Lexists(f, "state", H5P_DEFAULT) > 0) kind = 'c';
-            else if (H5Aexists(f, "program") > 0 && H5Lexists(f, "bodies", H5P_DEFAULT) > 0) kind = 'r';
+            if (H5Lexists(f, "sweep", H5P_DEFAULT) > 0)
+                kind = 's';
+            else if (H5Lexists(f, "state", H5P_DEFAULT) > 0)
+                kind = 'c';
+            else if (H5Aexists(f, "program") > 0 && H5Lexists(f, "bodies", H5P_DEFAULT) > 0)
+                kind = 'r';
             H5Fclose(f);
         }
-    } H5E_END_TRY;
+    }
+    H5E_END_TRY;
     return kind;
 }
 
@@ -93,8 +102,10 @@ const char *rd_path_replace_conflict(const char *path, rd_path_output kind)
     if (!S_ISREG(st.st_mode)) return RD_PATH_NOT_FILE;
     if (st.st_size == 0) return NULL;
     htri_t h5 = 0;
-    H5E_BEGIN_TRY { h5 = H5Fis_hdf5(path); } H5E_END_TRY;
-    if (h5 <= 0) return "it exists and is not an HDF5 file of rockdem (remove it or choose another path)";
+    H5E_BEGIN_TRY { h5 = H5Fis_hdf5(path); }
+    H5E_END_TRY;
+    if (h5 <= 0)
+        return "it exists and is not an HDF5 file of rockdem (remove it or choose another path)";
     int k = hdf5_kind(path);
     if (k == 'l') return RD_PATH_LOCKED;
     if (k == 's') return "it is a sweep table (rockdem sweep): choose another path";
@@ -110,7 +121,8 @@ const char *rd_path_output_conflict(const rd_scenario *sc, const char *path, con
 {
     const char *in = input_named(sc, path, buf, n);
     if (in) return in;
-    if (save && save[0] && rd_path_same(path, save)) return "it is also the run's checkpoint (model save)";
+    if (save && save[0] && rd_path_same(path, save))
+        return "it is also the run's checkpoint (model save)";
     return rd_path_replace_conflict(path, kind);
 }
 
@@ -118,14 +130,17 @@ int rd_path_check_save(const rd_scenario *sc, rd_error *err)
 {
     char why[RD_ERROR_MAX], dir[RD_PATH_MAX];
     const char *save = sc->save_path;
-    const char *bad = save[0] ? rd_path_output_conflict(sc, save, NULL, RD_OUTPUT_CHECKPOINT, why, sizeof why) : NULL;
+    const char *bad =
+        save[0] ? rd_path_output_conflict(sc, save, NULL, RD_OUTPUT_CHECKPOINT, why, sizeof why)
+                : NULL;
     if (bad) return rd_error_set(err, "%s: model save '%s': %s", sc->file, save, bad);
     int no = save[0] ? rd_path_creatable(save, dir) : 0;
     if (no == 1)
-        return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file, save, dir,
-                            strerror(errno));
+        return rd_error_set(err, "%s: model save '%s': cannot create the file in %s: %s", sc->file,
+                            save, dir, strerror(errno));
     if (no == 2)
-        return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file, save, strerror(errno));
+        return rd_error_set(err, "%s: model save '%s': cannot overwrite the file: %s", sc->file,
+                            save, strerror(errno));
     return 0;
 }
 
@@ -135,8 +150,11 @@ int rd_path_check_output(const rd_scenario *sc, const char *path, const char *sa
     const char *bad = rd_path_output_conflict(sc, path, save, RD_OUTPUT_RUN, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     int no = rd_path_creatable(path, dir);
-    if (no == 1) return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir, strerror(errno));
-    if (no == 2) return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
+    if (no == 1)
+        return rd_error_set(err, "%s: cannot create the output file in %s: %s", path, dir,
+                            strerror(errno));
+    if (no == 2)
+        return rd_error_set(err, "%s: cannot overwrite the output file: %s", path, strerror(errno));
     return 0;
 }
 
@@ -177,6 +195,7 @@ int rd_path_commit(const char *tmp, const char *path)
     char dir[RD_PATH_MAX];
     if (sync_path(tmp, O_RDONLY) || rename(tmp, path)) return -1;
     rd_path_creatable(path, dir); /* only for its folder name */
-    sync_path(dir, O_RDONLY | O_DIRECTORY); /* best effort: some file systems refuse a folder's fsync */
+    sync_path(dir,
+              O_RDONLY | O_DIRECTORY); /* best effort: some file systems refuse a folder's fsync */
     return 0;
 }

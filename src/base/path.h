@@ -21,13 +21,15 @@ int rd_path_same(const char *a, const char *b);
 int rd_path_creatable(const char *path, char dir[RD_PATH_MAX]);
 
 /* Why an output cannot go to an existing path that is not a regular file. */
-#define RD_PATH_NOT_FILE "not a regular file (a device, folder or pipe): rockdem writes its outputs to files"
+#define RD_PATH_NOT_FILE                                                                           \
+    "not a regular file (a device, folder or pipe): rockdem writes its outputs to files"
 
 /* Why a file cannot be opened while HDF5's file lock is held by another process (EAGAIN from
  * the lock, "Resource temporarily unavailable"), and what to do. */
-#define RD_PATH_LOCKED "it is open for writing in another program (HDF5's file lock: another rockdem, or " \
-                       "h5py or HDFView with the file open): close it there or wait for that run to end, " \
-                       "or choose another path"
+#define RD_PATH_LOCKED                                                                             \
+    "it is open for writing in another program (HDF5's file lock: another rockdem, or "            \
+    "h5py or HDFView with the file open): close it there or wait for that run to end, "            \
+    "or choose another path"
 
 /* 1 when path exists and is not a regular file (a device such as /dev/null, a folder, a pipe). */
 int rd_path_special(const char *path);
@@ -35,8 +37,9 @@ int rd_path_special(const char *path);
 /* Why a file a scenario reads (a mesh, a record, a checkpoint) cannot be one that rd_path_special
  * finds: a device such as /dev/zero never ends (the reader grew until memory ran out) and
  * opening a pipe without a writer blocks for ever. The readers check before they open. */
-#define RD_PATH_INPUT_NOT_FILE "not a regular file (a device, folder or pipe): rockdem reads meshes, " \
-                               "records and checkpoints from files"
+#define RD_PATH_INPUT_NOT_FILE                                                                     \
+    "not a regular file (a device, folder or pipe): rockdem reads meshes, "                        \
+    "records and checkpoints from files"
 
 /* What an output may replace: a run file (`rockdem run`, `rockdem reference`: root attribute
  * program "rockdem" and a /bodies group, no /sweep) or a checkpoint (`model save`: /state). */

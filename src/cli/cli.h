@@ -46,7 +46,7 @@ int rd_cli_threshold(int argc, char **argv);   /* rockdem threshold SCENARIO ...
 int rd_cli_restitution(int argc, char **argv); /* rockdem restitution SCENARIO ... */
 int rd_cli_study(int argc, char **argv);       /* rockdem study SCENARIO ... */
 int rd_cli_sweep(int argc, char **argv);       /* rockdem sweep SCENARIO ... (cli_sweep.c) */
-int rd_cli_assess(int argc, char **argv);     /* rockdem assess SCENARIO ... (cli_assess.c) */
+int rd_cli_assess(int argc, char **argv);      /* rockdem assess SCENARIO ... (cli_assess.c) */
 /* rockdem check: report and warnings (cli_check.c); strict: exit 1 when it warns. */
 int rd_cli_check(rd_scenario *sc, int quiet, int strict);
 
@@ -90,8 +90,8 @@ int rd_cli_print_motion(const rd_motion_def *m);
 typedef struct rd_sweep_backend {
     int rank;
     int size;
-    int (*serve)(const rd_sweep_plan *p);                       /* worker ranks: exit status */
-    int (*open)(const rd_sweep_plan *p, rd_sweep_pool *pool);   /* coordinator: 0 or -1 */
+    int (*serve)(const rd_sweep_plan *p);                     /* worker ranks: exit status */
+    int (*open)(const rd_sweep_plan *p, rd_sweep_pool *pool); /* coordinator: 0 or -1 */
 } rd_sweep_backend;
 
 /* rockdem sweep with the given backend (NULL: the fork pool). Returns the exit status. */

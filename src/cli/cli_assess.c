@@ -18,10 +18,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-
 static int set_codes(assess_args *a, const char *v)
 {
-    static const char *const names[RD_NCODES] = {"asce7", "en1998", "kta"};
+    static const char *const names[RD_NCODES] = { "asce7", "en1998", "kta" };
     char buf[128];
     snprintf(buf, sizeof buf, "%s", v);
     memset(a->codes, 0, sizeof a->codes);
@@ -50,19 +49,32 @@ static int number_in(const char *o, const char *v, int accel, double lo, double 
 
 static int assess_option(void *ctx, int argc, char **argv, int *i)
 {
-    static const char *const names[] = {"--spectrum", "--ag", "--damping", "--vertical", "--mu", "--slide-limit",
-                                        "--code", "--body", "--out", "--records", "--seed", "--duration",
-                                        "--slide-damping", NULL};
+    static const char *const names[] = {
+        "--spectrum", "--ag",  "--damping", "--vertical", "--mu",       "--slide-limit",   "--code",
+        "--body",     "--out", "--records", "--seed",     "--duration", "--slide-damping", NULL
+    };
     assess_args *a = ctx;
     const char *o = argv[*i], *v;
-    if (!strcmp(o, "--neglect-vertical")) { a->neglect = 1; return 0; }
+    if (!strcmp(o, "--neglect-vertical")) {
+        a->neglect = 1;
+        return 0;
+    }
     int rc = rd_cli_option(argc, argv, *i, names, &v);
     if (rc) return rc;
     double x;
     (*i)++;
-    if (!strcmp(o, "--spectrum")) { snprintf(a->spectrum, sizeof a->spectrum, "%s", v); return 0; }
-    if (!strcmp(o, "--body")) { snprintf(a->body, sizeof a->body, "%s", v); return 0; }
-    if (!strcmp(o, "--out")) { snprintf(a->out, sizeof a->out, "%s", v); return 0; }
+    if (!strcmp(o, "--spectrum")) {
+        snprintf(a->spectrum, sizeof a->spectrum, "%s", v);
+        return 0;
+    }
+    if (!strcmp(o, "--body")) {
+        snprintf(a->body, sizeof a->body, "%s", v);
+        return 0;
+    }
+    if (!strcmp(o, "--out")) {
+        snprintf(a->out, sizeof a->out, "%s", v);
+        return 0;
+    }
     if (!strcmp(o, "--code")) return set_codes(a, v);
     if (!strcmp(o, "--ag")) return number_in(o, v, 1, 1e-6, 100.0 * RD_G_STANDARD, &a->ag);
     if (!strcmp(o, "--damping")) return number_in(o, v, 0, 1e-4, 0.99, &a->damping);
@@ -78,7 +90,8 @@ static int assess_option(void *ctx, int argc, char **argv, int *i)
     }
     if (number_in(o, v, 0, 0, RD_EVIDENCE_MAX, &x)) return -1; /* --records */
     if (x != floor(x) || (x > 0 && x < RD_TH_MIN_RECORDS)) {
-        fprintf(stderr, "rockdem: --records expects 0 (none) or a whole number from %d to %d, got '%s'\n",
+        fprintf(stderr,
+                "rockdem: --records expects 0 (none) or a whole number from %d to %d, got '%s'\n",
                 RD_TH_MIN_RECORDS, RD_EVIDENCE_MAX, v);
         return -1;
     }
@@ -94,24 +107,36 @@ static int make_spectrum(const assess_args *a, rd_spectrum *s)
     char ground, extra;
     if (sscanf(a->spectrum, "en1998-%d%c%c", &type, &ground, &extra) == 2) {
         if (!(a->ag > 0)) {
-            fprintf(stderr, "rockdem: assess: the EN 1998 spectrum needs --ag (design ground acceleration)\n");
+            fprintf(
+                stderr,
+                "rockdem: assess: the EN 1998 spectrum needs --ag (design ground acceleration)\n");
             return -1;
         }
-        if (rd_spectrum_en1998(s, type, ground, a->ag, &err)) { fprintf(stderr, "rockdem: --spectrum: %s\n", err.msg); return -1; }
+        if (rd_spectrum_en1998(s, type, ground, a->ag, &err)) {
+            fprintf(stderr, "rockdem: --spectrum: %s\n", err.msg);
+            return -1;
+        }
         return 0;
     }
     if (!strncmp(a->spectrum, "en1998", 6)) {
-        fprintf(stderr, "rockdem: --spectrum expects en1998-TG (type 1 or 2, ground A-E, e.g. en1998-1A) or a "
-                "table file, got '%s'\n", a->spectrum);
+        fprintf(
+            stderr,
+            "rockdem: --spectrum expects en1998-TG (type 1 or 2, ground A-E, e.g. en1998-1A) or a "
+            "table file, got '%s'\n",
+            a->spectrum);
         return -1;
     }
-    if (rd_spectrum_read(s, a->spectrum, a->damping, &err)) { fprintf(stderr, "%s\n", err.msg); return -1; }
+    if (rd_spectrum_read(s, a->spectrum, a->damping, &err)) {
+        fprintf(stderr, "%s\n", err.msg);
+        return -1;
+    }
     return 0;
 }
 
 static int in_range(const rd_range_def *r, const rd_body_def *b)
 {
-    return r->kind == RD_RANGE_ANY || !strcmp(r->name, r->kind == RD_RANGE_GROUP ? b->group : b->name);
+    return r->kind == RD_RANGE_ANY ||
+           !strcmp(r->name, r->kind == RD_RANGE_GROUP ? b->group : b->name);
 }
 
 /* Friction angle of the joint between bodies a and b: the default, then every override whose
@@ -137,7 +162,11 @@ static int find_bodies(const rd_scenario *sc, const char *name, int *body, int *
     *body = *support = -1;
     for (int k = 0; k < sc->nbodies; k++) {
         const rd_body_def *b = &sc->bodies[k];
-        if (b->fixed) { nfixed++; if (nfixed == 1) *support = k; continue; }
+        if (b->fixed) {
+            nfixed++;
+            if (nfixed == 1) *support = k;
+            continue;
+        }
         nfree++;
         if (name[0] ? !strcmp(b->name, name) : nfree == 1) *body = k;
     }
@@ -146,7 +175,8 @@ static int find_bodies(const rd_scenario *sc, const char *name, int *body, int *
         return -1;
     }
     if (!name[0] && nfree != 1) {
-        fprintf(stderr, "%s: assess: %d free bodies; name the one to assess with --body\n", sc->file, nfree);
+        fprintf(stderr, "%s: assess: %d free bodies; name the one to assess with --body\n",
+                sc->file, nfree);
         return -1;
     }
     const rd_body_def *b = &sc->bodies[*body];
@@ -164,30 +194,38 @@ static double body_mass(const rd_scenario *sc, const rd_body_def *b, double volu
 }
 
 /* The rigid body of the assessment from the scene's body definition; -1 after one line. */
-static int make_body(const rd_scenario *sc, int k, double mu, rd_assess_body *ab, double *half_width)
+static int make_body(const rd_scenario *sc, int k, double mu, rd_assess_body *ab,
+                     double *half_width)
 {
     const rd_body_def *b = &sc->bodies[k];
     if (b->rotation[0] != 0 || b->rotation[1] != 0) {
-        fprintf(stderr, "%s:%d: assess: block '%s' is not upright (rotated about a horizontal axis)\n", sc->file,
-                b->line, b->name);
+        fprintf(stderr,
+                "%s:%d: assess: block '%s' is not upright (rotated about a horizontal axis)\n",
+                sc->file, b->line, b->name);
         return -1;
     }
     if (b->shape == RD_SHAPE_BRICK) {
         /* it rocks first across its narrower side */
         double w = fmin(b->size[0], b->size[1]);
-        rd_assess_body_brick(ab, w, b->size[2], body_mass(sc, b, b->size[0] * b->size[1] * b->size[2]), mu);
+        rd_assess_body_brick(ab, w, b->size[2],
+                             body_mass(sc, b, b->size[0] * b->size[1] * b->size[2]), mu);
         *half_width = 0.5 * b->size[0];
         return 0;
     }
     if (b->shape == RD_SHAPE_PRISM && b->radius_top == b->radius) {
         double area = 0.5 * b->sides * b->radius * b->radius * sin(2.0 * M_PI / b->sides);
-        rd_assess_body_prism(ab, b->sides, b->radius, b->size[2], body_mass(sc, b, area * b->size[2]), mu);
+        rd_assess_body_prism(ab, b->sides, b->radius, b->size[2],
+                             body_mass(sc, b, area * b->size[2]), mu);
         *half_width = b->radius;
         return 0;
     }
-    fprintf(stderr, "%s:%d: assess: block '%s' is a %s; the simplified methods need a brick or a prism "
-            "(a drum of equal radii)\n", sc->file, b->line, b->name,
-            b->shape == RD_SHAPE_PRISM ? "frustum" : b->shape == RD_SHAPE_HULL ? "hull" : "mesh");
+    fprintf(stderr,
+            "%s:%d: assess: block '%s' is a %s; the simplified methods need a brick or a prism "
+            "(a drum of equal radii)\n",
+            sc->file, b->line, b->name,
+            b->shape == RD_SHAPE_PRISM  ? "frustum"
+            : b->shape == RD_SHAPE_HULL ? "hull"
+                                        : "mesh");
     return -1;
 }
 
@@ -205,7 +243,11 @@ static int mkdir_p(const char *dir)
     char buf[RD_PATH_MAX];
     snprintf(buf, sizeof buf, "%s", dir);
     for (char *p = buf + 1; *p; p++)
-        if (*p == '/') { *p = 0; if (mkdir(buf, 0777) && errno != EEXIST) return -1; *p = '/'; }
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(buf, 0777) && errno != EEXIST) return -1;
+            *p = '/';
+        }
     return mkdir(buf, 0777) && errno != EEXIST ? -1 : 0;
 }
 
@@ -222,18 +264,24 @@ int rd_cli_assess(int argc, char **argv)
     for (int k = 0; k < RD_NCODES; k++) a.codes[k] = 1;
     rd_evidence_defaults(&a.ev);
     rd_scenario sc;
-    if (rd_cli_scenario(&sc, argc, argv, assess_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
+    if (rd_cli_scenario(&sc, argc, argv, assess_option, &a, NULL)) {
+        rd_scenario_free(&sc);
+        return 2;
+    }
     int rc = 2, body, support;
     rd_spectrum h;
     rd_assess_body ab;
     double half, phi_mu = 0;
     if (make_spectrum(&a, &h) || find_bodies(&sc, a.body, &body, &support)) goto done;
-    if (a.mu < 0) phi_mu = support >= 0 ? joint_friction(&sc, &sc.bodies[body], &sc.bodies[support])
-                                        : sc.contact.friction;
+    if (a.mu < 0)
+        phi_mu = support >= 0 ? joint_friction(&sc, &sc.bodies[body], &sc.bodies[support])
+                              : sc.contact.friction;
     if (make_body(&sc, body, a.mu >= 0 ? a.mu : tan(phi_mu), &ab, &half)) goto done;
     if (a.limit < 0 && (a.limit = pad_gap(&sc, body, support, half)) <= 0) {
-        fprintf(stderr, "%s: assess: no allowable sliding distance: give --slide-limit (m); %s\n", sc.file,
-                a.limit < 0 ? "the pad's edge is not known (its support is no brick)" : "the body overhangs its pad");
+        fprintf(stderr, "%s: assess: no allowable sliding distance: give --slide-limit (m); %s\n",
+                sc.file,
+                a.limit < 0 ? "the pad's edge is not known (its support is no brick)"
+                            : "the body overhangs its pad");
         goto done;
     }
     if (!a.out[0]) {
@@ -242,7 +290,8 @@ int rd_cli_assess(int argc, char **argv)
                  base ? base + 1 : sc.file);
     }
     if (mkdir_p(a.out)) {
-        fprintf(stderr, "rockdem: assess: cannot create the report folder '%s': %s\n", a.out, strerror(errno));
+        fprintf(stderr, "rockdem: assess: cannot create the report folder '%s': %s\n", a.out,
+                strerror(errno));
         goto done;
     }
     snprintf(a.ev.dir, sizeof a.ev.dir, "%s", a.out);

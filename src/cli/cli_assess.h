@@ -26,7 +26,7 @@ typedef struct assess_args {
 /* Compute every check for body `body` of sc, print the tables and write OUT/assess.json
  * (phi_scene: the friction angle mu came from, rad; < 0 when --mu gave it). Exit status: 0,
  * 2 bad input, 3 a run failed. */
-int rd_cli_assess_report(const rd_scenario *sc, int body, const assess_args *a, const rd_spectrum *h,
-                         const rd_assess_body *ab, double phi_scene);
+int rd_cli_assess_report(const rd_scenario *sc, int body, const assess_args *a,
+                         const rd_spectrum *h, const rd_assess_body *ab, double phi_scene);
 
 #endif

@@ -37,11 +37,17 @@ static double mono(void)
 /* "1h02m", "3m05s" or "12s" */
 static void hms(double s, char *buf, size_t n)
 {
-    if (!isfinite(s) || s < 0) { snprintf(buf, n, "?"); return; }
+    if (!isfinite(s) || s < 0) {
+        snprintf(buf, n, "?");
+        return;
+    }
     long k = lround(s);
-    if (k >= 3600) snprintf(buf, n, "%ldh%02ldm", k / 3600, k / 60 % 60);
-    else if (k >= 60) snprintf(buf, n, "%ldm%02lds", k / 60, k % 60);
-    else snprintf(buf, n, "%lds", k);
+    if (k >= 3600)
+        snprintf(buf, n, "%ldh%02ldm", k / 3600, k / 60 % 60);
+    else if (k >= 60)
+        snprintf(buf, n, "%ldm%02lds", k / 60, k % 60);
+    else
+        snprintf(buf, n, "%lds", k);
 }
 
 static void draw(void *ctx, double t, double t_end)
@@ -54,7 +60,7 @@ static void draw(void *ctx, double t, double t_end)
     p->drawn = now;
     double f = t_end > 0 ? fmin(fmax(t / t_end, 0), 1) : 0; /* of this run */
     int total = p->runs_expected > p->run ? p->runs_expected : p->run;
-    double done = (double)(p->run - 1) + f;                 /* runs' worth finished */
+    double done = (double)(p->run - 1) + f; /* runs' worth finished */
     char el[48], eta[48];
     hms(now - p->wall0, el, sizeof el);
     hms(done > 0 ? (now - p->wall0) * ((double)total - done) / done : NAN, eta, sizeof eta);
@@ -70,7 +76,7 @@ static void draw(void *ctx, double t, double t_end)
 void rd_cli_progress_start(const char *what, int runs_expected)
 {
     if (rd_cli_quiet || !isatty(2)) return;
-    bar = (rd_cli_progress){what, runs_expected, 0, 0, mono(), 0};
+    bar = (rd_cli_progress){ what, runs_expected, 0, 0, mono(), 0 };
     rd_set_progress(draw, &bar);
 }
 
@@ -79,7 +85,7 @@ void rd_cli_progress_stop(void)
     rd_set_progress(NULL, NULL);
     /* erase the line (a bar drawn by a worker process of the threshold scan too) */
     if (bar.what) fprintf(stderr, "\r\033[K");
-    bar = (rd_cli_progress){0};
+    bar = (rd_cli_progress){ 0 };
 }
 
 void rd_cli_progress_clear(void)

@@ -19,7 +19,7 @@ typedef struct restitution_args {
 
 static int restitution_option(void *ctx, int argc, char **argv, int *i)
 {
-    static const char *const names[] = {"--target", "--theta0", NULL};
+    static const char *const names[] = { "--target", "--theta0", NULL };
     restitution_args *a = ctx;
     const char *o = argv[*i], *v;
     int rc = rd_cli_option(argc, argv, *i, names, &v);
@@ -43,11 +43,13 @@ static int restitution_option(void *ctx, int argc, char **argv, int *i)
  * calibration then reuses it), else 0. */
 static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CAL_GRID + 1])
 {
-    static const double kn[] = {1e8, 1e9, 1e10, 1e11};
+    static const double kn[] = { 1e8, 1e9, 1e10, 1e11 };
     rd_scenario copy = *sc;
     int have = 0;
-    printf("block restitution r (free rocking from %.4g rad, mean of the first 3 impacts; amplitude "
-           "decay [speeds at equal |theta| either side])\n%-10s", theta0, "KN \\ e");
+    printf(
+        "block restitution r (free rocking from %.4g rad, mean of the first 3 impacts; amplitude "
+        "decay [speeds at equal |theta| either side])\n%-10s",
+        theta0, "KN \\ e");
     for (int j = 0; j <= RD_CAL_GRID; j++) printf(" %15.2f", (double)j / RD_CAL_GRID);
     printf("\n");
     for (size_t i = 0; i < sizeof kn / sizeof *kn; i++) {
@@ -62,8 +64,10 @@ static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CA
             int bad = rd_restitution_measure(&copy, theta0, &m, &err);
             if (own) grid[j] = m;
             have |= own && !bad;
-            if (bad || m.r < 0) printf(" %15s", "-");
-            else printf("   %.3f [%.3f]", m.r, m.r_speed);
+            if (bad || m.r < 0)
+                printf(" %15s", "-");
+            else
+                printf("   %.3f [%.3f]", m.r, m.r_speed);
         }
         rd_cli_progress_clear(); /* the row replaces the progress line */
         printf("\n");
@@ -77,17 +81,24 @@ static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CA
 static void print_check(const rd_restitution *m)
 {
     double d = fabs(m->r_speed / m->r - 1);
-    printf("check: the speeds either side of each impact give r = %.4f, %.2f %% from the amplitude "
-           "decay: %s\n", m->r_speed, 100 * d, d <= RD_CHECK_RTOL ? "the impacts are complete, agreed"
-           : "DISAGREE (over 0.5 %): the block still bounces on its new pivot after each impact, "
-             "losing energy later than rigid theory's instantaneous impact");
+    printf(
+        "check: the speeds either side of each impact give r = %.4f, %.2f %% from the amplitude "
+        "decay: %s\n",
+        m->r_speed, 100 * d,
+        d <= RD_CHECK_RTOL
+            ? "the impacts are complete, agreed"
+            : "DISAGREE (over 0.5 %): the block still bounces on its new pivot after each impact, "
+              "losing energy later than rigid theory's instantaneous impact");
 }
 
 int rd_cli_restitution(int argc, char **argv)
 {
     rd_scenario sc;
-    restitution_args a = {0, 0};
-    if (rd_cli_scenario(&sc, argc, argv, restitution_option, &a, NULL)) { rd_scenario_free(&sc); return 2; }
+    restitution_args a = { 0, 0 };
+    if (rd_cli_scenario(&sc, argc, argv, restitution_option, &a, NULL)) {
+        rd_scenario_free(&sc);
+        return 2;
+    }
     rd_error err;
     rd_rocking_scales rs;
     if (rd_rocking_scales_of(&sc, &rs, &err)) {
@@ -96,8 +107,10 @@ int rd_cli_restitution(int argc, char **argv)
         return 2;
     }
     if (a.theta0 >= rs.alpha) {
-        fprintf(stderr, "rockdem: --theta0 expects an initial tilt below the block's alpha = %.6g rad, "
-                "got %g\n", rs.alpha, a.theta0);
+        fprintf(stderr,
+                "rockdem: --theta0 expects an initial tilt below the block's alpha = %.6g rad, "
+                "got %g\n",
+                rs.alpha, a.theta0);
         rd_scenario_free(&sc);
         return 2;
     }
@@ -105,11 +118,12 @@ int rd_cli_restitution(int argc, char **argv)
     double rigid = rs.housner ? rd_housner_r(rs.alpha) : rd_rigid_restitution(&rs, sc.gravity);
     double target = a.target > 0 ? a.target : rigid;
     if (!rs.housner)
-        printf("body: no Housner block (not a brick); its own rocking: alpha %.4g rad, R %.4g m, p %.4g rad/s, "
-               "leaning towards %.0f deg; rigid impact about the opposite edge r = 1 - 2 p^2 R sin^2(alpha) / g "
-               "= %.4f (exact for a body symmetric about its rocking plane's vertical, approximate for an "
-               "irregular one)%s\n", rs.alpha, rs.R, rs.p, rs.lean * 180 / M_PI, rigid,
-               a.target > 0 ? "" : ": the target");
+        printf(
+            "body: no Housner block (not a brick); its own rocking: alpha %.4g rad, R %.4g m, p %.4g rad/s, "
+            "leaning towards %.0f deg; rigid impact about the opposite edge r = 1 - 2 p^2 R sin^2(alpha) / g "
+            "= %.4f (exact for a body symmetric about its rocking plane's vertical, approximate for an "
+            "irregular one)%s\n",
+            rs.alpha, rs.R, rs.p, rs.lean * 180 / M_PI, rigid, a.target > 0 ? "" : ": the target");
     /* 4 x 5 table runs, then up to RD_CAL_ITER calibration runs (restitution.c; its scan is
        the table's row at the scenario's KN when there is one, else 5 more runs); the check is
        the calibration's last run */
@@ -124,25 +138,29 @@ int rd_cli_restitution(int argc, char **argv)
         fprintf(stderr, "%s\n", err.msg);
     } else if (rc == 0) {
         printf("calibrated: contact property restitution %.4f gives r = %.4f (target %.4f%s, "
-               "|error| < %g) at KN %.3g Pa/m\n", e, reached, target,
-               a.target > 0 ? "" : rs.housner ? ", Housner's r" : ", the rigid impact's r", RD_CAL_RTOL, sc.contact.kn);
+               "|error| < %g) at KN %.3g Pa/m\n",
+               e, reached, target,
+               a.target > 0 ? ""
+               : rs.housner ? ", Housner's r"
+                            : ", the rigid impact's r",
+               RD_CAL_RTOL, sc.contact.kn);
         print_check(&at);
     } else {
-        const char *why = rc == 2
-                              ? "r(e) crosses the target between two scanned values of e but is "
-                                "too uneven there to reach it to 0.002 (the block slides or "
-                                "bounces on its new edge: see the table)"
-                              : reached > target
-                              ? "no restitution in [0, 1] loses enough: perfectly plastic point "
-                                "impacts already keep more than asked; a lower r needs sliding "
-                                "at the pivot or contact dashpots (model damping viscous)"
-                              : "no restitution in [0, 1] keeps enough: a point that rebounds "
-                                "makes the block bounce on its new edge, and a corner impact "
-                                "without bouncing keeps at most Housner's r; more needs the "
-                                "impact shared with the base's interior (spacing, "
-                                "docs/CONTACT.md section 2)";
+        const char *why =
+            rc == 2            ? "r(e) crosses the target between two scanned values of e but is "
+                                 "too uneven there to reach it to 0.002 (the block slides or "
+                                 "bounces on its new edge: see the table)"
+            : reached > target ? "no restitution in [0, 1] loses enough: perfectly plastic point "
+                                 "impacts already keep more than asked; a lower r needs sliding "
+                                 "at the pivot or contact dashpots (model damping viscous)"
+                               : "no restitution in [0, 1] keeps enough: a point that rebounds "
+                                 "makes the block bounce on its new edge, and a corner impact "
+                                 "without bouncing keeps at most Housner's r; more needs the "
+                                 "impact shared with the base's interior (spacing, "
+                                 "docs/CONTACT.md section 2)";
         printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at "
-               "restitution %g: %s\n", target, reached, e, why);
+               "restitution %g: %s\n",
+               target, reached, e, why);
     }
     rd_scenario_free(&sc);
     return rc < 0 ? 3 : rc ? 4 : 0;

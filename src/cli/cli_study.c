@@ -15,11 +15,11 @@
 #include <string.h>
 
 typedef struct study_run {
-    double kn, safety;  /* Pa/m, fraction of the critical step */
-    double dt;          /* s */
-    double wall;        /* s, shaking stage */
-    double max_tilt;    /* rad, largest over the free bodies */
-    double t_impact;    /* s, first impact of any body, -1 if none */
+    double kn, safety; /* Pa/m, fraction of the critical step */
+    double dt;         /* s */
+    double wall;       /* s, shaking stage */
+    double max_tilt;   /* rad, largest over the free bodies */
+    double t_impact;   /* s, first impact of any body, -1 if none */
     int overturned;
     int status;
 } study_run;
@@ -31,8 +31,8 @@ static int run_one(const rd_scenario *base, double kn, double safety, study_run 
     *sc = *base;
     sc->contact.ks *= kn / sc->contact.kn; /* keep KS / KN */
     sc->contact.kn = kn;
-    sc->timestep = (rd_timestep_def){RD_TIMESTEP_AUTO, safety, 0};
-    *r = (study_run){.kn = kn, .safety = safety, .t_impact = -1};
+    sc->timestep = (rd_timestep_def){ RD_TIMESTEP_AUTO, safety, 0 };
+    *r = (study_run){ .kn = kn, .safety = safety, .t_impact = -1 };
     rd_sim *sim = rd_sim_create(sc, err);
     int rc = -1;
     if (sim) {
@@ -58,14 +58,16 @@ static void print_row(const study_run *r, const study_run *ref)
 {
     printf("%9.2e %6.3f %9.2e %8.3f %10.4g %10.2e", r->kn, r->safety, r->dt, r->wall, r->max_tilt,
            ref->max_tilt > 0 ? fabs(r->max_tilt - ref->max_tilt) / ref->max_tilt : 0.0);
-    if (r->t_impact >= 0 && ref->t_impact >= 0) printf(" %10.2e", fabs(r->t_impact - ref->t_impact));
-    else printf(" %10s", r->t_impact < 0 && ref->t_impact < 0 ? "none" : "missing");
+    if (r->t_impact >= 0 && ref->t_impact >= 0)
+        printf(" %10.2e", fabs(r->t_impact - ref->t_impact));
+    else
+        printf(" %10s", r->t_impact < 0 && ref->t_impact < 0 ? "none" : "missing");
     printf(" %5s %s\n", r->overturned == ref->overturned ? "same" : "DIFF",
            rd_status_name((rd_status)r->status));
 }
 
 /* The study's KN factors (the largest is the yardstick's) and step safety factors. */
-static const double kf[] = {0.1, 1, 10}, sf[] = {2, 1, 0.5};
+static const double kf[] = { 0.1, 1, 10 }, sf[] = { 2, 1, 0.5 };
 
 /* Are the study's stiffnesses KN x 0.1 .. KN x 10 within the scenario limits of KN
  * (docs/LIMITS.md)? 0, or -1 with err: a yardstick above 1e15 Pa/m ran for minutes at a step
@@ -75,9 +77,11 @@ static int kn_range_ok(const rd_scenario *sc, rd_error *err)
     double lo, hi, kn = sc->contact.kn;
     rd_scenario_limit("stiffness-normal", &lo, &hi);
     if (kf[0] * kn < lo || kf[2] * kn > hi)
-        return rd_error_set(err, "rockdem study: %s: the study runs KN x %g to x %g (%.3g to %.3g Pa/m), outside "
-                                 "stiffness-normal's range [%g, %g] Pa/m; give KN from %g to %g",
-                            sc->file, kf[0], kf[2], kf[0] * kn, kf[2] * kn, lo, hi, lo / kf[0], hi / kf[2]);
+        return rd_error_set(
+            err,
+            "rockdem study: %s: the study runs KN x %g to x %g (%.3g to %.3g Pa/m), outside "
+            "stiffness-normal's range [%g, %g] Pa/m; give KN from %g to %g",
+            sc->file, kf[0], kf[2], kf[0] * kn, kf[2] * kn, lo, hi, lo / kf[0], hi / kf[2]);
     return 0;
 }
 
@@ -85,7 +89,10 @@ int rd_cli_study(int argc, char **argv)
 {
     rd_scenario sc;
     rd_error err;
-    if (rd_cli_scenario(&sc, argc, argv, NULL, NULL, NULL)) { rd_scenario_free(&sc); return 2; }
+    if (rd_cli_scenario(&sc, argc, argv, NULL, NULL, NULL)) {
+        rd_scenario_free(&sc);
+        return 2;
+    }
     if (kn_range_ok(&sc, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         rd_scenario_free(&sc);
@@ -104,9 +111,10 @@ int rd_cli_study(int argc, char **argv)
         rd_scenario_free(&sc);
         return 3;
     }
-    printf("study of %s: yardstick KN %.3g Pa/m, safety %.3g (max tilt %.6g rad, first impact %.6g s, %s)\n",
-           sc.file, ref.kn, ref.safety, ref.max_tilt, ref.t_impact,
-           ref.overturned ? "overturned" : "stood");
+    printf(
+        "study of %s: yardstick KN %.3g Pa/m, safety %.3g (max tilt %.6g rad, first impact %.6g s, %s)\n",
+        sc.file, ref.kn, ref.safety, ref.max_tilt, ref.t_impact,
+        ref.overturned ? "overturned" : "stood");
     printf("%9s %6s %9s %8s %10s %10s %10s %5s %s\n", "KN", "safety", "dt_s", "wall_s", "max_tilt",
            "tilt_err", "impact_dt", "fall", "status");
     for (int k = 0; k < 9; k++) print_row(&runs[k], &ref);

@@ -68,22 +68,32 @@ static int parse_args(int argc, char **argv, sweep_args *a, rd_sweep_plan *p, rd
             if (!s) return rd_error_set(err, "rockdem sweep: out of memory");
             (p->sets = s)[p->nsets++] = (char *)v;
         } else if ((v = opt_value(argc, argv, &i, "--axis"))) {
-            if (a->naxes == RD_SWEEP_MAX_AXES) return rd_error_set(err, "rockdem sweep: too many --axis");
+            if (a->naxes == RD_SWEEP_MAX_AXES)
+                return rd_error_set(err, "rockdem sweep: too many --axis");
             a->axis[a->naxes++] = v;
-        } else if ((v = opt_value(argc, argv, &i, "--records"))) a->records = v;
-        else if ((v = opt_value(argc, argv, &i, "--scales"))) a->scales = v;
-        else if ((v = opt_value(argc, argv, &i, "--directions"))) a->directions = v;
-        else if ((v = opt_value(argc, argv, &i, "--keep-runs"))) p->keep_dir = v;
-        else if ((v = opt_value(argc, argv, &i, "-o"))) a->out = v;
+        } else if ((v = opt_value(argc, argv, &i, "--records")))
+            a->records = v;
+        else if ((v = opt_value(argc, argv, &i, "--scales")))
+            a->scales = v;
+        else if ((v = opt_value(argc, argv, &i, "--directions")))
+            a->directions = v;
+        else if ((v = opt_value(argc, argv, &i, "--keep-runs")))
+            p->keep_dir = v;
+        else if ((v = opt_value(argc, argv, &i, "-o")))
+            a->out = v;
         else if ((v = opt_value(argc, argv, &i, "-j"))) {
             char *end;
             long n = strtol(v, &end, 10);
             if (*end || end == v || n < 1 || n > 4096)
-                return rd_error_set(err, "rockdem sweep: -j expects a number of workers (1 to 4096), got '%s'", v);
+                return rd_error_set(
+                    err, "rockdem sweep: -j expects a number of workers (1 to 4096), got '%s'", v);
             a->njobs = (int)n;
-        } else if (!strcmp(argv[i], "-q")) a->quiet = 1;
+        } else if (!strcmp(argv[i], "-q"))
+            a->quiet = 1;
         else
-            return rd_error_set(err, "rockdem sweep: unknown option or missing value '%s' (see rockdem --help)", argv[i]);
+            return rd_error_set(
+                err, "rockdem sweep: unknown option or missing value '%s' (see rockdem --help)",
+                argv[i]);
     }
     if (!a->out) return rd_error_set(err, "rockdem sweep: missing -o TABLE.h5");
     if ((a->records && rd_sweep_add_axis(p, RD_AXIS_RECORD, a->records, err)) ||
@@ -93,7 +103,9 @@ static int parse_args(int argc, char **argv, sweep_args *a, rd_sweep_plan *p, rd
     for (int k = 0; k < a->naxes; k++)
         if (rd_sweep_add_axis(p, RD_AXIS_SET, a->axis[k], err)) return -1;
     if (p->naxes == 0)
-        return rd_error_set(err, "rockdem sweep: nothing to sweep: give --axis, --records, --scales or --directions");
+        return rd_error_set(
+            err,
+            "rockdem sweep: nothing to sweep: give --axis, --records, --scales or --directions");
     return p->keep_dir ? keep_dir_ok(p->keep_dir, err) : 0;
 }
 
@@ -107,8 +119,10 @@ static double now(void)
 static void hms(double s, char *buf, size_t n)
 {
     long t = (long)(s + 0.5);
-    if (t >= 3600) snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
-    else snprintf(buf, n, "%ld:%02ld", t / 60, t % 60);
+    if (t >= 3600)
+        snprintf(buf, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+    else
+        snprintf(buf, n, "%ld:%02ld", t / 60, t % 60);
 }
 
 typedef struct progress {
@@ -147,19 +161,28 @@ typedef struct driver {
 static void hand_out(driver *d, int w)
 {
     if (interrupted || d->write_error || d->next >= d->ntodo) return;
-    if (d->pool->send(d->pool->ctx, w, d->todo[d->next]) == 0) { d->next++; d->g.running++; }
+    if (d->pool->send(d->pool->ctx, w, d->todo[d->next]) == 0) {
+        d->next++;
+        d->g.running++;
+    }
 }
 
 static void take(driver *d, const rd_sweep_result *r)
 {
     rd_error err;
-    if (r->status == RD_STATUS_INTERRUPTED) { d->lost++; return; }
-    if (r->status < 0 || r->status == RD_STATUS_IO_ERROR) { /* not a result: a resume runs it again */
+    if (r->status == RD_STATUS_INTERRUPTED) {
+        d->lost++;
+        return;
+    }
+    if (r->status < 0 ||
+        r->status == RD_STATUS_IO_ERROR) { /* not a result: a resume runs it again */
         fprintf(stderr, "%s%s\n", d->g.tty ? "\n" : "", r->message);
         d->failed++;
         return;
     }
-    if (r->message[0]) fprintf(stderr, "%srockdem sweep: case %ld: %s\n", d->g.tty ? "\n" : "", r->index, r->message);
+    if (r->message[0])
+        fprintf(stderr, "%srockdem sweep: case %ld: %s\n", d->g.tty ? "\n" : "", r->index,
+                r->message);
     if (d->write_error) return;
     if (rd_sweep_table_append(d->table, r, &err)) {
         fprintf(stderr, "%s\n", err.msg);
@@ -174,16 +197,24 @@ static void drive(driver *d)
 {
     rd_sweep_result *r = malloc(sizeof *r);
     int forwarded = 0;
-    if (!r) { d->write_error = 1; return; }
+    if (!r) {
+        d->write_error = 1;
+        return;
+    }
     for (int w = 0; w < d->pool->nworkers; w++) hand_out(d, w);
     while (d->g.running > 0) {
-        if (interrupted && !forwarded) { d->pool->interrupt(d->pool->ctx); forwarded = 1; }
+        if (interrupted && !forwarded) {
+            d->pool->interrupt(d->pool->ctx);
+            forwarded = 1;
+        }
         int w, rc = d->pool->recv(d->pool->ctx, 250, &w, r);
         if (rc != 0) d->g.running--;
         if (rc > 0) take(d, r);
         if (rc < 0) {
-            fprintf(stderr, "%srockdem sweep: worker %d died; its case is not in the table (run again to retry)\n",
-                    d->g.tty ? "\n" : "", w);
+            fprintf(
+                stderr,
+                "%srockdem sweep: worker %d died; its case is not in the table (run again to retry)\n",
+                d->g.tty ? "\n" : "", w);
             d->failed++;
         }
         if (rc > 0) hand_out(d, w);
@@ -197,7 +228,7 @@ static int coordinate(const rd_sweep_plan *p, const sweep_args *a, rd_sweep_pool
 {
     rd_error err;
     char *done = calloc((size_t)p->ncases, 1);
-    driver d = {.pool = pool, .plan = p, .todo = malloc((size_t)p->ncases * sizeof(long))};
+    driver d = { .pool = pool, .plan = p, .todo = malloc((size_t)p->ncases * sizeof(long)) };
     d.table = done && d.todo ? rd_sweep_table_open(a->out, p, done, &err) : NULL;
     if (!d.table) {
         fprintf(stderr, "%s\n", done && d.todo ? err.msg : "rockdem sweep: out of memory");
@@ -209,10 +240,16 @@ static int coordinate(const rd_sweep_plan *p, const sweep_args *a, rd_sweep_pool
     for (long k = 0; k < p->ncases; k++)
         if (!done[k]) d.todo[d.ntodo++] = k;
     if (rd_sweep_table_dropped(d.table))
-        fprintf(stderr, "rockdem sweep: %s: dropped %ld partially written row(s) at its end (a write was cut "
-                        "short); their cases run again\n", a->out, rd_sweep_table_dropped(d.table));
-    d.g = (progress){.total = p->ncases, .before = p->ncases - d.ntodo, .t0 = now(),
-                     .tty = isatty(2), .quiet = a->quiet};
+        fprintf(
+            stderr,
+            "rockdem sweep: %s: dropped %ld partially written row(s) at its end (a write was cut "
+            "short); their cases run again\n",
+            a->out, rd_sweep_table_dropped(d.table));
+    d.g = (progress){ .total = p->ncases,
+                      .before = p->ncases - d.ntodo,
+                      .t0 = now(),
+                      .tty = isatty(2),
+                      .quiet = a->quiet };
     drive(&d);
     pool->finish(pool->ctx);
     show(&d.g, 1);
@@ -222,26 +259,32 @@ static int coordinate(const rd_sweep_plan *p, const sweep_args *a, rd_sweep_pool
         d.write_error = 1;
     }
     if (!a->quiet)
-        printf("sweep: %ld cases (%ld run now, %ld already in the table), %ld overturned now; %s%s\n",
-               p->ncases, d.g.done, d.g.before, d.overturned, a->out, complete ? "" : " (incomplete)");
+        printf(
+            "sweep: %ld cases (%ld run now, %ld already in the table), %ld overturned now; %s%s\n",
+            p->ncases, d.g.done, d.g.before, d.overturned, a->out, complete ? "" : " (incomplete)");
     rd_sweep_table_close(d.table);
     free(done);
     free(d.todo);
     if (interrupted) {
-        fprintf(stderr, "rockdem sweep: interrupted; %s holds every finished case; run the same command "
-                        "to resume\n", a->out);
+        fprintf(stderr,
+                "rockdem sweep: interrupted; %s holds every finished case; run the same command "
+                "to resume\n",
+                a->out);
         return 130;
     }
     if (!complete)
-        fprintf(stderr, "rockdem sweep: %s is incomplete: %ld of %ld cases%s; run the same command to resume\n",
-                a->out, d.g.before + d.g.done, p->ncases, d.write_error ? " (a write failed, see above)" : "");
+        fprintf(
+            stderr,
+            "rockdem sweep: %s is incomplete: %ld of %ld cases%s; run the same command to resume\n",
+            a->out, d.g.before + d.g.done, p->ncases,
+            d.write_error ? " (a write failed, see above)" : "");
     return d.write_error || d.failed || !complete ? 3 : 0;
 }
 
 int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
 {
-    rd_sweep_plan p = {.path = argv[2]};
-    sweep_args a = {.njobs = (int)sysconf(_SC_NPROCESSORS_ONLN)};
+    rd_sweep_plan p = { .path = argv[2] };
+    sweep_args a = { .njobs = (int)sysconf(_SC_NPROCESSORS_ONLN) };
     rd_error err;
     int rank = b ? b->rank : 0, rc;
     if (parse_args(argc, argv, &a, &p, &err) || rd_sweep_plan_finish(&p, &err)) {
@@ -259,8 +302,10 @@ int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
         signal(SIGHUP, on_signal);
         signal(SIGPIPE, SIG_IGN);
         int n = a.njobs < p.ncases ? a.njobs : (int)p.ncases;
-        if (b && b->size > 1 ? b->open(&p, &pool) : rd_sweep_pool_fork(&p, n < 1 ? 1 : n, &pool, &err)) {
-            fprintf(stderr, "%s\n", b && b->size > 1 ? "rockdem sweep: cannot start the MPI workers" : err.msg);
+        if (b && b->size > 1 ? b->open(&p, &pool)
+                             : rd_sweep_pool_fork(&p, n < 1 ? 1 : n, &pool, &err)) {
+            fprintf(stderr, "%s\n",
+                    b && b->size > 1 ? "rockdem sweep: cannot start the MPI workers" : err.msg);
             rc = 3;
         } else {
             rc = coordinate(&p, &a, &pool);
@@ -271,7 +316,4 @@ int rd_cli_sweep_with(int argc, char **argv, const rd_sweep_backend *b)
     return rc;
 }
 
-int rd_cli_sweep(int argc, char **argv)
-{
-    return rd_cli_sweep_with(argc, argv, NULL);
-}
+int rd_cli_sweep(int argc, char **argv) { return rd_cli_sweep_with(argc, argv, NULL); }

@@ -56,33 +56,41 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
     for (int k = 0; k < s->nbodies; k++) {
         const rd_body_summary *b = &s->body[k];
         if (invalid) { /* the motion is not physical: no verdict (the cause follows on stderr) */
-            printf("%s: no verdict: the run stopped, %s\n", b->name, s->status == RD_STATUS_LOST ?
-                   "a body left the scene" : "a body passed into another");
+            printf("%s: no verdict: the run stopped, %s\n", b->name,
+                   s->status == RD_STATUS_LOST ? "a body left the scene"
+                                               : "a body passed into another");
             continue;
         }
         if (b->unsupported) {
-            printf("%s: FELL FREELY: it touched nothing (no support under it); fell %.4g m, ended at "
-                   "(%.4g, %.4g, %.4g) m\n", b->name, b->drop, b->final_position[0], b->final_position[1],
-                   b->final_position[2]);
+            printf(
+                "%s: FELL FREELY: it touched nothing (no support under it); fell %.4g m, ended at "
+                "(%.4g, %.4g, %.4g) m\n",
+                b->name, b->drop, b->final_position[0], b->final_position[1], b->final_position[2]);
             continue;
         }
-        const char *what = b->overturned ? (fell_off(sim, k) ? "OVERTURNED (fell off its support, out of the scene)"
-                                                             : "OVERTURNED")
-                           : b->uplifted ? "rocked" : b->slid ? "slid" : "stayed seated";
+        const char *what =
+            b->overturned
+                ? (fell_off(sim, k) ? "OVERTURNED (fell off its support, out of the scene)"
+                                    : "OVERTURNED")
+            : b->uplifted ? "rocked"
+            : b->slid     ? "slid"
+                          : "stayed seated";
         printf("%s: %s", b->name, what);
         if (b->overturned) printf(" at t = %.3f s", b->overturn_time);
-        printf("; max tilt %.4g rad = %.3g alpha; max sway of its base centre %.3g mm (rocking and sliding "
-               "together; the slip at its joints is on the joint lines)%s%s\n", b->max_tilt, b->max_tilt_ratio,
-               1e3 * b->max_slide, b->slid ? "; all its bearing points slipped at once" : "",
-               b->uplifted && !b->overturned ? "; uplifted" : "");
+        printf(
+            "; max tilt %.4g rad = %.3g alpha; max sway of its base centre %.3g mm (rocking and sliding "
+            "together; the slip at its joints is on the joint lines)%s%s\n",
+            b->max_tilt, b->max_tilt_ratio, 1e3 * b->max_slide,
+            b->slid ? "; all its bearing points slipped at once" : "",
+            b->uplifted && !b->overturned ? "; uplifted" : "");
         if (b->overturned)
             printf("%s: ended at (%.4g, %.4g, %.4g) m: %.4g m from where it stood, %.4g m lower\n",
-                   b->name, b->final_position[0], b->final_position[1], b->final_position[2], b->travel,
-                   b->drop);
+                   b->name, b->final_position[0], b->final_position[1], b->final_position[2],
+                   b->travel, b->drop);
         if (!quiet)
             printf("%s: precariousness: least tipping angle %.4g deg leaning towards %.0f deg "
-                   "(quasi-static tipping acceleration %.3g g); twist at end %.3g deg\n", b->name,
-                   b->alpha_min * 180 / M_PI, b->alpha_min_direction * 180 / M_PI,
+                   "(quasi-static tipping acceleration %.3g g); twist at end %.3g deg\n",
+                   b->name, b->alpha_min * 180 / M_PI, b->alpha_min_direction * 180 / M_PI,
                    b->tip_accel_min / RD_G_STANDARD, b->final_twist * 180 / M_PI);
     }
     for (int k = 0; k < rd_sim_joint_count(sim); k++) {
@@ -90,20 +98,24 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
         rd_sim_joint(sim, k, &j);
         if (!j.closed) continue;
         char opening[64] = "never opened";
-        if (j.max_opening > 0) snprintf(opening, sizeof opening, "max opening %.4g mm", 1e3 * j.max_opening);
-        printf("joint %s-%s: max slip %.4g mm, final slip %.4g mm (relative sliding at the joint), %s "
-               "(KN %.3g, KS %.3g Pa/m, friction %.3g deg)\n", j.a, j.b, 1e3 * j.max_slip,
-               1e3 * j.final_slip, opening, j.kn, j.ks, j.friction * 180 / M_PI);
+        if (j.max_opening > 0)
+            snprintf(opening, sizeof opening, "max opening %.4g mm", 1e3 * j.max_opening);
+        printf(
+            "joint %s-%s: max slip %.4g mm, final slip %.4g mm (relative sliding at the joint), %s "
+            "(KN %.3g, KS %.3g Pa/m, friction %.3g deg)\n",
+            j.a, j.b, 1e3 * j.max_slip, 1e3 * j.final_slip, opening, j.kn, j.ks,
+            j.friction * 180 / M_PI);
     }
     if (quiet) return;
     double sim_s = s->steps * s->dt;
     long aps = rd_sim_active_point_steps(sim);
     printf("run: status %s, t = %.4g s, dt = %.3g s (limit %.3g s), %ld steps, settle %.3g s, "
-           "energy residual %.2e\n", rd_status_name(s->status), s->end_time, s->dt, s->dt_critical, s->steps,
-           s->settle_time, s->energy_residual_max);
+           "energy residual %.2e\n",
+           rd_status_name(s->status), s->end_time, s->dt, s->dt_critical, s->steps, s->settle_time,
+           s->energy_residual_max);
     printf("perf: steps=%ld wall_s=%.6f steps_per_s=%.6g ns_per_subcontact_step=%.4g "
-           "mean_active_subcontacts=%.4g wall_per_sim_s=%.6g\n", s->steps, s->wall_seconds,
-           s->wall_seconds > 0 ? s->steps / s->wall_seconds : 0.0,
+           "mean_active_subcontacts=%.4g wall_per_sim_s=%.6g\n",
+           s->steps, s->wall_seconds, s->wall_seconds > 0 ? s->steps / s->wall_seconds : 0.0,
            aps > 0 ? 1e9 * s->wall_seconds / (double)aps : 0.0,
            s->steps > 0 ? (double)aps / (double)s->steps : 0.0,
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
@@ -119,9 +131,12 @@ static int run_option(void *ctx, int argc, char **argv, int *i)
 {
     run_flags *f = ctx;
     (void)argc;
-    if (!strcmp(argv[*i], "--force")) f->force = 1;
-    else if (f->check_only && !strcmp(argv[*i], "--strict")) f->strict = 1;
-    else return 1;
+    if (!strcmp(argv[*i], "--force"))
+        f->force = 1;
+    else if (f->check_only && !strcmp(argv[*i], "--strict"))
+        f->strict = 1;
+    else
+        return 1;
     return 0;
 }
 
@@ -147,8 +162,11 @@ static int cmd_run(int argc, char **argv, int check_only)
 {
     rd_scenario sc;
     const char *out = NULL;
-    run_flags f = {.check_only = check_only};
-    if (rd_cli_scenario(&sc, argc, argv, run_option, &f, &out)) { rd_scenario_free(&sc); return 2; }
+    run_flags f = { .check_only = check_only };
+    if (rd_cli_scenario(&sc, argc, argv, run_option, &f, &out)) {
+        rd_scenario_free(&sc);
+        return 2;
+    }
     int quiet = rd_cli_quiet;
     if (f.force) sc.force = 1;
     if (check_only) {
@@ -157,7 +175,10 @@ static int cmd_run(int argc, char **argv, int check_only)
         return rc;
     }
     rd_error err;
-    if (!quiet && rd_cli_print_motion(&sc.motion)) { rd_scenario_free(&sc); return 2; }
+    if (!quiet && rd_cli_print_motion(&sc.motion)) {
+        rd_scenario_free(&sc);
+        return 2;
+    }
     rd_sim *sim = rd_sim_create(&sc, &err);
     char staged[RD_PATH_MAX]; /* where this run writes while an earlier file is at the output */
     int replacing = rd_output_staging(sc.output.path, sc.force, staged, sizeof staged);
@@ -182,8 +203,8 @@ static int cmd_run(int argc, char **argv, int check_only)
     char unsettled[96] = ""; /* settling gave up short of its force ratio: said once, below */
     double ratio;
     if (settle_gave_up(sim, &ratio))
-        snprintf(unsettled, sizeof unsettled, "settling stopped at force ratio %.3g (asked %.3g)", ratio,
-                 sc.settle.ratio);
+        snprintf(unsettled, sizeof unsettled, "settling stopped at force ratio %.3g (asked %.3g)",
+                 ratio, sc.settle.ratio);
     int rc = 0;
     /* a run that did not succeed leaves an earlier file at the output as it was */
     char kept[RD_PATH_MAX + 64] = "";
@@ -191,11 +212,13 @@ static int cmd_run(int argc, char **argv, int check_only)
         snprintf(kept, sizeof kept, " (%s keeps the earlier run)", sc.output.path);
     const char *written = kept[0] ? staged : sc.output.path;
     if (rd_status_failed(st)) { /* one line: the failure, with the settling that preceded it */
-        fprintf(stderr, "%s: %s%s%s%s%s%s\n", sc.file, rd_sim_error(sim), unsettled[0] ? "; " : "", unsettled,
-                kept[0] ? "; this run's output is in " : "", kept[0] ? staged : "", kept);
+        fprintf(stderr, "%s: %s%s%s%s%s%s\n", sc.file, rd_sim_error(sim), unsettled[0] ? "; " : "",
+                unsettled, kept[0] ? "; this run's output is in " : "", kept[0] ? staged : "",
+                kept);
         rc = 3;
     } else if (st == RD_STATUS_INTERRUPTED) {
-        fprintf(stderr, "rockdem: interrupted at t = %.4g s; %s holds everything so far%s\n", s.end_time, written, kept);
+        fprintf(stderr, "rockdem: interrupted at t = %.4g s; %s holds everything so far%s\n",
+                s.end_time, written, kept);
         rc = 130;
     } else if (unsettled[0]) {
         fprintf(stderr, "rockdem: warning: %s\n", unsettled);
@@ -224,7 +247,8 @@ int main(int argc, char **argv)
     }
     if (argc >= 2 && !strcmp(argv[1], "help")) {
         if (rd_cli_help(argc >= 3 ? argv[2] : NULL, stdout) == 0) return 0;
-        fprintf(stderr, "rockdem: unknown help topic '%s' (rockdem help lists the subcommands)\n", argv[2]);
+        fprintf(stderr, "rockdem: unknown help topic '%s' (rockdem help lists the subcommands)\n",
+                argv[2]);
         return 2;
     }
     for (int i = 1; i < argc; i++) /* rockdem --help, rockdem SUB [...] --help */

@@ -38,14 +38,15 @@ static int mpi_send(void *ctx, int w, long k)
 static int mpi_recv(void *ctx, int wait_ms, int *worker, rd_sweep_result *r)
 {
     mpi_ctx *c = ctx;
-    struct timespec ms = {0, POLL_NS};
+    struct timespec ms = { 0, POLL_NS };
     for (int t = 0; t <= wait_ms; t++) {
         int flag = 0, rc = c->local.recv(c->local.ctx, 0, worker, r);
         if (rc != 0) return rc; /* *worker is 0 */
         MPI_Status st;
         MPI_Iprobe(MPI_ANY_SOURCE, TAG_RESULT, MPI_COMM_WORLD, &flag, &st);
         if (flag) {
-            MPI_Recv(r, (int)sizeof *r, MPI_BYTE, st.MPI_SOURCE, TAG_RESULT, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            MPI_Recv(r, (int)sizeof *r, MPI_BYTE, st.MPI_SOURCE, TAG_RESULT, MPI_COMM_WORLD,
+                     MPI_STATUS_IGNORE);
             *worker = st.MPI_SOURCE;
             return 1;
         }
@@ -80,8 +81,12 @@ static int mpi_open(const rd_sweep_plan *p, rd_sweep_pool *pool)
         free(c);
         return -1;
     }
-    *pool = (rd_sweep_pool){.nworkers = c->size, .ctx = c, .send = mpi_send, .recv = mpi_recv,
-                            .interrupt = mpi_interrupt, .finish = mpi_finish};
+    *pool = (rd_sweep_pool){ .nworkers = c->size,
+                             .ctx = c,
+                             .send = mpi_send,
+                             .recv = mpi_recv,
+                             .interrupt = mpi_interrupt,
+                             .finish = mpi_finish };
     return 0;
 }
 
@@ -91,7 +96,9 @@ static int mpi_serve(const rd_sweep_plan *p)
     long k;
     rd_sweep_result *r = malloc(sizeof *r);
     if (!r) return 3;
-    while (MPI_Recv(&k, 1, MPI_LONG, 0, TAG_CASE, MPI_COMM_WORLD, MPI_STATUS_IGNORE) == MPI_SUCCESS && k >= 0) {
+    while (MPI_Recv(&k, 1, MPI_LONG, 0, TAG_CASE, MPI_COMM_WORLD, MPI_STATUS_IGNORE) ==
+               MPI_SUCCESS &&
+           k >= 0) {
         rd_sweep_run_case(p, k, r);
         MPI_Send(r, (int)sizeof *r, MPI_BYTE, 0, TAG_RESULT, MPI_COMM_WORLD);
     }
@@ -102,14 +109,15 @@ static int mpi_serve(const rd_sweep_plan *p)
 int main(int argc, char **argv)
 {
     MPI_Init(&argc, &argv);
-    rd_sweep_backend b = {.serve = mpi_serve, .open = mpi_open};
+    rd_sweep_backend b = { .serve = mpi_serve, .open = mpi_open };
     MPI_Comm_rank(MPI_COMM_WORLD, &b.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &b.size);
     int rc;
     if (argc >= 3 && !strcmp(argv[1], "sweep") && rd_cli_permute(argc, argv) == 0) {
         rc = rd_cli_sweep_with(argc, argv, &b);
     } else {
-        if (b.rank == 0) fprintf(stderr, "usage: mpirun -n N rockdem-mpi sweep FILE ... (see rockdem --help)\n");
+        if (b.rank == 0)
+            fprintf(stderr, "usage: mpirun -n N rockdem-mpi sweep FILE ... (see rockdem --help)\n");
         rc = 2;
     }
     MPI_Finalize();

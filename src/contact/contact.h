@@ -24,7 +24,8 @@
 
 #include <math.h>
 
-#define RD_PATCH_MAX 264 /* most vertices of a patch polygon: the overlap of two convex faces
+#define RD_PATCH_MAX                                                                               \
+    264                       /* most vertices of a patch polygon: the overlap of two convex faces
                             has at most the sum of their edges, and faces have at most
                             RD_PATCH_FACE_MAX (a 128-sided drum's cap): 256, and a few more for
                             the round-off of near-parallel clip lines */
@@ -44,13 +45,13 @@ typedef struct rd_moments {
 /* What the pressure KN d of an affine depth d = d0 + gx x + gy y does over a patch, per unit KN
  * (the caller multiplies by KN): the compressed region (d > 0) only. */
 typedef struct rd_patch_load {
-    double area;      /* compressed area, m^2 */
-    double cx, cy;    /* its centroid, m (0, 0 when area is 0) */
-    double polar;     /* its polar moment about the centroid, integral of |r - c|^2, m^4 */
-    double f;         /* integral of d, m^3 (the normal force / KN) */
-    double mx, my;    /* integrals of x d and y d, m^4 (the force's moments / KN) */
-    double e2;        /* integral of d^2, m^4 (twice the spring energy / KN) */
-    double tors;      /* integral of d |r - c|, m^4, c the centroid (the twisting friction's
+    double area;   /* compressed area, m^2 */
+    double cx, cy; /* its centroid, m (0, 0 when area is 0) */
+    double polar;  /* its polar moment about the centroid, integral of |r - c|^2, m^4 */
+    double f;      /* integral of d, m^3 (the normal force / KN) */
+    double mx, my; /* integrals of x d and y d, m^4 (the force's moments / KN) */
+    double e2;     /* integral of d^2, m^4 (twice the spring energy / KN) */
+    double tors;   /* integral of d |r - c|, m^4, c the centroid (the twisting friction's
                          lever: the limit torque is tan(phi) KN tors) */
 } rd_patch_load;
 
@@ -83,15 +84,16 @@ typedef struct rd_patch_scratch {
  * centre c: an edge two pieces share (the same two vertices, to the bit) runs both ways and
  * its fan triangles cancel, so only the union's boundary is integrated (cost follows the
  * boundary, and the sum is the union's to round-off). */
-double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], double d0, double gx, double gy,
-                            rd_patch_scratch *sc);
+double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], double d0, double gx,
+                            double gy, rd_patch_scratch *sc);
 
 /* The load of the affine depth d0 + gx x + gy y over patch p: p clipped by d > 0 (into *comp
  * when comp is not NULL), then its moments (rd_patch_load; its torsion about its own centroid).
  * Every field but tors is additive over pieces of a patch; tors is about the piece's own
  * centroid, so the pieces of one plane (a face cut into triangles) take rd_patch_torsion about
  * their common centroid instead. */
-void rd_patch_load_of(const rd_poly2 *p, double d0, double gx, double gy, rd_patch_load *out, rd_poly2 *comp);
+void rd_patch_load_of(const rd_poly2 *p, double d0, double gx, double gy, rd_patch_load *out,
+                      rd_poly2 *comp);
 
 /* The load of the depth d0 + gx x + gy y over a compressed region of moments m (the sum of its
  * pieces' moments), all fields but tors (left 0). */
@@ -103,8 +105,9 @@ void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd
  * u . q = dR. R is projected along u onto S's plane and clipped against s. Fills the patch
  * polygon and the depth's affine coefficients (d0, gx, gy: d = d0 + gx x + gy y, m). Returns the
  * patch's vertex count (0: no overlap, or faces that do not face each other, n . u >= 0). */
-int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], const double n[3], const rd_poly2 *s,
-                   const double (*rv)[3], int nr, const double u[3], double dR, rd_poly2 *patch, double dep[3]);
+int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], const double n[3],
+                   const rd_poly2 *s, const double (*rv)[3], int nr, const double u[3], double dR,
+                   rd_poly2 *patch, double dep[3]);
 
 /* ---- The joint law of a patch (docs/CONTACT.md section 8), written once ----
  * Normal: the Winkler pressure KN d (+ a dashpot's c_a dd/dt, c_a in Pa s/m) integrated over the
@@ -133,7 +136,8 @@ typedef struct rd_patch_spring {
  * stored energy |fs|^2 / (2 KS A) + mt^2 / (2 KS J) can only fall, and what it loses is
  * returned, J (booked as friction: the joint drops it, as 3DEC drops an opening contact's
  * force). area 0: the patch opens and gives up all of it. */
-static inline double rd_patch_spring_resize(rd_patch_spring *sp, double ks, double area, double polar)
+static inline double rd_patch_spring_resize(rd_patch_spring *sp, double ks, double area,
+                                            double polar)
 {
     double e = 0;
     if (sp->area > 0) {
@@ -161,13 +165,15 @@ static inline double rd_patch_spring_resize(rd_patch_spring *sp, double ks, doub
  * r x_t^2) / (2 k) (the trapezoid work of the step less its energy change; engine/law.h
  * rd_law_shear_cap for one spring), added to *e_fric (J; never negative: slip gives no energy
  * back). Returns 1 on slip. */
-static inline int rd_patch_spring_cap(rd_patch_spring *sp, const double f0[3], double m0, double kA, double kJ,
-                                      double flim, double mlim, double *e_fric)
+static inline int rd_patch_spring_cap(rd_patch_spring *sp, const double f0[3], double m0, double kA,
+                                      double kJ, double flim, double mlim, double *e_fric)
 {
     double ft2 = sp->fs[0] * sp->fs[0] + sp->fs[1] * sp->fs[1] + sp->fs[2] * sp->fs[2];
     double s2;
-    if (flim > 0 && mlim > 0) s2 = ft2 / (flim * flim) + sp->mt * sp->mt / (mlim * mlim);
-    else s2 = (ft2 > 0 || sp->mt != 0) ? INFINITY : 0.0;
+    if (flim > 0 && mlim > 0)
+        s2 = ft2 / (flim * flim) + sp->mt * sp->mt / (mlim * mlim);
+    else
+        s2 = (ft2 > 0 || sp->mt != 0) ? INFINITY : 0.0;
     if (s2 <= 1) return 0;
     double r = isfinite(s2) ? 1 / sqrt(s2) : 0.0;
     double f0ft = f0[0] * sp->fs[0] + f0[1] * sp->fs[1] + f0[2] * sp->fs[2];

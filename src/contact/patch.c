@@ -57,7 +57,7 @@ int rd_patch_clip(const rd_poly2 *subj, const rd_poly2 *clip, rd_poly2 *out)
 
 void rd_patch_moments(const rd_poly2 *p, rd_moments *m)
 {
-    *m = (rd_moments){0, 0, 0, 0, 0, 0};
+    *m = (rd_moments){ 0, 0, 0, 0, 0, 0 };
     if (p->n < 3) return;
     /* about the first vertex (round-off relative to the polygon's size), then shifted */
     const double x0 = p->p[0][0], y0 = p->p[0][1];
@@ -73,7 +73,12 @@ void rd_patch_moments(const rd_poly2 *p, rd_moments *m)
         syy += (yi * yi + yi * yj + yj * yj) * cr;
         sxy += (xi * yj + 2 * xi * yi + 2 * xj * yj + xj * yi) * cr;
     }
-    a /= 2; sx /= 6; sy /= 6; sxx /= 12; syy /= 12; sxy /= 24;
+    a /= 2;
+    sx /= 6;
+    sy /= 6;
+    sxx /= 12;
+    syy /= 12;
+    sxy /= 24;
     m->a = a;
     m->sx = sx + a * x0;
     m->sy = sy + a * y0;
@@ -84,7 +89,8 @@ void rd_patch_moments(const rd_poly2 *p, rd_moments *m)
 
 /* The integrals over t in [0, 1] of sqrt(q) and t sqrt(q), q = alpha t^2 + beta t + gamma =
  * |a + t e|^2 (alpha = |e|^2 > 0, disc = 4 alpha gamma - beta^2 = 4 (a x e)^2 > 0). */
-static void edge_root_integrals(double alpha, double beta, double gamma, double disc, double *j0, double *j1)
+static void edge_root_integrals(double alpha, double beta, double gamma, double disc, double *j0,
+                                double *j1)
 {
     const double sd = sqrt(disc), q0 = sqrt(gamma), q1 = sqrt(alpha + beta + gamma);
     const double k = disc / (8.0 * alpha * sqrt(alpha));
@@ -117,7 +123,7 @@ double rd_patch_torsion(const rd_poly2 *p, const double c[2], double d0, double 
     double sum = 0;
     for (int i = 0; i < p->n; i++) {
         const double *u = p->p[i], *v = p->p[(i + 1) % p->n];
-        const double a[2] = {u[0] - c[0], u[1] - c[1]}, e[2] = {v[0] - u[0], v[1] - u[1]};
+        const double a[2] = { u[0] - c[0], u[1] - c[1] }, e[2] = { v[0] - u[0], v[1] - u[1] };
         sum += fan_share(a, e, dc, gx, gy);
     }
     return sum;
@@ -128,15 +134,22 @@ static unsigned edge_hash(const double *lo, const double *hi)
     uint64_t h = 1469598103934665603ULL, w[4];
     memcpy(w, lo, 2 * sizeof *lo);
     memcpy(w + 2, hi, 2 * sizeof *hi);
-    for (int k = 0; k < 4; k++) { h ^= w[k]; h *= 1099511628211ULL; h ^= h >> 29; }
+    for (int k = 0; k < 4; k++) {
+        h ^= w[k];
+        h *= 1099511628211ULL;
+        h ^= h >> 29;
+    }
     return (unsigned)h;
 }
 
 /* Is (x0, y0) before (x1, y1) in lexicographic order? */
-static int before(const double *p, const double *q) { return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]); }
+static int before(const double *p, const double *q)
+{
+    return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]);
+}
 
-double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], double d0, double gx, double gy,
-                            rd_patch_scratch *sc)
+double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], double d0, double gx,
+                            double gy, rd_patch_scratch *sc)
 {
     int ne = 0;
     for (int k = 0; k < n; k++) ne += pieces[k].n;
@@ -188,7 +201,7 @@ double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], do
     for (int e = 0; e < nu; e++) {
         if (sc->count[e] == 0) continue;
         const double *lo = *sc->ends[2 * e], *hi = *sc->ends[2 * e + 1];
-        const double a[2] = {lo[0] - c[0], lo[1] - c[1]}, d[2] = {hi[0] - lo[0], hi[1] - lo[1]};
+        const double a[2] = { lo[0] - c[0], lo[1] - c[1] }, d[2] = { hi[0] - lo[0], hi[1] - lo[1] };
         sum += sc->count[e] * fan_share(a, d, dc, gx, gy);
     }
     return sum;
@@ -196,7 +209,7 @@ double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], do
 
 void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd_patch_load *out)
 {
-    *out = (rd_patch_load){0, 0, 0, 0, 0, 0, 0, 0, 0};
+    *out = (rd_patch_load){ 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     if (!(m->a > 0)) return;
     out->area = m->a;
     out->cx = m->sx / m->a;
@@ -205,25 +218,27 @@ void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd
     out->f = d0 * m->a + gx * m->sx + gy * m->sy;
     out->mx = d0 * m->sx + gx * m->sxx + gy * m->sxy;
     out->my = d0 * m->sy + gx * m->sxy + gy * m->syy;
-    out->e2 = d0 * d0 * m->a + 2 * d0 * (gx * m->sx + gy * m->sy) + gx * gx * m->sxx + 2 * gx * gy * m->sxy +
-              gy * gy * m->syy;
+    out->e2 = d0 * d0 * m->a + 2 * d0 * (gx * m->sx + gy * m->sy) + gx * gx * m->sxx +
+              2 * gx * gy * m->sxy + gy * gy * m->syy;
 }
 
-void rd_patch_load_of(const rd_poly2 *p, double d0, double gx, double gy, rd_patch_load *out, rd_poly2 *comp)
+void rd_patch_load_of(const rd_poly2 *p, double d0, double gx, double gy, rd_patch_load *out,
+                      rd_poly2 *comp)
 {
-    *out = (rd_patch_load){0, 0, 0, 0, 0, 0, 0, 0, 0};
+    *out = (rd_patch_load){ 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     rd_poly2 buf, *q = comp ? comp : &buf;
     if (!rd_patch_clip_half(p, gx, gy, d0, q)) return;
     rd_moments m;
     rd_patch_moments(q, &m);
     rd_patch_load_from(&m, d0, gx, gy, out);
     if (!(out->area > 0)) return;
-    const double c[2] = {out->cx, out->cy};
+    const double c[2] = { out->cx, out->cy };
     out->tors = rd_patch_torsion(q, c, d0, gx, gy);
 }
 
-int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], const double n[3], const rd_poly2 *s,
-                   const double (*rv)[3], int nr, const double u[3], double dR, rd_poly2 *patch, double dep[3])
+int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], const double n[3],
+                   const rd_poly2 *s, const double (*rv)[3], int nr, const double u[3], double dR,
+                   rd_poly2 *patch, double dep[3])
 {
     patch->n = 0;
     const double nu = rd_dot(n, u);
@@ -234,7 +249,7 @@ int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], co
     r.n = nr;
     for (int i = 0; i < nr; i++) {
         const double *q = rv[nr - 1 - i];
-        double dq[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
+        double dq[3] = { q[0] - o[0], q[1] - o[1], q[2] - o[2] };
         double lambda = -rd_dot(n, dq) / nu;
         for (int k = 0; k < 3; k++) dq[k] += lambda * u[k];
         r.p[i][0] = rd_dot(dq, e1);

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_CHECK_STEPS 400     /* trial steps timed for the cost estimate */
+#define RD_CHECK_STEPS    400  /* trial steps timed for the cost estimate */
 #define RD_CHECK_WALL_MAX 1.0  /* ... or fewer, when they take longer than this, s */
 #define RD_CHECK_PLAN_TOL 1e-9 /* overlap and level tolerance of the plan boxes, per m of size */
 
@@ -35,13 +35,14 @@ static int stands_on(const rd_sim *s, int j, int i)
  * I_O sums each body's inertia about the edge's axis a = (-dy, dx, 0) through its centre
  * (principal moments I_k times (a in body axes)_k^2) and m_j r_j^2 (r_j its distance to the
  * edge line). */
-static double pivot_frequency(const rd_sim *s, int i, const double com[3], double m, double dx, double dy,
-                              double alpha, double *R)
+static double pivot_frequency(const rd_sim *s, int i, const double com[3], double m, double dx,
+                              double dy, double alpha, double *R)
 {
-    const double a[3] = {-dy, dx, 0};
+    const double a[3] = { -dy, dx, 0 };
     const double *seat = s->watch[s->free_of[i]].seat; /* seat . x = seat[3] */
-    double h = com[2] - (seat[3] - seat[0] * com[0] - seat[1] * com[1]) / seat[2]; /* height over the seat */
-    double d = h * tan(alpha), P[3] = {com[0] + d * dx, com[1] + d * dy, com[2] - h}, io = 0;
+    double h = com[2] -
+               (seat[3] - seat[0] * com[0] - seat[1] * com[1]) / seat[2]; /* height over the seat */
+    double d = h * tan(alpha), P[3] = { com[0] + d * dx, com[1] + d * dy, com[2] - h }, io = 0;
     for (int j = 0; j < s->nb; j++) {
         if (!(j == i || (!s->fixed[j] && stands_on(s, j, i)))) continue;
         double ab[3], r[3];
@@ -61,9 +62,10 @@ static double pivot_frequency(const rd_sim *s, int i, const double com[3], doubl
  * first as a whole, at a smaller angle than any one of its parts). */
 static void shaking_alphas(const rd_sim *s, int i, rd_check_body *cb)
 {
-    const double psi = s->sc.motion.horizontal.kind != RD_PULSE_NONE ? s->sc.motion.horizontal.direction : 0.0;
+    const double psi =
+        s->sc.motion.horizontal.kind != RD_PULSE_NONE ? s->sc.motion.horizontal.direction : 0.0;
     const double dx = cos(psi), dy = sin(psi);
-    double com[3] = {0, 0, 0}, m = 0;
+    double com[3] = { 0, 0, 0 }, m = 0;
     for (int j = 0; j < s->nb; j++)
         if (j == i || (!s->fixed[j] && stands_on(s, j, i))) {
             rd_axpy(s->mass[j], s->x[j], com);
@@ -71,8 +73,10 @@ static void shaking_alphas(const rd_sim *s, int i, rd_check_body *cb)
         }
     for (int k = 0; k < 3; k++) com[k] /= m;
     int k = s->free_of[i];
-    cb->alpha_shaking = fmin(rd_monitor_alpha_at(s, k, s->x[i], dx, dy), rd_monitor_alpha_at(s, k, s->x[i], -dx, -dy));
-    double ap = rd_monitor_alpha_at(s, k, com, dx, dy), an = rd_monitor_alpha_at(s, k, com, -dx, -dy);
+    cb->alpha_shaking = fmin(rd_monitor_alpha_at(s, k, s->x[i], dx, dy),
+                             rd_monitor_alpha_at(s, k, s->x[i], -dx, -dy));
+    double ap = rd_monitor_alpha_at(s, k, com, dx, dy),
+           an = rd_monitor_alpha_at(s, k, com, -dx, -dy);
     cb->alpha_tower = fmin(ap, an);
     double sgn = ap <= an ? 1.0 : -1.0; /* the side it tips to first */
     cb->p_tower = pivot_frequency(s, i, com, m, sgn * dx, sgn * dy, cb->alpha_tower, &cb->R_tower);
@@ -89,9 +93,15 @@ static double body_volume(const rd_sim *s, int i)
 /* Lowest and highest corner of body i's box. */
 static void extent(const rd_sim *s, int i, double lo[3], double hi[3])
 {
-    for (int k = 0; k < 3; k++) { lo[k] = INFINITY; hi[k] = -INFINITY; }
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
-        for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], s->wv[v][k]); hi[k] = fmax(hi[k], s->wv[v][k]); }
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], s->wv[v][k]);
+            hi[k] = fmax(hi[k], s->wv[v][k]);
+        }
 }
 
 /* Do the plan boxes a and b overlap by more than tol in x and in y? */
@@ -112,12 +122,17 @@ static int below(const rd_sim *s, const double (*box)[6], int i, double *gap)
     for (int j = 0; j < s->nb; j++) {
         if (j == i) continue;
         const double *l2 = box[j], *h2 = box[j] + 3;
-        int covers = s->x[i][0] >= l2[0] && s->x[i][0] <= h2[0] && s->x[i][1] >= l2[1] && s->x[i][1] <= h2[1];
-        if (covers && l2[2] < s->x[i][2] && h2[2] > top) { top = h2[2]; best = j; }
+        int covers = s->x[i][0] >= l2[0] && s->x[i][0] <= h2[0] && s->x[i][1] >= l2[1] &&
+                     s->x[i][1] <= h2[1];
+        if (covers && l2[2] < s->x[i][2] && h2[2] > top) {
+            top = h2[2];
+            best = j;
+        }
     }
     const double lo = box[i][2], tol = RD_CHECK_PLAN_TOL * (1.0 + s->poly[i].radius);
     for (int j = 0; best >= 0 && lo - top > tol && j < s->nb; j++)
-        if (j != i && plan_overlap(box[i], box[j], tol) && box[j][5] <= lo + tol && box[j][5] > top) {
+        if (j != i && plan_overlap(box[i], box[j], tol) && box[j][5] <= lo + tol &&
+            box[j][5] > top) {
             top = box[j][5];
             best = j;
         }
@@ -129,19 +144,26 @@ static int below(const rd_sim *s, const double (*box)[6], int i, double *gap)
  * overlap with a body near it (overlap.c: a vertex of one inside the other). */
 static void touching(const rd_sim *s, int i, rd_check_body *cb)
 {
-    cb->rests_on = -1; cb->overlaps = -1; cb->overlap = 0;
+    cb->rests_on = -1;
+    cb->overlaps = -1;
+    cb->overlap = 0;
     for (int p = 0; p < s->npair; p++) {
         const rd_pair *pr = &s->pair[p];
         if (pr->a != i && pr->b != i) continue;
         int other = pr->a == i ? pr->b : pr->a, active = 0;
         double depth = rd_overlap_depth(s, i, other);
-        if (depth > cb->overlap) { cb->overlap = depth; cb->overlaps = other; }
+        if (depth > cb->overlap) {
+            cb->overlap = depth;
+            cb->overlaps = other;
+        }
         for (int q = 0; q < pr->nside; q++) {
             const rd_side *sd = &pr->side[q];
             int n = s->pt0[sd->owner + 1] - s->pt0[sd->owner];
-            for (int st = sd->state0; st < sd->state0 + n && !active; st++) active = (s->pstate[st] & RD_PT_ACTIVE) != 0;
+            for (int st = sd->state0; st < sd->state0 + n && !active; st++)
+                active = (s->pstate[st] & RD_PT_ACTIVE) != 0;
         }
-        if (active && s->x[other][2] < s->x[i][2] && (cb->rests_on < 0 || s->x[other][2] < s->x[cb->rests_on][2]))
+        if (active && s->x[other][2] < s->x[i][2] &&
+            (cb->rests_on < 0 || s->x[other][2] < s->x[cb->rests_on][2]))
             cb->rests_on = other;
     }
 }
@@ -152,7 +174,11 @@ static rd_sim *placed(const rd_scenario *sc, rd_error *err)
     rd_sim *s = rd_sim_build_as_placed(sc, err);
     if (!s) return NULL;
     s->settling = 1;
-    if (rd_contact_step(s)) { rd_sim_free(s); rd_error_set(err, "out of memory"); return NULL; }
+    if (rd_contact_step(s)) {
+        rd_sim_free(s);
+        rd_error_set(err, "out of memory");
+        return NULL;
+    }
     s->settling = 0;
     return s;
 }
@@ -183,11 +209,14 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
     if (!s) return -1;
     int coarse;
     rd_sim *probe = touch_probe(sc, s, &coarse, err);
-    if (!probe) { rd_sim_free(s); return -1; }
+    if (!probe) {
+        rd_sim_free(s);
+        return -1;
+    }
     rep->nbodies = s->nb;
     rep->coarse_probe = coarse;
     rep->body = calloc((size_t)s->nb, sizeof *rep->body);
-    double (*box)[6] = malloc((size_t)s->nb * sizeof *box);
+    double(*box)[6] = malloc((size_t)s->nb * sizeof *box);
     if (!rep->body || !box) {
         if (probe != s) rd_sim_free(probe);
         rd_sim_free(s);
@@ -210,7 +239,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
         for (int k = 0; k < 3; k++) cb->extent[k] = hi[k] - lo[k];
         cb->npoints = s->pt0[i + 1] - s->pt0[i];
         touching(probe, i, cb);
-        cb->below = s->fixed[i] ? -1 : below(s, (const double (*)[6])box, i, &cb->gap);
+        cb->below = s->fixed[i] ? -1 : below(s, (const double(*)[6])box, i, &cb->gap);
         if (cb->rests_on < 0 && cb->below >= 0 && fabs(cb->gap) <= 1e-9 * (1.0 + s->poly[i].radius))
             cb->rests_on = cb->below; /* placed exactly on it: a closed joint at zero force */
         if (!s->fixed[i]) {

@@ -90,7 +90,7 @@
 
 /* A subcontact acts only while its face and the entrance face are within 45 deg of facing each
  * other (cos 135 deg = -RD_FACING_COS). */
-#define RD_FACING_COS 0.70710678118654752
+#define RD_FACING_COS        0.70710678118654752
 /* A point of a face that always acts (a base, a bed, a face placed on another body's) bears
  * only on an entrance face that its own face looks at: outward normals more than 100 deg apart
  * (cos 100 deg = -RD_BASE_FACING_COS; its normal: rd_sim.pn, the face's, or the mean of the
@@ -101,13 +101,13 @@
  * h/2. 10 deg short of the right angle, so that a block striking a vertical face while tilted by
  * a few degrees is decided far from round-off, while a block rocking on its base keeps its pivot
  * up to 80 deg of tilt (past any block's overturning angle but the squattest, h/b < 0.18). */
-#define RD_BASE_FACING_COS 0.17364817766693035
+#define RD_BASE_FACING_COS   0.17364817766693035
 /* A plane counts as approached when the point moves into it faster than this fraction of its
  * relative speed (below, the motion is tangential: round-off must not pick a side face). */
 #define RD_APPROACH_FRACTION 1e-3
 /* A point found inside crossed a plane it approaches only if its depth below it is what it
  * moved through in this many steps at its approach speed (entrance_face). */
-#define RD_ENTRY_STEPS 2.0
+#define RD_ENTRY_STEPS       2.0
 /* steady_point is a pure shortcut of subcontact. Built with -DRD_STEADY_PATH=0 every point takes
  * subcontact, and every output must be bit-identical: tests/cli/steady_path.sh checks that on
  * scenes that visit every branch (bed, corners, late faces, slip, bonds, dashpots, mesh, drums). */
@@ -143,66 +143,66 @@ typedef struct side_sums {
  * the face (rd_sim.wt) and its outward normal u, t1 x t2 = u; B has rows t1, t2, u. Found when a
  * point first needs it in a side step (face_frame_at). */
 typedef struct face_frame {
-    const double (*t)[3];/* t1, t2, ground frame (rd_sim.wt) */
-    double r[2][3];     /* t1, t2 in the owner's frame: a point at p (owner frame) lies at
+    const double (*t)[3]; /* t1, t2, ground frame (rd_sim.wt) */
+    double r[2][3];       /* t1, t2 in the owner's frame: a point at p (owner frame) lies at
                            ro' = (r[0] . p, r[1] . p, its plane distance's u' . p) */
-    double v0[3], wr[3];/* side_frame's v0 (m/s) and wr (rad/s) in the face frame */
-    double f[3], tq[3]; /* the face's points' force (N) and torque about the owner's centre (N m),
+    double v0[3], wr[3];  /* side_frame's v0 (m/s) and wr (rad/s) in the face frame */
+    double f[3], tq[3];   /* the face's points' force (N) and torque about the owner's centre (N m),
                            face frame */
-    double fn;          /* their normal forces summed, N */
+    double fn;            /* their normal forces summed, N */
 } face_frame;
 
 /* The other body's face planes expressed in the owner's body frame, so a point's signed
  * distances need no transform: s_k(p) = n_k . p - d_k (> 0: outside plane k). */
 typedef struct side_ctx {
-    int o, t;                   /* owner and other body */
-    double wa;                  /* weight */
-    double damp_coef;           /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
-    int damped;                 /* the joint has a normal dashpot (damping > 0) */
-    int struck;                 /* one of the two bodies takes a new impact (rd_sim.impacting) and
+    int o, t;              /* owner and other body */
+    double wa;             /* weight */
+    double damp_coef;      /* 2 zeta sqrt(m_eff / K_active), s (0 without viscous damping) */
+    int damped;            /* the joint has a normal dashpot (damping > 0) */
+    int struck;            /* one of the two bodies takes a new impact (rd_sim.impacting) and
                                    the joint loses energy at impacts: a bearing point pressed now
                                    is struck */
-    int opens;                  /* a point of this side is in its first compression after an
+    int opens;             /* a point of this side is in its first compression after an
                                    impact (RD_PT_IMPACT) */
-    int mean_switch;            /* an elastic joint (restitution 1): an unbonded spring that
+    int mean_switch;       /* an elastic joint (restitution 1): an unbonded spring that
                                    switches on or off within the step bears its mean force over
                                    the step (rd_law_switch_stretch) */
-    const rd_pair *pr;          /* the pair (its m_eff and last K_active: rd_law_touch_speed) */
-    side_frame fr;              /* the two bodies' pose and motion */
-    double tol;                 /* contact band: a point this far outside a plane still counts as
+    const rd_pair *pr;     /* the pair (its m_eff and last K_active: rd_law_touch_speed) */
+    side_frame fr;         /* the two bodies' pose and motion */
+    double tol;            /* contact band: a point this far outside a plane still counts as
                                    inside, m */
-    int np;                     /* planes of the other body */
-    const double (*wn)[3];      /* the other body's outward face normals, ground frame (rd_sim.wn) */
-    double pl[RD_MAX_PLANES][4];/* n (3), d: plane k, owner frame */
-    const double *dist;         /* the owner's candidate-face vertices' signed distances to the
+    int np;                /* planes of the other body */
+    const double (*wn)[3]; /* the other body's outward face normals, ground frame (rd_sim.wn) */
+    double pl[RD_MAX_PLANES][4]; /* n (3), d: plane k, owner frame */
+    const double *dist;          /* the owner's candidate-face vertices' signed distances to the
                                    planes (rd_sim.cv_dist, [cv slot][plane], m) */
-    const uint64_t *mask;       /* per vertex (rd_sim.cv_mask, [cv slot][2][RD_MASK_WORDS]): bit q
+    const uint64_t *mask;        /* per vertex (rd_sim.cv_mask, [cv slot][2][RD_MASK_WORDS]): bit q
                                    of word set 0 when the vertex lies beyond plane q by more than
                                    out_band (or its distance is NaN), of set 1 when it lies above
                                    reach */
-    int nw;                     /* mask words in use, (np + 63) / 64 */
-    double out_band;            /* tol + bond slack + raise: a face wholly this far beyond one
+    int nw;                      /* mask words in use, (np + 63) / 64 */
+    double out_band;             /* tol + bond slack + raise: a face wholly this far beyond one
                                    plane cannot touch, m */
-    double reach;               /* tol / 2 - raise, m: when every vertex of a face lies below this
+    double reach;                /* tol / 2 - raise, m: when every vertex of a face lies below this
                                    distance from plane q, none of its points lies beyond q by more
                                    than the band tol (points lie in the hull of their face's
                                    vertices, raised inward by at most raise; tol / 2 is left for
                                    round-off), so their exit test skips q */
-    double raise;               /* a raised point lies up to this far inside its face, m */
+    double raise;                /* a raised point lies up to this far inside its face, m */
     uint64_t cross[RD_MASK_WORDS]; /* bit q: some point of the current face may lie beyond plane
                                       q (words in use: nw) */
-    const double *m;            /* outward normal of the current owner face, ground frame, once
+    const double *m;               /* outward normal of the current owner face, ground frame, once
                                    found (owner_normal), else NULL; set, with mf, for late faces
                                    only (no other face's points ask for it) */
-    int mf;                     /* the current owner face (a late one) */
+    int mf;                        /* the current owner face (a late one) */
     double mbuf[3];
-    int facing;                 /* 1: the face's points act only while it faces the entrance face */
-    int t_free;                 /* the other body is free (a fixed one takes no force) */
-    double to_b;                /* +1 when the owner is the pair's body b, -1 when it is a */
-    int face_law;               /* the other body is fixed: its points take the face law
+    int facing;               /* 1: the face's points act only while it faces the entrance face */
+    int t_free;               /* the other body is free (a fixed one takes no force) */
+    double to_b;              /* +1 when the owner is the pair's body b, -1 when it is a */
+    int face_law;             /* the other body is fixed: its points take the face law
                                    (face_frame), in the frame of their entrance face */
-    const double (*wt)[2][3];   /* the other body's face tangents (rd_sim.wt), when it is fixed */
-    face_frame *ff;             /* [np] the other body's faces as frames, valid where ff_used */
+    const double (*wt)[2][3]; /* the other body's face tangents (rd_sim.wt), when it is fixed */
+    face_frame *ff;           /* [np] the other body's faces as frames, valid where ff_used */
     uint64_t ff_used[RD_MASK_WORDS]; /* bit e: ff[e] found this side step */
 } side_ctx;
 
@@ -213,8 +213,8 @@ static inline double plane_dist(const double *pl, const double p[3])
 
 /* Point p's (owner frame) offset ro from the owner's centre (ground frame) and its relative
  * velocity vr = v0 + wr x ro, from the frame fr: k = (ro, vr), 6 values. */
-static inline __attribute__((always_inline)) void frame_kinematics(const side_frame *fr, const double p[3],
-                                                                   double k[6])
+static inline __attribute__((always_inline)) void frame_kinematics(const side_frame *fr,
+                                                                   const double p[3], double k[6])
 {
     rd_mat_vec(fr->R, p, k);
     rd_cross(fr->wr, k, k + 3);
@@ -231,7 +231,7 @@ static __attribute__((noinline)) void face_frame_find(side_ctx *c, int e)
     ff->t = c->wt[e];
     rd_mat_tvec(c->fr.R, ff->t[0], ff->r[0]);
     rd_mat_tvec(c->fr.R, ff->t[1], ff->r[1]);
-    const double *b[3] = {ff->t[0], ff->t[1], u};
+    const double *b[3] = { ff->t[0], ff->t[1], u };
     for (int k = 0; k < 3; k++) {
         ff->v0[k] = rd_dot(b[k], c->fr.v0);
         ff->wr[k] = rd_dot(b[k], c->fr.wr);
@@ -249,8 +249,8 @@ static inline __attribute__((always_inline)) face_frame *face_frame_at(side_ctx 
 
 /* Point p's (owner frame) offset ro' and relative velocity vr' = v0' + wr' x ro' in face frame
  * ff, given ro'_z = dz (the first part of its plane distance): k = (ro', vr'), 6 values. */
-static inline __attribute__((always_inline)) void face_kinematics(const face_frame *ff, const double p[3], double dz,
-                                                                  double k[6])
+static inline __attribute__((always_inline)) void
+face_kinematics(const face_frame *ff, const double p[3], double dz, double k[6])
 {
     k[0] = rd_dot(ff->r[0], p);
     k[1] = rd_dot(ff->r[1], p);
@@ -261,9 +261,9 @@ static inline __attribute__((always_inline)) void face_kinematics(const face_fra
 
 /* The face law's trial shear spring (N): the stored spring fs (ground frame) in the face's plane,
  * f0 = (t1 . fs, t2 . fs, 0), loaded by -KS A' vr'_t dt (sA = KS A', N/m): into f. */
-static inline __attribute__((always_inline)) void face_shear_trial(const face_frame *ff, const double fs[3],
-                                                                   const double vr[3], double sA, double dt,
-                                                                   double f0[3], double f[3])
+static inline __attribute__((always_inline)) void
+face_shear_trial(const face_frame *ff, const double fs[3], const double vr[3], double sA, double dt,
+                 double f0[3], double f[3])
 {
     f0[0] = rd_dot(ff->t[0], fs);
     f0[1] = rd_dot(ff->t[1], fs);
@@ -296,8 +296,8 @@ static void side_frame_of(const rd_sim *s, int o, int t, side_frame *fr, double 
  * (rd_sim.pkin, kept in rd_sim.kin). k is the caller's local: a law that read them back from
  * kin right after these 8-byte stores would stall on store forwarding (16-byte loads).
  * Inlined at both of its calls in subcontact (gcc makes a call of it otherwise: 15 % slower). */
-static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, const side_ctx *c, int pt,
-                                                                   double k[6])
+static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, const side_ctx *c,
+                                                                   int pt, double k[6])
 {
     int q = s->pkin[pt];
     double *sk = s->kin[q];
@@ -313,8 +313,8 @@ static inline __attribute__((always_inline)) void point_kinematics(rd_sim *s, co
 /* The law's kinematics of point pt at p (owner frame) with entrance face e: under the face law
  * in that face's frame (dz: the point's ro'_z, face_kinematics), else in the ground frame
  * (point_kinematics): k = (ro, vr). */
-static inline __attribute__((always_inline)) void law_kinematics(rd_sim *s, side_ctx *c, int pt, int e,
-                                                                 const double p[3], double dz, double k[6])
+static inline __attribute__((always_inline)) void
+law_kinematics(rd_sim *s, side_ctx *c, int pt, int e, const double p[3], double dz, double k[6])
 {
     if (c->face_law)
         face_kinematics(face_frame_at(c, e), p, dz, k);
@@ -339,7 +339,7 @@ typedef struct bore {
 
 static inline bore last_bore(const rd_sim *s, const rd_joint *j, int st, double A)
 {
-    bore b = {0.0, 0.0, 0.0, 0};
+    bore b = { 0.0, 0.0, 0.0, 0 };
     unsigned char fl = s->pstate[st];
     if (!(fl & RD_PT_ACTIVE)) return b;
     b.bonded = (fl & RD_PT_BONDED) != 0;
@@ -357,36 +357,37 @@ static inline bore last_bore(const rd_sim *s, const rd_joint *j, int st, double 
  * elastic normal stretch now (m): its springs at mid-step (rd_law_release_energy), booked as
  * friction (the joint model dissipates it: 3DEC drops the forces of an opening contact), and its
  * dashpot's last half step. */
-static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, const bore *last,
-                    double s_now)
+static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA,
+                    const bore *last, double s_now)
 {
     if (!(s->pstate[st] & RD_PT_ACTIVE)) return;
     double kin[6];
     point_kinematics(s, c, pt, kin);
     const double *u = c->wn[s->pface[st]], *vr = kin + 3;
     double vn = rd_dot(vr, u);
-    s->e_fric += rd_law_release_energy(kA, last->s, s_now, last->bonded, s->fs[st], u, vr, vn, sA, last->lim,
-                                       s->dt);
+    s->e_fric += rd_law_release_energy(kA, last->s, s_now, last->bonded, s->fs[st], u, vr, vn, sA,
+                                       last->lim, s->dt);
     if (last->fd != 0) s->e_damp += rd_law_dashpot_work(last->fd, 0.0, vn, s->dt);
     s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
 }
 
 /* The point leaves the contact (last, s_now: as release): forces drop, the contact episode
  * ends, and so does a bond. */
-static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, const bore *last,
-                       double s_now)
+static void point_exit(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA,
+                       const bore *last, double s_now)
 {
     unsigned char *fl = &s->pstate[st];
     release(s, c, pt, st, kA, sA, last, s_now);
     if (*fl & (RD_PT_ACTIVE | RD_PT_INSIDE)) *fl &= (unsigned char)~(RD_PT_BONDED);
-    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
+    *fl &= (unsigned char)~(RD_PT_ACTIVE | RD_PT_SLIP | RD_PT_INSIDE | RD_PT_VIRGIN | RD_PT_STRUCK |
+                            RD_PT_IMPACT);
     s->pset[st] = 0;
 }
 
 /* A point inside but not bearing (its face turned away, or lifted off its permanent set):
  * forces drop, the rest of its state is kept. */
-static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA, const bore *last,
-                       double s_now)
+static void point_idle(rd_sim *s, const side_ctx *c, int pt, int st, double kA, double sA,
+                       const bore *last, double s_now)
 {
     unsigned char *fl = &s->pstate[st];
     release(s, c, pt, st, kA, sA, last, s_now);
@@ -430,7 +431,10 @@ static void look_again(rd_sim *s, const side_ctx *c, int pt, int st, const doubl
     double dmin = DBL_MAX;
     for (int k = 0; k < c->np; k++) {
         double depth = -plane_dist(c->pl[k], p);
-        if (base_looks(s->pn[pt], c->pl[k]) && depth <= c->tol && depth < dmin) { dmin = depth; g = k; }
+        if (base_looks(s->pn[pt], c->pl[k]) && depth <= c->tol && depth < dmin) {
+            dmin = depth;
+            g = k;
+        }
     }
     if (g < 0) return;
     s->pface[st] = (short)g;
@@ -442,19 +446,22 @@ static void look_again(rd_sim *s, const side_ctx *c, int pt, int st, const doubl
  * *set: the point's permanent set, m: its depth below the face when that is the level one its
  * face looks at, taken instead of a crossed plane it does not look at (it bears from where it
  * is), else 0. */
-static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const double p[3], const double vr[3],
-                         double *set)
+static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const double p[3],
+                         const double vr[3], double *set)
 {
-    const double (*wn)[3] = s->wn + s->face0[c->t];
+    const double(*wn)[3] = s->wn + s->face0[c->t];
     double speed = rd_norm(vr), tmin = DBL_MAX, dmin = DBL_MAX, m[3];
     rd_mat_vec(s->R[c->o], s->pn[pt], m);
     int best = -1, shallow = -1, level = -1, best_looks = 0;
     double lmin = DBL_MAX;
     for (int k = 0; k < c->np; k++) {
         double depth = rd_max(-plane_dist(c->pl[k], p), 0.0);
-        double approach = -rd_dot(vr, wn[k]); /* > 0: moving into plane k */
+        double approach = -rd_dot(vr, wn[k]);           /* > 0: moving into plane k */
         int looks = rd_dot(m, wn[k]) <= -RD_FACING_COS; /* the point's face looks at plane k */
-        if (looks && depth <= c->tol && depth < lmin) { lmin = depth; level = k; }
+        if (looks && depth <= c->tol && depth < lmin) {
+            lmin = depth;
+            level = k;
+        }
         if (approach > RD_APPROACH_FRACTION * speed && approach > 0 && depth / approach < tmin &&
             depth <= RD_ENTRY_STEPS * approach * s->dt) {
             tmin = depth / approach;
@@ -463,7 +470,10 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
         }
         /* the shallowest plane; within the contact band, one the point's face looks at */
         double rank = depth + (looks ? 0.0 : c->tol);
-        if (rank < dmin) { dmin = rank; shallow = k; }
+        if (rank < dmin) {
+            dmin = rank;
+            shallow = k;
+        }
     }
     const int level_set = level >= 0 && best >= 0 && !best_looks;
     *set = level_set ? lmin : 0;
@@ -475,32 +485,34 @@ static int entrance_face(const rd_sim *s, const side_ctx *c, int pt, const doubl
  * stored shear and normal force (into fsa and pj: rd_sim.fs and rd_sim.pj), the side's normal
  * and area sums, and the force F = fn u + fs with its torque ro x F on the owner (side_sums: a
  * free other body's share is the side's). */
-static inline __attribute__((always_inline)) void bear(double (*fsa)[3], double (*pj)[2], side_sums *a, int st,
-                                                       double A, double fn, const double u[3], const double fs[3],
+static inline __attribute__((always_inline)) void bear(double (*fsa)[3], double (*pj)[2],
+                                                       side_sums *a, int st, double A, double fn,
+                                                       const double u[3], const double fs[3],
                                                        const double ro[3])
 {
     rd_copy3(fs, fsa[st]);
     pj[st][0] = fn;
-    double fu[3] = {fn * u[0], fn * u[1], fn * u[2]};
+    double fu[3] = { fn * u[0], fn * u[1], fn * u[2] };
     for (int k = 0; k < 3; k++) a->nsum[k] += fu[k];
     a->area += A;
 
-    double F[3] = {fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2]};
+    double F[3] = { fu[0] + fs[0], fu[1] + fs[1], fu[2] + fs[2] };
     rd_law_apply(F, ro, NULL, a->f_o, a->tq_o, 0, NULL, NULL);
 }
 
 /* bear for the face law (face frame ff): fs = (fx, fy, 0) and ro in the face frame, the force
  * F' = (fx, fy, fn) and its torque ro' x F' summed in the frame (turned back by
  * fold_face_sums), the shear spring stored in the ground frame, fx t1 + fy t2. */
-static inline __attribute__((always_inline)) void bear_face(double (*fsa)[3], double (*pj)[2], side_sums *a,
-                                                            face_frame *ff, int st, double A, double fn,
-                                                            const double fs[3], const double ro[3])
+static inline __attribute__((always_inline)) void bear_face(double (*fsa)[3], double (*pj)[2],
+                                                            side_sums *a, face_frame *ff, int st,
+                                                            double A, double fn, const double fs[3],
+                                                            const double ro[3])
 {
     for (int k = 0; k < 3; k++) fsa[st][k] = ff->t[0][k] * fs[0] + ff->t[1][k] * fs[1];
     pj[st][0] = fn;
     ff->fn += fn;
     a->area += A;
-    const double F[3] = {fs[0], fs[1], fn};
+    const double F[3] = { fs[0], fs[1], fn };
     double tq[3];
     rd_cross(ro, F, tq);
     for (int k = 0; k < 3; k++) {
@@ -529,24 +541,26 @@ static void fold_face_sums(side_ctx *c, side_sums *a)
 /* Force of one subcontact on the owner; returns 1 if it carries force. steady_point (below)
  * repeats this law's common cases expression for expression: a change here must be made there
  * too (tests/cli/steady_path.sh fails otherwise: see RD_STEADY_PATH). */
-RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j, int pt,
-                                                       int st, side_sums *a)
+RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, const rd_joint *j,
+                                                       int pt, int st, side_sums *a)
 {
     unsigned char *fl = &s->pstate[st];
     const double *p = s->pl[pt];
     double A = c->wa * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
     double slack = (*fl & RD_PT_BONDED) ? j->tension / j->kn : 0.0; /* a bond holds across a gap */
     const bore last = last_bore(s, j, st, A);
-    for (int w = 0; w < c->nw; w++) for (uint64_t m = c->cross[w]; m; m &= m - 1) {
-        double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
-        if (out > c->tol + slack) {
-            s->pj[st][0] = 0;
-            s->pj[st][1] = out;
-            double stretch = (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
-            point_exit(s, c, pt, st, kA, sA, &last, stretch);
-            return 0;
+    for (int w = 0; w < c->nw; w++)
+        for (uint64_t m = c->cross[w]; m; m &= m - 1) {
+            double out = plane_dist(c->pl[64 * w + __builtin_ctzll(m)], p);
+            if (out > c->tol + slack) {
+                s->pj[st][0] = 0;
+                s->pj[st][1] = out;
+                double stretch =
+                    (*fl & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], p) - s->pset[st] : 0.0;
+                point_exit(s, c, pt, st, kA, sA, &last, stretch);
+                return 0;
+            }
         }
-    }
 
     /* the point's motion (point_kinematics) is found only when the law needs it: a point that
        idles below needs only its depth */
@@ -560,7 +574,8 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     }
     int e = s->pface[st];
     const double *u = c->wn[e]; /* outward normal of the entrance face */
-    const double dz = rd_dot(c->pl[e], p), depth = -(dz - c->pl[e][3]); /* -plane_dist, to the bit */
+    const double dz = rd_dot(c->pl[e], p),
+                 depth = -(dz - c->pl[e][3]); /* -plane_dist, to the bit */
     s->pj[st][0] = 0;
     s->pj[st][1] = -depth;
     if (c->facing && rd_dot(owner_normal(s, c), u) > -RD_FACING_COS) {
@@ -593,7 +608,8 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (c->facing && !(*fl & RD_PT_ACTIVE)) /* a face that has just turned towards the other
                                                body: its vertex bears from where it is now */
         s->pset[st] = fmax(s->pset[st], depth);
-    if (!(*fl & RD_PT_BONDED) && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
+    if (!(*fl & RD_PT_BONDED) &&
+        (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) != (RD_PT_VIRGIN | RD_PT_ACTIVE) &&
         kA * (depth - s->pset[st]) < 0 && !(depth - s->pset[st] > -0.5 * w)) {
         /* below its permanent set (by more than w / 2), no bond, no impact to book: the
            contact's surface is at the set, so neither spring nor dashpot acts (a dashpot pushing
@@ -605,7 +621,8 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     if (!moved) law_kinematics(s, c, pt, e, p, dz, kin);
     const double *ro = kin, *vr = kin + 3;
     double vn = law_vn(c, vr, u);
-    if (c->struck && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_STRUCK)) == RD_PT_ACTIVE && vn < 0) {
+    if (c->struck && (*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE | RD_PT_STRUCK)) == RD_PT_ACTIVE &&
+        vn < 0) {
         *fl |= RD_PT_STRUCK; /* a bearing point pressed during a new impact of one of its bodies: */
         s->pstrike[st] = depth - s->pset[st]; /* the impact's share is what it gains from here */
     }
@@ -618,14 +635,15 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
            1/2 KN A' set vn dt per impact unbooked, an order-dt^2 loss (10-drum column: 2/3 of
            its residual at the default step) */
         double stretch = depth - s->pset[st];
-        double set = (1.0 - j->restitution) * ((*fl & RD_PT_VIRGIN) ? stretch : rd_max(stretch - s->pstrike[st], 0.0));
+        double set = (1.0 - j->restitution) *
+                     ((*fl & RD_PT_VIRGIN) ? stretch : rd_max(stretch - s->pstrike[st], 0.0));
         if (stretch > 0) s->e_damp += 0.5 * kA * set * (2.0 * stretch + vn * s->dt - set);
         s->pset[st] += set;
         *fl &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
     }
     double stretch = depth - s->pset[st];
-    double fel = kA * stretch;                 /* elastic normal force, N (< 0: tension) */
-    double fn = fel - c->damp_coef * kA * vn;  /* plus the dashpot */
+    double fel = kA * stretch;                /* elastic normal force, N (< 0: tension) */
+    double fn = fel - c->damp_coef * kA * vn; /* plus the dashpot */
     if (w > 0 && stretch < 0.5 * w) { /* it switches within the step: the spring's mean force;
                                          the dashpot acts while the point is pressed */
         double sm = rd_law_switch_stretch(stretch, w);
@@ -654,7 +672,8 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     double cohesion = (*fl & RD_PT_BONDED) ? j->cohesion * A : 0.0;
     double lim = rd_max(fn, 0.0) * j->tan_phi + cohesion;
     if ((*fl & (RD_PT_VIRGIN | RD_PT_ACTIVE)) == RD_PT_VIRGIN) /* its first bearing step */
-        *fl = (unsigned char)(-vn > rd_law_touch_speed(s, c->pr) ? *fl | RD_PT_IMPACT : *fl & ~RD_PT_IMPACT);
+        *fl = (unsigned char)(-vn > rd_law_touch_speed(s, c->pr) ? *fl | RD_PT_IMPACT
+                                                                 : *fl & ~RD_PT_IMPACT);
     *fl = (unsigned char)((*fl | RD_PT_ACTIVE) & ~RD_PT_SLIP);
     double fs[3]; /* in registers: stored once */
     face_frame *ff = c->face_law ? face_frame_at(c, e) : NULL;
@@ -682,12 +701,12 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
  * that the path stores (unsigned char, which may alias any object) would otherwise have each
  * pointer and constant loaded again from rd_sim, side_ctx and rd_joint after every such store. */
 typedef struct steady_ctx {
-    const int *cf_v, *cf_v0;  /* rd_sim.cf_v, cf_v0, cf_facing */
+    const int *cf_v, *cf_v0; /* rd_sim.cf_v, cf_v0, cf_facing */
     const char *cf_facing;
-    const uint64_t *mask;     /* side_ctx.mask, dist (vertex_distances) */
+    const uint64_t *mask; /* side_ctx.mask, dist (vertex_distances) */
     const double *dist;
-    int np;                   /* the other body's planes */
-    const double (*pl)[3];    /* rd_sim.pl, pn, pa, pface, pset, fs, pj, pstate */
+    int np;                /* the other body's planes */
+    const double (*pl)[3]; /* rd_sim.pl, pn, pa, pface, pset, fs, pj, pstate */
     const double (*pn)[3];
     const double *pa;
     const short *pface;
@@ -703,22 +722,40 @@ typedef struct steady_ctx {
     double kn, ks, tan_phi;        /* the joint's */
     double dt;
     int mean_switch, struck, damped, settling;
-    int face_law;                  /* side_ctx's */
+    int face_law; /* side_ctx's */
 } steady_ctx;
 
 /* The side's steady_ctx (k) from rd_sim, its side_ctx c (after vertex_distances) and joint j. */
-static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, const side_ctx *c, const rd_joint *j,
-                                                            steady_ctx *k)
+static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, const side_ctx *c,
+                                                            const rd_joint *j, steady_ctx *k)
 {
-    k->cf_v = s->cf_v; k->cf_v0 = s->cf_v0; k->cf_facing = s->cf_facing;
-    k->mask = c->mask; k->dist = c->dist; k->np = c->np;
-    k->pl = (const double (*)[3])s->pl; k->pn = (const double (*)[3])s->pn; k->pa = s->pa; k->pface = s->pface; k->pset = s->pset;
-    k->fs = s->fs; k->pj = s->pj; k->pstate = s->pstate;
-    k->plane = (const double (*)[4])c->pl; k->wn = c->wn;
-    k->tol = c->tol; k->wa = c->wa; k->damp_coef = c->damp_coef;
-    k->kn = j->kn; k->ks = j->ks; k->tan_phi = j->tan_phi;
+    k->cf_v = s->cf_v;
+    k->cf_v0 = s->cf_v0;
+    k->cf_facing = s->cf_facing;
+    k->mask = c->mask;
+    k->dist = c->dist;
+    k->np = c->np;
+    k->pl = (const double(*)[3])s->pl;
+    k->pn = (const double(*)[3])s->pn;
+    k->pa = s->pa;
+    k->pface = s->pface;
+    k->pset = s->pset;
+    k->fs = s->fs;
+    k->pj = s->pj;
+    k->pstate = s->pstate;
+    k->plane = (const double(*)[4])c->pl;
+    k->wn = c->wn;
+    k->tol = c->tol;
+    k->wa = c->wa;
+    k->damp_coef = c->damp_coef;
+    k->kn = j->kn;
+    k->ks = j->ks;
+    k->tan_phi = j->tan_phi;
     k->dt = s->dt;
-    k->mean_switch = c->mean_switch; k->struck = c->struck; k->damped = c->damped; k->settling = s->settling;
+    k->mean_switch = c->mean_switch;
+    k->struck = c->struck;
+    k->damped = c->damped;
+    k->settling = s->settling;
     k->face_law = c->face_law;
 }
 
@@ -730,7 +767,8 @@ enum { STEADY_NONE = -1, STEADY_OUT, STEADY_IDLE, STEADY_BEARS };
 /* steady_point's point beyond the band (out: its distance beyond the plane, m, more than
  * subcontact's band unbonded, slack 0): one that was already out records its gap; STEADY_OUT,
  * or STEADY_NONE for subcontact. */
-static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k, int st, unsigned fl, double out)
+static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k, int st,
+                                                            unsigned fl, double out)
 {
     if (fl & (RD_PT_ACTIVE | RD_PT_INSIDE | RD_PT_SLIP | RD_PT_VIRGIN)) return STEADY_NONE;
     k->pj[st][0] = 0;
@@ -741,10 +779,9 @@ static inline __attribute__((always_inline)) int steady_out(const steady_ctx *k,
 
 /* A steady point's kinematics k = (ro, vr) with entrance face e (dz: its ro'_z): under the face
  * law in that face's frame, returned; else in the ground frame from the side's frame fr (NULL). */
-static inline __attribute__((always_inline)) face_frame *steady_kinematics(side_ctx *c, const steady_ctx *k,
-                                                                           const side_frame *fr, int e,
-                                                                           const double p[3], double dz,
-                                                                           double kin[6])
+static inline __attribute__((always_inline)) face_frame *
+steady_kinematics(side_ctx *c, const steady_ctx *k, const side_frame *fr, int e, const double p[3],
+                  double dz, double kin[6])
 {
     if (!k->face_law) {
         frame_kinematics(fr, p, kin);
@@ -768,32 +805,38 @@ static inline __attribute__((always_inline)) face_frame *steady_kinematics(side_
  * force at a switch), the bodies are not settling and the face is not a late one, so those tests
  * are left out (the bed: 4 % fewer instructions). Returns what it found (STEADY_OUT,
  * STEADY_IDLE, STEADY_BEARS), or STEADY_NONE (nothing stored) when the point needs subcontact. */
-static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c, const steady_ctx *k, int pt,
-                                                             int st, const side_frame *fr, side_sums *a, const int nw,
-                                                             const int plain)
+static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ctx *c,
+                                                              const steady_ctx *k, int pt, int st,
+                                                              const side_frame *fr, side_sums *a,
+                                                              const int nw, const int plain)
 {
     const unsigned fl = k->pstate[st];
     const double *p = k->pl[pt];
     if (fl & RD_PT_BONDED) return STEADY_NONE;
-    for (int w = 0; w < nw; w++) for (uint64_t m = k->cross[w]; m; m &= m - 1) {
-        double out = plane_dist(k->plane[64 * w + __builtin_ctzll(m)], p);
-        if (out > k->tol + 0.0) return steady_out(k, st, fl, out);
-    }
+    for (int w = 0; w < nw; w++)
+        for (uint64_t m = k->cross[w]; m; m &= m - 1) {
+            double out = plane_dist(k->plane[64 * w + __builtin_ctzll(m)], p);
+            if (out > k->tol + 0.0) return steady_out(k, st, fl, out);
+        }
     if (!(fl & RD_PT_INSIDE)) return STEADY_NONE;
     int e = k->pface[st];
     const double dz = rd_dot(k->plane[e], p), depth = -(dz - k->plane[e][3]); /* subcontact's */
     double A = k->wa * k->pa[pt], kA = k->kn * A, sA = k->ks * A;
     const double *u = k->wn[e];
-    if (!k->facing && !base_looks(k->pn[pt], k->plane[e])) return STEADY_NONE; /* turned away: subcontact */
-    if (!plain && k->facing) { /* a late face: only its points that stay idle facing away are common */
+    if (!k->facing && !base_looks(k->pn[pt], k->plane[e]))
+        return STEADY_NONE; /* turned away: subcontact */
+    if (!plain &&
+        k->facing) { /* a late face: only its points that stay idle facing away are common */
         if (fl & (RD_PT_ACTIVE | RD_PT_SLIP) || !(rd_dot(owner_normal(s, c), u) > -RD_FACING_COS))
             return STEADY_NONE;
         k->pj[st][0] = 0;
         k->pj[st][1] = -depth;
         return STEADY_IDLE;
     }
-    if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) == RD_PT_INSIDE) { /* idle last step (release: nothing) */
-        if (!plain && k->mean_switch) { /* an elastic joint's spring that touches within this step (as
+    if ((fl & ~(unsigned)(RD_PT_VIRGIN | RD_PT_IMPACT)) ==
+        RD_PT_INSIDE) { /* idle last step (release: nothing) */
+        if (!plain &&
+            k->mean_switch) { /* an elastic joint's spring that touches within this step (as
                                  subcontact's w): subcontact */
             double kin[6];
             const face_frame *ff = steady_kinematics(c, k, fr, e, p, dz, kin);
@@ -805,26 +848,30 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
             k->pset[st] = 0;
         } else if (!(kA * (depth - k->pset[st]) < 0)) {
             return STEADY_NONE; /* touches: subcontact */
-        } /* else below its permanent set: idle */
+        }                       /* else below its permanent set: idle */
         k->pj[st][0] = 0;
         k->pj[st][1] = -depth;
         return STEADY_IDLE;
     }
-    if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) != (RD_PT_INSIDE | RD_PT_ACTIVE) || !(depth > 0))
+    if ((fl & ~(unsigned)(RD_PT_SLIP | RD_PT_VIRGIN | RD_PT_IMPACT)) !=
+            (RD_PT_INSIDE | RD_PT_ACTIVE) ||
+        !(depth > 0))
         return STEADY_NONE;
     double kin[6], *ro = kin, *vr = kin + 3;
     face_frame *ff = steady_kinematics(c, k, fr, e, p, dz, kin);
     double vn = ff ? vr[2] : rd_dot(vr, u);
-    if (fl & RD_PT_VIRGIN && vn > 0 && (plain || !k->settling)) return STEADY_NONE; /* its impact loss: subcontact */
+    if (fl & RD_PT_VIRGIN && vn > 0 && (plain || !k->settling))
+        return STEADY_NONE; /* its impact loss: subcontact */
     if (k->struck && vn < 0 && !(fl & RD_PT_VIRGIN)) return STEADY_NONE; /* struck: subcontact */
     double stretch = depth - k->pset[st];
     if (!(stretch >= 0)) return STEADY_NONE; /* below its permanent set: subcontact idles it */
-    if (!plain && k->mean_switch && !(stretch >= 0.5 * fabs(vn) * k->dt)) return STEADY_NONE; /* it lets go within
+    if (!plain && k->mean_switch && !(stretch >= 0.5 * fabs(vn) * k->dt))
+        return STEADY_NONE; /* it lets go within
                                                                                   this step */
     double fel = kA * stretch;
     double fn = fel - k->damp_coef * kA * vn;
     if (!(fn >= 0)) return STEADY_NONE;
-    double fs[3] = {k->fs[st][0], k->fs[st][1], k->fs[st][2]};
+    double fs[3] = { k->fs[st][0], k->fs[st][1], k->fs[st][2] };
     double lim = fn * k->tan_phi + 0.0; /* subcontact's, unbonded (no cohesion); fn >= 0, so
                                            rd_max(fn, 0.0) is fn but for -0, whose product + 0.0
                                            is +0 too */
@@ -834,14 +881,16 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     } else {
         rd_law_shear_trial(fs, u, vr, vn, sA, k->dt);
     }
-    if (!(rd_dot(fs, fs) <= lim * lim)) return STEADY_NONE; /* slips: rd_law_shear_cap in subcontact */
+    if (!(rd_dot(fs, fs) <= lim * lim))
+        return STEADY_NONE; /* slips: rd_law_shear_cap in subcontact */
     /* the dashpot's work, with last_bore's fd; without a dashpot there is none: fd is exactly 0
        (a bearing point's stored force pj[0] is then its elastic force kA * (depth - set), the
        product repeated here: the tension cap never holds a bearing point's force below it), and
        fn == fel (damp_coef is 0, and a NaN fn went to subcontact above) */
     if (!plain && k->damped) {
         double fd_prev = k->pj[st][0] - kA * (-k->pj[st][1] - k->pset[st]);
-        if (fn != fel || fd_prev != 0) s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, k->dt);
+        if (fn != fel || fd_prev != 0)
+            s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, k->dt);
     }
     a->k_active += kA;
     k->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
@@ -880,7 +929,8 @@ void rd_contact_reset_body(rd_sim *s, int body)
 /* Contacts made while settling are seated, not impacts: no impact loss when they first unload. */
 void rd_contact_seat(rd_sim *s)
 {
-    for (int k = 0; k < s->nstate; k++) s->pstate[k] &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
+    for (int k = 0; k < s->nstate; k++)
+        s->pstate[k] &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
     rd_edge_seat(s);
     memset(s->impacting, 0, (size_t)s->nb);
 }
@@ -914,14 +964,17 @@ static void reset_departed(rd_sim *s)
 /* Every point of candidate face cf (k-th of its side) leaves the contact. A point can still be
  * below its entrance face when the whole face has passed beyond another plane of the other
  * body (a drum's rim sliding off the lower drum's edge): its normal spring is released too. */
-static void clear_face(rd_sim *s, const side_ctx *c, const rd_side *sd, const rd_joint *j, int cf, int k)
+static void clear_face(rd_sim *s, const side_ctx *c, const rd_side *sd, const rd_joint *j, int cf,
+                       int k)
 {
     int *na = &s->face_nactive[sd->face0 + k];
     if (*na == 0) return;
     int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
     for (int pt = s->cf_pt0[cf], st = first; pt < s->cf_pt0[cf + 1]; pt++, st++) {
         double A = sd->weight * s->pa[pt];
-        double stretch = (s->pstate[st] & RD_PT_INSIDE) ? -plane_dist(c->pl[s->pface[st]], s->pl[pt]) - s->pset[st] : 0.0;
+        double stretch = (s->pstate[st] & RD_PT_INSIDE)
+                             ? -plane_dist(c->pl[s->pface[st]], s->pl[pt]) - s->pset[st]
+                             : 0.0;
         const bore last = last_bore(s, j, st, A);
         point_exit(s, c, pt, st, j->kn * A, j->ks * A, &last, stretch);
     }
@@ -934,7 +987,7 @@ static void side_planes(const rd_sim *s, side_ctx *c)
     const double *R = s->R[c->o], *xo = s->x[c->o];
     c->np = s->poly[c->t].nf;
     c->wn = s->wn + s->face0[c->t];
-    c->wt = (const double (*)[2][3])s->wt + s->face0[c->t];
+    c->wt = (const double(*)[2][3])s->wt + s->face0[c->t];
     for (int k = 0; k < c->np; k++) {
         const double *n = s->wn[s->face0[c->t] + k];
         double *pl = c->pl[k];
@@ -967,13 +1020,18 @@ typedef struct cv_coords {
 } cv_coords;
 
 /* Vertex k of v (soa: a constant at each call) into p. */
-static inline __attribute__((always_inline)) void cv_vertex(const cv_coords *v, int k, const int soa, double p[3])
+static inline __attribute__((always_inline)) void cv_vertex(const cv_coords *v, int k,
+                                                            const int soa, double p[3])
 {
     if (soa) {
-        p[0] = v->x[k]; p[1] = v->y[k]; p[2] = v->z[k];
+        p[0] = v->x[k];
+        p[1] = v->y[k];
+        p[2] = v->z[k];
     } else {
         const double *w = v->wv[v->cv[k]];
-        p[0] = w[0]; p[1] = w[1]; p[2] = w[2];
+        p[0] = w[0];
+        p[1] = w[1];
+        p[2] = w[2];
     }
 }
 
@@ -984,10 +1042,9 @@ static inline __attribute__((always_inline)) void cv_vertex(const cv_coords *v, 
  * bits it sets, else it adds its bit), and, when track (track and set: constants at each call, so
  * the loop without it carries no dependency chain), the largest distance (NaN sticks), else
  * -INFINITY. */
-static inline __attribute__((always_inline)) double plane_pass(const cv_coords *v, const int soa, int ncv,
-                                                               const double n[4], const double band[2], int np,
-                                                               int q, double *restrict d,
-                                                               uint64_t *restrict mk, int track, const int set)
+static inline __attribute__((always_inline)) double
+plane_pass(const cv_coords *v, const int soa, int ncv, const double n[4], const double band[2],
+           int np, int q, double *restrict d, uint64_t *restrict mk, int track, const int set)
 {
     const double n0 = n[0], n1 = n[1], n2 = n[2], dq = n[3], out_band = band[0], reach = band[1];
     const uint64_t bit = (uint64_t)1 << (q & 63);
@@ -1005,7 +1062,7 @@ static inline __attribute__((always_inline)) double plane_pass(const cv_coords *
             if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
             if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
         }
-        if (track && !(dl <= hi)) hi = dl;                       /* NaN sticks: never far */
+        if (track && !(dl <= hi)) hi = dl; /* NaN sticks: never far */
     }
     return hi;
 }
@@ -1016,11 +1073,10 @@ static inline __attribute__((always_inline)) double plane_pass(const cv_coords *
  * selected from bit[], so the loop runs two planes a vector. The same expression as plane_pass's,
  * so the same bits. A drum-drum side (32 vertices, 18 planes) runs about 15 % faster than plane
  * by plane, whose read-modify-writes of the masks and gathered vertices do not vectorise. */
-static inline __attribute__((always_inline)) void vertex_rows(const cv_coords *v, const int soa, int ncv,
-                                                               const double *n0, const double *n1,
-                                                               const double *n2, const double *dq, int np, int nw,
-                                                               double out_band, double reach, double *restrict d,
-                                                               uint64_t *restrict mk)
+static inline __attribute__((always_inline)) void
+vertex_rows(const cv_coords *v, const int soa, int ncv, const double *n0, const double *n1,
+            const double *n2, const double *dq, int np, int nw, double out_band, double reach,
+            double *restrict d, uint64_t *restrict mk)
 {
     uint64_t bit[64]; /* bit q of a mask word, as a value a vector lane can select */
     for (int q = 0; q < 64 && q < np; q++) bit[q] = (uint64_t)1 << q;
@@ -1046,10 +1102,10 @@ static inline __attribute__((always_inline)) void vertex_rows(const cv_coords *v
 }
 
 /* vertex_distances from the candidate vertices v (soa: a constant at each call, cv_vertex). */
-static inline __attribute__((always_inline)) void distances_from(const rd_sim *s, side_ctx *c, rd_side *sd,
-                                                                 const cv_coords *v, const int soa)
+static inline __attribute__((always_inline)) void
+distances_from(const rd_sim *s, side_ctx *c, rd_side *sd, const cv_coords *v, const int soa)
 {
-    const double (*wn)[3] = s->wn + s->face0[c->t];
+    const double(*wn)[3] = s->wn + s->face0[c->t];
     const double *wd = s->wd + s->face0[c->t];
     const int np = c->np, fixed = s->fixed[c->t];
     const double out_band = c->out_band, reach = c->reach;
@@ -1063,7 +1119,12 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
     c->mask = s->cv_mask;
     if (!fixed) {
         double n0[RD_MAX_PLANES], n1[RD_MAX_PLANES], n2[RD_MAX_PLANES], dq[RD_MAX_PLANES];
-        for (int q = 0; q < np; q++) { n0[q] = wn[q][0]; n1[q] = wn[q][1]; n2[q] = wn[q][2]; dq[q] = wd[q]; }
+        for (int q = 0; q < np; q++) {
+            n0[q] = wn[q][0];
+            n1[q] = wn[q][1];
+            n2[q] = wn[q][2];
+            dq[q] = wd[q];
+        }
         vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
         return;
     }
@@ -1079,7 +1140,7 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
     for (int q = 0; q < np; q++) {
         dmax[q] = -INFINITY;
         if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
-        const double n[4] = {wn[q][0], wn[q][1], wn[q][2], wd[q]}, band[2] = {out_band, reach};
+        const double n[4] = { wn[q][0], wn[q][1], wn[q][2], wd[q] }, band[2] = { out_band, reach };
         if (set)
             dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1, 1)
                             : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0, 1);
@@ -1089,7 +1150,8 @@ static inline __attribute__((always_inline)) void distances_from(const rd_sim *s
         set = 0;
     }
     if (set) /* no plane measured: no bits */
-        for (int k = 0; k < ncv; k++) mk[k * 2 * RD_MASK_WORDS] = mk[k * 2 * RD_MASK_WORDS + RD_MASK_WORDS] = 0;
+        for (int k = 0; k < ncv; k++)
+            mk[k * 2 * RD_MASK_WORDS] = mk[k * 2 * RD_MASK_WORDS + RD_MASK_WORDS] = 0;
     if (track) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
         for (int w = 0; w < RD_MASK_WORDS; w++) sd->far[w] = 0;
@@ -1112,10 +1174,10 @@ RD_HOT static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
     const int k0 = s->cv0[c->o], ncv_all = s->cv0[s->nb];
     if (!s->convex[c->o]) {
         const double *x = s->cv_world + k0;
-        const cv_coords v = {.x = x, .y = x + ncv_all, .z = x + 2 * ncv_all};
+        const cv_coords v = { .x = x, .y = x + ncv_all, .z = x + 2 * ncv_all };
         distances_from(s, c, sd, &v, 1);
     } else {
-        const cv_coords v = {.wv = s->wv, .cv = s->cv + k0};
+        const cv_coords v = { .wv = s->wv, .cv = s->cv + k0 };
         distances_from(s, c, sd, &v, 0);
     }
 }
@@ -1143,7 +1205,8 @@ static __attribute__((noinline)) void face_masks(const uint64_t *mask, const int
  * masks (rd_sim.cf_v: the offsets of the face's vertices' masks), read through k (steady_ctx);
  * the face's kind and plane bits into k and c: subcontact, out of line, reads c's (handed k, its
  * address would escape, and every state byte the steady path stores would load k's fields again). */
-static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int cf, double *gap, const int nw)
+static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int cf, double *gap,
+                              const int nw)
 {
     const int *mo = k->cf_v + k->cf_v0[cf], nv = k->cf_v0[cf + 1] - k->cf_v0[cf];
     k->facing = c->facing = k->cf_facing[cf];
@@ -1172,7 +1235,8 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int c
         if (out) { /* every vertex beyond plane q */
             int q = 64 * w + __builtin_ctzll(out);
             double emin = DBL_MAX;
-            for (int v = 0; v < nv; v++) emin = rd_min(k->dist[mo[v] / (2 * RD_MASK_WORDS) * k->np + q], emin);
+            for (int v = 0; v < nv; v++)
+                emin = rd_min(k->dist[mo[v] / (2 * RD_MASK_WORDS) * k->np + q], emin);
             *gap = emin - c->raise;
             return 1;
         }
@@ -1184,15 +1248,16 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int c
 /* The points pt0 .. pt1 - 1 of a candidate face (point pt's subcontact: pt + dst), each by
  * steady_point (plain: its), else subcontact; their forces into *a, the side's bearing and
  * slipping counts into *na and *nslip. Returns the face's points inside. */
-static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx *c, const rd_joint *j,
-                                                             const steady_ctx *k, int pt0, int pt1, int dst,
-                                                             const side_frame *fr, side_sums *a, int *na,
-                                                             int *nslip, const int nw, const int plain)
+static inline __attribute__((always_inline)) int
+face_points(rd_sim *s, side_ctx *c, const rd_joint *j, const steady_ctx *k, int pt0, int pt1,
+            int dst, const side_frame *fr, side_sums *a, int *na, int *nslip, const int nw,
+            const int plain)
 {
     int nin = 0, nbear = 0, nsl = 0; /* counts in locals: no state byte store reaches them */
     for (int pt = pt0; pt < pt1; pt++) {
         const int st = pt + dst;
-        const int found = RD_STEADY_PATH ? steady_point(s, c, k, pt, st, fr, a, nw, plain) : STEADY_NONE;
+        const int found =
+            RD_STEADY_PATH ? steady_point(s, c, k, pt, st, fr, a, nw, plain) : STEADY_NONE;
         if (found == STEADY_NONE) {
             if (subcontact(s, c, j, pt, st, a)) {
                 ++nbear;
@@ -1215,8 +1280,9 @@ static inline __attribute__((always_inline)) int face_points(rd_sim *s, side_ctx
  * takes each face's bearing area in face order (a face's own sum first, as the monitor's area
  * always was), its counts and whether it touched once for the side. nw: the mask words in use
  * (a constant at each call: 1 word for most bodies). */
-static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd, const rd_joint *j,
-                                                             side_sums *sums, rd_watch *tally, long *active_steps,
+static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd,
+                                                             const rd_joint *j, side_sums *sums,
+                                                             rd_watch *tally, long *active_steps,
                                                              const int nw)
 {
     const side_frame fr = c->fr; /* locals no store into rd_sim reaches */
@@ -1230,7 +1296,8 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
     const int cf0 = s->cf0[c->o], ncf = s->cf0[c->o + 1] - cf0;
     const int *pt0 = s->cf_pt0 + cf0;
     int *nactive = s->face_nactive + sd->face0;
-    const int plain = !k.mean_switch && !k.damped && !k.settling; /* steady_point's, but for late faces */
+    const int plain =
+        !k.mean_switch && !k.damped && !k.settling; /* steady_point's, but for late faces */
     for (int f = 0; f < ncf; f++) {
         const int cf = cf0 + f;
         double gap;
@@ -1244,11 +1311,15 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
            copies for plain faces (steady_point) */
         const int p0 = pt0[f], p1 = pt0[f + 1];
         if (plain && !k.facing)
-            nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 1)
-                                      : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 1);
+            nactive[f] =
+                p1 - p0 == 1
+                    ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 1)
+                    : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 1);
         else
-            nactive[f] = p1 - p0 == 1 ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 0)
-                                      : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 0);
+            nactive[f] =
+                p1 - p0 == 1
+                    ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 0)
+                    : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 0);
         area += a.area;
         touch |= a.area > 0;
     }
@@ -1265,7 +1336,9 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
 {
     const rd_joint *j = &s->joint[pr->joint];
     side_ctx c;
-    c.o = sd->owner; c.t = sd->other; c.wa = sd->weight;
+    c.o = sd->owner;
+    c.t = sd->other;
+    c.wa = sd->weight;
     c.to_b = sd->owner == pr->b ? 1.0 : -1.0;
     c.damp_coef = 0;
     c.damped = j->damping > 0;
@@ -1293,8 +1366,13 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     memset(c.ff_used, 0, sizeof c.ff_used);
     /* against a fixed body the owner's sums run on from its force and torque so far; a free
        other body's share needs the side's own sums, which then start at 0 */
-    side_sums sums = {.f_o = {0, 0, 0}, .tq_o = {0, 0, 0}, .nsum = {0, 0, 0}, .k_active = 0, .area = 0};
-    if (!c.t_free) { rd_copy3(s->f[c.o], sums.f_o); rd_copy3(s->tq[c.o], sums.tq_o); }
+    side_sums sums = {
+        .f_o = { 0, 0, 0 }, .tq_o = { 0, 0, 0 }, .nsum = { 0, 0, 0 }, .k_active = 0, .area = 0
+    };
+    if (!c.t_free) {
+        rd_copy3(s->f[c.o], sums.f_o);
+        rd_copy3(s->tq[c.o], sums.tq_o);
+    }
     double d[3]; /* xo - xt, m */
     side_frame_of(s, c.o, c.t, &c.fr, d);
     side_planes(s, &c);
@@ -1302,14 +1380,24 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     s->kin_epoch++;
     /* the side's contact tally and its active point-steps, carried in locals and stored once */
     rd_watch *watch = rd_monitor_contact_watch(s, c.o, c.t);
-    rd_watch tally = {0};
-    if (watch) { tally.area = watch->area; tally.nactive = watch->nactive; tally.nslip = watch->nslip; tally.touched = watch->touched; }
+    rd_watch tally = { 0 };
+    if (watch) {
+        tally.area = watch->area;
+        tally.nactive = watch->nactive;
+        tally.nslip = watch->nslip;
+        tally.touched = watch->touched;
+    }
     long active_steps = 0;
     if (c.nw == 1) /* the usual one word of planes (up to 64), as a constant */
         side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1);
     else
         side_faces(s, &c, sd, j, &sums, &tally, &active_steps, c.nw);
-    if (watch) { watch->area = tally.area; watch->nactive = tally.nactive; watch->nslip = tally.nslip; watch->touched = tally.touched; }
+    if (watch) {
+        watch->area = tally.area;
+        watch->nactive = tally.nactive;
+        watch->nslip = tally.nslip;
+        watch->touched = tally.touched;
+    }
     if (c.opens && !s->settling) s->impacting_next[c.o] = s->impacting_next[c.t] = 1;
     if (!s->settling) s->active_point_steps += active_steps;
     if (c.t_free) { /* the owner takes the sums; the other -F at ro + d each: -(sum ro x F) - d x sum F */
@@ -1332,28 +1420,37 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
 int rd_contact_step(rd_sim *s)
 {
     if (rd_pairs_update(s)) return -1;
-    if (s->surf) rd_surface_step(s); /* `contact model surface` */
-    else reset_departed(s);
+    if (s->surf)
+        rd_surface_step(s); /* `contact model surface` */
+    else
+        reset_departed(s);
     for (int k = 0; !s->surf && k < s->nlive; k++) {
         rd_pair *pr = &s->pair[s->live[k]];
-        double k_active = 0, nsum[3] = {0, 0, 0};
+        double k_active = 0, nsum[3] = { 0, 0, 0 };
         for (int q = 0; q < pr->nside; q++) {
             side_step(s, pr, &pr->side[q], &k_active, nsum);
             /* edge subcontacts (edge.c): with two sides, this side's owner's edges against the
                other body, from the vertex distances side_step has just found */
-            if (pr->nside == 2) rd_edge_side(s, pr, &pr->side[1 - q], s->cv_dist, s->cv_mask);
-            else rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
+            if (pr->nside == 2)
+                rd_edge_side(s, pr, &pr->side[1 - q], s->cv_dist, s->cv_mask);
+            else
+                rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
         }
         pr->k_active = k_active;
         double nn = rd_norm(nsum);
-        if (nn > 0) for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
+        if (nn > 0)
+            for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
     }
     unsigned char *im = s->impacting; /* this step's new impacts, for the next step */
     s->impacting = s->impacting_next;
     s->impacting_next = im;
     memset(s->impacting_next, 0, (size_t)s->nb);
-    int *t = s->live_prev; s->live_prev = s->live; s->live = t;
-    int c = s->cap_live_prev; s->cap_live_prev = s->cap_live; s->cap_live = c;
+    int *t = s->live_prev;
+    s->live_prev = s->live;
+    s->live = t;
+    int c = s->cap_live_prev;
+    s->cap_live_prev = s->cap_live;
+    s->cap_live = c;
     s->nlive_prev = s->nlive;
     return 0;
 }
@@ -1372,7 +1469,8 @@ double rd_contact_elastic_energy(const rd_sim *s)
         for (int q = 0; q < pr->nside; q++) {
             const rd_side *sd = &pr->side[q];
             e += rd_edge_elastic_energy(s, pr, sd);
-            for (int pt = s->pt0[sd->owner], st = sd->state0; pt < s->pt0[sd->owner + 1]; pt++, st++) {
+            for (int pt = s->pt0[sd->owner], st = sd->state0; pt < s->pt0[sd->owner + 1];
+                 pt++, st++) {
                 if (!(s->pstate[st] & RD_PT_ACTIVE)) continue;
                 double A = sd->weight * s->pa[pt], kA = j->kn * A, sA = j->ks * A;
                 double stretch = -s->pj[st][1] - s->pset[st]; /* pj[1]: minus the depth */

@@ -88,31 +88,31 @@
 
 /* slopes of a plane's depth along an edge below this fraction of the contact band are level
  * (round-off of a 1 m body is 1e-16 m; 1e-9 of the 1 mm band is 1e-12 m) */
-#define RD_EDGE_FLAT 1e-9
+#define RD_EDGE_FLAT       1e-9
 /* an edge crosses o's plane at an end of its part inside o when it runs on beyond that plane by
  * at least this many contact bands (plateau) */
-#define RD_EDGE_CROSS 10.0
+#define RD_EDGE_CROSS      10.0
 /* ... or, at both ends, by at least this many bands: neither end is then held by the edge's own
  * vertex (a vertex within the band of o bears as a vertex subcontact) (plateau) */
 #define RD_EDGE_CROSS_BOTH 1.0
 /* ... or, at one end, by at least RD_EDGE_CROSS_BOTH bands through a plane that the edge
  * crosses steeply: its depth below that plane changes by this many bands along the edge, while
  * the edge rests on o (at_rest) (plateau) */
-#define RD_EDGE_STEEP 20.0
+#define RD_EDGE_STEEP      20.0
 /* an end spring whose last stretch exceeds this many steps of its point's normal speed when its
  * end leaves o has left by a jump of the point, not by the bodies' motion (end_jumped) */
-#define RD_EDGE_JUMP 2.0
+#define RD_EDGE_JUMP       2.0
 /* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
-#define RD_EDGE_MAX_VERTS 512
-#define RD_EDGE_MAX_EDGES 1024
+#define RD_EDGE_MAX_VERTS  512
+#define RD_EDGE_MAX_EDGES  1024
 /* rd_sim.eon's bits: the slot bears (or holds its set, below); it has not unloaded since its
    onset (its first unloading takes the joint's impact loss); it is an end of the edge's part
    inside the other body (plateau; area A'/2), not its deepest point */
-#define RD_EDGE_ON 1
-#define RD_EDGE_VIRGIN 2
-#define RD_EDGE_END 4
+#define RD_EDGE_ON         1
+#define RD_EDGE_VIRGIN     2
+#define RD_EDGE_END        4
 /* a vertex's box outcode not yet found (outcodes use 6 bits) */
-#define RD_EDGE_NO_CODE 0xFF
+#define RD_EDGE_NO_CODE    0xFF
 
 /* Edges of a convex polyhedron, each once: face f's side (a, b) with a < b. */
 int rd_edge_count(const rd_poly *p)
@@ -138,7 +138,11 @@ int rd_edge_init(rd_sim *s, rd_error *err)
         for (int f = 0; f < p->nf; f++) {
             const int *ix = p->fidx + p->fstart[f];
             for (int k = 0, a = ix[p->flen[f] - 1]; k < p->flen[f]; a = ix[k++])
-                if (a < ix[k]) { s->edge_v[n][0] = a; s->edge_v[n][1] = ix[k]; n++; }
+                if (a < ix[k]) {
+                    s->edge_v[n][0] = a;
+                    s->edge_v[n][1] = ix[k];
+                    n++;
+                }
         }
     }
     s->edge_v0[s->nb] = n;
@@ -156,7 +160,8 @@ static double dist(const rd_sim *s, int o, int k, const double x[3])
 static unsigned outcode(const double box[6], const double x[3])
 {
     unsigned code = 0;
-    for (int c = 0; c < 3; c++) code |= (unsigned)(x[c] < box[c]) << c | (unsigned)(x[c] > box[3 + c]) << (3 + c);
+    for (int c = 0; c < 3; c++)
+        code |= (unsigned)(x[c] < box[c]) << c | (unsigned)(x[c] > box[3 + c]) << (3 + c);
     return code;
 }
 
@@ -168,12 +173,16 @@ static unsigned outcode(const double box[6], const double x[3])
  * then n = 0, the spring bears nothing (-fn g) and its Coulomb cap fn |g| tan(phi) = 0 lets
  * its shear go as slip; g / |g| made the state NaN and the run "unstable" where it was
  * "penetrated" (a 0.5 m cube at 30 m/s into a free 0.2 m wall at KN 1e6). */
-static double edge_point(const rd_sim *s, const rd_side *sd, const double q[3], const double g[3], double ro[3],
-                         double rt[3], double vr[3], double n[3])
+static double edge_point(const rd_sim *s, const rd_side *sd, const double q[3], const double g[3],
+                         double ro[3], double rt[3], double vr[3], double n[3])
 {
     const int o = sd->owner, t = sd->other;
     double gn = rd_norm(g);
-    for (int i = 0; i < 3; i++) { ro[i] = q[i] - s->x[o][i]; rt[i] = q[i] - s->x[t][i]; n[i] = gn > 0 ? g[i] / gn : 0.0; }
+    for (int i = 0; i < 3; i++) {
+        ro[i] = q[i] - s->x[o][i];
+        rt[i] = q[i] - s->x[t][i];
+        n[i] = gn > 0 ? g[i] / gn : 0.0;
+    }
     rd_law_relative_velocity(s, o, t, ro, rt, vr);
     return gn;
 }
@@ -190,14 +199,16 @@ static void edge_release(rd_sim *s, const rd_side *sd, const rd_joint *j, int e,
                          const double *g, double s_now)
 {
     if (!s->eon[e]) return;
-    const double A = rd_edge_slot_area(s, sd, e), kA = j->kn * A, sA = j->ks * A, tan_phi = j->tan_phi;
+    const double A = rd_edge_slot_area(s, sd, e), kA = j->kn * A, sA = j->ks * A,
+                 tan_phi = j->tan_phi;
     if (q) {
         double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
         double lim = kA * s->edepth[e][0] * gn * tan_phi;
-        s->e_fric += rd_law_release_energy(kA, s_now > 0 ? s->edepth[e][0] : 0.0, s_now, 0, s->efs[e], n, vr,
-                                           rd_dot(vr, n), sA, lim, s->dt);
+        s->e_fric += rd_law_release_energy(kA, s_now > 0 ? s->edepth[e][0] : 0.0, s_now, 0,
+                                           s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
     } else {
-        s->e_fric += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+        s->e_fric +=
+            0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
     }
     s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
     s->edepth[e][0] = s->edepth[e][1] = s->edepth[e][2] = 0;
@@ -212,8 +223,8 @@ typedef struct edge_lines {
 
 /* The lines of edge a-b; da, db: the ends' distances to o's planes when already found, else
  * NULL. */
-static void lines(const rd_sim *s, int o, const double *a, const double *b, const double *da, const double *db,
-                  edge_lines *L)
+static void lines(const rd_sim *s, int o, const double *a, const double *b, const double *da,
+                  const double *db, edge_lines *L)
 {
     L->np = s->poly[o].nf;
     for (int k = 0; k < L->np; k++) {
@@ -251,7 +262,11 @@ static int next_plane(const edge_lines *L, int act, double *un)
         double rate = sl[act] - sl[k];
         if (!(rate > 0)) continue;
         double gap = c[k] - c[act], lhs = gap * rn, rhs = gn * rate;
-        if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) { gn = gap; rn = rate; next = k; }
+        if (next < 0 || lhs < rhs || (lhs == rhs && sl[k] < sl[next])) {
+            gn = gap;
+            rn = rate;
+            next = k;
+        }
     }
     *un = next >= 0 ? gn / rn : INFINITY;
     return next;
@@ -259,7 +274,7 @@ static int next_plane(const edge_lines *L, int act, double *un)
 
 static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, deep *dp)
 {
-    const double (*n)[3] = s->wn + s->face0[o];
+    const double(*n)[3] = s->wn + s->face0[o];
     const double *c = L->c, *sl = L->sl;
     int act = first_plane(L), prev = -1;
     double u = 0;
@@ -267,7 +282,10 @@ static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, de
         if (sl[act] < -flat) { /* falling: the maximum is here */
             dp->u = u;
             dp->d = c[act] + sl[act] * u;
-            if (prev < 0) { rd_copy3(n[act], dp->g); return; }
+            if (prev < 0) {
+                rd_copy3(n[act], dp->g);
+                return;
+            }
             double sp = sl[prev], sm = sl[act];
             for (int i = 0; i < 3; i++) dp->g[i] = (sp * n[act][i] - sm * n[prev][i]) / (sp - sm);
             return;
@@ -338,12 +356,15 @@ static void walk(const edge_lines *L, envelope *E)
 static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep end[2])
 {
     int crossing = 0;
-    const double (*n)[3] = s->wn + s->face0[o];
+    const double(*n)[3] = s->wn + s->face0[o];
     envelope E;
     walk(L, &E);
     int top = 0; /* the first falling piece: the deepest point is its start */
     while (top < E.n && !(L->sl[E.k[top]] < 0)) top++;
-    int p = top == E.n ? E.n - 1 : top == 0 ? 0 : fabs(L->sl[E.k[top - 1]]) <= fabs(L->sl[E.k[top]]) ? top - 1 : top;
+    int p = top == E.n                                           ? E.n - 1
+            : top == 0                                           ? 0
+            : fabs(L->sl[E.k[top - 1]]) <= fabs(L->sl[E.k[top]]) ? top - 1
+                                                                 : top;
     const int kp = E.k[p];
     const double sp = L->sl[kp];
     int both = 1, steep = 0;
@@ -356,7 +377,8 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
         double over = m >= 0 ? -(L->c[E.k[m]] + L->sl[E.k[m]] * j) : -INFINITY;
         crossing |= over >= RD_EDGE_CROSS * tol;
         both &= over >= RD_EDGE_CROSS_BOTH * tol;
-        steep |= over >= RD_EDGE_CROSS_BOTH * tol && m >= 0 && fabs(L->sl[E.k[m]]) >= RD_EDGE_STEEP * tol;
+        steep |= over >= RD_EDGE_CROSS_BOTH * tol && m >= 0 &&
+                 fabs(L->sl[E.k[m]]) >= RD_EDGE_STEEP * tol;
         if (m >= 0 && sp * sm < 0) {
             const double *nm = n[E.k[m]];
             for (int i = 0; i < 3; i++) d->g[i] = (sp * nm[i] - sm * n[kp][i]) / (sp - sm);
@@ -383,7 +405,7 @@ static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, co
     double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
     double *fs = s->efs[e], fn = kA * stretch;
     int slips = rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
-    double F[3] = {-fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2]};
+    double F[3] = { -fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2] };
     rd_law_apply(F, ro, rt, s->f[o], s->tq[o], !s->fixed[t], s->f[t], s->tq[t]);
     s->edepth[e][0] = stretch;
     return slips;
@@ -395,21 +417,21 @@ static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, co
  * plane it is most beyond) and that plane. */
 typedef struct vinfo {
     const double *dist;
-    const uint64_t *mask; /* rd_sim.cv_mask of t's side, with dist */
-    const int *slot;      /* t's vertices' rows in dist and mask (rd_sim.cv_slot; -1: none) */
-    int np, nw;           /* o's planes, and the mask words they use */
-    double tol;           /* the contact band, m */
-    const double (*wv)[3];  /* t's world vertices */
+    const uint64_t *mask;  /* rd_sim.cv_mask of t's side, with dist */
+    const int *slot;       /* t's vertices' rows in dist and mask (rd_sim.cv_slot; -1: none) */
+    int np, nw;            /* o's planes, and the mask words they use */
+    double tol;            /* the contact band, m */
+    const double (*wv)[3]; /* t's world vertices */
     const rd_sim *s;
-    int o;                  /* the owner, whose box the outcodes test */
-    int box_found;          /* box holds o's box (found when the first outcode needs it) */
-    double box[6];          /* o's box, grown by the broad phase's margin */
+    int o;         /* the owner, whose box the outcodes test */
+    int box_found; /* box holds o's box (found when the first outcode needs it) */
+    double box[6]; /* o's box, grown by the broad phase's margin */
     unsigned char code[RD_EDGE_MAX_VERTS]; /* against box (outcode), once found (RD_EDGE_NO_CODE
                                               before) */
     unsigned char sure[RD_EDGE_MAX_VERTS]; /* against o's loose box (rd_pairs_box_loose): its bits
                                               are a subset of code's */
     unsigned char done[RD_EDGE_MAX_VERTS];
-    short out[RD_EDGE_MAX_VERTS]; /* vertex_out's answer, once found (-2 before) */
+    short out[RD_EDGE_MAX_VERTS];     /* vertex_out's answer, once found (-2 before) */
     uint64_t word[RD_EDGE_MAX_VERTS]; /* its mask word, where o's planes fit one (vertex_word) */
     short k[RD_EDGE_MAX_VERTS];
     double d[RD_EDGE_MAX_VERTS];
@@ -511,11 +533,17 @@ static void vertex_depth(const rd_sim *s, int o, int t, vinfo *vi, int v)
     int kmax = 0;
     if (row) {
         for (int k = 0; k < vi->np; k++)
-            if (row[k] > dmax) { dmax = row[k]; kmax = k; }
+            if (row[k] > dmax) {
+                dmax = row[k];
+                kmax = k;
+            }
     } else {
         for (int k = 0; k < vi->np; k++) {
             double e = dist(s, o, k, x);
-            if (e > dmax) { dmax = e; kmax = k; }
+            if (e > dmax) {
+                dmax = e;
+                kmax = k;
+            }
         }
     }
     vi->d[v] = -dmax;
@@ -539,15 +567,18 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
            depth falls from its held end along q's line (q is that end's nearest plane) */
         int qa = vertex_out(vi, va), qb = vertex_out(vi, vb);
         if (qa == RD_MAX_PLANES && qb == RD_MAX_PLANES) return 0;
-        if (qa >= 0 && qb >= 0 && qa < RD_MAX_PLANES && qb < RD_MAX_PLANES && beyond_one(vi, va, vb)) return 0;
+        if (qa >= 0 && qb >= 0 && qa < RD_MAX_PLANES && qb < RD_MAX_PLANES &&
+            beyond_one(vi, va, vb))
+            return 0;
         int in = qa == RD_MAX_PLANES ? va : qb == RD_MAX_PLANES ? vb : -1;
         int q = in == va ? qb : qa;
         if (in >= 0 && q >= 0) {
             const double *ri = vertex_row(vi, in), *ro = vertex_row(vi, in == va ? vb : va);
             const double *xa = s->wv[s->vert0[t] + va], *xb = s->wv[s->vert0[t] + vb];
-            double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
+            double ab[3] = { xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2] };
             double din = -ri[q], dout = -ro[q]; /* depths below q: dout < -band */
-            double part = din > 0 ? din : 0, span = vi->tol * (din - dout); /* length * part / span */
+            double part = din > 0 ? din : 0,
+                   span = vi->tol * (din - dout);                      /* length * part / span */
             if (rd_dot(ab, ab) * part * part <= span * span) return 0; /* the part inside, <= tol */
             int nearest = 1;
             for (int k = 0; k < vi->np; k++) nearest &= ri[k] <= ri[q];
@@ -555,7 +586,7 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
         }
     }
     if (vertex_code(vi, va) & vertex_code(vi, vb)) return 0; /* both beyond one side of o's box */
-    int ends[2] = {va, vb};
+    int ends[2] = { va, vb };
     for (int i = 0; i < 2; i++) { /* an end in o's box: its nearest plane's line */
         int x = ends[i], y = ends[1 - i];
         if (vertex_code(vi, x)) continue;
@@ -571,10 +602,13 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
     /* one plane nearest at both ends: the depth is at most its line, deepest at an end */
     if (ka == kb) return (da > db ? da : db) > floor;
     /* min of plane ka's line (da at a, c1 at b) and plane kb's (c2 at a, db at b) */
-    double a1 = da, b1 = -vertex_dist(s, o, t, vi, vb, ka), a2 = -vertex_dist(s, o, t, vi, va, kb), b2 = db;
+    double a1 = da, b1 = -vertex_dist(s, o, t, vi, vb, ka), a2 = -vertex_dist(s, o, t, vi, va, kb),
+           b2 = db;
     double s1 = b1 - a1, s2 = b2 - a2, top;
-    if (s1 <= 0) top = a1 < a2 ? a1 : a2;          /* the first falls from a */
-    else if (s2 >= 0) top = b1 < b2 ? b1 : b2;     /* the second rises to b */
+    if (s1 <= 0)
+        top = a1 < a2 ? a1 : a2; /* the first falls from a */
+    else if (s2 >= 0)
+        top = b1 < b2 ? b1 : b2; /* the second rises to b */
     else {
         double u = (a2 - a1) / (s1 - s2);
         u = u < 0 ? 0 : u > 1 ? 1 : u;
@@ -586,7 +620,8 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
 /* Whether an edge spring that starts at point q (world, m) with depth gradient g strikes: its
  * depth grows at vr . g / |g| (vr: the owner's velocity against the other body's at q), faster
  * than the pair's touch speed. */
-static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double q[3], const double g[3])
+static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double q[3],
+                  const double g[3])
 {
     double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
     return gn > 0 && rd_dot(vr, g) / gn > rd_law_touch_speed(s, pr);
@@ -596,8 +631,8 @@ static int impact(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const d
  * off`) the pair has not borne yet and both ends of its part inside o (end) move relative to o
  * slower than gravity's speed in one step, g dt? An edge that starts bearing later, as the
  * bodies move, does not (drums rocking on each other, equal blocks sliding). */
-static int at_rest(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *a, const double *b,
-                   const deep end[2])
+static int at_rest(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const double *a,
+                   const double *b, const deep end[2])
 {
     if (s->settling) return 1;
     if (pr->k_active > 0) return 0;
@@ -617,7 +652,8 @@ static int at_rest(const rd_sim *s, const rd_pair *pr, const rd_side *sd, const 
  * stored energy is then released (edge_release without q: booked as friction), not returned to
  * the bodies as a spring that opens by itself (that return is the work its force did, which a
  * jump does not do). */
-static int end_jumped(const rd_sim *s, const rd_side *sd, int e, const double q[3], const double g[3])
+static int end_jumped(const rd_sim *s, const rd_side *sd, int e, const double q[3],
+                      const double g[3])
 {
     double ro[3], rt[3], vr[3], n[3];
     edge_point(s, sd, q, g, ro, rt, vr, n);
@@ -637,8 +673,8 @@ static int end_jumped(const rd_sim *s, const rd_side *sd, int e, const double q[
  * comes and goes at a depth of round-off about a thousand times a second, and a set at each
  * moved the block's slide over it by 0.09 mm (tests/cli/edge_slide.sh). */
 static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const rd_joint *j, int e,
-                        const double *a, const double *b, const deep *dp, double floor, double d0, double A,
-                        rd_watch *w, int held)
+                        const double *a, const double *b, const deep *dp, double floor, double d0,
+                        double A, rd_watch *w, int held)
 {
     double kA = j->kn * A, sA = j->ks * A;
     int fresh = !s->eon[e];
@@ -687,7 +723,8 @@ static void release_deep(rd_sim *s, const rd_side *sd, const rd_joint *j, int e,
     }
 }
 
-void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist, const uint64_t *mask)
+void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
+                  const uint64_t *mask)
 {
     if (sd->nedge == 0) return;
     const int o = sd->owner, t = sd->other;
@@ -722,7 +759,7 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     if (!held) sure_codes(&vi, pt->nv);
     edge_lines L;
     rd_watch *w = rd_monitor_contact_watch(s, o, t);
-    const int (*ev)[2] = s->edge_v + s->edge_v0[t];
+    const int(*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
     int cand[RD_EDGE_MAX_EDGES], nc = 0, clear = !held;
     for (int i = 0; i < sd->nedge; i++) { /* bearing, or not settled by may_bear's mask tests (with
@@ -740,7 +777,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     for (int c = 0; c < nc; c++) {
         int i = cand[c], e = sd->edge0 + ends * i, va = ev[i][0], vb = ev[i][1];
         int bears = s->eon[e] | s->eon[e + 1];
-        if (bears ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0 : !may_bear(s, o, t, &vi, va, vb, t_points)) {
+        if (bears ? (vertex_code(&vi, va) & vertex_code(&vi, vb)) != 0
+                  : !may_bear(s, o, t, &vi, va, vb, t_points)) {
             for (int k = 0; k < ends; k++) /* bearing: wholly beyond one side of o's box; else:
                                               cannot start */
                 edge_release(s, sd, j, e + k, NULL, NULL, 0.0);
@@ -758,7 +796,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
         if (t_points && two && (end[0].d > vi.tol || end[1].d > vi.tol)) {
             if (bears) release_deep(s, sd, j, e, a, b, end);
             two = 0;
-            vertex_depth(s, o, t, &vi, va); /* the deepest point's floor (may_bear found none for a */
+            vertex_depth(s, o, t, &vi,
+                         va); /* the deepest point's floor (may_bear found none for a */
             vertex_depth(s, o, t, &vi, vb); /* bearing edge) */
         }
         if (!two) {
@@ -771,7 +810,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
             /* each end of the bearing part from its entry into o (from depth 0 where t is fixed,
                from where it starts where t is free) */
             for (int k = 0; k < 2; k++)
-                edge_spring(s, pr, sd, j, e + k, a, b, &end[k], 0, t_points ? end[k].d : 0, 0.5 * A, w, 1);
+                edge_spring(s, pr, sd, j, e + k, a, b, &end[k], 0, t_points ? end[k].d : 0, 0.5 * A,
+                            w, 1);
         }
     }
 }
@@ -804,7 +844,8 @@ double rd_edge_elastic_energy(const rd_sim *s, const rd_pair *pr, const rd_side 
     for (int e = sd->edge0; e < sd->edge0 + RD_EDGE_SLOTS * sd->nedge; e++)
         if (s->eon[e]) {
             double A = rd_edge_slot_area(s, sd, e), kA = j->kn * A, sA = j->ks * A;
-            en += 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+            en +=
+                0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
         }
     return en;
 }

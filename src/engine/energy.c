@@ -69,7 +69,11 @@ static void sample(rd_sim *s, double back)
         pe += s->mass[i] * s->sc.gravity * (z - s->watch[k].x_ref[2]);
     }
     double *e = s->energy, el = rd_contact_elastic_energy(s);
-    e[0] = ke; e[1] = pe; e[2] = el; e[3] = s->e_fric; e[4] = s->e_damp;
+    e[0] = ke;
+    e[1] = pe;
+    e[2] = el;
+    e[3] = s->e_fric;
+    e[4] = s->e_damp;
     e[5] = s->e_work;
     double total = ke + pe + el;
     if (s->step == 0) s->e0 = total + s->e_fric + s->e_damp - s->e_work;

@@ -30,28 +30,29 @@ typedef struct series_kind {
     unsigned bit;
     const char *name, *units, *columns;
     int ncol;
-    const char *dim;       /* scale of the components: a root one (/xyz) or one of the group's */
+    const char *dim; /* scale of the components: a root one (/xyz) or one of the group's */
     const char *long_name;
 } series_kind;
 
 static const series_kind body_series[] = {
-    {RD_HB_POSITION, "position", "m", "x,y,z", 3, "/xyz", "centre of mass, ground frame"},
-    {RD_HB_ROTATION, "rotation", "rad", "in_plane,out_of_plane,twist", 3, "/rotation_part",
-     "rotation from rest: in-plane rocking, out-of-plane rocking, twist"},
-    {RD_HB_VELOCITY, "velocity", "m/s", "x,y,z", 3, "/xyz", "velocity relative to the ground"},
-    {RD_HB_ANGULAR_VELOCITY, "angular_velocity", "rad/s", "x,y,z", 3, "/xyz", "angular velocity"},
+    { RD_HB_POSITION, "position", "m", "x,y,z", 3, "/xyz", "centre of mass, ground frame" },
+    { RD_HB_ROTATION, "rotation", "rad", "in_plane,out_of_plane,twist", 3, "/rotation_part",
+      "rotation from rest: in-plane rocking, out-of-plane rocking, twist" },
+    { RD_HB_VELOCITY, "velocity", "m/s", "x,y,z", 3, "/xyz", "velocity relative to the ground" },
+    { RD_HB_ANGULAR_VELOCITY, "angular_velocity", "rad/s", "x,y,z", 3, "/xyz", "angular velocity" },
 };
 static const series_kind joint_series[] = {
-    {RD_HJ_NORMAL_FORCE, "normal_force", "N", NULL, 1, NULL, "normal force of the joint (compression)"},
-    {RD_HJ_SHEAR_FORCE, "shear_force", "N", "x,y,z,magnitude", 4, "xyz_magnitude",
-     "shear force on the joint's second body"},
-    {RD_HJ_OPENING, "opening", "m", NULL, 1, NULL, "largest gap of the joint's subcontacts"},
-    {RD_HJ_SLIP, "slip", "m", "x,y,z,magnitude", 4, "xyz_magnitude",
-     "slip of the second body against the first, elastic shear removed"},
-    {RD_HJ_AREA, "area", "m^2", NULL, 1, NULL, "active contact area"},
-    {RD_HJ_PRESSURE_CENTRE, "pressure_centre", "m", "x,y,z", 3, "/xyz", "centre of pressure"},
+    { RD_HJ_NORMAL_FORCE, "normal_force", "N", NULL, 1, NULL,
+      "normal force of the joint (compression)" },
+    { RD_HJ_SHEAR_FORCE, "shear_force", "N", "x,y,z,magnitude", 4, "xyz_magnitude",
+      "shear force on the joint's second body" },
+    { RD_HJ_OPENING, "opening", "m", NULL, 1, NULL, "largest gap of the joint's subcontacts" },
+    { RD_HJ_SLIP, "slip", "m", "x,y,z,magnitude", 4, "xyz_magnitude",
+      "slip of the second body against the first, elastic shear removed" },
+    { RD_HJ_AREA, "area", "m^2", NULL, 1, NULL, "active contact area" },
+    { RD_HJ_PRESSURE_CENTRE, "pressure_centre", "m", "x,y,z", 3, "/xyz", "centre of pressure" },
 };
-#define NBODY_SERIES (int)(sizeof body_series / sizeof body_series[0])
+#define NBODY_SERIES  (int)(sizeof body_series / sizeof body_series[0])
 #define NJOINT_SERIES (int)(sizeof joint_series / sizeof joint_series[0])
 
 static int body_index(const rd_sim *s, const char *name)
@@ -68,7 +69,8 @@ static int history_columns(const rd_history_def *h)
     int n = 0;
     const series_kind *sk = h->kind == RD_HISTORY_BODY ? body_series : joint_series;
     int ns = h->kind == RD_HISTORY_BODY ? NBODY_SERIES : NJOINT_SERIES;
-    for (int k = 0; k < ns; k++) if (h->what & sk[k].bit) n += sk[k].ncol;
+    for (int k = 0; k < ns; k++)
+        if (h->what & sk[k].bit) n += sk[k].ncol;
     return n;
 }
 
@@ -82,14 +84,20 @@ int rd_history_init(rd_sim *s, rd_error *err)
     for (int h = 0; h < nh; h++) {
         const rd_history_def *d = &s->sc.history[h];
         s->hist_pair[h] = -1;
-        for (int e = 0; e < (d->kind == RD_HISTORY_JOINT ? 2 : d->kind == RD_HISTORY_BODY ? 1 : 0); e++) {
+        for (int e = 0; e < (d->kind == RD_HISTORY_JOINT  ? 2
+                             : d->kind == RD_HISTORY_BODY ? 1
+                                                          : 0);
+             e++) {
             const char *name = e ? d->b : d->a;
             int i = body_index(s, name);
-            if (i < 0) return rd_error_set(err, "%s:%d: history: no block named '%s'", s->sc.file, d->line, name);
+            if (i < 0)
+                return rd_error_set(err, "%s:%d: history: no block named '%s'", s->sc.file, d->line,
+                                    name);
             s->hist_body[2 * h + e] = i;
         }
         if (d->kind == RD_HISTORY_JOINT && s->hist_body[2 * h] == s->hist_body[2 * h + 1])
-            return rd_error_set(err, "%s:%d: history joint: a joint needs two different blocks", s->sc.file, d->line);
+            return rd_error_set(err, "%s:%d: history joint: a joint needs two different blocks",
+                                s->sc.file, d->line);
         s->nhist_col += history_columns(d);
     }
     s->next_hist = 0;
@@ -102,11 +110,15 @@ static void body_values(rd_sim *s, const rd_history_def *d, int i, double *row)
     for (int q = 0; q < NBODY_SERIES; q++) {
         unsigned bit = body_series[q].bit;
         if (!(d->what & bit)) continue;
-        double v[3] = {0, 0, 0};
-        if (bit == RD_HB_POSITION) rd_copy3(s->x[i], v);
-        else if (bit == RD_HB_ROTATION && k >= 0) rd_monitor_rotation(s, k, v);
-        else if (bit == RD_HB_VELOCITY) for (int j = 0; j < 3; j++) v[j] = 0.5 * (s->v[i][j] + s->v_old[i][j]);
-        else if (bit == RD_HB_ANGULAR_VELOCITY) rd_copy3(s->w[i], v);
+        double v[3] = { 0, 0, 0 };
+        if (bit == RD_HB_POSITION)
+            rd_copy3(s->x[i], v);
+        else if (bit == RD_HB_ROTATION && k >= 0)
+            rd_monitor_rotation(s, k, v);
+        else if (bit == RD_HB_VELOCITY)
+            for (int j = 0; j < 3; j++) v[j] = 0.5 * (s->v[i][j] + s->v_old[i][j]);
+        else if (bit == RD_HB_ANGULAR_VELOCITY)
+            rd_copy3(s->w[i], v);
         memcpy(row, v, sizeof v);
         row += 3;
     }
@@ -122,14 +134,22 @@ static void joint_values(rd_sim *s, int h, const rd_history_def *d, double *row)
     for (int q = 0; q < NJOINT_SERIES; q++) {
         unsigned bit = joint_series[q].bit;
         if (!(d->what & bit)) continue;
-        double v[4] = {NAN, NAN, NAN, NAN};
+        double v[4] = { NAN, NAN, NAN, NAN };
         if (have) {
-            if (bit == RD_HJ_NORMAL_FORCE) v[0] = m.fn;
-            else if (bit == RD_HJ_SHEAR_FORCE) { rd_copy3(m.fs, v); v[3] = rd_norm(m.fs); }
-            else if (bit == RD_HJ_OPENING) v[0] = m.opening;
-            else if (bit == RD_HJ_SLIP) { rd_copy3(m.slip, v); v[3] = rd_norm(m.slip); }
-            else if (bit == RD_HJ_AREA) v[0] = m.area;
-            else rd_copy3(m.cop, v);
+            if (bit == RD_HJ_NORMAL_FORCE)
+                v[0] = m.fn;
+            else if (bit == RD_HJ_SHEAR_FORCE) {
+                rd_copy3(m.fs, v);
+                v[3] = rd_norm(m.fs);
+            } else if (bit == RD_HJ_OPENING)
+                v[0] = m.opening;
+            else if (bit == RD_HJ_SLIP) {
+                rd_copy3(m.slip, v);
+                v[3] = rd_norm(m.slip);
+            } else if (bit == RD_HJ_AREA)
+                v[0] = m.area;
+            else
+                rd_copy3(m.cop, v);
         }
         memcpy(row, v, (size_t)joint_series[q].ncol * sizeof(double));
         row += joint_series[q].ncol;
@@ -145,15 +165,21 @@ void rd_history_step(rd_sim *s)
         long cap = s->cap_hist_rows ? 2 * s->cap_hist_rows : 1024;
         double *t = realloc(s->hist, (size_t)cap * (size_t)s->nhist_col * sizeof *t);
         if (!t) return; /* histories are diagnostics: stop recording, keep running */
-        s->hist = t; s->cap_hist_rows = cap;
+        s->hist = t;
+        s->cap_hist_rows = cap;
     }
     double *row = s->hist + s->nhist_rows++ * s->nhist_col;
     *row++ = s->t;
     for (int h = 0; h < s->sc.nhistories; h++) {
         const rd_history_def *d = &s->sc.history[h];
-        if (d->kind == RD_HISTORY_BODY) body_values(s, d, s->hist_body[2 * h], row);
-        else if (d->kind == RD_HISTORY_JOINT) joint_values(s, h, d, row);
-        else { rd_energy_sample(s); memcpy(row, s->energy, RD_NENERGY * sizeof(double)); }
+        if (d->kind == RD_HISTORY_BODY)
+            body_values(s, d, s->hist_body[2 * h], row);
+        else if (d->kind == RD_HISTORY_JOINT)
+            joint_values(s, h, d, row);
+        else {
+            rd_energy_sample(s);
+            memcpy(row, s->energy, RD_NENERGY * sizeof(double));
+        }
         row += history_columns(d);
     }
 }
@@ -184,8 +210,10 @@ static int series_of(const rd_history_def *d, int *col, rd_history_series *out)
         if (out) {
             rd_history_series *o = &out[n];
             memset(o, 0, sizeof *o);
-            if (d->kind == RD_HISTORY_BODY) snprintf(o->path, sizeof o->path, "body/%s/%s", d->a, sk[q].name);
-            else snprintf(o->path, sizeof o->path, "joint/%s-%s/%s", d->a, d->b, sk[q].name);
+            if (d->kind == RD_HISTORY_BODY)
+                snprintf(o->path, sizeof o->path, "body/%s/%s", d->a, sk[q].name);
+            else
+                snprintf(o->path, sizeof o->path, "joint/%s-%s/%s", d->a, d->b, sk[q].name);
             o->units = sk[q].units;
             o->long_name = sk[q].long_name;
             o->dim = sk[q].dim;

@@ -18,7 +18,9 @@ static void omega_from(const double R[9], const double I[3], const double L[3], 
 {
     double lb[3];
     rd_mat_tvec(R, L, lb);
-    lb[0] /= I[0]; lb[1] /= I[1]; lb[2] /= I[2];
+    lb[0] /= I[0];
+    lb[1] /= I[1];
+    lb[2] /= I[2];
     rd_mat_vec(R, lb, w);
 }
 
@@ -31,7 +33,7 @@ RD_HOT static void body_geometry(rd_sim *s, int i)
     double R[9], x[3]; /* in locals: the stores below cannot alias them */
     for (int k = 0; k < 9; k++) R[k] = s->R[i][k];
     rd_copy3(s->x[i], x);
-    double (*wv)[3] = s->wv + s->vert0[i], (*wn)[3] = s->wn + s->face0[i], *wd = s->wd + s->face0[i];
+    double(*wv)[3] = s->wv + s->vert0[i], (*wn)[3] = s->wn + s->face0[i], *wd = s->wd + s->face0[i];
     for (int k = 0; k < p->nv; k++) {
         rd_mat_vec(R, p->v[k], wv[k]);
         rd_axpy(1.0, x, wv[k]);
@@ -42,10 +44,7 @@ RD_HOT static void body_geometry(rd_sim *s, int i)
     }
 }
 
-void rd_body_refresh(rd_sim *s, int i)
-{
-    body_geometry(s, i);
-}
+void rd_body_refresh(rd_sim *s, int i) { body_geometry(s, i); }
 
 /* n points' ground-frame coordinates: w[c][k] = R's row c . (bx, by, bz)[k] + x[c], rd_mat_vec's
  * rows then rd_axpy's 1.0 * x (the same expressions: the same bits); over contiguous coordinates
@@ -54,7 +53,8 @@ RD_HOT static void transform_points(int n, const double *restrict bx, const doub
                                     const double *restrict bz, const double R[9], const double x[3],
                                     double *restrict wx, double *restrict wy, double *restrict wz)
 {
-    const double r0 = R[0], r1 = R[1], r2 = R[2], r3 = R[3], r4 = R[4], r5 = R[5], r6 = R[6], r7 = R[7], r8 = R[8];
+    const double r0 = R[0], r1 = R[1], r2 = R[2], r3 = R[3], r4 = R[4], r5 = R[5], r6 = R[6],
+                 r7 = R[7], r8 = R[8];
     const double x0 = x[0], x1 = x[1], x2 = x[2];
     for (int k = 0; k < n; k++) {
         const double b0 = bx[k], b1 = by[k], b2 = bz[k];
@@ -125,12 +125,13 @@ void rd_integrate_drift(rd_sim *s)
         rd_quat_from_rotvec(phi, dq);
         rd_quat_mul(dq, s->q[i], qh);
         rd_quat_to_mat(qh, Rh);
-        omega_from(Rh, s->inertia[i], s->L[i], s->w[i]);   /* w at n+1/2 */
+        omega_from(Rh, s->inertia[i], s->L[i], s->w[i]); /* w at n+1/2 */
         for (int k = 0; k < 3; k++) phi[k] = dt * s->w[i][k];
         rd_quat_from_rotvec(phi, dq);
         rd_quat_mul(dq, s->q[i], qh);
         rd_quat_normalize(qh);
-        RD_ASSERT(fabs(qh[0] * qh[0] + qh[1] * qh[1] + qh[2] * qh[2] + qh[3] * qh[3] - 1.0) < 1e-12);
+        RD_ASSERT(fabs(qh[0] * qh[0] + qh[1] * qh[1] + qh[2] * qh[2] + qh[3] * qh[3] - 1.0) <
+                  1e-12);
         for (int k = 0; k < 4; k++) s->q[i][k] = qh[k];
     }
 }

@@ -84,7 +84,8 @@ static int intern(rd_sim *s, const rd_joint *p)
         int cap = s->cap_joint ? 2 * s->cap_joint : 8;
         rd_joint *t = realloc(s->joint, (size_t)cap * sizeof *t);
         if (!t) return -1;
-        s->joint = t; s->cap_joint = cap;
+        s->joint = t;
+        s->cap_joint = cap;
     }
     s->joint[s->njoint] = *p;
     return s->njoint++;
@@ -101,7 +102,8 @@ static int range_known(const rd_sim *s, const rd_range_def *r)
 {
     if (r->kind == RD_RANGE_ANY) return 1;
     for (int i = 0; i < s->nb; i++)
-        if (!strcmp(r->kind == RD_RANGE_GROUP ? s->sc.bodies[i].group : s->sc.bodies[i].name, r->name))
+        if (!strcmp(r->kind == RD_RANGE_GROUP ? s->sc.bodies[i].group : s->sc.bodies[i].name,
+                    r->name))
             return 1;
     return 0;
 }
@@ -109,9 +111,15 @@ static int range_known(const rd_sim *s, const rd_range_def *r)
 int rd_joints_init(rd_sim *s, rd_error *err)
 {
     const rd_contact_def *c = &s->sc.contact;
-    rd_joint def = {.kn = c->kn, .ks = c->ks, .friction = c->friction, .tan_phi = tan(c->friction),
-                    .cohesion = c->cohesion, .tension = c->tension, .restitution = c->restitution,
-                    .damping = s->sc.damping.kind == RD_DAMPING_VISCOUS ? s->sc.damping.value : 0.0};
+    rd_joint def = { .kn = c->kn,
+                     .ks = c->ks,
+                     .friction = c->friction,
+                     .tan_phi = tan(c->friction),
+                     .cohesion = c->cohesion,
+                     .tension = c->tension,
+                     .restitution = c->restitution,
+                     .damping =
+                         s->sc.damping.kind == RD_DAMPING_VISCOUS ? s->sc.damping.value : 0.0 };
     s->njoint = 0;
     if (intern(s, &def) < 0) return rd_error_set(err, "out of memory");
     s->bonds = def.cohesion > 0 || def.tension > 0;
@@ -119,10 +127,12 @@ int rd_joints_init(rd_sim *s, rd_error *err)
         const rd_joint_def *j = &s->sc.joint[k];
         for (int e = 0; e < 2; e++)
             if (!range_known(s, &j->range[e]))
-                return rd_error_set(err, "%s:%d: contact property range: no block %s '%s'", s->sc.file,
-                                    j->line, j->range[e].kind == RD_RANGE_GROUP ? "is in group" : "is named",
+                return rd_error_set(err, "%s:%d: contact property range: no block %s '%s'",
+                                    s->sc.file, j->line,
+                                    j->range[e].kind == RD_RANGE_GROUP ? "is in group" : "is named",
                                     j->range[e].name);
-        if (((j->set & RD_JOINT_COHESION) && j->cohesion > 0) || ((j->set & RD_JOINT_TENSION) && j->tension > 0))
+        if (((j->set & RD_JOINT_COHESION) && j->cohesion > 0) ||
+            ((j->set & RD_JOINT_TENSION) && j->tension > 0))
             s->bonds = 1;
     }
     return 0;
@@ -136,7 +146,8 @@ void rd_joint_body_limits(const rd_sim *s, int i, double *k, double *zeta)
     *k = fmax(d->kn, d->ks);
     *zeta = d->damping;
     if (s->sc.njoints == 0) return;
-    *k = 0; *zeta = 0;
+    *k = 0;
+    *zeta = 0;
     for (int j = 0; j < s->nb; j++) {
         if (j == i) continue;
         rd_joint p = joint_of(s, i, j);
@@ -150,12 +161,19 @@ void rd_joint_face_open(rd_sim *s, const rd_side *sd, int cf, double gap)
 {
     int first = sd->state0 + (s->cf_pt0[cf] - s->pt0[sd->owner]);
     int n = s->cf_pt0[cf + 1] - s->cf_pt0[cf];
-    for (int j = 0; j < n; j++) { s->pj[first + j][0] = 0; s->pj[first + j][1] = gap; }
+    for (int j = 0; j < n; j++) {
+        s->pj[first + j][0] = 0;
+        s->pj[first + j][1] = gap;
+    }
 }
 
 int rd_pair_find(const rd_sim *s, int a, int b)
 {
-    if (a > b) { int t = a; a = b; b = t; }
+    if (a > b) {
+        int t = a;
+        a = b;
+        b = t;
+    }
     for (int p = 0; p < s->npair; p++)
         if (s->pair[p].a == a && s->pair[p].b == b) return p;
     return -1;
@@ -181,16 +199,17 @@ static int over_face(const rd_sim *s, int t, const double n[3], const double p[3
  * and area, the centre of pressure's sums (cop, fsum) and the shear on the second body (fs_b;
  * sign: +1 where the owner is the second body, as the points'). A spring lies at its place
  * along its edge of the other body t. */
-static void edge_measure(const rd_sim *s, const rd_side *sd, int t, double kn, double sign, rd_joint_state *m,
-                         double *fsum, double fs_b[3])
+static void edge_measure(const rd_sim *s, const rd_side *sd, int t, double kn, double sign,
+                         rd_joint_state *m, double *fsum, double fs_b[3])
 {
-    const int (*ev)[2] = s->edge_v + s->edge_v0[t];
+    const int(*ev)[2] = s->edge_v + s->edge_v0[t];
     for (int i = 0; i < sd->nedge; i++)
         for (int k = 0; k < RD_EDGE_SLOTS; k++) {
             int e = sd->edge0 + RD_EDGE_SLOTS * i + k;
             if (!s->eon[e] || !(s->edepth[e][0] > 0)) continue;
             const double *a = s->wv[s->vert0[t] + ev[i][0]], *b = s->wv[s->vert0[t] + ev[i][1]];
-            double A = rd_edge_slot_area(s, sd, e), fn = kn * A * s->edepth[e][0], u = s->edepth[e][2];
+            double A = rd_edge_slot_area(s, sd, e), fn = kn * A * s->edepth[e][0],
+                   u = s->edepth[e][2];
             m->fn += fn;
             m->area += A;
             *fsum += fn;
@@ -231,7 +250,8 @@ static double opening_scan(const rd_sim *s, const rd_pair *pr)
         double tol, nb[3], to_other = sd->owner == pr->a ? 1.0 : -1.0;
         side_frame(s, pr, q, &o, &t, &tol, nb);
         for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
-            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf] || !face_turned(s, o, cf, nb, to_other)) continue;
+            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf] || !face_turned(s, o, cf, nb, to_other))
+                continue;
             for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
                 int st = sd->state0 + (j - s->pt0[o]);
                 if (!(s->pj[st][1] < 1e300 && s->pj[st][1] > open)) continue;
@@ -248,8 +268,8 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
 {
     memset(m, 0, sizeof *m);
     const rd_joint *jt = &s->joint[pr->joint];
-    double fs_b[3] = {0, 0, 0}, fsum = 0, open = 0;
-    int live = pr->seen == s->stamp; /* a pair whose boxes parted holds no contact */
+    double fs_b[3] = { 0, 0, 0 }, fsum = 0, open = 0;
+    int live = pr->seen == s->stamp;       /* a pair whose boxes parted holds no contact */
     int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
     /* The opening is the largest gap of the points that may measure it: this runs every step,
        so the deepest candidate is found first and tested alone against the face it must lie
@@ -262,17 +282,22 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
         int o, t;
         double tol, nb[3];
         side_frame(s, pr, q, &o, &t, &tol, nb);
-        double sign = o == pr->b ? 1.0 : -1.0; /* stored forces act on the owner */
+        double sign = o == pr->b ? 1.0 : -1.0;     /* stored forces act on the owner */
         double to_other = o == pr->a ? 1.0 : -1.0; /* pr->n points from a towards b */
         for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
-            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf]) continue; /* a face without points (most of a mesh's) */
+            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf])
+                continue;    /* a face without points (most of a mesh's) */
             int facing = -1; /* asked once per face, and only when a point of it could count */
             for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
                 int st = sd->state0 + (j - s->pt0[o]);
                 int active = s->pstate[st] & RD_PT_ACTIVE;
                 if (normal && s->pj[st][1] < 1e300 && s->pj[st][1] > best_gap) {
                     if (facing < 0) facing = face_turned(s, o, cf, nb, to_other);
-                    if (facing) { best_gap = s->pj[st][1]; best_q = q; best_j = j; }
+                    if (facing) {
+                        best_gap = s->pj[st][1];
+                        best_q = q;
+                        best_j = j;
+                    }
                 }
                 if (!active) continue;
                 double p[3];
@@ -313,7 +338,7 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
     pr->ref_set = loaded;
     for (int e = 0; loaded && e < 2; e++) {
         int i = e ? pr->b : pr->a;
-        double d[3] = {m->cop[0] - s->x[i][0], m->cop[1] - s->x[i][1], m->cop[2] - s->x[i][2]};
+        double d[3] = { m->cop[0] - s->x[i][0], m->cop[1] - s->x[i][1], m->cop[2] - s->x[i][2] };
         rd_mat_tvec(s->R[i], d, pr->ref[e]);
     }
     for (int k = 0; k < 3; k++) {
@@ -343,9 +368,9 @@ void rd_joints_sample(rd_sim *s)
             pr->rest_set = 1;
         }
         double opened = m.opening - pr->open_rest;
-        if (pr->rest_set && isfinite(m.opening) && opened > pr->comp_rest) pr->open_max = fmax(pr->open_max, opened);
+        if (pr->rest_set && isfinite(m.opening) && opened > pr->comp_rest)
+            pr->open_max = fmax(pr->open_max, opened);
         pr->slip_max = fmax(pr->slip_max, rd_norm(m.slip));
         rd_copy3(m.slip, pr->slip_end);
     }
 }
-

@@ -14,9 +14,9 @@
 /* Velocity, m/s, of a point at offsets ro (from the owner's centre) and rt (from the other
  * body's centre) of an owner moving with (vo, wo) against another body moving with (vt, wt),
  * ground frame: vo + wo x ro - (vt + wt x rt), the other's part left out unless t_free. */
-static inline void rd_law_relative_velocity_of(const double vo[3], const double wo[3], const double vt[3],
-                                               const double wt[3], int t_free, const double ro[3],
-                                               const double rt[3], double vr[3])
+static inline void rd_law_relative_velocity_of(const double vo[3], const double wo[3],
+                                               const double vt[3], const double wt[3], int t_free,
+                                               const double ro[3], const double rt[3], double vr[3])
 {
     double tmp[3];
     rd_cross(wo, ro, vr);
@@ -47,8 +47,9 @@ static inline double rd_law_touch_speed(const rd_sim *s, const rd_pair *pr)
 /* Force F (N) of a subcontact at offsets ro (from owner o's centre) and rt (from the other body
  * t's centre), m: F and ro x F added to o's force and torque sums (f_o, tq_o), -F and -(rt x F)
  * to t's (f_t, tq_t) when t is free (t_free; a fixed body takes no force). */
-static inline void rd_law_apply(const double F[3], const double ro[3], const double rt[3], double f_o[3],
-                                double tq_o[3], int t_free, double f_t[3], double tq_t[3])
+static inline void rd_law_apply(const double F[3], const double ro[3], const double rt[3],
+                                double f_o[3], double tq_o[3], int t_free, double f_t[3],
+                                double tq_t[3])
 {
     double tmp[3];
     rd_axpy(1.0, F, f_o);
@@ -71,7 +72,9 @@ static inline void rd_law_shear_turn(double fs[3], const double n[3])
         for (int k = 0; k < 3; k++) fs[k] -= fu * n[k];
         double now2 = rd_dot(fs, fs);
         double r = now2 > 0 ? sqrt(prev2 / now2) : 0.0;
-        fs[0] *= r; fs[1] *= r; fs[2] *= r;
+        fs[0] *= r;
+        fs[1] *= r;
+        fs[2] *= r;
     }
 }
 
@@ -85,8 +88,8 @@ static inline void rd_law_shear_load(double fs[3], const double n[3], const doub
 
 /* The trial step of the incremental Coulomb shear spring fs (N) on the plane of unit normal n:
  * turned (rd_law_shear_turn), then loaded (rd_law_shear_load). */
-static inline void rd_law_shear_trial(double fs[3], const double n[3], const double vr[3], double vn,
-                                      double sA, double dt)
+static inline void rd_law_shear_trial(double fs[3], const double n[3], const double vr[3],
+                                      double vn, double sA, double dt)
 {
     rd_law_shear_turn(fs, n);
     rd_law_shear_load(fs, n, vr, vn, sA, dt);
@@ -109,7 +112,9 @@ static inline int rd_law_shear_cap(double fs[3], const double f0[3], double sA, 
     if (mag2 <= lim * lim) return 0;
     double mag = sqrt(mag2), r = lim / mag;
     *e_fric += fmax((mag - lim) * (lim + rd_dot(f0, fs) / mag) / (2.0 * sA), 0.0);
-    fs[0] *= r; fs[1] *= r; fs[2] *= r;
+    fs[0] *= r;
+    fs[1] *= r;
+    fs[2] *= r;
     return 1;
 }
 
@@ -119,7 +124,7 @@ static inline int rd_law_shear(double fs[3], const double n[3], const double vr[
                                double sA, double dt, double lim, double *e_fric)
 {
     rd_law_shear_turn(fs, n);
-    const double f0[3] = {fs[0], fs[1], fs[2]};
+    const double f0[3] = { fs[0], fs[1], fs[2] };
     rd_law_shear_load(fs, n, vr, vn, sA, dt);
     return rd_law_shear_cap(fs, f0, sA, lim, e_fric);
 }
@@ -170,12 +175,13 @@ static inline double rd_law_dashpot_work(double fd_prev, double fd, double vn, d
  *    (rd_law_shear_cap). Without the cap a stiff shear spring (KS A' dU >> lim) was credited
  *    (KS A' dU)^2 / 8 it could never hold (the YADE stack at KS 2e10 Pa/m: a residual floor of
  *    7e-4 at 2.5e-5 and 1.25e-5 s). */
-static inline double rd_law_release_energy(double kA, double s_prev, double s_now, int pulls, const double fs[3],
-                                           const double n[3], const double vr[3], double vn, double sA,
-                                           double lim, double dt)
+static inline double rd_law_release_energy(double kA, double s_prev, double s_now, int pulls,
+                                           const double fs[3], const double n[3],
+                                           const double vr[3], double vn, double sA, double lim,
+                                           double dt)
 {
     int held = s_prev * s_now > 0 && (s_prev > 0 || pulls);
-    double sm = held ? 0.5 * (s_prev + s_now) : 0.0, f[3] = {fs[0], fs[1], fs[2]}, e = 0;
+    double sm = held ? 0.5 * (s_prev + s_now) : 0.0, f[3] = { fs[0], fs[1], fs[2] }, e = 0;
     rd_law_shear(f, n, vr, vn, sA, 0.5 * dt, lim, &e);
     return e + 0.5 * (kA * sm * sm + rd_dot(f, f) / sA);
 }

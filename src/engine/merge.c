@@ -31,7 +31,10 @@
 #include <string.h>
 
 /* A point's place (its coordinates, bitwise) and index: sorted by place, then index. */
-typedef struct merge_key { double x[3]; int idx; } merge_key;
+typedef struct merge_key {
+    double x[3];
+    int idx;
+} merge_key;
 static int by_place(const void *a, const void *b)
 {
     const merge_key *p = a, *q = b;
@@ -69,7 +72,7 @@ static void merge_body(rd_sim *s, int i, merge_key *key, char *keep)
         for (int l = a; l < b; l++) {
             int p = key[l].idx, members = 1;
             if (!keep[p]) continue;
-            double lead[3], area = s->pa[p], nrm[3] = {0, 0, 0};
+            double lead[3], area = s->pa[p], nrm[3] = { 0, 0, 0 };
             rd_copy3(s->pn[p], lead);
             rd_axpy(s->pa[p], s->pn[p], nrm);
             for (int k = l + 1; k < b; k++) {
@@ -83,7 +86,8 @@ static void merge_body(rd_sim *s, int i, merge_key *key, char *keep)
             }
             if (members == 1) continue;
             double len = rd_norm(nrm); /* 0: faces that cancel; the first face's normal stays */
-            if (len > 0) for (int k = 0; k < 3; k++) s->pn[p][k] = nrm[k] / len;
+            if (len > 0)
+                for (int k = 0; k < 3; k++) s->pn[p][k] = nrm[k] / len;
             s->pa[p] = area;
         }
     }

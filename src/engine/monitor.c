@@ -30,7 +30,8 @@
 #include <string.h>
 
 #define RD_FALLEN_TILT (85.0 * M_PI / 180.0) /* past this, a run may stop: the body is down */
-#define RD_ROCK_MIN 1e-3 /* rocking amplitudes below this fraction of alpha are noise, not impacts */
+#define RD_ROCK_MIN                                                                                \
+    1e-3 /* rocking amplitudes below this fraction of alpha are noise, not impacts */
 
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value)
 {
@@ -38,14 +39,20 @@ void rd_event_add(rd_sim *s, double time, int body, const char *type, double val
         int cap = s->cap_event ? 2 * s->cap_event : 256;
         rd_event *e = realloc(s->event, (size_t)cap * sizeof *e);
         if (!e) return; /* events are diagnostics; losing one is not fatal */
-        s->event = e; s->cap_event = cap;
+        s->event = e;
+        s->cap_event = cap;
     }
     rd_event *e = &s->event[s->nevent++];
-    e->time = time; e->body = body; e->value = value;
+    e->time = time;
+    e->body = body;
+    e->value = value;
     snprintf(e->type, sizeof e->type, "%s", type);
 }
 
-static int lex_less(const double *a, const double *b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+static int lex_less(const double *a, const double *b)
+{
+    return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]);
+}
 
 static int cmp_xy(const void *a, const void *b)
 {
@@ -58,7 +65,7 @@ static int hull2d(double (*p)[2], int n)
 {
     if (n < 3) return n;
     qsort(p, (size_t)n, sizeof p[0], cmp_xy);
-    double (*h)[2] = malloc((size_t)(2 * n + 1) * sizeof *h);
+    double(*h)[2] = malloc((size_t)(2 * n + 1) * sizeof *h);
     if (!h) return -1;
     int k = 0;
     for (int pass = 0; pass < 2; pass++) {
@@ -67,8 +74,12 @@ static int hull2d(double (*p)[2], int n)
             int i = pass ? n - 1 - c : c;
             while (k >= start + 2 &&
                    (h[k - 1][0] - h[k - 2][0]) * (p[i][1] - h[k - 2][1]) -
-                   (h[k - 1][1] - h[k - 2][1]) * (p[i][0] - h[k - 2][0]) <= 0) k--;
-            h[k][0] = p[i][0]; h[k][1] = p[i][1]; k++;
+                           (h[k - 1][1] - h[k - 2][1]) * (p[i][0] - h[k - 2][0]) <=
+                       0)
+                k--;
+            h[k][0] = p[i][0];
+            h[k][1] = p[i][1];
+            k++;
         }
         k--;
     }
@@ -105,7 +116,13 @@ static double seat_z(const rd_watch *w, double x, double y)
 static double alpha_toward(const rd_watch *w, double dx, double dy)
 {
     double n = hypot(dx, dy);
-    if (n == 0) { dx = 1; dy = 0; } else { dx /= n; dy /= n; }
+    if (n == 0) {
+        dx = 1;
+        dy = 0;
+    } else {
+        dx /= n;
+        dy /= n;
+    }
     double d = ray_to_edge(w, w->x_ref[0], w->x_ref[1], dx, dy);
     return atan2(d, w->x_ref[2] - seat_z(w, w->x_ref[0] + d * dx, w->x_ref[1] + d * dy));
 }
@@ -114,7 +131,13 @@ double rd_monitor_alpha_at(const rd_sim *s, int k, const double com[3], double d
 {
     const rd_watch *w = &s->watch[k];
     double n = hypot(dx, dy);
-    if (n == 0) { dx = 1; dy = 0; } else { dx /= n; dy /= n; }
+    if (n == 0) {
+        dx = 1;
+        dy = 0;
+    } else {
+        dx /= n;
+        dy /= n;
+    }
     double d = ray_to_edge(w, com[0], com[1], dx, dy);
     return atan2(d, com[2] - seat_z(w, com[0] + d * dx, com[1] + d * dy));
 }
@@ -132,7 +155,12 @@ static void live_index_build(const rd_sim *s, live_index *ix)
 {
     ix->first = calloc((size_t)s->nb + 1, sizeof *ix->first);
     ix->list = malloc((size_t)(2 * s->nlive_prev + 1) * sizeof *ix->list);
-    if (!ix->first || !ix->list) { free(ix->first); free(ix->list); ix->first = ix->list = NULL; return; }
+    if (!ix->first || !ix->list) {
+        free(ix->first);
+        free(ix->list);
+        ix->first = ix->list = NULL;
+        return;
+    }
     for (int k = 0; k < s->nlive_prev; k++) {
         const rd_pair *pr = &s->pair[s->live_prev[k]];
         ix->first[pr->a + 1]++;
@@ -140,7 +168,12 @@ static void live_index_build(const rd_sim *s, live_index *ix)
     }
     for (int i = 0; i < s->nb; i++) ix->first[i + 1] += ix->first[i];
     int *fill = malloc((size_t)s->nb * sizeof *fill);
-    if (!fill) { free(ix->first); free(ix->list); ix->first = ix->list = NULL; return; }
+    if (!fill) {
+        free(ix->first);
+        free(ix->list);
+        ix->first = ix->list = NULL;
+        return;
+    }
     memcpy(fill, ix->first, (size_t)s->nb * sizeof *fill);
     for (int k = 0; k < s->nlive_prev; k++) {
         const rd_pair *pr = &s->pair[s->live_prev[k]];
@@ -169,10 +202,11 @@ static const rd_pair *live_pair(const rd_sim *s, const live_index *ix, int i, in
 
 /* Ground-frame xy of the subcontact points pressed between body i and the body `below` it
  * at rest (either side's points); returns the count written into a malloc'ed *out, or -1. */
-static int contact_points(const rd_sim *s, const live_index *ix, int i, int below, double (**out)[2])
+static int contact_points(const rd_sim *s, const live_index *ix, int i, int below,
+                          double (**out)[2])
 {
     int cap = 64, n = 0;
-    double (*p)[2] = malloc((size_t)cap * sizeof *p);
+    double(*p)[2] = malloc((size_t)cap * sizeof *p);
     if (!p) return -1;
     for (int k = 0; k < live_count(s, ix, i); k++) {
         const rd_pair *pr = live_pair(s, ix, i, k);
@@ -182,8 +216,11 @@ static int contact_points(const rd_sim *s, const live_index *ix, int i, int belo
             for (int j = s->pt0[sd->owner]; j < s->pt0[sd->owner + 1]; j++) {
                 if (!(s->pstate[sd->state0 + j - s->pt0[sd->owner]] & RD_PT_ACTIVE)) continue;
                 if (n == cap) {
-                    double (*t)[2] = realloc(p, (size_t)(cap *= 2) * sizeof *p);
-                    if (!t) { free(p); return -1; }
+                    double(*t)[2] = realloc(p, (size_t)(cap *= 2) * sizeof *p);
+                    if (!t) {
+                        free(p);
+                        return -1;
+                    }
                     p = t;
                 }
                 double x[3];
@@ -206,7 +243,8 @@ static int resting_on(const rd_sim *s, const live_index *ix, int i)
     for (int k = 0; k < live_count(s, ix, i); k++) {
         const rd_pair *pr = live_pair(s, ix, i, k);
         int other = pr->a == i ? pr->b : pr->b == i ? pr->a : -1;
-        if (other >= 0 && s->x[other][2] < s->x[i][2] && (best < 0 || s->x[other][2] < s->x[best][2]))
+        if (other >= 0 && s->x[other][2] < s->x[i][2] &&
+            (best < 0 || s->x[other][2] < s->x[best][2]))
             best = other;
     }
     return best;
@@ -225,11 +263,17 @@ static double top_of(const rd_sim *s, int j)
 static int shadow(const rd_sim *s, int j, double (**out)[2])
 {
     int n = s->vert0[j + 1] - s->vert0[j];
-    double (*p)[2] = malloc((size_t)(n > 0 ? n : 1) * sizeof *p);
+    double(*p)[2] = malloc((size_t)(n > 0 ? n : 1) * sizeof *p);
     if (!p) return -1;
-    for (int v = 0; v < n; v++) { p[v][0] = s->wv[s->vert0[j] + v][0]; p[v][1] = s->wv[s->vert0[j] + v][1]; }
+    for (int v = 0; v < n; v++) {
+        p[v][0] = s->wv[s->vert0[j] + v][0];
+        p[v][1] = s->wv[s->vert0[j] + v][1];
+    }
     n = hull2d(p, n);
-    if (n < 0) { free(p); return -1; }
+    if (n < 0) {
+        free(p);
+        return -1;
+    }
     *out = p;
     return n;
 }
@@ -242,7 +286,8 @@ static double cross_at(const double *a, const double *b, const double *p)
 /* Clip polygon p (n points) by the convex counter-clockwise polygon c (m >= 3 points)
  * (Sutherland-Hodgman): the part of p inside c, into out (room for n + m points at each
  * stage, scratch tmp the same size); returns its size. */
-static int clip_convex(const double (*p)[2], int n, const double (*c)[2], int m, double (*out)[2], double (*tmp)[2])
+static int clip_convex(const double (*p)[2], int n, const double (*c)[2], int m, double (*out)[2],
+                       double (*tmp)[2])
 {
     memcpy(out, p, (size_t)n * sizeof *out);
     for (int e = 0; e < m && n > 0; e++) {
@@ -252,10 +297,16 @@ static int clip_convex(const double (*p)[2], int n, const double (*c)[2], int m,
         for (int i = 0; i < n; i++) {
             const double *u = tmp[i], *v = tmp[(i + 1) % n];
             double du = cross_at(a, b, u), dv = cross_at(a, b, v);
-            if (du >= 0) { out[k][0] = u[0]; out[k][1] = u[1]; k++; }
+            if (du >= 0) {
+                out[k][0] = u[0];
+                out[k][1] = u[1];
+                k++;
+            }
             if ((du >= 0) != (dv >= 0)) {
                 double t = du / (du - dv);
-                out[k][0] = u[0] + t * (v[0] - u[0]); out[k][1] = u[1] + t * (v[1] - u[1]); k++;
+                out[k][0] = u[0] + t * (v[0] - u[0]);
+                out[k][1] = u[1] + t * (v[1] - u[1]);
+                k++;
             }
         }
         n = k;
@@ -272,23 +323,32 @@ static int supports(const rd_sim *s, int j, double zmin)
 
 /* Append to pts (n used) the base polygon clipped by the plan shadow of supporting body j,
  * and, after settling, the points pressed against j. Returns the new count (-1 without memory). */
-static int add_support(rd_sim *s, const live_index *ix, int i, int j, const double (*base)[2], int nb, double (**pts)[2], int n)
+static int add_support(rd_sim *s, const live_index *ix, int i, int j, const double (*base)[2],
+                       int nb, double (**pts)[2], int n)
 {
-    double (*c)[2] = NULL, (*q)[2] = NULL;
+    double(*c)[2] = NULL, (*q)[2] = NULL;
     int m = shadow(s, j, &c);
     if (m < 0) return -1;
     int cap = n + 2 * (nb + m) + 1;
-    double (*all)[2] = realloc(*pts, (size_t)cap * sizeof *all);
-    if (!all || !(q = malloc((size_t)(nb + m + 1) * sizeof *q))) { free(c); if (all) *pts = all; return -1; }
+    double(*all)[2] = realloc(*pts, (size_t)cap * sizeof *all);
+    if (!all || !(q = malloc((size_t)(nb + m + 1) * sizeof *q))) {
+        free(c);
+        if (all) *pts = all;
+        return -1;
+    }
     *pts = all;
-    if (m >= 3) n += clip_convex(base, nb, (const double (*)[2])c, m, all + n, q);
-    free(c); free(q);
+    if (m >= 3) n += clip_convex(base, nb, (const double(*)[2])c, m, all + n, q);
+    free(c);
+    free(q);
     if (!(s->sc.settle.enabled || s->restored)) return n;
-    double (*pr)[2] = NULL;
+    double(*pr)[2] = NULL;
     int np = contact_points(s, ix, i, j, &pr);
     if (np < 0) return -1;
     all = realloc(*pts, (size_t)(n + np + 1) * sizeof *all);
-    if (!all) { free(pr); return -1; }
+    if (!all) {
+        free(pr);
+        return -1;
+    }
     *pts = all;
     memcpy(all + n, pr, (size_t)np * sizeof *pr);
     free(pr);
@@ -308,7 +368,7 @@ static void support_polygon(rd_sim *s, const live_index *ix, int k, double zmin)
 {
     int i = s->free_body[k], nv = s->vert0[i + 1] - s->vert0[i], n = 0, nbase = 0, nsup = 0;
     rd_watch *w = &s->watch[k];
-    double (*pts)[2] = NULL, (*base)[2] = malloc((size_t)(nv > 0 ? nv : 1) * sizeof *base);
+    double(*pts)[2] = NULL, (*base)[2] = malloc((size_t)(nv > 0 ? nv : 1) * sizeof *base);
     for (int v = s->vert0[i]; base && v < s->vert0[i + 1]; v++)
         if (rd_dot(w->seat, s->wv[v]) <= w->seat[3] + RD_SUPPORT_BAND) {
             base[nbase][0] = s->wv[v][0];
@@ -319,13 +379,19 @@ static void support_polygon(rd_sim *s, const live_index *ix, int k, double zmin)
     for (int l = 0; base && nbase > 0 && n >= 0 && l < live_count(s, ix, i); l++) {
         const rd_pair *pr = live_pair(s, ix, i, l);
         int j = pr->a == i ? pr->b : pr->b == i ? pr->a : -1;
-        if (j >= 0 && supports(s, j, zmin)) { n = add_support(s, ix, i, j, (const double (*)[2])base, nbase, &pts, n); nsup++; }
+        if (j >= 0 && supports(s, j, zmin)) {
+            n = add_support(s, ix, i, j, (const double(*)[2])base, nbase, &pts, n);
+            nsup++;
+        }
     }
     if (base && nbase > 0 && n >= 0 && !nsup && w->rests_on >= 0)
-        n = add_support(s, ix, i, w->rests_on, (const double (*)[2])base, nbase, &pts, n);
+        n = add_support(s, ix, i, w->rests_on, (const double(*)[2])base, nbase, &pts, n);
     else if (base && nbase > 0 && n >= 0 && !nsup) {
         pts = realloc(pts, (size_t)nbase * sizeof *pts);
-        if (pts) { memcpy(pts, base, (size_t)nbase * sizeof *pts); n = nbase; }
+        if (pts) {
+            memcpy(pts, base, (size_t)nbase * sizeof *pts);
+            n = nbase;
+        }
     }
     free(base);
     free(w->support);
@@ -395,16 +461,20 @@ static int passed_into(rd_sim *s, int i, int j, const char *stage, const char *h
         /* it had overturned (the verdict stands) and, falling, crossed the other body edge to
            edge where no subcontact point guards (a documented limit): the run ends there */
         rd_event_add(s, s->t, k, "lost", 0.0);
-        snprintf(s->errmsg, sizeof s->errmsg, "body '%s' overturned, then fell through body '%s' "
+        snprintf(s->errmsg, sizeof s->errmsg,
+                 "body '%s' overturned, then fell through body '%s' "
                  "at t = %.6g s (edges crossing between subcontact points): the run stops there",
                  s->sc.bodies[i].name, s->sc.bodies[j].name, s->t);
         s->status = RD_STATUS_OVERTURNED;
         return 1;
     }
-    snprintf(s->errmsg, sizeof s->errmsg, "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): %s: the "
-             "contact stiffness (stiffness-normal %g Pa/m) is far too soft for the load, or the bodies crossed "
-             "edge to edge between subcontact points (give their faces a finer spacing)", s->sc.bodies[i].name,
-             s->sc.bodies[j].name, stage, s->t, s->nsteps_all, how, s->sc.contact.kn);
+    snprintf(
+        s->errmsg, sizeof s->errmsg,
+        "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): %s: the "
+        "contact stiffness (stiffness-normal %g Pa/m) is far too soft for the load, or the bodies crossed "
+        "edge to edge between subcontact points (give their faces a finer spacing)",
+        s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t, s->nsteps_all, how,
+        s->sc.contact.kn);
     s->status = RD_STATUS_PENETRATED;
     return 1;
 }
@@ -430,12 +500,15 @@ static int sunk(rd_sim *s, const rd_side *sd, const char *stage)
     const int o = sd->owner, t = sd->other;
     double deepest = 0;
     for (int pt = s->pt0[o], st = sd->state0; pt < s->pt0[o + 1]; pt++, st++)
-        if (s->pstate[st] & RD_PT_ACTIVE) deepest = fmax(deepest, -s->pj[st][1]); /* pj[1]: minus the depth */
+        if (s->pstate[st] & RD_PT_ACTIVE)
+            deepest = fmax(deepest, -s->pj[st][1]); /* pj[1]: minus the depth */
     double r = rd_monitor_inradius(s, t);
     if (!(deepest > r)) return 0;
     char how[RD_NAME_MAX + 160];
-    snprintf(how, sizeof how, "a subcontact point of '%s' is %.3g m deep in it, past its middle (%.3g m from its "
-             "centre of mass to its nearest face)", s->sc.bodies[o].name, deepest, r);
+    snprintf(how, sizeof how,
+             "a subcontact point of '%s' is %.3g m deep in it, past its middle (%.3g m from its "
+             "centre of mass to its nearest face)",
+             s->sc.bodies[o].name, deepest, r);
     return passed_into(s, o, t, stage, how);
 }
 
@@ -446,7 +519,8 @@ int rd_monitor_escape(rd_sim *s)
         int i = s->free_body[k];
         const double *c = s->x[i];
         rd_watch *w = &s->watch[k];
-        if (c[2] < s->floor_z - s->poly[i].radius && !s->settling && (w->over_once || w->rest_area > 0)) {
+        if (c[2] < s->floor_z - s->poly[i].radius && !s->settling &&
+            (w->over_once || w->rest_area > 0)) {
             if (!w->lost) {
                 rd_event_add(s, s->t, k, "lost", s->floor_z - c[2]);
                 if (!w->over_once) w->sum->overturn_time = s->t; /* fell off its support */
@@ -454,9 +528,10 @@ int rd_monitor_escape(rd_sim *s)
             w->lost = 1;
             fell_over(s, k);
         } else if (c[2] < s->floor_z - s->poly[i].radius) {
-            snprintf(s->errmsg, sizeof s->errmsg, "body '%s' left the scene%s at t = %.6g s (step %ld): its centre of "
-                     "mass is %.3g m below the lowest fixed body (nothing holds it)", s->sc.bodies[i].name, stage,
-                     s->t, s->nsteps_all, s->floor_z - c[2]);
+            snprintf(s->errmsg, sizeof s->errmsg,
+                     "body '%s' left the scene%s at t = %.6g s (step %ld): its centre of "
+                     "mass is %.3g m below the lowest fixed body (nothing holds it)",
+                     s->sc.bodies[i].name, stage, s->t, s->nsteps_all, s->floor_z - c[2]);
             s->status = RD_STATUS_LOST;
             return 1;
         }
@@ -477,16 +552,20 @@ int rd_monitor_escape(rd_sim *s)
  * base: its lowest point alone is not the base. */
 static void seat_plane(const rd_sim *s, int i, int j, const double low[3], double seat[4])
 {
-    const double up[3] = {0, 0, 1};
+    const double up[3] = { 0, 0, 1 };
     const double *n = up;
     double best = INFINITY;
     for (int f = j >= 0 ? s->face0[j] : 0; j >= 0 && f < s->face0[j + 1]; f++) {
         double gap = fabs(rd_dot(s->wn[f], low) - s->wd[f]);
-        if (s->wn[f][2] >= 0.5 && gap < best) { best = gap; n = s->wn[f]; }
+        if (s->wn[f][2] >= 0.5 && gap < best) {
+            best = gap;
+            n = s->wn[f];
+        }
     }
     rd_copy3(n, seat);
     seat[3] = INFINITY;
-    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) seat[3] = fmin(seat[3], rd_dot(n, s->wv[v]));
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
+        seat[3] = fmin(seat[3], rd_dot(n, s->wv[v]));
 }
 
 /* Rest state of body k: support polygon, height of the centre of mass, tipping angles. */
@@ -504,11 +583,11 @@ static void watch_init(rd_sim *s, const live_index *ix, int k)
     seat_plane(s, i, w->rests_on, low, w->seat);
     support_polygon(s, ix, k, zmin);
     const double zs = seat_z(w, s->x[i][0], s->x[i][1]);
-    double b[3] = {s->x[i][0], s->x[i][1], zs}, d[3] = {0, 0, zs - s->x[i][2]};
+    double b[3] = { s->x[i][0], s->x[i][1], zs }, d[3] = { 0, 0, zs - s->x[i][2] };
     rd_copy3(b, w->base_ref);
     rd_mat_tvec(s->R[i], d, w->base_local);
     w->rest_area = w->area;
-    rd_mat_tvec(s->R[i], (double[3]){0, 0, 1}, w->zb);
+    rd_mat_tvec(s->R[i], (double[3]){ 0, 0, 1 }, w->zb);
     snprintf(w->sum->name, sizeof w->sum->name, "%s", s->sc.bodies[i].name);
     w->sum->overturn_time = -1;
     double amin = M_PI / 2;
@@ -517,7 +596,10 @@ static void watch_init(rd_sim *s, const live_index *ix, int k)
         w->prec[d][0] = psi;
         w->prec[d][1] = a;
         w->prec[d][2] = s->sc.gravity * tan(a);
-        if (a < amin) { amin = a; w->sum->alpha_min_direction = psi; }
+        if (a < amin) {
+            amin = a;
+            w->sum->alpha_min_direction = psi;
+        }
     }
     w->alpha_min = amin;
     w->sum->alpha_min = amin;
@@ -527,7 +609,8 @@ static void watch_init(rd_sim *s, const live_index *ix, int k)
     w->key_ratio_gate = 0;
     const rd_overturn_def *o = &s->sc.overturn;
     w->cos_over_gate = o->kind == RD_OVERTURN_TILT_RATIO ? cos(fmin(o->value * amin, M_PI))
-                     : o->kind == RD_OVERTURN_ANGLE ? cos(o->value) : -2;
+                       : o->kind == RD_OVERTURN_ANGLE    ? cos(o->value)
+                                                         : -2;
 }
 
 /* Tilt (rad) of body k, its lean direction (unit, horizontal) and the tilt vector axis*angle. */
@@ -543,11 +626,13 @@ static double tilt_of(const double z[3], double lean[2], double tv[3])
 {
     double hz = hypot(z[0], z[1]);
     double tilt = atan2(hz, z[2]);
-    lean[0] = hz > 0 ? z[0] / hz : 1; lean[1] = hz > 0 ? z[1] / hz : 0;
-    tv[0] = -lean[1] * tilt; tv[1] = lean[0] * tilt; tv[2] = 0;
+    lean[0] = hz > 0 ? z[0] / hz : 1;
+    lean[1] = hz > 0 ? z[1] / hz : 0;
+    tv[0] = -lean[1] * tilt;
+    tv[1] = lean[0] * tilt;
+    tv[2] = 0;
     return tilt;
 }
-
 
 void rd_monitor_rest(rd_sim *s)
 {
@@ -599,8 +684,8 @@ static int criterion_met(const rd_sim *s, int k, const double z[3])
         double b[6]; /* grown by the broad-phase margin */
         rd_pairs_box_now(s, w->rests_on, b);
         double grow = o->value * s->poly[i].radius;
-        return s->x[i][0] < b[0] - grow || s->x[i][0] > b[3] + grow ||
-               s->x[i][1] < b[1] - grow || s->x[i][1] > b[4] + grow;
+        return s->x[i][0] < b[0] - grow || s->x[i][0] > b[3] + grow || s->x[i][1] < b[1] - grow ||
+               s->x[i][1] > b[4] + grow;
     }
     if (z[2] >= w->cos_over_gate) return 0; /* below the smallest possible threshold */
     if (o->kind == RD_OVERTURN_ANGLE) return 1;
@@ -631,7 +716,10 @@ static void track_extremes(rd_sim *s, int k, const double z[3])
     double key = tilt_key(z);
     if (key > w->key_max || key > w->key_ratio_gate) {
         double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
-        if (key > w->key_max) { sum->max_tilt = tilt; w->key_max = key; }
+        if (key > w->key_max) {
+            sum->max_tilt = tilt;
+            w->key_max = key;
+        }
         double ratio = tilt / alpha_toward(w, lean[0], lean[1]);
         if (ratio > sum->max_tilt_ratio) {
             sum->max_tilt_ratio = ratio;
@@ -661,14 +749,18 @@ static void watch_step(rd_sim *s, int k)
     w->down = z[2] < cos(RD_FALLEN_TILT);
 
     if (w->rest_area > 0 && !w->uplifted && w->area < RD_UPLIFT_AREA_ON * w->rest_area) {
-        w->uplifted = 1; sum->uplifted = 1;
+        w->uplifted = 1;
+        sum->uplifted = 1;
         double lean[2], tv[3], tilt = tilt_of(z, lean, tv);
         rd_event_add(s, s->t, k, "uplift", tilt);
-        if (w->rock_peak < RD_ROCK_MIN * w->alpha_min && rd_norm(tv) > 0) { /* first rocking: its axis */
+        if (w->rock_peak < RD_ROCK_MIN * w->alpha_min &&
+            rd_norm(tv) > 0) { /* first rocking: its axis */
             double n = rd_norm(tv);
-            w->rock_axis[0] = tv[0] / n; w->rock_axis[1] = tv[1] / n;
+            w->rock_axis[0] = tv[0] / n;
+            w->rock_axis[1] = tv[1] / n;
         }
-    } else if (w->uplifted && w->area >= RD_UPLIFT_AREA_OFF * w->rest_area && 1 - z[2] < 5e-7 * w->alpha_min * w->alpha_min) {
+    } else if (w->uplifted && w->area >= RD_UPLIFT_AREA_OFF * w->rest_area &&
+               1 - z[2] < 5e-7 * w->alpha_min * w->alpha_min) {
         w->uplifted = 0;
     }
     /* signed rocking about the first rocking axis, sine-scaled: (z x e_z) . axis */
@@ -683,7 +775,10 @@ static void watch_step(rd_sim *s, int k)
     w->rock_prev = r;
 
     int sliding = w->nactive > 0 && w->nslip == w->nactive;
-    if (sliding && !w->sliding) { rd_event_add(s, s->t, k, "slip", sum->max_slide); sum->slid = 1; }
+    if (sliding && !w->sliding) {
+        rd_event_add(s, s->t, k, "slip", sum->max_slide);
+        sum->slid = 1;
+    }
     w->sliding = sliding;
 
     int over = criterion_met(s, k, z);
@@ -706,7 +801,8 @@ int rd_monitor_all_fallen(const rd_sim *s)
 {
     for (int k = 0; k < s->nfree; k++) {
         rd_overturn_kind kind = s->sc.overturn.kind;
-        int down = s->watch[k].down || ((kind == RD_OVERTURN_HEIGHT || kind == RD_OVERTURN_OFF) && s->watch[k].over);
+        int down = s->watch[k].down ||
+                   ((kind == RD_OVERTURN_HEIGHT || kind == RD_OVERTURN_OFF) && s->watch[k].over);
         if (!down) return 0;
     }
     return s->nfree > 0;
@@ -736,20 +832,21 @@ void rd_monitor_rotation(rd_sim *s, int k, double out[3])
 {
     rd_watch *w = &s->watch[k];
     int i = s->free_body[k];
-    double qc[4] = {w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3]}, dq[4];
-    rd_quat_mul(s->q[i], qc, dq);                 /* rotation since rest, ground frame */
+    double qc[4] = { w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3] }, dq[4];
+    rd_quat_mul(s->q[i], qc, dq); /* rotation since rest, ground frame */
     double tn = hypot(dq[0], dq[3]);
-    double qt[4] = {tn > 0 ? dq[0] / tn : 1, 0, 0, tn > 0 ? dq[3] / tn : 0};
-    double qti[4] = {qt[0], 0, 0, -qt[3]}, qs[4];
-    rd_quat_mul(dq, qti, qs);                     /* swing = rotation * twist^-1 */
-    if (qs[0] < 0) for (int j = 0; j < 4; j++) qs[j] = -qs[j];
+    double qt[4] = { tn > 0 ? dq[0] / tn : 1, 0, 0, tn > 0 ? dq[3] / tn : 0 };
+    double qti[4] = { qt[0], 0, 0, -qt[3] }, qs[4];
+    rd_quat_mul(dq, qti, qs); /* swing = rotation * twist^-1 */
+    if (qs[0] < 0)
+        for (int j = 0; j < 4; j++) qs[j] = -qs[j];
     double sn = sqrt(qs[1] * qs[1] + qs[2] * qs[2] + qs[3] * qs[3]);
     double ang = 2 * atan2(sn, qs[0]), f = sn > 0 ? ang / sn : 2.0;
-    double phi[2] = {f * qs[1], f * qs[2]};       /* horizontal swing rotation vector */
-    double dir = s->sc.motion.horizontal.direction, d[2] = {cos(dir), sin(dir)};
-    out[0] = -phi[0] * d[1] + phi[1] * d[0];      /* about z x d */
-    out[1] = -(phi[0] * d[0] + phi[1] * d[1]);    /* about -d */
-    double tw = 2 * atan2(qt[3], qt[0]);          /* in (-2 pi, 2 pi] */
+    double phi[2] = { f * qs[1], f * qs[2] }; /* horizontal swing rotation vector */
+    double dir = s->sc.motion.horizontal.direction, d[2] = { cos(dir), sin(dir) };
+    out[0] = -phi[0] * d[1] + phi[1] * d[0];   /* about z x d */
+    out[1] = -(phi[0] * d[0] + phi[1] * d[1]); /* about -d */
+    double tw = 2 * atan2(qt[3], qt[0]);       /* in (-2 pi, 2 pi] */
     double prev = w->twist_prev;
     while (tw - prev > M_PI) tw -= 2 * M_PI;
     while (tw - prev < -M_PI) tw += 2 * M_PI;

@@ -59,14 +59,22 @@ static void take_sample(rd_sim *s, rd_sample *smp)
         for (int j = 0; j < 3; j++) lb[j] /= s->inertia[i][j];
         rd_mat_vec(s->R[i], lb, ang + 3 * k);
         memcpy(quat + 4 * k, s->q[i], 4 * sizeof(double));
-        double qc[4] = {s->watch[k].q_ref[0], -s->watch[k].q_ref[1], -s->watch[k].q_ref[2], -s->watch[k].q_ref[3]}, dq[4], z[3];
+        double qc[4] = { s->watch[k].q_ref[0], -s->watch[k].q_ref[1], -s->watch[k].q_ref[2],
+                         -s->watch[k].q_ref[3] },
+               dq[4], z[3];
         rd_quat_mul(s->q[i], qc, dq);
-        rd_quat_rotate(dq, (double[3]){0, 0, 1}, z);
+        rd_quat_rotate(dq, (double[3]){ 0, 0, 1 }, z);
         tilt[k] = atan2(hypot(z[0], z[1]), z[2]);
         rd_monitor_rotation(s, k, rot + 3 * k);
     }
-    *smp = (rd_sample){.time = s->t, .nbodies = nf, .position = pos, .quaternion = quat,
-                       .velocity = vel, .angular_velocity = ang, .tilt = tilt, .rotation = rot};
+    *smp = (rd_sample){ .time = s->t,
+                        .nbodies = nf,
+                        .position = pos,
+                        .quaternion = quat,
+                        .velocity = vel,
+                        .angular_velocity = ang,
+                        .tilt = tilt,
+                        .rotation = rot };
     memcpy(smp->ground_acc, s->ag, sizeof s->ag);
     memcpy(smp->ground_vel, s->vg, sizeof s->vg);
     memcpy(smp->ground_disp, s->dg, sizeof s->dg);
@@ -81,7 +89,8 @@ int rd_observe_sample(rd_sim *s)
     take_sample(s, &smp);
     for (; rc == 0 && s->nevent_written < s->nevent; s->nevent_written++)
         for (int k = 0; k < s->nobs && rc == 0; k++)
-            if (s->obs[k].event) rc = s->obs[k].event(s->obs[k].user, s, &s->event[s->nevent_written], &err);
+            if (s->obs[k].event)
+                rc = s->obs[k].event(s->obs[k].user, s, &s->event[s->nevent_written], &err);
     for (int k = 0; k < s->nobs && rc == 0; k++) {
         const rd_observer *o = &s->obs[k];
         if (o->sample && (o->every <= 1 || s->nsample % o->every == 0))
@@ -96,7 +105,8 @@ void rd_observe_end(rd_sim *s)
 {
     rd_summary sum;
     rd_error err;
-    if (rd_observe_sample(s)) return; /* the final state, which also completes the rotation extremes */
+    if (rd_observe_sample(s))
+        return; /* the final state, which also completes the rotation extremes */
     rd_sim_summary(s, &sum);
     for (int k = 0; k < s->nobs; k++)
         if (s->obs[k].end && s->obs[k].end(s->obs[k].user, s, &sum, &err)) {
@@ -125,11 +135,14 @@ const rd_scenario *rd_sim_scenario(const rd_sim *s) { return &s->sc; }
 /* Extents of body i along ground x, y, z in orientation q. */
 static void extents(const rd_poly *p, const double q[4], double size[3])
 {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (int v = 0; v < p->nv; v++) {
         double r[3];
         rd_quat_rotate(q, p->v[v], r);
-        for (int j = 0; j < 3; j++) { lo[j] = rd_min(lo[j], r[j]); hi[j] = rd_max(hi[j], r[j]); }
+        for (int j = 0; j < 3; j++) {
+            lo[j] = rd_min(lo[j], r[j]);
+            hi[j] = rd_max(hi[j], r[j]);
+        }
     }
     for (int j = 0; j < 3; j++) size[j] = p->nv ? hi[j] - lo[j] : 0;
 }
@@ -149,11 +162,16 @@ void rd_sim_body_info(const rd_sim *s, int k, rd_body_info *out)
     const rd_poly *p = &s->poly[i];
     const rd_watch *w = k < s->nfree ? &s->watch[k] : NULL;
     int rested = w && s->rested;
-    *out = (rd_body_info){.name = s->sc.bodies[i].name, .fixed = s->fixed[i], .mass = s->mass[i],
-                          .alpha = rested ? w->sum->alpha : 0, .nvert = p->nv,
-                          .vertices = &p->v[0][0], .ntri = p->ntri, .triangles = &p->tri[0][0],
-                          .nprec = rested ? RD_NPREC : 0,
-                          .precariousness = w ? &w->prec[0][0] : NULL};
+    *out = (rd_body_info){ .name = s->sc.bodies[i].name,
+                           .fixed = s->fixed[i],
+                           .mass = s->mass[i],
+                           .alpha = rested ? w->sum->alpha : 0,
+                           .nvert = p->nv,
+                           .vertices = &p->v[0][0],
+                           .ntri = p->ntri,
+                           .triangles = &p->tri[0][0],
+                           .nprec = rested ? RD_NPREC : 0,
+                           .precariousness = w ? &w->prec[0][0] : NULL };
     memcpy(out->position, s->x[i], sizeof out->position);
     memcpy(out->quaternion, s->q[i], sizeof out->quaternion);
     memcpy(out->inertia, s->inertia[i], sizeof out->inertia);

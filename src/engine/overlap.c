@@ -22,13 +22,14 @@
 /* The deepest vertex of body i inside convex body j, m (<= 0: none inside). */
 static double vertex_depth(const rd_sim *s, int i, int j)
 {
-    const double (*wn)[3] = s->wn + s->face0[j];
+    const double(*wn)[3] = s->wn + s->face0[j];
     const double *wd = s->wd + s->face0[j];
     const int nf = s->poly[j].nf;
     double deepest = -INFINITY;
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) {
         double depth = INFINITY; /* below every plane of j by at least this */
-        for (int f = 0; f < nf && depth > deepest; f++) depth = fmin(depth, wd[f] - rd_dot(wn[f], s->wv[v]));
+        for (int f = 0; f < nf && depth > deepest; f++)
+            depth = fmin(depth, wd[f] - rd_dot(wn[f], s->wv[v]));
         deepest = fmax(deepest, depth);
     }
     return deepest;
@@ -37,8 +38,8 @@ static double vertex_depth(const rd_sim *s, int i, int j)
 /* How far the projections of bodies i and j on the unit axis n overlap, m (< 0: apart). */
 static double axis_overlap(const rd_sim *s, int i, int j, const double n[3])
 {
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    const int body[2] = {i, j};
+    double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY, -INFINITY };
+    const int body[2] = { i, j };
     for (int k = 0; k < 2; k++)
         for (int v = s->vert0[body[k]]; v < s->vert0[body[k] + 1]; v++) {
             double x = rd_dot(n, s->wv[v]);
@@ -52,17 +53,20 @@ static double axis_overlap(const rd_sim *s, int i, int j, const double n[3])
 static int edge_directions(const rd_sim *s, int i, double (*dir)[3], int cap)
 {
     const rd_poly *p = &s->poly[i];
-    const double (*v)[3] = s->wv + s->vert0[i];
+    const double(*v)[3] = s->wv + s->vert0[i];
     int n = 0;
     for (int f = 0; f < p->nf; f++)
         for (int k = 0; k < p->flen[f]; k++) {
             const int *ix = p->fidx + p->fstart[f];
             const double *a = v[ix[k]], *b = v[ix[(k + 1) % p->flen[f]]];
-            double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, c[3], len = rd_norm(e);
+            double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, c[3], len = rd_norm(e);
             if (!(len > 0)) continue;
             for (int q = 0; q < 3; q++) e[q] /= len;
             int seen = 0;
-            for (int m = 0; m < n && !seen; m++) { rd_cross(dir[m], e, c); seen = rd_norm(c) < RD_PARALLEL_SIN; }
+            for (int m = 0; m < n && !seen; m++) {
+                rd_cross(dir[m], e, c);
+                seen = rd_norm(c) < RD_PARALLEL_SIN;
+            }
             if (!seen && n < cap) rd_copy3(e, dir[n++]);
         }
     return n;
@@ -74,7 +78,7 @@ static int edge_directions(const rd_sim *s, int i, double (*dir)[3], int cap)
 static double convex_depth(const rd_sim *s, int i, int j, double stop)
 {
     double depth = INFINITY;
-    const int body[2] = {i, j};
+    const int body[2] = { i, j };
     for (int k = 0; k < 2 && depth > stop; k++)
         for (int f = 0; f < s->poly[body[k]].nf && depth > stop; f++)
             depth = fmin(depth, axis_overlap(s, i, j, s->wn[s->face0[body[k]] + f]));
@@ -109,7 +113,8 @@ double rd_overlap_depth(const rd_sim *s, int i, int j) { return depth_to(s, i, j
 void rd_overlap_note(rd_sim *s, int i, int j)
 {
     if (s->fixed[i] && s->fixed[j]) return; /* fixed bodies may be built into each other */
-    const double least = fmax(RD_OVERLAP_FRACTION * fmin(s->poly[i].radius, s->poly[j].radius), s->overlap);
+    const double least =
+        fmax(RD_OVERLAP_FRACTION * fmin(s->poly[i].radius, s->poly[j].radius), s->overlap);
     double d = depth_to(s, i, j, least);
     if (d > least) {
         s->overlap = d;
@@ -121,8 +126,10 @@ void rd_overlap_note(rd_sim *s, int i, int j)
 int rd_overlap_refuse(const rd_sim *s, rd_error *err)
 {
     if (!(s->overlap > 0)) return 0;
-    const rd_body_def *a = &s->sc.bodies[s->overlap_pair[0]], *b = &s->sc.bodies[s->overlap_pair[1]];
-    return rd_error_set(err, "%s: blocks '%s' and '%s' overlap by %.4g m as placed: the contact springs "
+    const rd_body_def *a = &s->sc.bodies[s->overlap_pair[0]],
+                      *b = &s->sc.bodies[s->overlap_pair[1]];
+    return rd_error_set(err,
+                        "%s: blocks '%s' and '%s' overlap by %.4g m as placed: the contact springs "
                         "would throw them apart (place one on the other with seat-on, or move it)",
                         s->sc.file, a->name, b->name, s->overlap);
 }
@@ -147,10 +154,13 @@ int rd_overlap_at_rest(rd_sim *s)
         double most = RD_REST_OVERLAP_FRACTION * fmin(s->poly[a].radius, s->poly[b].radius);
         double d = depth_to(s, a, b, most);
         if (!(d > most)) continue;
-        snprintf(s->errmsg, sizeof s->errmsg, "at rest, blocks '%s' and '%s' interpenetrate by %.3g mm, more than "
-                 "%.3g mm (1 %% of the smaller radius): their joint is far too soft for the load on it "
-                 "(stiffness-normal about %.2g times stiffer would keep it within that), or they were placed "
-                 "into each other", s->sc.bodies[a].name, s->sc.bodies[b].name, 1e3 * d, 1e3 * most, d / most);
+        snprintf(
+            s->errmsg, sizeof s->errmsg,
+            "at rest, blocks '%s' and '%s' interpenetrate by %.3g mm, more than "
+            "%.3g mm (1 %% of the smaller radius): their joint is far too soft for the load on it "
+            "(stiffness-normal about %.2g times stiffer would keep it within that), or they were placed "
+            "into each other",
+            s->sc.bodies[a].name, s->sc.bodies[b].name, 1e3 * d, 1e3 * most, d / most);
         s->status = RD_STATUS_PENETRATED;
         return 1;
     }

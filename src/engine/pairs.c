@@ -61,7 +61,8 @@ static int hash_grow(rd_sim *s)
     if (!k) return -1;
     for (int i = 0; i < cap; i++) k[i] = -1;
     free(s->hkey);
-    s->hkey = k; s->hcap = cap;
+    s->hkey = k;
+    s->hcap = cap;
     for (int p = 0; p < s->npair; p++) {
         unsigned mask = (unsigned)cap - 1, h = hash_pair(s->pair[p].a, s->pair[p].b) & mask;
         while (k[h] >= 0) h = (h + 1) & mask;
@@ -79,7 +80,8 @@ static int reserve(void **arr, int *cap, int n, size_t size)
     void *a = realloc(*arr, (size_t)c * size);
     if (!a) return -1;
     memset((char *)a + (size_t)*cap * size, 0, (size_t)(c - *cap) * size);
-    *arr = a; *cap = c;
+    *arr = a;
+    *cap = c;
     return 0;
 }
 
@@ -90,10 +92,10 @@ static int faces_within(const rd_sim *s, int o, int t)
 {
     const rd_poly *po = &s->poly[o], *pt = &s->poly[t];
     const double tol = RD_FACE_TOL * (1.0 + fmax(po->radius, pt->radius));
-    const double (*wn)[3] = s->wn + s->face0[t];
+    const double(*wn)[3] = s->wn + s->face0[t];
     const double *wd = s->wd + s->face0[t];
     int lies = 0;
-    const double (*v)[3] = s->wv + s->vert0[o];
+    const double(*v)[3] = s->wv + s->vert0[o];
     for (int f = 0; f < po->nf; f++) {
         const int *ix = po->fidx + po->fstart[f];
         for (int g = 0; g < pt->nf; g++) {
@@ -111,7 +113,8 @@ static int faces_within(const rd_sim *s, int o, int t)
 static int pair_create(rd_sim *s, int a, int b)
 {
     /* a body's points are tested against the other body only if that one is convex */
-    int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b], pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
+    int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b],
+        pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
     /* Where two free bodies both carry points, each set integrates its own face over the
        joint and the two at half weight carry the shared area (3DEC's averaging), when both
        faces cover it. A body lying on the other within that one's face (a statue on a wider
@@ -125,15 +128,18 @@ static int pair_create(rd_sim *s, int a, int b)
        later keep both sets. */
     if (pa && pb) {
         int wa = faces_within(s, a, b), wb = faces_within(s, b, a);
-        if (wa && !wb) pb = 0;
-        else if (wb && !wa) pa = 0;
+        if (wa && !wb)
+            pb = 0;
+        else if (wb && !wa)
+            pa = 0;
     }
     int ns = (pa ? s->pt0[a + 1] - s->pt0[a] : 0) + (pb ? s->pt0[b + 1] - s->pt0[b] : 0);
     int nf = (pa ? s->cf0[a + 1] - s->cf0[a] : 0) + (pb ? s->cf0[b + 1] - s->cf0[b] : 0);
     if ((s->npair + 1) * 2 > s->hcap && hash_grow(s)) return -1;
     if (reserve((void **)&s->pair, &s->cap_pair, s->npair + 1, sizeof *s->pair) ||
         reserve((void **)&s->fs, &s->cap_state, s->nstate + ns, sizeof *s->fs) ||
-        reserve((void **)&s->face_nactive, &s->cap_face_state, s->nface_state + nf, sizeof *s->face_nactive))
+        reserve((void **)&s->face_nactive, &s->cap_face_state, s->nface_state + nf,
+                sizeof *s->face_nactive))
         return -1;
     /* edge subcontacts (edge.c): the other body's edges, where both bodies are convex */
     const int ends = RD_EDGE_SLOTS;
@@ -159,29 +165,40 @@ static int pair_create(rd_sim *s, int a, int b)
     int p = s->npair++;
     rd_pair *pr = &s->pair[p];
     memset(pr, 0, sizeof *pr);
-    pr->a = a; pr->b = b; pr->seen = -1; pr->joint = joint;
+    pr->a = a;
+    pr->b = b;
+    pr->seen = -1;
+    pr->joint = joint;
     double w = (pa && pb) ? 0.5 : 1.0;
     for (int k = 0; k < 2; k++) {
         int o = k ? b : a;
         if (!(k ? pb : pa)) continue;
         rd_side *sd = &pr->side[pr->nside++];
-        sd->owner = o; sd->other = k ? a : b; sd->weight = w;
-        sd->state0 = s->nstate; sd->face0 = s->nface_state;
+        sd->owner = o;
+        sd->other = k ? a : b;
+        sd->weight = w;
+        sd->state0 = s->nstate;
+        sd->face0 = s->nface_state;
         s->nstate += s->pt0[o + 1] - s->pt0[o];
         s->nface_state += s->cf0[o + 1] - s->cf0[o];
-        sd->edge0 = s->nedge_state; sd->nedge = k ? eb : ea;
+        sd->edge0 = s->nedge_state;
+        sd->nedge = k ? eb : ea;
         s->nedge_state += ends * sd->nedge;
         double area = 0;
         int npt = 0; /* points before merging (merge.c) */
-        for (int q = s->pt0[o]; q < s->pt0[o + 1]; q++) { area += s->pa[q]; npt += s->pmult[q]; }
+        for (int q = s->pt0[o]; q < s->pt0[o + 1]; q++) {
+            area += s->pa[q];
+            npt += s->pmult[q];
+        }
         sd->edge_area = area / npt;
     }
     /* bonds (cohesion, tension) exist only in joints closed before shaking starts */
     const rd_joint *jt = &s->joint[joint];
     unsigned char init = ((jt->cohesion > 0 || jt->tension > 0) && !s->shaking) ? RD_PT_BONDED : 0;
     for (int k = s->nstate - ns; k < s->nstate; k++) s->pstate[k] = init;
-    pr->m_eff = s->fixed[a] ? s->mass[b] : s->fixed[b] ? s->mass[a]
-                            : s->mass[a] * s->mass[b] / (s->mass[a] + s->mass[b]);
+    pr->m_eff = s->fixed[a]   ? s->mass[b]
+                : s->fixed[b] ? s->mass[a]
+                              : s->mass[a] * s->mass[b] / (s->mass[a] + s->mass[b]);
     unsigned mask = (unsigned)s->hcap - 1, h = hash_pair(a, b) & mask;
     while (s->hkey[h] >= 0) h = (h + 1) & mask;
     s->hkey[h] = p;
@@ -207,7 +224,7 @@ static void vertex_now(const rd_sim *s, int i, int v, double w[3])
 static void hull_box(const rd_sim *s, int i, double (*store)[3], double bx[6])
 {
     int stale = !s->convex[i] && !s->fixed[i];
-    double b[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY}; /* a local: the
+    double b[6] = { INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY }; /* a local: the
                                                        stores into store cannot alias it */
     for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) {
         int v = s->hv[e];
@@ -218,9 +235,15 @@ static void hull_box(const rd_sim *s, int i, double (*store)[3], double bx[6])
             vertex_now(s, i, v, to);
             w = to;
         }
-        for (int k = 0; k < 3; k++) { b[k] = rd_min(b[k], w[k]); b[k + 3] = rd_max(b[k + 3], w[k]); }
+        for (int k = 0; k < 3; k++) {
+            b[k] = rd_min(b[k], w[k]);
+            b[k + 3] = rd_max(b[k + 3], w[k]);
+        }
     }
-    for (int k = 0; k < 3; k++) { bx[k] = b[k] - s->margin; bx[k + 3] = b[k + 3] + s->margin; }
+    for (int k = 0; k < 3; k++) {
+        bx[k] = b[k] - s->margin;
+        bx[k + 3] = b[k + 3] + s->margin;
+    }
 }
 
 /* Rebuild body i's box in its current pose. */
@@ -247,15 +270,19 @@ double rd_pairs_drift(const rd_sim *s, int i, const double p[7])
     double dx2 = 0, dm2 = 0, dp2 = 0, x2 = 0, x02 = 0;
     for (int k = 0; k < 3; k++) {
         double d = s->x[i][k] - p[k];
-        dx2 += d * d; x2 += s->x[i][k] * s->x[i][k]; x02 += p[k] * p[k];
+        dx2 += d * d;
+        x2 += s->x[i][k] * s->x[i][k];
+        x02 += p[k] * p[k];
     }
     for (int k = 0; k < 4; k++) {
         double m = s->q[i][k] - p[3 + k], a = s->q[i][k] + p[3 + k];
-        dm2 += m * m; dp2 += a * a;
+        dm2 += m * m;
+        dp2 += a * a;
     }
     if (dx2 == 0 && dm2 == 0) return 0; /* NaN (never built) fails this test */
     double rho = s->box_rho[i];
-    return sqrt(dx2) + 2.0 * rho * sqrt(rd_min(dm2, dp2)) + RD_BOX_ROUNDOFF * (sqrt(x2) + sqrt(x02) + rho);
+    return sqrt(dx2) + 2.0 * rho * sqrt(rd_min(dm2, dp2)) +
+           RD_BOX_ROUNDOFF * (sqrt(x2) + sqrt(x02) + rho);
 }
 
 /* Body i's box (hull vertices grown by the margin) in its current pose, m: the stored one when
@@ -264,7 +291,10 @@ double rd_pairs_drift(const rd_sim *s, int i, const double p[7])
  * criterion). */
 void rd_pairs_box_now(const rd_sim *s, int i, double bx[6])
 {
-    if (s->box_drift[i] == 0) { memcpy(bx, s->aabb[i], 6 * sizeof *bx); return; }
+    if (s->box_drift[i] == 0) {
+        memcpy(bx, s->aabb[i], 6 * sizeof *bx);
+        return;
+    }
     hull_box(s, i, NULL, bx);
 }
 
@@ -274,12 +304,16 @@ void rd_pairs_box_now(const rd_sim *s, int i, double bx[6])
  * without the hull vertices, and the same until the box is built again (rd_sim.box_builds). */
 void rd_pairs_box_loose(const rd_sim *s, int i, double bx[6])
 {
-    for (int k = 0; k < 3; k++) { bx[k] = s->aabb[i][k] - s->margin; bx[k + 3] = s->aabb[i][k + 3] + s->margin; }
+    for (int k = 0; k < 3; k++) {
+        bx[k] = s->aabb[i][k] - s->margin;
+        bx[k + 3] = s->aabb[i][k + 3] + s->margin;
+    }
 }
 
 static int boxes_overlap(const double *p, const double *q)
 {
-    return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];
+    return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] &&
+           q[2] <= p[5];
 }
 
 /* Do the exact boxes of bodies i and j overlap this step? Each exact box B (its hull vertices
@@ -313,7 +347,8 @@ static int touch(rd_sim *s, int i, int j)
     int a = i < j ? i : j, b = i < j ? j : i;
     int p = hash_find(s, a, b);
     if (p < 0) {
-        int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b], pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
+        int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b],
+            pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
         if (!pa && !pb) return 0; /* cannot touch (e.g. two meshes: not modelled) */
         if ((p = pair_create(s, a, b)) < 0) return -1;
     }
@@ -327,7 +362,9 @@ static int sweep(rd_sim *s)
     int ax = s->sweep_axis, n = s->nb, *o = s->order;
     for (int i = 1; i < n; i++) /* insertion sort: the order barely changes between steps */
         for (int j = i; j > 0 && s->aabb[o[j]][ax] < s->aabb[o[j - 1]][ax]; j--) {
-            int t = o[j]; o[j] = o[j - 1]; o[j - 1] = t;
+            int t = o[j];
+            o[j] = o[j - 1];
+            o[j - 1] = t;
         }
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n && s->aabb[o[j]][ax] <= s->aabb[o[i]][ax + 3]; j++)
@@ -366,16 +403,21 @@ int rd_pairs_init(rd_sim *s, rd_error *err)
     s->box_rho = calloc((size_t)s->nb, sizeof *s->box_rho);
     s->box_drift = calloc((size_t)s->nb, sizeof *s->box_drift);
     s->box_builds = calloc((size_t)s->nb, sizeof *s->box_builds);
-    if (!s->order || !s->aabb || !s->box_pose || !s->box_rho || !s->box_drift || !s->box_builds || hash_grow(s))
+    if (!s->order || !s->aabb || !s->box_pose || !s->box_rho || !s->box_drift || !s->box_builds ||
+        hash_grow(s))
         return rd_error_set(err, "out of memory");
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, rmin = INFINITY;
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY },
+           rmin = INFINITY;
     for (int i = 0; i < s->nb; i++) {
         for (int k = 0; k < 7; k++) s->box_pose[i][k] = NAN; /* built at the first update */
         for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++)
             s->box_rho[i] = rd_max(s->box_rho[i], rd_norm(s->poly[i].v[s->hv[e] - s->vert0[i]]));
         s->order[i] = i;
         rmin = rd_min(rmin, s->poly[i].radius);
-        for (int k = 0; k < 3; k++) { lo[k] = rd_min(lo[k], s->x[i][k]); hi[k] = rd_max(hi[k], s->x[i][k]); }
+        for (int k = 0; k < 3; k++) {
+            lo[k] = rd_min(lo[k], s->x[i][k]);
+            hi[k] = rd_max(hi[k], s->x[i][k]);
+        }
     }
     s->sweep_axis = 0; /* sweep along the axis the bodies spread most (a column: z) */
     for (int k = 1; k < 3; k++)

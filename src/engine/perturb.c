@@ -21,11 +21,14 @@
 
 static int check(const rd_perturb_def *d, rd_error *err)
 {
-    const char *bad = d->seed != floor(d->seed) || d->seed < 0 || d->seed > 4294967295.0 ? "seed must be a whole number in [0, 2^32)"
-                    : !(d->remove >= 0 && d->remove < 1) ? "remove must be in [0, 1)"
-                    : !(d->raise >= 0) ? "raise must be >= 0"
-                    : !(d->raise_fraction >= 0 && d->raise_fraction <= 1) ? "raise-fraction must be in [0, 1]"
-                    : !(d->scatter >= 0) ? "scatter must be >= 0" : NULL;
+    const char *bad = d->seed != floor(d->seed) || d->seed < 0 || d->seed > 4294967295.0
+                          ? "seed must be a whole number in [0, 2^32)"
+                      : !(d->remove >= 0 && d->remove < 1) ? "remove must be in [0, 1)"
+                      : !(d->raise >= 0)                   ? "raise must be >= 0"
+                      : !(d->raise_fraction >= 0 && d->raise_fraction <= 1)
+                          ? "raise-fraction must be in [0, 1]"
+                      : !(d->scatter >= 0) ? "scatter must be >= 0"
+                                           : NULL;
     return bad ? rd_error_set(err, "contact interface-perturbation: %s", bad) : 0;
 }
 
@@ -57,8 +60,10 @@ static int choose_removed(rd_sim *s, int i, gsl_rng *r, char *keep, int *idx, rd
         keep[idx[k]] = 0;
     }
     if (n >= 3 && n - nrem < 3)
-        return rd_error_set(err, "contact interface-perturbation: remove %g leaves %d subcontact points "
-                                 "on block '%s' (at least 3 needed)", d->remove, n - nrem, s->sc.bodies[i].name);
+        return rd_error_set(err,
+                            "contact interface-perturbation: remove %g leaves %d subcontact points "
+                            "on block '%s' (at least 3 needed)",
+                            d->remove, n - nrem, s->sc.bodies[i].name);
     return 0;
 }
 
@@ -70,7 +75,8 @@ static void shift_points(rd_sim *s, int i, gsl_rng *r, const char *keep)
     for (int c = s->cf0[i]; c < s->cf0[i + 1]; c++) {
         const double *n = s->poly[i].fn[s->cf_face[c]]; /* outward, body frame */
         for (int j = s->cf_pt0[c]; j < s->cf_pt0[c + 1]; j++) {
-            double u = gsl_rng_uniform(r), h = d->raise * gsl_rng_uniform(r), z = gsl_ran_ugaussian(r);
+            double u = gsl_rng_uniform(r), h = d->raise * gsl_rng_uniform(r),
+                   z = gsl_ran_ugaussian(r);
             if (!keep[j]) continue;
             if (u < d->raise_fraction)
                 for (int k = 0; k < 3; k++) s->pl[j][k] -= h * n[k];
@@ -106,7 +112,8 @@ int rd_perturb_points(rd_sim *s, rd_error *err)
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     char *keep = malloc((size_t)s->npts + 1);
     int *idx = malloc(((size_t)s->npts + 1) * sizeof *idx), rc = 0;
-    if (!r || !keep || !idx) rc = rd_error_set(err, "out of memory");
+    if (!r || !keep || !idx)
+        rc = rd_error_set(err, "out of memory");
     else {
         gsl_rng_set(r, (unsigned long)d->seed);
         for (int j = 0; j < s->npts; j++) keep[j] = 1;

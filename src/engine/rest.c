@@ -11,8 +11,8 @@
 #include "engine/sim.h"
 #include "base/vec.h"
 
-#define RD_REST_KE 1e-7  /* kinetic energy / (m g r): about 1 mm/s for r = 0.5 m */
-#define RD_REST_HOLD 0.1 /* s the rest must last */
+#define RD_REST_KE   1e-7 /* kinetic energy / (m g r): about 1 mm/s for r = 0.5 m */
+#define RD_REST_HOLD 0.1  /* s the rest must last */
 
 /* Time after which the tail may stop the run, s. */
 static double tail_start(const rd_sim *s)
@@ -34,20 +34,20 @@ double rd_rest_end(rd_sim *s)
 static int body_at_rest(const rd_sim *s, int k)
 {
     int i = s->free_body[k];
-    double ke = 0.5 * s->mass[i] * rd_dot(s->v[i], s->v[i]) + 0.5 * rd_dot(s->w[i], s->L[i]); /* J */
-    return !s->watch[k].uplifted && ke <= RD_REST_KE * s->mass[i] * s->sc.gravity * s->poly[i].radius;
+    double ke =
+        0.5 * s->mass[i] * rd_dot(s->v[i], s->v[i]) + 0.5 * rd_dot(s->w[i], s->L[i]); /* J */
+    return !s->watch[k].uplifted &&
+           ke <= RD_REST_KE * s->mass[i] * s->sc.gravity * s->poly[i].radius;
 }
 
 int rd_rest_reached(rd_sim *s)
 {
-    if (!(s->sc.tail > 0) || s->t < tail_start(s))
-        return 0;
+    if (!(s->sc.tail > 0) || s->t < tail_start(s)) return 0;
     for (int k = 0; k < s->nfree; k++)
         if (!body_at_rest(s, k)) {
             s->rest_since = -1.0;
             return 0;
         }
-    if (s->rest_since < 0)
-        s->rest_since = s->t;
+    if (s->rest_since < 0) s->rest_since = s->t;
     return s->t - s->rest_since >= RD_REST_HOLD;
 }

@@ -25,7 +25,7 @@
 static void initial_orientation(const double rot[3], const double axes[9], double q[4])
 {
     double qx[4], qy[4], qz[4], qa[4], t1[4], t2[4];
-    double ex[3] = {rot[0], 0, 0}, ey[3] = {0, rot[1], 0}, ez[3] = {0, 0, rot[2]};
+    double ex[3] = { rot[0], 0, 0 }, ey[3] = { 0, rot[1], 0 }, ez[3] = { 0, 0, rot[2] };
     rd_quat_from_rotvec(ex, qx);
     rd_quat_from_rotvec(ey, qy);
     rd_quat_from_rotvec(ez, qz);
@@ -57,8 +57,9 @@ static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
 {
     switch (d->shape) {
     case RD_SHAPE_BRICK: return rd_poly_brick(p, d->size, err);
-    case RD_SHAPE_PRISM: return rd_poly_prism(p, d->sides, d->radius, d->radius_top, d->size[2], err);
-    case RD_SHAPE_HULL: return rd_poly_hull(p, (const double (*)[3])d->verts, d->nverts, err);
+    case RD_SHAPE_PRISM:
+        return rd_poly_prism(p, d->sides, d->radius, d->radius_top, d->size[2], err);
+    case RD_SHAPE_HULL: return rd_poly_hull(p, (const double(*)[3])d->verts, d->nverts, err);
     case RD_SHAPE_MESH: return mesh_shape(d, p, err);
     }
     return rd_error_set(err, "unknown shape");
@@ -79,7 +80,8 @@ static int build_body(rd_sim *s, int i, rd_error *err)
         return rd_error_set(err, "%s:%d: block '%s': %s", s->sc.file, d->line, d->name, msg);
     }
     rd_poly_to_frame(&s->poly[i], &m);
-    double density = d->mass > 0 ? d->mass / m.volume : (d->density > 0 ? d->density : s->sc.density);
+    double density =
+        d->mass > 0 ? d->mass / m.volume : (d->density > 0 ? d->density : s->sc.density);
     s->mass[i] = density * m.volume;
     for (int k = 0; k < 3; k++) s->inertia[i][k] = density * m.principal[k];
     initial_orientation(d->rotation, m.axes, s->q[i]);
@@ -95,7 +97,8 @@ static int build_body(rd_sim *s, int i, rd_error *err)
     if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES && s->sc.contact.model == RD_CONTACT_SURFACE)
         s->convex[i] = 0;
     if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES)
-        return rd_error_set(err, "%s:%d: block '%s' has %d faces; a convex body may have at most %d",
+        return rd_error_set(err,
+                            "%s:%d: block '%s' has %d faces; a convex body may have at most %d",
                             s->sc.file, d->line, d->name, s->poly[i].nf, RD_MAX_PLANES);
     return 0;
 }
@@ -125,7 +128,7 @@ static void face_tangents(const double u[3], double t[2][3])
 {
     const double a0 = fabs(u[0]), a1 = fabs(u[1]), a2 = fabs(u[2]);
     const int a = a0 <= a1 && a0 <= a2 ? 0 : a1 <= a2 ? 1 : 2;
-    double e[3] = {0, 0, 0};
+    double e[3] = { 0, 0, 0 };
     e[a] = 1;
     rd_cross(e, u, t[0]);
     double n = rd_norm(t[0]);
@@ -139,9 +142,10 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
     if (!ALLOC(s->poly, nb) || !ALLOC(s->x, nb) || !ALLOC(s->q, nb) || !ALLOC(s->v, nb) ||
         !ALLOC(s->L, nb) || !ALLOC(s->w, nb) || !ALLOC(s->R, nb) || !ALLOC(s->mass, nb) ||
         !ALLOC(s->inertia, nb) || !ALLOC(s->fixed, nb) || !ALLOC(s->f, nb) || !ALLOC(s->tq, nb) ||
-        !ALLOC(s->v_old, nb) || !ALLOC(s->L_old, nb) || !ALLOC(s->df_local, nb) || !ALLOC(s->free_body, nb) ||
-        !ALLOC(s->free_of, nb) || !ALLOC(s->vert0, nb + 1) || !ALLOC(s->face0, nb + 1) ||
-        !ALLOC(s->convex, nb) || !ALLOC(s->impacting, nb) || !ALLOC(s->impacting_next, nb))
+        !ALLOC(s->v_old, nb) || !ALLOC(s->L_old, nb) || !ALLOC(s->df_local, nb) ||
+        !ALLOC(s->free_body, nb) || !ALLOC(s->free_of, nb) || !ALLOC(s->vert0, nb + 1) ||
+        !ALLOC(s->face0, nb + 1) || !ALLOC(s->convex, nb) || !ALLOC(s->impacting, nb) ||
+        !ALLOC(s->impacting_next, nb))
         return rd_error_set(err, "out of memory");
     for (int i = 0; i < nb; i++) {
         if (build_body(s, i, err)) return -1;
@@ -161,7 +165,8 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
     }
     /* a fixed body's face tangents, the axes of contact.c's face law (placed: it never moves) */
     for (int i = 0; i < nb; i++)
-        for (int f = s->face0[i]; s->fixed[i] && f < s->face0[i + 1]; f++) face_tangents(s->wn[f], s->wt[f]);
+        for (int f = s->face0[i]; s->fixed[i] && f < s->face0[i + 1]; f++)
+            face_tangents(s->wn[f], s->wt[f]);
     return 0;
 }
 
@@ -169,10 +174,16 @@ int rd_setup_bodies(rd_sim *s, rd_error *err)
 static void face_box(const rd_sim *s, int i, int f, double tol, double lo[3], double hi[3])
 {
     const rd_poly *p = &s->poly[i];
-    for (int k = 0; k < 3; k++) { lo[k] = INFINITY; hi[k] = -INFINITY; }
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
     for (int k = 0; k < p->flen[f]; k++) {
         const double *v = s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]];
-        for (int c = 0; c < 3; c++) { lo[c] = fmin(lo[c], v[c] - tol); hi[c] = fmax(hi[c], v[c] + tol); }
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fmin(lo[c], v[c] - tol);
+            hi[c] = fmax(hi[c], v[c] + tol);
+        }
     }
 }
 
@@ -196,7 +207,8 @@ static int by_lo(const void *a, const void *b)
 
 static int boxes_meet(const double *p, const double *q)
 {
-    return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];
+    return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] &&
+           q[2] <= p[5];
 }
 
 /* Sort and sweep along x, O(n log n + pairs): testing each face against every other body's
@@ -205,20 +217,23 @@ static int boxes_meet(const double *p, const double *q)
 static int find_neighbours(const rd_sim *s, double tol, neighbours *nb)
 {
     int n = s->nb;
-    double (*box)[6] = malloc((size_t)n * sizeof *box);
+    double(*box)[6] = malloc((size_t)n * sizeof *box);
     box_key *key = malloc((size_t)n * sizeof *key);
     int *fill = calloc((size_t)n + 1, sizeof *fill);
     nb->start = calloc((size_t)n + 1, sizeof *nb->start);
     nb->list = NULL;
     int rc = box && key && fill && nb->start ? 0 : -1;
     for (int i = 0; !rc && i < n; i++) {
-        for (int k = 0; k < 3; k++) { box[i][k] = INFINITY; box[i][k + 3] = -INFINITY; }
+        for (int k = 0; k < 3; k++) {
+            box[i][k] = INFINITY;
+            box[i][k + 3] = -INFINITY;
+        }
         for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
             for (int k = 0; k < 3; k++) {
                 box[i][k] = fmin(box[i][k], s->wv[v][k] - tol);
                 box[i][k + 3] = fmax(box[i][k + 3], s->wv[v][k] + tol);
             }
-        key[i] = (box_key){box[i][0], i};
+        key[i] = (box_key){ box[i][0], i };
     }
     if (!rc) qsort(key, (size_t)n, sizeof *key, by_lo);
     for (int pass = 0; !rc && pass < 2; pass++) { /* count, then fill */
@@ -226,8 +241,13 @@ static int find_neighbours(const rd_sim *s, double tol, neighbours *nb)
             for (int b = a + 1; b < n && key[b].lo <= box[key[a].body][3]; b++) {
                 int i = key[a].body, j = key[b].body;
                 if (!boxes_meet(box[i], box[j])) continue;
-                if (pass) { nb->list[fill[i]++] = j; nb->list[fill[j]++] = i; }
-                else { nb->start[i + 1]++; nb->start[j + 1]++; }
+                if (pass) {
+                    nb->list[fill[i]++] = j;
+                    nb->list[fill[j]++] = i;
+                } else {
+                    nb->start[i + 1]++;
+                    nb->start[j + 1]++;
+                }
             }
         if (pass) break;
         for (int i = 0; i < n; i++) nb->start[i + 1] += nb->start[i];
@@ -286,7 +306,8 @@ static int face_role(const rd_sim *s, const neighbours *nb, int i, int f, const 
     if (face_touches(s, nb, i, f, RD_FACE_TOL * (1.0 + p->radius))) return RD_FACE_BED;
     if (n[2] >= -0.5) return late;
     double fmin_z = INFINITY;
-    for (int k = 0; k < p->flen[f]; k++) fmin_z = fmin(fmin_z, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]][2]);
+    for (int k = 0; k < p->flen[f]; k++)
+        fmin_z = fmin(fmin_z, s->wv[s->vert0[i] + p->fidx[p->fstart[f] + k]][2]);
     return fmin_z <= zr[0] + 0.2 * (zr[1] - zr[0]) ? RD_FACE_BED : late;
 }
 
@@ -294,7 +315,8 @@ static int face_role(const rd_sim *s, const neighbours *nb, int i, int f, const 
  * setup quadratic in the triangles of a scanned mesh, 39 s for 160k triangles). */
 static void body_z_range(const rd_sim *s, int i, double zr[2])
 {
-    zr[0] = INFINITY; zr[1] = -INFINITY;
+    zr[0] = INFINITY;
+    zr[1] = -INFINITY;
     for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) {
         zr[0] = fmin(zr[0], s->wv[v][2]);
         zr[1] = fmax(zr[1], s->wv[v][2]);
@@ -310,9 +332,10 @@ static double face_width(const rd_poly *p, int f)
     double w = INFINITY;
     for (int k = 0; k < n; k++) {
         const double *a = p->v[ix[k]], *b = p->v[ix[(k + 1) % n]];
-        double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, len = rd_norm(e), far = 0;
+        double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, len = rd_norm(e), far = 0;
         for (int j = 0; j < n; j++) {
-            double d[3] = {p->v[ix[j]][0] - a[0], p->v[ix[j]][1] - a[1], p->v[ix[j]][2] - a[2]}, c[3];
+            double d[3] = { p->v[ix[j]][0] - a[0], p->v[ix[j]][1] - a[1], p->v[ix[j]][2] - a[2] },
+                   c[3];
             rd_cross(e, d, c);
             far = fmax(far, rd_norm(c) / len);
         }
@@ -342,23 +365,34 @@ static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, r
     for (int pass = 0; pass < 2; pass++) {
         npts = ncf = 0;
         for (int i = 0; i < nb; i++) {
-            s->pt0[i] = npts; s->cf0[i] = ncf;
+            s->pt0[i] = npts;
+            s->cf0[i] = ncf;
             for (int f = 0; f < s->poly[i].nf; f++) {
                 int role = cand[s->face0[i] + f];
                 if (role == RD_FACE_NONE) continue;
                 double h = role == RD_FACE_BED ? spacing[i] : 0.0;
-                int n = pass ? rd_poly_face_points(&s->poly[i], f, h, s->pl + npts, s->pa + npts, s->npts - npts)
+                int n = pass ? rd_poly_face_points(&s->poly[i], f, h, s->pl + npts, s->pa + npts,
+                                                   s->npts - npts)
                              : rd_poly_face_points(&s->poly[i], f, h, NULL, NULL, 0);
-                if (n < 0) return rd_error_set(err, "cannot mesh face %d of body '%s'", f, s->sc.bodies[i].name);
-                if (pass) { s->cf_face[ncf] = f; s->cf_pt0[ncf] = npts; s->cf_facing[ncf] = role == RD_FACE_LATE; }
-                npts += n; ncf++;
+                if (n < 0)
+                    return rd_error_set(err, "cannot mesh face %d of body '%s'", f,
+                                        s->sc.bodies[i].name);
+                if (pass) {
+                    s->cf_face[ncf] = f;
+                    s->cf_pt0[ncf] = npts;
+                    s->cf_facing[ncf] = role == RD_FACE_LATE;
+                }
+                npts += n;
+                ncf++;
             }
         }
-        s->pt0[nb] = npts; s->cf0[nb] = ncf;
+        s->pt0[nb] = npts;
+        s->cf0[nb] = ncf;
         if (!pass) {
-            s->npts = npts; s->ncf = ncf;
-            if (!ALLOC(s->pl, npts) || !ALLOC(s->pa, npts) || !ALLOC(s->cf_face, ncf) || !ALLOC(s->cf_pt0, ncf + 1) ||
-                !ALLOC(s->cf_facing, ncf))
+            s->npts = npts;
+            s->ncf = ncf;
+            if (!ALLOC(s->pl, npts) || !ALLOC(s->pa, npts) || !ALLOC(s->cf_face, ncf) ||
+                !ALLOC(s->cf_pt0, ncf + 1) || !ALLOC(s->cf_facing, ncf))
                 return rd_error_set(err, "out of memory");
         }
     }
@@ -369,7 +403,8 @@ static int mesh_candidates(rd_sim *s, const char *cand, const double *spacing, r
 /* Refuse a scene whose subcontact points would exceed RD_POINT_BUDGET, naming the body with
  * the most (the bound counts before meshing: a spacing far below the faces' size would take
  * minutes to mesh and gigabytes to hold). */
-static int check_point_budget(const rd_sim *s, const char *cand, const double *spacing, rd_error *err)
+static int check_point_budget(const rd_sim *s, const char *cand, const double *spacing,
+                              rd_error *err)
 {
     double total = 0, most = -1;
     int big = 0;
@@ -378,19 +413,25 @@ static int check_point_budget(const rd_sim *s, const char *cand, const double *s
         for (int f = 0; f < s->poly[i].nf; f++) {
             int role = cand[s->face0[i] + f];
             if (role != RD_FACE_NONE)
-                n += rd_poly_face_points_bound(&s->poly[i], f, role == RD_FACE_BED ? spacing[i] : 0.0);
+                n += rd_poly_face_points_bound(&s->poly[i], f,
+                                               role == RD_FACE_BED ? spacing[i] : 0.0);
         }
         total += n;
-        if (n > most) { most = n; big = i; }
+        if (n > most) {
+            most = n;
+            big = i;
+        }
     }
     if (!(total > RD_POINT_BUDGET)) return 0;
     const rd_body_def *b = &s->sc.bodies[big];
     char at[48] = "on its faces' corners";
     if (spacing[big] > 0) snprintf(at, sizeof at, "at spacing %g m", spacing[big]);
-    return rd_error_set(err, "%s:%d: body '%s' would carry about %.3g subcontact points %s (the scene %.3g), "
-                             "more than the budget of %.0e; give a coarser 'contact property spacing', or "
-                             "auto or vertices",
-                        s->sc.file, b->line, b->name, most, at, total, RD_POINT_BUDGET);
+    return rd_error_set(
+        err,
+        "%s:%d: body '%s' would carry about %.3g subcontact points %s (the scene %.3g), "
+        "more than the budget of %.0e; give a coarser 'contact property spacing', or "
+        "auto or vertices",
+        s->sc.file, b->line, b->name, most, at, total, RD_POINT_BUDGET);
 }
 
 /* Subcontact points of every body, on its candidate faces (each face judged once). */
@@ -409,13 +450,16 @@ static int build_points(rd_sim *s, rd_error *err)
         for (int i = 0; i < s->nb; i++) {
             double zr[2];
             body_z_range(s, i, zr);
-            for (int f = 0; f < s->poly[i].nf; f++) cand[s->face0[i] + f] = (char)face_role(s, &nb, i, f, zr);
+            for (int f = 0; f < s->poly[i].nf; f++)
+                cand[s->face0[i] + f] = (char)face_role(s, &nb, i, f, zr);
         }
         for (int i = 0; i < s->nb; i++) spacing[i] = body_spacing(s, i, cand);
         for (int i = 0; i < s->nb; i++)
             for (int m = nb.start[i]; m < nb.start[i + 1]; m++)
                 if (nb.list[m] > i) rd_overlap_note(s, i, nb.list[m]);
-        rc = check_point_budget(s, cand, spacing, err) || mesh_candidates(s, cand, spacing, err) ? -1 : 0;
+        rc = check_point_budget(s, cand, spacing, err) || mesh_candidates(s, cand, spacing, err)
+                 ? -1
+                 : 0;
     }
     free(nb.start);
     free(nb.list);
@@ -463,7 +507,8 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     for (int i = 0; i < s->nb && !rc; i++) {
         char *u = use + s->vert0[i];
         rd_error e;
-        if (s->convex[i] || rd_poly_hull_marks(&s->poly[i], u, &e)) memset(u, 1, (size_t)s->poly[i].nv);
+        if (s->convex[i] || rd_poly_hull_marks(&s->poly[i], u, &e))
+            memset(u, 1, (size_t)s->poly[i].nv);
     }
     rc = rc || list_vertices(s, use, &s->hv0, &s->hv);
     if (!rc) memset(use, 0, (size_t)nv);
@@ -479,8 +524,8 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     }
     int ncv = rc ? 0 : s->cv0[s->nb];
     rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max) ||
-         !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS) || !ALLOC(s->cv_body, 3 * (size_t)ncv) ||
-         !ALLOC(s->cv_world, 3 * (size_t)ncv);
+         !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS) ||
+         !ALLOC(s->cv_body, 3 * (size_t)ncv) || !ALLOC(s->cv_world, 3 * (size_t)ncv);
     for (int i = 0; i < s->nb && !rc; i++)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++)
             for (int d = 0; d < 3; d++) {
@@ -493,7 +538,10 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
 
 /* A point's place (its coordinates) and index, sorted by place (bitwise: equal only when
  * identical), then index. No shared qsort context: builds may run in threads. */
-typedef struct place_key { double x[3]; int idx; } place_key;
+typedef struct place_key {
+    double x[3];
+    int idx;
+} place_key;
 static int by_place(const void *a, const void *b)
 {
     const place_key *p = a, *q = b;
@@ -506,7 +554,8 @@ static int by_place(const void *a, const void *b)
 static int share_points(rd_sim *s, rd_error *err)
 {
     int nmax = 1;
-    for (int i = 0; i < s->nb; i++) if (s->pt0[i + 1] - s->pt0[i] > nmax) nmax = s->pt0[i + 1] - s->pt0[i];
+    for (int i = 0; i < s->nb; i++)
+        if (s->pt0[i + 1] - s->pt0[i] > nmax) nmax = s->pt0[i + 1] - s->pt0[i];
     place_key *key = malloc((size_t)nmax * sizeof *key);
     if (!key || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax)) {
         free(key);
@@ -521,7 +570,8 @@ static int share_points(rd_sim *s, rd_error *err)
         qsort(key, (size_t)n, sizeof *key, by_place);
         for (int k = 0; k < n; k++) /* sorted by place, then index: a run's first is its least */
             s->pkin[key[k].idx] = k > 0 && !memcmp(key[k].x, key[k - 1].x, sizeof key[k].x)
-                                      ? s->pkin[key[k - 1].idx] : key[k].idx - p0;
+                                      ? s->pkin[key[k - 1].idx]
+                                      : key[k].idx - p0;
     }
     free(key);
     return 0;
@@ -534,7 +584,8 @@ static int face_vertices(rd_sim *s, rd_error *err)
     int n = 0;
     for (int i = 0; i < s->nb; i++)
         for (int cf = s->cf0[i]; cf < s->cf0[i + 1]; cf++) n += s->poly[i].flen[s->cf_face[cf]];
-    if (!ALLOC(s->cf_v0, s->ncf + 1) || !ALLOC(s->cf_v, n)) return rd_error_set(err, "out of memory");
+    if (!ALLOC(s->cf_v0, s->ncf + 1) || !ALLOC(s->cf_v, n))
+        return rd_error_set(err, "out of memory");
     n = 0;
     for (int i = 0; i < s->nb; i++) {
         const rd_poly *p = &s->poly[i];
@@ -542,7 +593,8 @@ static int face_vertices(rd_sim *s, rd_error *err)
             int f = s->cf_face[cf];
             s->cf_v0[cf] = n;
             for (int k = 0; k < p->flen[f]; k++)
-                s->cf_v[n++] = 2 * RD_MASK_WORDS * s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
+                s->cf_v[n++] =
+                    2 * RD_MASK_WORDS * s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
         }
     }
     s->cf_v0[s->ncf] = n;
@@ -552,9 +604,9 @@ static int face_vertices(rd_sim *s, rd_error *err)
 int rd_setup_contacts(rd_sim *s, rd_error *err)
 {
     if (rd_joints_init(s, err)) return -1;
-    if (build_points(s, err) || build_step_vertices(s, err) || rd_edge_init(s, err) || rd_perturb_points(s, err) ||
-        rd_merge_points(s, err) || face_vertices(s, err) || share_points(s, err) || rd_pairs_init(s, err) ||
-        rd_surface_init(s, err))
+    if (build_points(s, err) || build_step_vertices(s, err) || rd_edge_init(s, err) ||
+        rd_perturb_points(s, err) || rd_merge_points(s, err) || face_vertices(s, err) ||
+        share_points(s, err) || rd_pairs_init(s, err) || rd_surface_init(s, err))
         return -1;
     return 0;
 }

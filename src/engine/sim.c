@@ -50,7 +50,9 @@ static void forces_external(rd_sim *s)
     }
     for (int k = 0; k < s->nfree; k++) {
         rd_watch *w = &s->watch[k];
-        w->area = 0; w->nactive = 0; w->nslip = 0;
+        w->area = 0;
+        w->nactive = 0;
+        w->nslip = 0;
     }
 }
 
@@ -63,15 +65,22 @@ static void damping_local(rd_sim *s, double alpha, int account)
         if (s->fixed[i]) continue;
         double *prev = s->df_local[i];
         for (int k = 0; k < 3; k++) {
-            double df = -alpha * fabs(s->f[i][k]) * (s->v[i][k] > 0 ? 1.0 : s->v[i][k] < 0 ? -1.0 : 0.0);
-            double dm = -alpha * fabs(s->tq[i][k]) * (s->w[i][k] > 0 ? 1.0 : s->w[i][k] < 0 ? -1.0 : 0.0);
+            double df = -alpha * fabs(s->f[i][k]) *
+                        (s->v[i][k] > 0   ? 1.0
+                         : s->v[i][k] < 0 ? -1.0
+                                          : 0.0);
+            double dm = -alpha * fabs(s->tq[i][k]) *
+                        (s->w[i][k] > 0   ? 1.0
+                         : s->w[i][k] < 0 ? -1.0
+                                          : 0.0);
             s->f[i][k] += df;
             s->tq[i][k] += dm;
             if (!account) continue;
             /* work over [t(n-1), t(n)]: the mean of the two steps' forces over v(n-1/2) dt, as
              * the kinetic energy sees it (energy.c); the force flips with the velocity, so the
              * step's own force alone left an error of first order */
-            s->e_damp -= 0.5 * ((prev[k] + df) * s->v[i][k] + (prev[3 + k] + dm) * s->w[i][k]) * s->dt;
+            s->e_damp -=
+                0.5 * ((prev[k] + df) * s->v[i][k] + (prev[3 + k] + dm) * s->w[i][k]) * s->dt;
             prev[k] = df;
             prev[3 + k] = dm;
         }
@@ -111,8 +120,8 @@ static int healthy(rd_sim *s)
         if (cause) {
             snprintf(s->errmsg, sizeof s->errmsg,
                      "unstable at step %ld (t = %.6g s): body '%s' %s; contact forces blew up — "
-                     "time step %.3g s, estimated stable limit %.3g s", s->step, s->t,
-                     s->sc.bodies[i].name, cause, s->dt, s->dt_crit);
+                     "time step %.3g s, estimated stable limit %.3g s",
+                     s->step, s->t, s->sc.bodies[i].name, cause, s->dt, s->dt_crit);
             rd_event_add(s, s->t, k, "unstable", speed);
             s->status = RD_STATUS_UNSTABLE;
             return 0;
@@ -146,7 +155,8 @@ static void escape_watch(rd_sim *s)
         u2 = fmax(u2, rd_dot(s->v[i], s->v[i]) + rd_dot(s->w[i], s->w[i]) * r * r);
     }
     s->escape_travel += 2.0 * sqrt(2.0 * u2) * s->dt;
-    if ((++s->nsteps_all & (RD_ESCAPE_EVERY - 1)) != 0 && s->escape_travel < s->escape_reach) return;
+    if ((++s->nsteps_all & (RD_ESCAPE_EVERY - 1)) != 0 && s->escape_travel < s->escape_reach)
+        return;
     s->escape_travel = 0;
     rd_monitor_escape(s);
 }
@@ -161,7 +171,8 @@ static void step_once(rd_sim *s)
     rd_bodies_refresh_step(s);
     forces_external(s);
     if (rd_contact_step(s)) {
-        snprintf(s->errmsg, sizeof s->errmsg, "out of memory growing the contact-pair cache at t = %g s", s->t);
+        snprintf(s->errmsg, sizeof s->errmsg,
+                 "out of memory growing the contact-pair cache at t = %g s", s->t);
         s->status = RD_STATUS_ERROR;
         return;
     }
@@ -180,7 +191,8 @@ static void step_once(rd_sim *s)
             rd_observe_sample(s);
             s->next_out += s->sc.output.interval;
         }
-        rd_joints_sample(s); /* every step: slip accumulates along the path, maxima between samples */
+        rd_joints_sample(
+            s); /* every step: slip accumulates along the path, maxima between samples */
         rd_history_step(s);
     }
     rd_integrate_drift(s);
@@ -227,9 +239,12 @@ static void settle(rd_sim *s)
 static void restore_or_settle(rd_sim *s)
 {
     if (s->restored) return;
-    if (s->sc.settle.enabled) settle(s);
-    else if (rd_contact_step(s)) s->status = RD_STATUS_ERROR;
-    else rd_contact_seat(s);
+    if (s->sc.settle.enabled)
+        settle(s);
+    else if (rd_contact_step(s))
+        s->status = RD_STATUS_ERROR;
+    else
+        rd_contact_seat(s);
 }
 
 /* Rotate body k about the edge of its support on the side it leans to. */
@@ -237,17 +252,21 @@ static void apply_tilt(rd_sim *s, int k, double tilt, double dir)
 {
     const rd_watch *w = &s->watch[k];
     int i = s->free_body[k];
-    double d[2] = {cos(dir), sin(dir)}, best = -INFINITY, piv[3] = {0, 0, w->base_ref[2]};
+    double d[2] = { cos(dir), sin(dir) }, best = -INFINITY, piv[3] = { 0, 0, w->base_ref[2] };
     int n = 0;
-    for (int j = 0; j < w->nsupport; j++) best = fmax(best, d[0] * w->support[j][0] + d[1] * w->support[j][1]);
+    for (int j = 0; j < w->nsupport; j++)
+        best = fmax(best, d[0] * w->support[j][0] + d[1] * w->support[j][1]);
     for (int j = 0; j < w->nsupport; j++)
         if (d[0] * w->support[j][0] + d[1] * w->support[j][1] > best - 1e-9 * (1 + fabs(best))) {
-            piv[0] += w->support[j][0]; piv[1] += w->support[j][1]; n++;
+            piv[0] += w->support[j][0];
+            piv[1] += w->support[j][1];
+            n++;
         }
-    piv[0] /= n; piv[1] /= n;
-    double axis[3] = {-d[1] * tilt, d[0] * tilt, 0}, Q[4], r[3], qn[4];
+    piv[0] /= n;
+    piv[1] /= n;
+    double axis[3] = { -d[1] * tilt, d[0] * tilt, 0 }, Q[4], r[3], qn[4];
     rd_quat_from_rotvec(axis, Q);
-    double rel[3] = {s->x[i][0] - piv[0], s->x[i][1] - piv[1], s->x[i][2] - piv[2]};
+    double rel[3] = { s->x[i][0] - piv[0], s->x[i][1] - piv[1], s->x[i][2] - piv[2] };
     rd_quat_rotate(Q, rel, r);
     for (int j = 0; j < 3; j++) s->x[i][j] = piv[j] + r[j];
     rd_quat_mul(Q, s->q[i], qn);
@@ -272,13 +291,16 @@ static void apply_initial_conditions(rd_sim *s)
 static int choose_timestep(rd_sim *s, rd_error *err)
 {
     s->dt_crit = rd_timestep_critical(s, s->dt_pair);
-    if (isnan(s->dt_crit)) return rd_error_set(err, "%s: out of memory for the time step bound", s->sc.file);
+    if (isnan(s->dt_crit))
+        return rd_error_set(err, "%s: out of memory for the time step bound", s->sc.file);
     const rd_timestep_def *ts = &s->sc.timestep;
     if (ts->kind == RD_TIMESTEP_FIXED) {
         if (ts->dt > s->dt_crit)
-            return rd_error_set(err, "%s: fixed time step %g s is above the stable limit %.4g s "
-                                     "(from mass, inertia and contact stiffness); use at most %.4g s "
-                                     "or 'model timestep auto'", s->sc.file, ts->dt, s->dt_crit, s->dt_crit);
+            return rd_error_set(err,
+                                "%s: fixed time step %g s is above the stable limit %.4g s "
+                                "(from mass, inertia and contact stiffness); use at most %.4g s "
+                                "or 'model timestep auto'",
+                                s->sc.file, ts->dt, s->dt_crit, s->dt_crit);
         s->dt = ts->dt;
     } else {
         s->dt = isfinite(s->dt_crit) ? ts->safety * s->dt_crit : s->sc.output.interval / 10.0;
@@ -297,10 +319,13 @@ static int check_initial_speeds(const rd_sim *s, rd_error *err)
         const rd_body_def *d = &s->sc.bodies[i];
         double r = s->poly[i].radius, v = rd_norm(d->velocity), w = rd_norm(d->angular_velocity);
         if (v * v + w * w * r * r <= RD_RUNAWAY_V2) continue;
-        return rd_error_set(err, "%s:%d: block '%s' starts at %.3g m/s (velocity %.3g m/s, angular velocity "
-                                 "%.3g rad/s at its radius %.3g m), above the %g m/s at which a run stops as a "
-                                 "runaway (docs/LIMITS.md)", s->sc.file, d->initial_line, d->name,
-                            sqrt(v * v + w * w * r * r), v, w, r, sqrt(RD_RUNAWAY_V2));
+        return rd_error_set(
+            err,
+            "%s:%d: block '%s' starts at %.3g m/s (velocity %.3g m/s, angular velocity "
+            "%.3g rad/s at its radius %.3g m), above the %g m/s at which a run stops as a "
+            "runaway (docs/LIMITS.md)",
+            s->sc.file, d->initial_line, d->name, sqrt(v * v + w * w * r * r), v, w, r,
+            sqrt(RD_RUNAWAY_V2));
     }
     return 0;
 }
@@ -323,16 +348,21 @@ static int check_budget(const rd_sim *s, rd_error *err)
     char at[16] = "";
     if (s->sc.solve_line > 0) snprintf(at, sizeof at, ":%d", s->sc.solve_line);
     if (s->sc.duration < s->dt)
-        return rd_error_set(err, "%s%s: the run of %.3g s is shorter than one time step (%.3g s): nothing would "
-                                 "be computed; give a longer 'model solve time'", s->sc.file, at, s->sc.duration, s->dt);
+        return rd_error_set(
+            err,
+            "%s%s: the run of %.3g s is shorter than one time step (%.3g s): nothing would "
+            "be computed; give a longer 'model solve time'",
+            s->sc.file, at, s->sc.duration, s->dt);
     double n = step_estimate(s);
     if (!(n > RD_STEP_BUDGET) || s->sc.force) return 0;
     char by[2 * RD_NAME_MAX + 64];
     rd_timestep_pair_text(s, by, sizeof by);
-    return rd_error_set(err, "%s%s: the run would take about %.3g steps (dt %.3g s%s, over %.4g s of settling, "
-                             "shaking and tail), more than the budget of %.0e; check the contact stiffness, "
-                             "masses and times, or force it ('model solve ... force on', or --force)",
-                        s->sc.file, at, n, s->dt, by, n * s->dt, RD_STEP_BUDGET);
+    return rd_error_set(
+        err,
+        "%s%s: the run would take about %.3g steps (dt %.3g s%s, over %.4g s of settling, "
+        "shaking and tail), more than the budget of %.0e; check the contact stiffness, "
+        "masses and times, or force it ('model solve ... force on', or --force)",
+        s->sc.file, at, n, s->dt, by, n * s->dt, RD_STEP_BUDGET);
 }
 
 /* Geometry, subcontact points, time step and budget: everything but the output file. */
@@ -340,7 +370,10 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
 {
     if (rd_scenario_validate(sc, err)) return NULL;
     rd_sim *s = calloc(1, sizeof *s);
-    if (!s) { rd_error_set(err, "out of memory"); return NULL; }
+    if (!s) {
+        rd_error_set(err, "out of memory");
+        return NULL;
+    }
     if (rd_scenario_copy(&s->sc, sc, err) || rd_setup_bodies(s, err) || rd_setup_contacts(s, err) ||
         check_initial_speeds(s, err) || choose_timestep(s, err) || check_budget(s, err) ||
         rd_history_init(s, err)) {
@@ -357,9 +390,14 @@ int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err)
 {
     rd_sim *s = sim_build(sc, err);
     if (!s) return -1;
-    if (info) *info = (rd_check_info){.dt = s->dt, .dt_critical = s->dt_crit, .steps = step_estimate(s), .npoints = s->npts};
-    int rc = rd_path_check_output(&s->sc, s->sc.output.path, s->sc.save_path, err) || rd_path_check_save(&s->sc, err)
-                 ? -1 : 0;
+    if (info)
+        *info = (rd_check_info){
+            .dt = s->dt, .dt_critical = s->dt_crit, .steps = step_estimate(s), .npoints = s->npts
+        };
+    int rc = rd_path_check_output(&s->sc, s->sc.output.path, s->sc.save_path, err) ||
+                     rd_path_check_save(&s->sc, err)
+                 ? -1
+                 : 0;
     rd_sim_free(s);
     return rc;
 }
@@ -367,7 +405,8 @@ int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err)
 rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err)
 {
     rd_sim *s = rd_sim_build_as_placed(sc, err);
-    if (s && !sc->restore_path[0] && rd_overlap_refuse(s, err)) { /* a checkpoint's state replaces the placement */
+    if (s && !sc->restore_path[0] &&
+        rd_overlap_refuse(s, err)) { /* a checkpoint's state replaces the placement */
         rd_sim_free(s);
         return NULL;
     }
@@ -382,7 +421,10 @@ rd_sim *rd_sim_build_as_placed(const rd_scenario *sc, rd_error *err)
     s->body_sum = calloc((size_t)s->nfree + 1, sizeof *s->body_sum);
     s->obuf = calloc((size_t)s->nfree * 17 + 1, sizeof *s->obuf);
     s->rest_area = calloc((size_t)s->nfree + 1, sizeof *s->rest_area);
-    if (!s->watch || !s->body_sum || !s->obuf || !s->rest_area) { rd_error_set(err, "out of memory"); goto fail; }
+    if (!s->watch || !s->body_sum || !s->obuf || !s->rest_area) {
+        rd_error_set(err, "out of memory");
+        goto fail;
+    }
     for (int k = 0; k < s->nfree; k++) {
         s->watch[k].z_start = s->x[s->free_body[k]][2];
         s->watch[k].sum = &s->body_sum[k];
@@ -402,7 +444,8 @@ static void judge_energy(rd_sim *s)
     snprintf(s->errmsg, sizeof s->errmsg,
              "energy balance residual %.3g of the energy scale exceeds %g: the answer is not to be "
              "trusted (reduce the time step with 'model timestep auto safety ...', or check the "
-             "contact stiffness and discretisation)", s->resid_max, RD_ENERGY_TRUST);
+             "contact stiffness and discretisation)",
+             s->resid_max, RD_ENERGY_TRUST);
     s->status = RD_STATUS_UNTRUSTED;
 }
 
@@ -439,12 +482,18 @@ int rd_sim_start(rd_sim *s)
 static int shake_once(rd_sim *s)
 {
     if (s->t >= s->end - 0.5 * s->dt) return 0;
-    if (stopping(s)) { s->status = RD_STATUS_INTERRUPTED; return 0; }
+    if (stopping(s)) {
+        s->status = RD_STATUS_INTERRUPTED;
+        return 0;
+    }
     step_once(s);
     s->step++;
     if (s->step % RD_PROGRESS_STEPS == 0) rd_progress_report(s->t, s->end);
     if (s->status != RD_STATUS_DONE || !healthy(s)) return 0;
-    if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) { s->status = RD_STATUS_OVERTURNED; return 0; }
+    if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) {
+        s->status = RD_STATUS_OVERTURNED;
+        return 0;
+    }
     return !rd_rest_reached(s); /* free-vibration tail: everything at rest */
 }
 
@@ -453,7 +502,10 @@ int rd_sim_advance(rd_sim *s, long nsteps, double t_until)
     if (s->phase != RD_PHASE_SHAKING) return 0;
     double t0 = wall_now();
     for (long k = 0; (nsteps < 0 || k < nsteps) && s->t < t_until - 0.5 * s->dt; k++)
-        if (!shake_once(s)) { s->phase = RD_PHASE_OVER; break; }
+        if (!shake_once(s)) {
+            s->phase = RD_PHASE_OVER;
+            break;
+        }
     s->wall += wall_now() - t0;
     return s->phase == RD_PHASE_SHAKING;
 }
@@ -505,8 +557,9 @@ const char *rd_sim_error(const rd_sim *s) { return s->errmsg; }
 
 const char *rd_status_name(rd_status st)
 {
-    static const char *const names[] = {"done", "overturned", "interrupted", "unstable", "io_error",
-                                        "error", "penetrated", "lost", "untrusted"};
+    static const char *const names[] = { "done",       "overturned", "interrupted",
+                                         "unstable",   "io_error",   "error",
+                                         "penetrated", "lost",       "untrusted" };
     return (unsigned)st < sizeof names / sizeof names[0] ? names[st] : "unknown";
 }
 
@@ -515,7 +568,6 @@ int rd_status_failed(rd_status st)
     return st == RD_STATUS_UNSTABLE || st == RD_STATUS_IO_ERROR || st == RD_STATUS_ERROR ||
            st == RD_STATUS_PENETRATED || st == RD_STATUS_LOST || st == RD_STATUS_UNTRUSTED;
 }
-
 
 const rd_event *rd_sim_events(const rd_sim *s, int *n)
 {
@@ -549,8 +601,12 @@ void rd_sim_joint(const rd_sim *s, int k, rd_joint_summary *out)
     memset(out, 0, sizeof *out);
     snprintf(out->a, sizeof out->a, "%s", s->sc.bodies[pr->a].name);
     snprintf(out->b, sizeof out->b, "%s", s->sc.bodies[pr->b].name);
-    out->kn = j->kn; out->ks = j->ks; out->friction = j->friction;
-    out->cohesion = j->cohesion; out->tension = j->tension; out->damping = j->damping;
+    out->kn = j->kn;
+    out->ks = j->ks;
+    out->friction = j->friction;
+    out->cohesion = j->cohesion;
+    out->tension = j->tension;
+    out->damping = j->damping;
     out->closed = pr->closed;
     out->max_opening = pr->open_max;
     out->max_slip = pr->slip_max;
@@ -566,12 +622,86 @@ void rd_sim_free(rd_sim *s)
     rd_scenario_free(&s->sc);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
-    void *arrays[] = {s->poly, s->x, s->q, s->v, s->L, s->w, s->R, s->mass, s->inertia, s->fixed, s->convex, s->impacting, s->impacting_next,
-                      s->f, s->tq, s->v_old, s->L_old, s->df_local, s->free_body, s->free_of, s->vert0, s->face0,
-                      s->wv, s->wn, s->wd, s->wt, s->hv0, s->hv, s->cv0, s->cv, s->cv_slot, s->edge_v0, s->edge_v, s->cv_dist, s->cv_mask, s->cv_body, s->cv_world, s->pl, s->pa, s->pn, s->pmult, s->pkin, s->kin, s->kin_stamp, s->pt0, s->cf0, s->cf_face, s->cf_pt0, s->cf_v0, s->cf_v,
-                      s->pair, s->fs, s->pstate, s->pface, s->pset, s->pstrike, s->efs, s->edepth, s->eon, s->cf_facing, s->face_nactive,
-                      s->watch, s->body_sum, s->event, s->obuf, s->aabb, s->box_pose, s->box_rho, s->box_drift, s->box_builds, s->order, s->hkey, s->live, s->live_prev,
-                      s->joint, s->pj, s->hist_pair, s->hist_body, s->hist, s->rest_area};
+    void *arrays[] = { s->poly,
+                       s->x,
+                       s->q,
+                       s->v,
+                       s->L,
+                       s->w,
+                       s->R,
+                       s->mass,
+                       s->inertia,
+                       s->fixed,
+                       s->convex,
+                       s->impacting,
+                       s->impacting_next,
+                       s->f,
+                       s->tq,
+                       s->v_old,
+                       s->L_old,
+                       s->df_local,
+                       s->free_body,
+                       s->free_of,
+                       s->vert0,
+                       s->face0,
+                       s->wv,
+                       s->wn,
+                       s->wd,
+                       s->wt,
+                       s->hv0,
+                       s->hv,
+                       s->cv0,
+                       s->cv,
+                       s->cv_slot,
+                       s->edge_v0,
+                       s->edge_v,
+                       s->cv_dist,
+                       s->cv_mask,
+                       s->cv_body,
+                       s->cv_world,
+                       s->pl,
+                       s->pa,
+                       s->pn,
+                       s->pmult,
+                       s->pkin,
+                       s->kin,
+                       s->kin_stamp,
+                       s->pt0,
+                       s->cf0,
+                       s->cf_face,
+                       s->cf_pt0,
+                       s->cf_v0,
+                       s->cf_v,
+                       s->pair,
+                       s->fs,
+                       s->pstate,
+                       s->pface,
+                       s->pset,
+                       s->pstrike,
+                       s->efs,
+                       s->edepth,
+                       s->eon,
+                       s->cf_facing,
+                       s->face_nactive,
+                       s->watch,
+                       s->body_sum,
+                       s->event,
+                       s->obuf,
+                       s->aabb,
+                       s->box_pose,
+                       s->box_rho,
+                       s->box_drift,
+                       s->box_builds,
+                       s->order,
+                       s->hkey,
+                       s->live,
+                       s->live_prev,
+                       s->joint,
+                       s->pj,
+                       s->hist_pair,
+                       s->hist_body,
+                       s->hist,
+                       s->rest_area };
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++) free(arrays[k]);
     free(s);
 }

@@ -27,35 +27,39 @@
  * functions only, so the copies stay private to their file. Clang (14 exports its resolvers from
  * the shared library: tests/cli/symbols.sh), other systems and -DRD_NO_CLONES build the one
  * copy. */
-#if defined(__x86_64__) && defined(__GLIBC__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 6 && \
-    !defined(RD_NO_CLONES)
+#if defined(__x86_64__) && defined(__GLIBC__) && defined(__GNUC__) && !defined(__clang__) &&       \
+    __GNUC__ >= 6 && !defined(RD_NO_CLONES)
 #define RD_HOT __attribute__((target_clones("avx2", "default")))
 #else
 #define RD_HOT
 #endif
 
-#define RD_EDGE_SLOTS 2 /* spring slots per edge subcontact: its deepest point, or the two ends of
+#define RD_EDGE_SLOTS                                                                              \
+    2                     /* spring slots per edge subcontact: its deepest point, or the two ends of
                            its part inside the other body (edge.c) */
 #define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
 #define RD_MASK_WORDS ((RD_MAX_PLANES + 63) / 64) /* 64-bit words of a one-bit-per-plane mask */
-#define RD_NPREC 72      /* directions of the precariousness table (every 5 degrees) */
-#define RD_SUPPORT_BAND 1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
+#define RD_NPREC      72 /* directions of the precariousness table (every 5 degrees) */
+#define RD_SUPPORT_BAND                                                                            \
+    1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
 /* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
  * its gap is below a tolerance of the order of 0.1 % of the model's dimension) (contact.c, joint.c). */
 #define RD_CONTACT_BAND 1e-3
 /* Two faces lie on each other within this distance per metre of (1 m + the body's radius) (setup.c:
  * which faces carry a bed; pairs.c: which side of a joint covers it). */
-#define RD_FACE_TOL 1e-6
-#define RD_ANTIPARALLEL 0.999 /* two faces whose normals' dot product is below minus this face each other */
-#define RD_ESCAPE_EVERY 64 /* steps between checks that no body passed into another or left, at most
+#define RD_FACE_TOL     1e-6
+#define RD_ANTIPARALLEL                                                                            \
+    0.999 /* two faces whose normals' dot product is below minus this face each other */
+#define RD_ESCAPE_EVERY                                                                            \
+    64 /* steps between checks that no body passed into another or left, at most
                               (power of 2); fewer where bodies move fast (rd_sim.escape_reach) */
 
 /* Per-subcontact state bits (rd_sim.pstate). */
 enum {
-    RD_PT_ACTIVE = 1, /* carries force this step */
-    RD_PT_BONDED = 2, /* cohesion and tension intact */
-    RD_PT_SLIP = 4,   /* at the Coulomb limit this step */
-    RD_PT_INSIDE = 8, /* inside the other body; rd_sim.pface holds its entrance face */
+    RD_PT_ACTIVE = 1,  /* carries force this step */
+    RD_PT_BONDED = 2,  /* cohesion and tension intact */
+    RD_PT_SLIP = 4,    /* at the Coulomb limit this step */
+    RD_PT_INSIDE = 8,  /* inside the other body; rd_sim.pface holds its entrance face */
     RD_PT_VIRGIN = 16, /* new contact not yet unloaded: the impact loss is still to come */
     RD_PT_STRUCK = 32, /* bearing, and pressed while one of its bodies takes a new impact: the
                           impact loss is still to come (contact.c) */
@@ -65,23 +69,23 @@ enum {
 /* The resolved properties of one joint (joint.c): the default or a per-range override. Pairs
  * with equal properties share one entry of rd_sim.joint. */
 typedef struct rd_joint {
-    double kn, ks;     /* normal and shear stiffness per unit area, Pa/m */
-    double friction;   /* rad */
-    double tan_phi;    /* tan(friction) */
-    double cohesion;   /* Pa */
-    double tension;    /* Pa */
-    double damping;    /* viscous ratio of the normal dashpot (0 = none) */
-    double restitution;/* impact loss of a subcontact, [0, 1] (contact.c) */
+    double kn, ks;      /* normal and shear stiffness per unit area, Pa/m */
+    double friction;    /* rad */
+    double tan_phi;     /* tan(friction) */
+    double cohesion;    /* Pa */
+    double tension;     /* Pa */
+    double damping;     /* viscous ratio of the normal dashpot (0 = none) */
+    double restitution; /* impact loss of a subcontact, [0, 1] (contact.c) */
 } rd_joint;
 
 /* Joint measures of one pair at one instant (joint.c: rd_joint_measure). */
 typedef struct rd_joint_state {
-    double fn;         /* normal force (compression), N */
-    double fs[3];      /* shear force on the pair's second body, ground frame, N */
-    double area;       /* active contact area, m^2 */
-    double cop[3];     /* centre of pressure, ground frame, m (the pair's midpoint when no load) */
-    double opening;    /* largest gap among its evaluated subcontacts (>= 0), m */
-    double slip[3];    /* relative tangential displacement of the second body at the joint's
+    double fn;      /* normal force (compression), N */
+    double fs[3];   /* shear force on the pair's second body, ground frame, N */
+    double area;    /* active contact area, m^2 */
+    double cop[3];  /* centre of pressure, ground frame, m (the pair's midpoint when no load) */
+    double opening; /* largest gap among its evaluated subcontacts (>= 0), m */
+    double slip[3]; /* relative tangential displacement of the second body at the joint's
                           reference point, elastic shear removed, m */
 } rd_joint_state;
 
@@ -108,160 +112,159 @@ typedef struct rd_side {
 /* A pair of bodies that may touch: one or two sides, each the points of one body tested
  * against the other (contact.c). */
 typedef struct rd_pair {
-    int a, b;          /* body indices, a < b */
-    int nside;         /* 1 (one body carries points) or 2 */
+    int a, b;  /* body indices, a < b */
+    int nside; /* 1 (one body carries points) or 2 */
     rd_side side[2];
-    double m_eff;      /* reduced mass of the pair, kg (for viscous damping) */
-    long seen;         /* broad-phase stamp of the last step its boxes overlapped */
-    double k_active;   /* sum of KN*A over points active last step, N/m (viscous damping) */
-    int joint;         /* index of its properties in rd_sim.joint */
-    double n[3];       /* the joint's normal, unit, from a towards b: its subcontacts' normals
+    double m_eff;       /* reduced mass of the pair, kg (for viscous damping) */
+    long seen;          /* broad-phase stamp of the last step its boxes overlapped */
+    double k_active;    /* sum of KN*A over points active last step, N/m (viscous damping) */
+    int joint;          /* index of its properties in rd_sim.joint */
+    double n[3];        /* the joint's normal, unit, from a towards b: its subcontacts' normals
                           weighted by their normal forces (the last loaded step's) */
-    int ref_set;       /* 1 while the joint carried load at its last measure */
-    double ref[2][3];  /* its centre of pressure then, in the frames of a and b, m */
-    double slip_acc[3];/* accumulated tangential displacement of b against a at the centre of
+    int ref_set;        /* 1 while the joint carried load at its last measure */
+    double ref[2][3];   /* its centre of pressure then, in the frames of a and b, m */
+    double slip_acc[3]; /* accumulated tangential displacement of b against a at the centre of
                           pressure while loaded (elastic shear included), m */
-    double open_max;   /* largest opening while shaking beyond its gaps when it first closed
+    double open_max;    /* largest opening while shaking beyond its gaps when it first closed
                           (open_rest), every step, m; 0 while it never opened */
-    double open_rest;  /* its largest gap when it first closed while shaking (a seated mesh's
+    double open_rest;   /* its largest gap when it first closed while shaking (a seated mesh's
                           base has gaps where it does not touch), m */
-    double comp_rest;  /* its springs' mean static compression then, fn / (KN A), m: an opening
+    double comp_rest;   /* its springs' mean static compression then, fn / (KN A), m: an opening
                           below it is the springs' breathing, not the joint opening */
-    int rest_set;      /* 1 once open_rest and comp_rest are set */
-    double slip_max;   /* largest |slip| while shaking, every step, m */
-    double slip_end[3];/* slip at the last step, m */
-    int closed;        /* 1 if the joint ever carried load while shaking */
+    int rest_set;       /* 1 once open_rest and comp_rest are set */
+    double slip_max;    /* largest |slip| while shaking, every step, m */
+    double slip_end[3]; /* slip at the last step, m */
+    int closed;         /* 1 if the joint ever carried load while shaking */
 } rd_pair;
-
 
 /* Monitoring state of one free body (events, overturning, summary). */
 typedef struct rd_watch {
-    double q_ref[4];     /* orientation at rest (after settling, before initial conditions) */
-    double x_ref[3];     /* centre of mass at rest, m */
-    double base_local[3];/* point of the support plane below the centre of mass, body frame, m */
-    double base_ref[3];  /* same point in the ground frame at rest, m */
-    double seat[4];      /* the support plane at rest, seat . (x, y, z) = seat[3] (m): its upward
+    double q_ref[4];       /* orientation at rest (after settling, before initial conditions) */
+    double x_ref[3];       /* centre of mass at rest, m */
+    double base_local[3];  /* point of the support plane below the centre of mass, body frame, m */
+    double base_ref[3];    /* same point in the ground frame at rest, m */
+    double seat[4];        /* the support plane at rest, seat . (x, y, z) = seat[3] (m): its upward
                             unit normal (the face of the body it rests on that faces up and holds
                             its lowest point; e_z when it rests on nothing) and the body's lowest
                             point along it */
-    double zb[3];        /* the rest vertical in the body frame */
-    double alpha_min;    /* smallest static tipping angle over all lean directions, rad */
-    double key_max;      /* tilt key (monitor.c: tilt_key) of the max tilt so far */
+    double zb[3];          /* the rest vertical in the body frame */
+    double alpha_min;      /* smallest static tipping angle over all lean directions, rad */
+    double key_max;        /* tilt key (monitor.c: tilt_key) of the max tilt so far */
     double key_ratio_gate; /* key of max tilt ratio * alpha_min: a new max ratio must exceed it */
     double cos_over_gate;  /* cos of the smallest tilt that can meet the overturn criterion */
-    int down;            /* tilted past 85 degrees: lying down */
-    int rests_on;        /* body it rested on at rest (off-pedestal criterion), -1 none */
-    double twist_prev;   /* unwrapped twist at the last sample, rad */
-    int nsupport;        /* support polygon at rest (ground xy, counter-clockwise), for alpha: the
+    int down;              /* tilted past 85 degrees: lying down */
+    int rests_on;          /* body it rested on at rest (off-pedestal criterion), -1 none */
+    double twist_prev;     /* unwrapped twist at the last sample, rad */
+    int nsupport;          /* support polygon at rest (ground xy, counter-clockwise), for alpha: the
                             base over the bodies that hold it up (monitor.c: support_polygon) */
     double (*support)[2];
     double prec[RD_NPREC][3]; /* precariousness: lean direction (rad), alpha (rad), g tan(alpha) */
-    double rest_area;    /* contact area at rest, m^2 */
-    double area;         /* contact area this step, m^2 */
-    int nslip, nactive;  /* slipping / active subcontacts this step */
-    int uplifted;        /* currently rocking (contact area < 60 % of the area at rest) */
+    double rest_area;         /* contact area at rest, m^2 */
+    double area;              /* contact area this step, m^2 */
+    int nslip, nactive;       /* slipping / active subcontacts this step */
+    int uplifted;             /* currently rocking (contact area < 60 % of the area at rest) */
     double rock_axis[3]; /* horizontal unit axis of the rocking that started at the last uplift */
     double rock_prev;    /* signed rocking angle about rock_axis at the previous step, rad */
     double rock_peak;    /* largest |rocking angle| since the last impact, rad */
-    int sliding;         /* currently sliding as a whole (every active point at the Coulomb limit) */
-    int over;            /* currently beyond the overturn criterion */
-    int over_once;       /* has met it since shaking began: a body that overturned keeps that
+    int sliding;    /* currently sliding as a whole (every active point at the Coulomb limit) */
+    int over;       /* currently beyond the overturn criterion */
+    int over_once;  /* has met it since shaking began: a body that overturned keeps that
                             verdict when it then leaves the scene, even if, tumbling as it falls,
                             it passes upright again (monitor.c: rd_monitor_escape) */
-    int touched;         /* 1 once it had contact area while shaking */
-    double z_start;      /* height of the centre of mass as placed, m */
-    rd_body_summary *sum;/* what the run found: &rd_sim.body_sum[k] */
-    int lost;            /* fell out of the scene after overturning, or after resting on a
+    int touched;    /* 1 once it had contact area while shaking */
+    double z_start; /* height of the centre of mass as placed, m */
+    rd_body_summary *sum; /* what the run found: &rd_sim.body_sum[k] */
+    int lost;             /* fell out of the scene after overturning, or after resting on a
                             support (event "lost" written): the verdict is final */
 } rd_watch;
 
 struct rd_sim {
-    rd_scenario sc;        /* deep copy of the scenario (owned: the caller's may be freed) */
-    int nb;                /* bodies, fixed and free, in scenario order */
-    int nfree;             /* free bodies */
-    int *free_body;        /* [nfree] body index of each free body (output order) */
-    int *free_of;          /* [nb] index among free bodies, -1 for fixed bodies */
-    rd_poly *poly;         /* [nb] shape in the body frame (centre of mass, principal axes) */
+    rd_scenario sc; /* deep copy of the scenario (owned: the caller's may be freed) */
+    int nb;         /* bodies, fixed and free, in scenario order */
+    int nfree;      /* free bodies */
+    int *free_body; /* [nfree] body index of each free body (output order) */
+    int *free_of;   /* [nb] index among free bodies, -1 for fixed bodies */
+    rd_poly *poly;  /* [nb] shape in the body frame (centre of mass, principal axes) */
 
     /* body state (ground frame: the frame moving with the ground) */
-    double (*x)[3];        /* centre of mass, m */
-    double (*q)[4];        /* orientation, body -> ground */
-    double (*v)[3];        /* velocity at the half step, m/s */
-    double (*L)[3];        /* angular momentum about the centre of mass at the half step, kg m^2/s */
-    double (*w)[3];        /* angular velocity at the half step, rad/s */
-    double (*R)[9];        /* rotation matrix of q, refreshed each step */
-    double *mass;          /* kg */
-    double (*inertia)[3];  /* principal moments, kg m^2 */
-    int *fixed;            /* 1 for pedestals (move with the ground: at rest in this frame) */
+    double (*x)[3];       /* centre of mass, m */
+    double (*q)[4];       /* orientation, body -> ground */
+    double (*v)[3];       /* velocity at the half step, m/s */
+    double (*L)[3];       /* angular momentum about the centre of mass at the half step, kg m^2/s */
+    double (*w)[3];       /* angular velocity at the half step, rad/s */
+    double (*R)[9];       /* rotation matrix of q, refreshed each step */
+    double *mass;         /* kg */
+    double (*inertia)[3]; /* principal moments, kg m^2 */
+    int *fixed;           /* 1 for pedestals (move with the ground: at rest in this frame) */
     unsigned char *impacting;      /* [nb] 1: at the last contact step a point of one of the body's
                                       contacts was in its first compression (a new impact) */
     unsigned char *impacting_next; /* [nb] the same, found during this contact step */
-    int *convex;           /* 1 for convex bodies: only they can be contact targets */
-    double (*f)[3];        /* force accumulator, N */
-    double (*tq)[3];       /* torque accumulator about the centre of mass, N m */
-    double (*v_old)[3];    /* previous half-step velocity (energy at integer steps) */
+    int *convex;                   /* 1 for convex bodies: only they can be contact targets */
+    double (*f)[3];                /* force accumulator, N */
+    double (*tq)[3];               /* torque accumulator about the centre of mass, N m */
+    double (*v_old)[3];            /* previous half-step velocity (energy at integer steps) */
     double (*L_old)[3];
     double (*df_local)[6]; /* local damping's force (0-2, N) and torque (3-5, N m) at the last
                               shaking step: its work is booked by the trapezoid rule */
 
     /* world geometry, refreshed each step for free bodies */
-    int *vert0;            /* [nb+1] first world vertex of each body */
-    double (*wv)[3];       /* world vertices, m */
-    int *face0;            /* [nb+1] first world face of each body */
-    double (*wn)[3];       /* world face normals */
-    double *wd;            /* world face offsets, m */
-    double (*wt)[2][3];    /* a fixed body's world face tangents t1, t2 (t1 x t2 = the face's
+    int *vert0;         /* [nb+1] first world vertex of each body */
+    double (*wv)[3];    /* world vertices, m */
+    int *face0;         /* [nb+1] first world face of each body */
+    double (*wn)[3];    /* world face normals */
+    double *wd;         /* world face offsets, m */
+    double (*wt)[2][3]; /* a fixed body's world face tangents t1, t2 (t1 x t2 = the face's
                               normal), the axes of contact.c's face law; unset for free bodies */
-    int *hv0;              /* [nb+1] first entry of each body's hull vertices in hv */
-    int *hv;               /* hull vertices (world index): a body's box is theirs. A convex body's
+    int *hv0;           /* [nb+1] first entry of each body's hull vertices in hv */
+    int *hv;            /* hull vertices (world index): a body's box is theirs. A convex body's
                               step (rd_bodies_refresh_step) transforms all its vertices; a
                               non-convex one's only its candidate-face vertices (cv, into
                               cv_world), its hull when the broad phase rebuilds its box
                               (pairs.c), the rest only in rd_bodies_refresh (setup, start of
                               shaking) */
-    int *cv0;              /* [nb+1] first entry of each body's candidate-face vertices in cv
+    int *cv0;           /* [nb+1] first entry of each body's candidate-face vertices in cv
                               (faces share vertices, so contact.c finds each vertex's plane
                               distances once per side and step) */
-    int *cv;               /* world vertex indices */
-    int *cv_slot;          /* [vertices] position of a vertex in its body's cv list, -1 if absent */
-    int *edge_v0;          /* [bodies + 1] first entry of a body's edges in edge_v (edge.c) */
-    int (*edge_v)[2];      /* each edge of every body once: its vertices (body-local, a < b) */
-    double *cv_body;       /* [3][cv entries, all bodies] the cv vertices' body-frame coordinates,
+    int *cv;            /* world vertex indices */
+    int *cv_slot;       /* [vertices] position of a vertex in its body's cv list, -1 if absent */
+    int *edge_v0;       /* [bodies + 1] first entry of a body's edges in edge_v (edge.c) */
+    int (*edge_v)[2];   /* each edge of every body once: its vertices (body-local, a < b) */
+    double *cv_body;    /* [3][cv entries, all bodies] the cv vertices' body-frame coordinates,
                               x, y, z each contiguous (integrate.c: a mesh's step transform) */
-    double *cv_world;      /* [3][cv entries, all bodies] their ground-frame coordinates, x, y, z
+    double *cv_world;   /* [3][cv entries, all bodies] their ground-frame coordinates, x, y, z
                               each contiguous: a non-convex body's step transforms only these
                               (integrate.c), and the contact reads them there (contact.c:
                               vertex_distances); a convex body's are read from wv */
-    double *cv_dist;       /* scratch: [cv entries of one body][planes of the other body] signed
+    double *cv_dist;    /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
-    uint64_t *cv_mask;     /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
+    uint64_t *cv_mask;  /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
                               (contact.c: vertex_distances; only the words the other body's
                               planes use are set) */
 
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
-    double (*pl)[3];       /* point in the body frame, m */
-    double *pa;            /* tributary area, m^2 (a merged point's: its places' sum, merge.c) */
-    double (*pn)[3];       /* the point's own outward normal, body frame: its face's, or a merged
+    double (*pl)[3];  /* point in the body frame, m */
+    double *pa;       /* tributary area, m^2 (a merged point's: its places' sum, merge.c) */
+    double (*pn)[3];  /* the point's own outward normal, body frame: its face's, or a merged
                               point's area-weighted mean over its faces (entrance tie-break) */
-    int *pmult;            /* points before merging that the point stands for (1: not merged) */
-    int *pkin;             /* [npts] the point's kinematics slot on its body: the index (from the
+    int *pmult;       /* points before merging that the point stands for (1: not merged) */
+    int *pkin;        /* [npts] the point's kinematics slot on its body: the index (from the
                               body's first point) of the first point at the same place. A mesh
                               face carries its vertices, so a vertex is a point of every face
                               around it (5 on average); contact.c finds its motion once */
-    double (*kin)[6];      /* scratch: [most points of a body] one side's ro, vr per slot
+    double (*kin)[6]; /* scratch: [most points of a body] one side's ro, vr per slot
                               (contact.c: point_kinematics) */
-    long *kin_stamp;       /* scratch: [most points of a body] the side step that filled kin */
-    long kin_epoch;        /* side steps taken (stamps kin) */
-    int *pt0;              /* [nb+1] first point of each body */
-    int ncf;               /* candidate faces (faces that carry points), all bodies */
-    int *cf0;              /* [nb+1] first candidate face of each body */
-    int *cf_face;          /* [ncf] face index on its body */
-    int *cf_pt0;           /* [ncf+1] first point of each candidate face */
-    char *cf_facing;       /* [ncf] 1: a face that touches only later (its vertices act only
+    long *kin_stamp;  /* scratch: [most points of a body] the side step that filled kin */
+    long kin_epoch;   /* side steps taken (stamps kin) */
+    int *pt0;         /* [nb+1] first point of each body */
+    int ncf;          /* candidate faces (faces that carry points), all bodies */
+    int *cf0;         /* [nb+1] first candidate face of each body */
+    int *cf_face;     /* [ncf] face index on its body */
+    int *cf_pt0;      /* [ncf+1] first point of each candidate face */
+    char *cf_facing;  /* [ncf] 1: a face that touches only later (its vertices act only
                               while it faces the other body's entrance face) */
-    int *cf_v0;            /* [ncf+1] first entry of each candidate face's vertices in cf_v */
-    int *cf_v;             /* the candidate faces' vertices, in face order, as the offsets of
+    int *cf_v0;       /* [ncf+1] first entry of each candidate face's vertices in cf_v */
+    int *cf_v;        /* the candidate faces' vertices, in face order, as the offsets of
                               their plane masks in cv_mask (their positions in their body's cv
                               list, cv_slot, times 2 RD_MASK_WORDS): contact.c's face test reads
                               each mask word with one load */
@@ -278,10 +281,10 @@ struct rd_sim {
     double margin;         /* m */
     int *order;            /* bodies sorted by box minimum along sweep_axis */
     int sweep_axis;
-    long stamp;            /* broad-phase step counter */
-    int *hkey;             /* hash map (a, b) -> pair index, -1 empty; hcap a power of 2 */
+    long stamp; /* broad-phase step counter */
+    int *hkey;  /* hash map (a, b) -> pair index, -1 empty; hcap a power of 2 */
     int hcap;
-    int *live, nlive, cap_live;       /* pairs whose boxes overlap this step */
+    int *live, nlive, cap_live; /* pairs whose boxes overlap this step */
     int *live_prev, nlive_prev, cap_live_prev;
 
     /* contact pairs and their per-point history (grown when two bodies first meet) */
@@ -295,97 +298,98 @@ struct rd_sim {
     double *pstrike;       /* a struck point's stretch (depth - set) when it was struck, m */
     int cap_pface, cap_pset, cap_pstrike;
     int nface_state, cap_face_state;
-    int *face_nactive;     /* active points per (side, candidate face) last step */
-    int bonds;             /* 1 when cohesion or tension is set */
-    int shaking;           /* 1 once the shaking stage has started */
+    int *face_nactive; /* active points per (side, candidate face) last step */
+    int bonds;         /* 1 when cohesion or tension is set */
+    int shaking;       /* 1 once the shaking stage has started */
     int njoint, cap_joint;
-    rd_joint *joint;       /* distinct joint property sets; 0 = the default */
-    double (*pj)[2];       /* per subcontact state: normal force (N, 0 when open) and last gap
+    rd_joint *joint; /* distinct joint property sets; 0 = the default */
+    double (*pj)[2]; /* per subcontact state: normal force (N, 0 when open) and last gap
                               (m; faces skipped as wholly open get their lower bound) */
     int cap_state_joint;
     /* edge subcontacts (edge.c), grown with the pairs */
     int nedge_state, cap_efs, cap_edepth, cap_eon;
-    double (*efs)[3];      /* shear force on the owner, ground frame, N */
-    double (*edepth)[3];   /* while bearing: elastic stretch (depth less the set) and the set
+    double (*efs)[3];    /* shear force on the owner, ground frame, N */
+    double (*edepth)[3]; /* while bearing: elastic stretch (depth less the set) and the set
                               taken at the contact's onset, m; the spring's place along its
                               edge (0 to 1, from its first vertex; joint.c's measures) */
-    unsigned char *eon;    /* non-zero while bearing or holding its set (edge.c's RD_EDGE_ bits) */
+    unsigned char *eon;  /* non-zero while bearing or holding its set (edge.c's RD_EDGE_ bits) */
 
     /* time */
-    double t;              /* s, 0 at the start of shaking */
-    double dt;             /* s */
-    double dt_crit;        /* estimated critical step, s */
-    int dt_pair[2];        /* the bodies that set it (timestep.c; -1: a fixed body) */
-    long step;             /* steps taken while shaking */
-    int settling;          /* 1 during the settle stage */
-    double settle_time;    /* s */
+    double t;           /* s, 0 at the start of shaking */
+    double dt;          /* s */
+    double dt_crit;     /* estimated critical step, s */
+    int dt_pair[2];     /* the bodies that set it (timestep.c; -1: a fixed body) */
+    long step;          /* steps taken while shaking */
+    int settling;       /* 1 during the settle stage */
+    double settle_time; /* s */
 
     /* ground motion this step (m/s^2, m/s, m) */
     double ag[3], vg[3], dg[3];
-    double ag_prev[3];     /* ground acceleration at the previous step, m/s^2 */
-    int ground_const;      /* 1: the motion has no pulse and no record, the same at every t */
-    int ground_still;      /* 1: ag, vg, dg hold such a motion (evaluated at the first step that
+    double ag_prev[3]; /* ground acceleration at the previous step, m/s^2 */
+    int ground_const;  /* 1: the motion has no pulse and no record, the same at every t */
+    int ground_still;  /* 1: ag, vg, dg hold such a motion (evaluated at the first step that
                               shakes) */
     rd_motion_axes ground_axes; /* the motion's directions' cosines and sines, found once */
 
     /* energy bookkeeping, J */
     double e_fric, e_damp, e_work; /* accumulated friction, damping dissipation, ground work */
-    double e0;                      /* total mechanical energy at the start of shaking */
-    double e_scale;                 /* largest energy term seen (to normalise the residual) */
-    double resid_max;               /* max |residual| / e_scale */
-    double energy[RD_NENERGY];      /* last sample */
+    double e0;                     /* total mechanical energy at the start of shaking */
+    double e_scale;                /* largest energy term seen (to normalise the residual) */
+    double resid_max;              /* max |residual| / e_scale */
+    double energy[RD_NENERGY];     /* last sample */
 
     /* monitoring and output */
-    rd_watch *watch;       /* [nfree] */
+    rd_watch *watch;           /* [nfree] */
     rd_body_summary *body_sum; /* [nfree] what the run found per free body, contiguous:
                               rd_summary.body points here */
-    int rested;            /* 1 once rd_monitor_rest has run: support polygons, alpha and
+    int rested;                /* 1 once rd_monitor_rest has run: support polygons, alpha and
                               precariousness known */
     int nevent, cap_event;
     rd_event *event;
-    int nevent_written;    /* events already handed to the observers */
-    rd_observer *obs;      /* [nobs] registered observers (observe.c) */
+    int nevent_written; /* events already handed to the observers */
+    rd_observer *obs;   /* [nobs] registered observers (observe.c) */
     int nobs, cap_obs;
-    long nsample;          /* samples taken so far */
-    double next_out;       /* time of the next sample, s */
-    double *obuf;          /* [nfree * 17] staging buffer for one sample */
+    long nsample;            /* samples taken so far */
+    double next_out;         /* time of the next sample, s */
+    double *obuf;            /* [nfree * 17] staging buffer for one sample */
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
-    double wall;           /* wall seconds of the shaking stage */
-    double settle_ratio;   /* unbalanced-force ratio reached by the settle stage */
-    double overlap;        /* deepest overlap of two bodies as placed beyond RD_OVERLAP_FRACTION, m
+    double wall;             /* wall seconds of the shaking stage */
+    double settle_ratio;     /* unbalanced-force ratio reached by the settle stage */
+    double overlap;      /* deepest overlap of two bodies as placed beyond RD_OVERLAP_FRACTION, m
                               (0: none; overlap.c) */
-    int overlap_pair[2];   /* the two bodies of that overlap */
-    double rest_since;     /* tail: time since which every free body has been at rest, s
+    int overlap_pair[2]; /* the two bodies of that overlap */
+    double rest_since;   /* tail: time since which every free body has been at rest, s
                               (-1 while something moves) */
     /* histories (history.c) */
-    int nhist_col;         /* columns per history sample (time first) */
-    int *hist_pair;        /* [nhistories] pair index of a joint history, -1 before it exists */
-    int *hist_body;        /* [nhistories][2] body indices */
-    double *hist;          /* [nhist_rows][nhist_col] */
+    int nhist_col;  /* columns per history sample (time first) */
+    int *hist_pair; /* [nhistories] pair index of a joint history, -1 before it exists */
+    int *hist_body; /* [nhistories][2] body indices */
+    double *hist;   /* [nhist_rows][nhist_col] */
     long nhist_rows, cap_hist_rows;
-    double next_hist;      /* time of the next history sample, s */
-    int restored;          /* 1: the state came from `model restore` (no settling) */
-    double *rest_area;     /* [nfree] state image (state.c) staging: each free body's contact area, m^2 */
+    double next_hist; /* time of the next history sample, s */
+    int restored;     /* 1: the state came from `model restore` (no settling) */
+    double
+        *rest_area; /* [nfree] state image (state.c) staging: each free body's contact area, m^2 */
     rd_status status;
-    int phase;             /* rd_sim_phase: where rd_sim_start / advance / finish have got to */
-    double end;            /* time the shaking stage ends at (rd_rest_end at its start), s */
-    atomic_int stop;       /* rd_sim_stop: 1 = stop at the next step */
+    int phase;       /* rd_sim_phase: where rd_sim_start / advance / finish have got to */
+    double end;      /* time the shaking stage ends at (rd_rest_end at its start), s */
+    atomic_int stop; /* rd_sim_stop: 1 = stop at the next step */
     char errmsg[RD_ERROR_MAX];
-    double floor_z;        /* lowest point of the fixed bodies, m (-INFINITY without any) */
-    long nsteps_all;       /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
+    double floor_z;  /* lowest point of the fixed bodies, m (-INFINITY without any) */
+    long nsteps_all; /* steps taken, settling included (escape checks every RD_ESCAPE_EVERY) */
     struct rd_surface *surf; /* `contact model surface`: the bodies' planes and the patches'
                               state (surface.c); NULL with vertex subcontacts */
-    double escape_reach;   /* travel of a centre of mass against another body between escape checks,
+    double escape_reach;  /* travel of a centre of mass against another body between escape checks,
                               at most, m: half the smallest inradius of a convex body (monitor.c) */
-    double escape_travel;  /* bound on that travel since the last escape check, m */
+    double escape_travel; /* bound on that travel since the last escape check, m */
 };
 
 /* The stages of a run (rd_sim_start, rd_sim_advance, rd_sim_finish in rockdem.h). */
 typedef enum rd_sim_phase {
-    RD_PHASE_CREATED = 0,  /* built, not settled */
-    RD_PHASE_SHAKING = 1,  /* at rest, observers begun, shaking under way */
-    RD_PHASE_OVER = 2,     /* the shaking stage ended (duration, stop, overturn, failure, rest) */
-    RD_PHASE_FINISHED = 3  /* summarised, observers ended */
+    RD_PHASE_CREATED = 0, /* built, not settled */
+    RD_PHASE_SHAKING = 1, /* at rest, observers begun, shaking under way */
+    RD_PHASE_OVER = 2,    /* the shaking stage ended (duration, stop, overturn, failure, rest) */
+    RD_PHASE_FINISHED = 3 /* summarised, observers ended */
 } rd_sim_phase;
 
 /* sim.c: n settle-mode steps from the current state (returns the wall seconds they took);
@@ -501,9 +505,11 @@ int rd_face_lies_on(const rd_sim *s, int i, int f, int j, int g, double tol);
 rd_sim *rd_sim_build_as_placed(const rd_scenario *sc, rd_error *err);
 
 /* Bodies overlapping as placed (overlap.c). */
-#define RD_OVERLAP_FRACTION 1e-3 /* an overlap deeper than this fraction of the smaller body's
+#define RD_OVERLAP_FRACTION                                                                        \
+    1e-3 /* an overlap deeper than this fraction of the smaller body's
                                     bounding radius cannot be a placement: refused */
-#define RD_OVERLAP_EDGE_DIRS 256 /* edge directions of a body taken as separating axes (a 128-sided drum: 129) */
+#define RD_OVERLAP_EDGE_DIRS                                                                       \
+    256 /* edge directions of a body taken as separating axes (a 128-sided drum: 129) */
 #define RD_PARALLEL_SIN 1e-9 /* two unit directions closer than this sine are parallel */
 /* How deep bodies i and j overlap as placed, m (0: apart or touching). */
 double rd_overlap_depth(const rd_sim *s, int i, int j);

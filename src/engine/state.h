@@ -12,12 +12,18 @@
 
 #include <stddef.h>
 
-#define RD_STATE_VERSION 6 /* bump when the image's arrays or their meaning change (6: the blocks' build) */
+#define RD_STATE_VERSION                                                                           \
+    6 /* bump when the image's arrays or their meaning change (6: the blocks' build) */
 #define RD_STATE_ARRAYS 32 /* room for the arrays of an image */
-#define RD_STATE_BUILD_RTOL 1e-9 /* a restored block's shape, mass and fixed pose must be the saved
+#define RD_STATE_BUILD_RTOL                                                                        \
+    1e-9 /* a restored block's shape, mass and fixed pose must be the saved
                                     one's to this relative tolerance (round-off, not a change) */
 
-typedef enum rd_state_type { RD_STATE_DOUBLE = 0, RD_STATE_INT = 1, RD_STATE_BYTE = 2 } rd_state_type;
+typedef enum rd_state_type {
+    RD_STATE_DOUBLE = 0,
+    RD_STATE_INT = 1,
+    RD_STATE_BYTE = 2
+} rd_state_type;
 
 /* One array of the image: n elements of type at data (the simulation's own memory). */
 typedef struct rd_state_array {
@@ -31,12 +37,28 @@ typedef struct rd_state_array {
  * npts, npair, njoint, nstate, nface_state, hcap, nlive_prev, nevent, stamp, sweep_axis, and
  * the record sizes of rd_pair, rd_joint, rd_event (a checkpoint is tied to the build), and the
  * edge subcontacts' count (edge.c). */
-enum { RD_STATE_H_VERSION, RD_STATE_H_NB, RD_STATE_H_NPTS, RD_STATE_H_NPAIR, RD_STATE_H_NJOINT,
-       RD_STATE_H_NSTATE, RD_STATE_H_NFACE, RD_STATE_H_HCAP, RD_STATE_H_NLIVE, RD_STATE_H_NEVENT,
-       RD_STATE_H_STAMP, RD_STATE_H_AXIS, RD_STATE_H_PAIR_SIZE, RD_STATE_H_JOINT_SIZE,
-       RD_STATE_H_EVENT_SIZE, RD_STATE_H_NEDGE, RD_STATE_HEADER };
-#define RD_STATE_HEADER_NAMES "version,nb,npts,npair,njoint,nstate,nface_state,hcap,nlive,nevent," \
-                              "stamp,sweep_axis,pair_size,joint_size,event_size,nedge"
+enum {
+    RD_STATE_H_VERSION,
+    RD_STATE_H_NB,
+    RD_STATE_H_NPTS,
+    RD_STATE_H_NPAIR,
+    RD_STATE_H_NJOINT,
+    RD_STATE_H_NSTATE,
+    RD_STATE_H_NFACE,
+    RD_STATE_H_HCAP,
+    RD_STATE_H_NLIVE,
+    RD_STATE_H_NEVENT,
+    RD_STATE_H_STAMP,
+    RD_STATE_H_AXIS,
+    RD_STATE_H_PAIR_SIZE,
+    RD_STATE_H_JOINT_SIZE,
+    RD_STATE_H_EVENT_SIZE,
+    RD_STATE_H_NEDGE,
+    RD_STATE_HEADER
+};
+#define RD_STATE_HEADER_NAMES                                                                      \
+    "version,nb,npts,npair,njoint,nstate,nface_state,hcap,nlive,nevent,"                           \
+    "stamp,sweep_axis,pair_size,joint_size,event_size,nedge"
 
 /* sim.c: the simulation built from a scenario (rd_sim_create without the checkpoint) */
 rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err);
@@ -76,8 +98,9 @@ int rd_state_build_arrays(rd_state_build *b, rd_state_array a[RD_STATE_ARRAYS]);
 /* Restoring, before the image is read: does an image of header h, block names and blocks as
  * built (both NULL when h's version or nb differs) fit this simulation (the same blocks, to
  * RD_STATE_BUILD_RTOL)? NULL, or the difference, naming the block (in buf, or a constant). */
-const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], const char *const *names,
-                              const rd_state_build *there, char *buf, size_t n);
+const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER],
+                              const char *const *names, const rd_state_build *there, char *buf,
+                              size_t n);
 /* Size the arrays for the image (then rd_state_arrays lists where to read them). 0 or -1. */
 int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER]);
 /* The arrays are read: the run starts from them instead of settling. */

@@ -44,7 +44,7 @@
 
 /* Faces of one body lie in one plane when their normals' dot product exceeds 1 - this and
  * their offsets differ by at most RD_FACE_TOL (1 m + the body's radius). */
-#define RD_SURF_COPLANAR 1e-9
+#define RD_SURF_COPLANAR  1e-9
 /* A face wholly deeper than this fraction of the smaller bounding radius behind a plane of r is
  * taken as not touching it (a mesh's far side): such a depth ends the run as penetrated
  * (monitor.c) long before a touching face gets there. */
@@ -53,12 +53,12 @@
 /* The planes of one body, body frame. */
 typedef struct surf_body {
     int nplane;
-    int *plane_f0;          /* [nplane + 1] first entry of each plane's faces in plane_face */
-    int *plane_face;        /* face indices, grouped by plane */
-    double (*frame)[4][3];  /* per plane: origin o, axes e1, e2, outward normal n = e1 x e2, m */
-    int *f2_0;              /* [nf + 1] first vertex of face f in f2 */
-    double (*f2)[2];        /* the faces' polygons in their plane's coordinates, counter-clockwise */
-    double (*box)[4];       /* per plane: the bounding box of its faces in its coordinates, m (x
+    int *plane_f0;         /* [nplane + 1] first entry of each plane's faces in plane_face */
+    int *plane_face;       /* face indices, grouped by plane */
+    double (*frame)[4][3]; /* per plane: origin o, axes e1, e2, outward normal n = e1 x e2, m */
+    int *f2_0;             /* [nf + 1] first vertex of face f in f2 */
+    double (*f2)[2];       /* the faces' polygons in their plane's coordinates, counter-clockwise */
+    double (*box)[4];      /* per plane: the bounding box of its faces in its coordinates, m (x
                                min, y min, x max, y max): an affine depth's bounds over the plane
                                are at its corners */
 } surf_body;
@@ -67,29 +67,29 @@ typedef struct surf_body {
 typedef struct surf_state {
     uint64_t key;
     rd_patch_spring sp;
-    double e2;   /* integral of d^2 over the compressed region at the last step, m^4 */
-    double kn;   /* KN, Pa/m (its normal energy is kn e2 / 2) */
-    double ks;   /* KS, Pa/m */
-    long stamp;  /* the surface step that last loaded it */
+    double e2;  /* integral of d^2 over the compressed region at the last step, m^4 */
+    double kn;  /* KN, Pa/m (its normal energy is kn e2 / 2) */
+    double ks;  /* KS, Pa/m */
+    long stamp; /* the surface step that last loaded it */
 } surf_state;
 
 struct rd_surface {
-    surf_body *body;            /* [nb] */
-    surf_state *st;             /* patches met so far */
+    surf_body *body; /* [nb] */
+    surf_state *st;  /* patches met so far */
     int nst, cap_st;
-    int *hash, hcap;            /* key -> index into st, -1 empty; hcap a power of 2 */
-    int *on, non, cap_on;       /* patches loaded at the last step */
+    int *hash, hcap;      /* key -> index into st, -1 empty; hcap a power of 2 */
+    int *on, non, cap_on; /* patches loaded at the last step */
     int *on_next, non_next, cap_on_next;
-    rd_poly2 *comp;             /* scratch: one patch's compressed pieces */
+    rd_poly2 *comp; /* scratch: one patch's compressed pieces */
     int cap_comp;
-    rd_poly2 *ins;              /* scratch: the parts of one plane's faces inside r */
+    rd_poly2 *ins; /* scratch: the parts of one plane's faces inside r */
     int cap_ins;
-    double (*pl)[4];            /* scratch: r's planes in the integration body's frame (u, d) */
-    double (*uw)[3];            /* scratch: r's outward normals, ground frame */
-    double (*dep)[3];           /* scratch: depth below each plane of r, affine in a plane's coords */
+    double (*pl)[4];  /* scratch: r's planes in the integration body's frame (u, d) */
+    double (*uw)[3];  /* scratch: r's outward normals, ground frame */
+    double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
     int cap_pl;
-    rd_patch_scratch tsc;       /* scratch of rd_patch_torsion_set */
-    long stamp;                 /* surface steps taken */
+    rd_patch_scratch tsc; /* scratch of rd_patch_torsion_set */
+    long stamp;           /* surface steps taken */
 };
 
 static int grow(void **arr, int *cap, int n, size_t size)
@@ -158,8 +158,9 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     int nf = P->nf, nv2 = 0;
     for (int f = 0; f < nf; f++) {
         if (P->flen[f] > RD_PATCH_FACE_MAX) {
-            rd_error_set(err, "contact model surface: body '%s' has a face of %d vertices (at most %d)", name,
-                         P->flen[f], RD_PATCH_FACE_MAX);
+            rd_error_set(err,
+                         "contact model surface: body '%s' has a face of %d vertices (at most %d)",
+                         name, P->flen[f], RD_PATCH_FACE_MAX);
             return -1;
         }
         nv2 += P->flen[f];
@@ -172,7 +173,8 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     B->f2 = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *B->f2);
     double *pd = malloc((size_t)(nf ? nf : 1) * sizeof *pd);
     if (!plane_of || !B->frame || !B->plane_f0 || !B->plane_face || !B->f2_0 || !B->f2 || !pd) {
-        free(plane_of); free(pd);
+        free(plane_of);
+        free(pd);
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -181,13 +183,16 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     for (int f = 0; f < nf; f++) {
         int k = 0;
         for (; k < B->nplane; k++)
-            if (rd_dot(B->frame[k][3], P->fn[f]) > 1 - RD_SURF_COPLANAR && fabs(pd[k] - P->fd[f]) <= tol) break;
+            if (rd_dot(B->frame[k][3], P->fn[f]) > 1 - RD_SURF_COPLANAR &&
+                fabs(pd[k] - P->fd[f]) <= tol)
+                break;
         if (k == B->nplane) { /* a new plane: its frame from the face's first vertex and edge */
             const double *v0 = P->v[P->fidx[P->fstart[f]]], *v1 = P->v[P->fidx[P->fstart[f] + 1]];
-            double *o = B->frame[k][0], *e1 = B->frame[k][1], *e2 = B->frame[k][2], *n = B->frame[k][3];
+            double *o = B->frame[k][0], *e1 = B->frame[k][1], *e2 = B->frame[k][2],
+                   *n = B->frame[k][3];
             rd_copy3(P->fn[f], n);
             rd_copy3(v0, o);
-            double e[3] = {v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]};
+            double e[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
             rd_axpy(-rd_dot(e, n), n, e);
             double le = rd_norm(e);
             for (int c = 0; c < 3; c++) e1[c] = e[c] / le;
@@ -200,15 +205,20 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     }
     for (int k = 0; k < B->nplane; k++) B->plane_f0[k + 1] += B->plane_f0[k];
     int *fill = calloc((size_t)B->nplane + 1, sizeof *fill);
-    if (!fill) { free(plane_of); free(pd); rd_error_set(err, "out of memory"); return -1; }
+    if (!fill) {
+        free(plane_of);
+        free(pd);
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     for (int f = 0; f < nf; f++) B->plane_face[B->plane_f0[plane_of[f]] + fill[plane_of[f]]++] = f;
     int w = 0;
     for (int f = 0; f < nf; f++) {
-        const double (*fr)[3] = B->frame[plane_of[f]];
+        const double(*fr)[3] = B->frame[plane_of[f]];
         B->f2_0[f] = w;
         for (int j = 0; j < P->flen[f]; j++) {
             const double *v = P->v[P->fidx[P->fstart[f] + j]];
-            double d[3] = {v[0] - fr[0][0], v[1] - fr[0][1], v[2] - fr[0][2]};
+            double d[3] = { v[0] - fr[0][0], v[1] - fr[0][1], v[2] - fr[0][2] };
             B->f2[w][0] = rd_dot(d, fr[1]);
             B->f2[w][1] = rd_dot(d, fr[2]);
             w++;
@@ -216,7 +226,13 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     }
     B->f2_0[nf] = w;
     B->box = malloc((size_t)(B->nplane ? B->nplane : 1) * sizeof *B->box);
-    if (!B->box) { free(fill); free(plane_of); free(pd); rd_error_set(err, "out of memory"); return -1; }
+    if (!B->box) {
+        free(fill);
+        free(plane_of);
+        free(pd);
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     for (int k = 0; k < B->nplane; k++) {
         double *bx = B->box[k];
         bx[0] = bx[1] = DBL_MAX;
@@ -228,7 +244,9 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
                     bx[c + 2] = rd_max(bx[c + 2], B->f2[q][c]);
                 }
     }
-    free(fill); free(plane_of); free(pd);
+    free(fill);
+    free(plane_of);
+    free(pd);
     return 0;
 }
 
@@ -239,38 +257,56 @@ int rd_surface_init(rd_sim *s, rd_error *err)
     for (int j = 0; j < s->njoint; j++) {
         const rd_joint *jt = &s->joint[j];
         if (jt->restitution < 1) {
-            rd_error_set(err, "contact model surface: restitution %g is not modelled (its impact loss is the "
-                              "joint's dashpot, 'model damping viscous'); give 'contact property restitution 1'",
-                         jt->restitution);
+            rd_error_set(
+                err,
+                "contact model surface: restitution %g is not modelled (its impact loss is the "
+                "joint's dashpot, 'model damping viscous'); give 'contact property restitution 1'",
+                jt->restitution);
             return -1;
         }
         if (jt->cohesion > 0 || jt->tension > 0) {
-            rd_error_set(err, "contact model surface: cohesion and tension are not modelled; give them as 0");
+            rd_error_set(
+                err,
+                "contact model surface: cohesion and tension are not modelled; give them as 0");
             return -1;
         }
     }
     for (int a = 0; a < s->nb; a++)
         for (int b = a + 1; b < s->nb; b++)
             if (!s->convex[a] && !s->convex[b] && !(s->fixed[a] && s->fixed[b])) {
-                rd_error_set(err, "contact model surface: bodies '%s' and '%s' are both non-convex: a patch needs "
-                                  "a convex body on one side",
-                             s->sc.bodies[a].name, s->sc.bodies[b].name);
+                rd_error_set(
+                    err,
+                    "contact model surface: bodies '%s' and '%s' are both non-convex: a patch needs "
+                    "a convex body on one side",
+                    s->sc.bodies[a].name, s->sc.bodies[b].name);
                 return -1;
             }
     struct rd_surface *S = calloc(1, sizeof *S);
-    if (!S) { rd_error_set(err, "out of memory"); return -1; }
+    if (!S) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     s->surf = S;
     S->body = calloc((size_t)s->nb, sizeof *S->body);
-    if (!S->body || rehash(S, 64)) { rd_error_set(err, "out of memory"); return -1; }
+    if (!S->body || rehash(S, 64)) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     int most = 0;
     for (int i = 0; i < s->nb; i++) {
         if (body_planes(&s->poly[i], &S->body[i], err, s->sc.bodies[i].name)) return -1;
         if (s->poly[i].nf > most) most = s->poly[i].nf;
     }
-    if (grow((void **)&S->pl, &S->cap_pl, most, sizeof *S->pl)) { rd_error_set(err, "out of memory"); return -1; }
+    if (grow((void **)&S->pl, &S->cap_pl, most, sizeof *S->pl)) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     S->uw = malloc((size_t)S->cap_pl * sizeof *S->uw);
     S->dep = malloc((size_t)S->cap_pl * sizeof *S->dep);
-    if (!S->uw || !S->dep) { rd_error_set(err, "out of memory"); return -1; }
+    if (!S->uw || !S->dep) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     return 0;
 }
 
@@ -286,14 +322,17 @@ double rd_surface_contact_area(const rd_sim *s, int i)
         double a = 0;
         for (int e = B->plane_f0[k]; e < B->plane_f0[k + 1]; e++) {
             const int f = B->plane_face[e];
-            rd_poly2 p = {P->flen[f], {{0}}};
+            rd_poly2 p = { P->flen[f], { { 0 } } };
             memcpy(p.p, B->f2 + B->f2_0[f], (size_t)p.n * sizeof p.p[0]);
             rd_moments m;
             rd_patch_moments(&p, &m);
             a += m.a;
         }
-        if (a > a1) { a2 = a1; a1 = a; }
-        else if (a > a2) a2 = a;
+        if (a > a1) {
+            a2 = a1;
+            a1 = a;
+        } else if (a > a2)
+            a2 = a;
     }
     return a1 + 0.5 * a2;
 }
@@ -304,11 +343,26 @@ void rd_surface_free(rd_sim *s)
     if (!S) return;
     for (int i = 0; S->body && i < s->nb; i++) {
         surf_body *B = &S->body[i];
-        free(B->plane_f0); free(B->plane_face); free(B->frame); free(B->f2_0); free(B->f2); free(B->box);
+        free(B->plane_f0);
+        free(B->plane_face);
+        free(B->frame);
+        free(B->f2_0);
+        free(B->f2);
+        free(B->box);
     }
-    free(S->body); free(S->st); free(S->hash); free(S->on); free(S->on_next); free(S->comp); free(S->ins);
-    free(S->pl); free(S->uw); free(S->dep);
-    free(S->tsc.slot); free(S->tsc.count); free(S->tsc.ends);
+    free(S->body);
+    free(S->st);
+    free(S->hash);
+    free(S->on);
+    free(S->on_next);
+    free(S->comp);
+    free(S->ins);
+    free(S->pl);
+    free(S->uw);
+    free(S->dep);
+    free(S->tsc.slot);
+    free(S->tsc.count);
+    free(S->tsc.ends);
     free(S);
     s->surf = NULL;
 }
@@ -324,9 +378,9 @@ typedef struct surf_sums {
 /* One patch (plane P of body i against face g of r) with the compressed region's moments m,
  * its load ld (depth coefficients dep, plane frame fr) and twisting lever tors: the law, its
  * forces into the sums. */
-static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, int g, const rd_moments *m,
-                       const rd_patch_load *ld, double tors, const double fr[4][3], const double dep[3],
-                       double c_a, surf_sums *sum)
+static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, int g,
+                       const rd_moments *m, const rd_patch_load *ld, double tors,
+                       const double fr[4][3], const double dep[3], double c_a, surf_sums *sum)
 {
     struct rd_surface *S = s->surf;
     const rd_joint *j = &s->joint[pr->joint];
@@ -338,7 +392,7 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     rd_mat_vec(Ri, fr[0], O);
     rd_mat_vec(Ri, fr[1], E1);
     rd_mat_vec(Ri, fr[2], E2);
-    double wrel[3] = {s->w[i][0], s->w[i][1], s->w[i][2]};
+    double wrel[3] = { s->w[i][0], s->w[i][1], s->w[i][2] };
     if (r_free) rd_axpy(-1.0, s->w[r], wrel);
     /* the depth's rate, affine in the plane's coordinates: -u . vrel(p) */
     double ro[3], rt[3], v0[3], t1[3], t2[3];
@@ -347,7 +401,7 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     rd_law_relative_velocity_of(s->v[i], s->w[i], s->v[r], s->w[r], r_free, ro, rt, v0);
     rd_cross(wrel, E1, t1);
     rd_cross(wrel, E2, t2);
-    const double rd[3] = {-rd_dot(uw, v0), -rd_dot(uw, t1), -rd_dot(uw, t2)};
+    const double rd[3] = { -rd_dot(uw, v0), -rd_dot(uw, t1), -rd_dot(uw, t2) };
     /* the normal pressure KN d + c_a dd/dt, affine, integrated over the region */
     double q[3];
     for (int k = 0; k < 3; k++) q[k] = j->kn * dep[k] + c_a * rd[k];
@@ -355,8 +409,8 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     double mx = q[0] * m->sx + q[1] * m->sxx + q[2] * m->sxy;
     double my = q[0] * m->sy + q[1] * m->sxy + q[2] * m->syy;
     if (c_a > 0) { /* the dashpot's power, c_a times the integral of (dd/dt)^2 */
-        double i2 = rd[0] * rd[0] * m->a + 2 * rd[0] * (rd[1] * m->sx + rd[2] * m->sy) + rd[1] * rd[1] * m->sxx +
-                    2 * rd[1] * rd[2] * m->sxy + rd[2] * rd[2] * m->syy;
+        double i2 = rd[0] * rd[0] * m->a + 2 * rd[0] * (rd[1] * m->sx + rd[2] * m->sy) +
+                    rd[1] * rd[1] * m->sxx + 2 * rd[1] * rd[2] * m->sxy + rd[2] * rd[2] * m->syy;
         s->e_damp += c_a * i2 * s->dt;
     }
     double F[3], tq[3], tmp[3];
@@ -377,7 +431,7 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     rd_patch_spring *sp = &st->sp;
     s->e_fric += rd_patch_spring_resize(sp, j->ks, ld->area, ld->polar);
     rd_law_shear_turn(sp->fs, uw);
-    const double f0[3] = {sp->fs[0], sp->fs[1], sp->fs[2]}, m0 = sp->mt;
+    const double f0[3] = { sp->fs[0], sp->fs[1], sp->fs[2] }, m0 = sp->mt;
     const double kA = j->ks * ld->area, kJ = j->ks * ld->polar;
     rd_law_shear_load(sp->fs, uw, vr, vn, kA, s->dt);
     sp->mt -= kJ * spin * s->dt;
@@ -398,7 +452,8 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     st->kn = j->kn;
     st->ks = j->ks;
     if (st->stamp != S->stamp) {
-        if (grow((void **)&S->on_next, &S->cap_on_next, S->non_next + 1, sizeof *S->on_next)) return -1;
+        if (grow((void **)&S->on_next, &S->cap_on_next, S->non_next + 1, sizeof *S->on_next))
+            return -1;
         S->on_next[S->non_next++] = (int)(st - S->st);
         st->stamp = S->stamp;
     }
@@ -424,32 +479,39 @@ static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, dou
     const double *bx = B->box[P];
     for (int h = 0; h < nr; h++) { /* the whole plane in front of one plane of r: outside it */
         const double *dh = S->dep[h];
-        double hi = dh[0] + rd_max(dh[1] * bx[0], dh[1] * bx[2]) + rd_max(dh[2] * bx[1], dh[2] * bx[3]);
+        double hi =
+            dh[0] + rd_max(dh[1] * bx[0], dh[1] * bx[2]) + rd_max(dh[2] * bx[1], dh[2] * bx[3]);
         if (hi <= 0) return 0;
     }
     int n = 0;
     for (int e = B->plane_f0[P]; e < B->plane_f0[P + 1]; e++) {
         const int f = B->plane_face[e], nv = Pi->flen[f];
-        const double (*v2)[2] = B->f2 + B->f2_0[f];
+        const double(*v2)[2] = B->f2 + B->f2_0[f];
         if (grow((void **)&S->ins, &S->cap_ins, n + 2, sizeof *S->ins)) return -1;
         rd_poly2 *a = &S->ins[n], *b = &S->ins[n + 1];
         a->n = nv;
         memcpy(a->p, v2, (size_t)nv * sizeof *v2);
         int alive = 1;
-        double deep = DBL_MAX; /* the least, over the face's vertices, of their nearest-plane depth */
+        double deep =
+            DBL_MAX; /* the least, over the face's vertices, of their nearest-plane depth */
         for (int k = 0; k < nv; k++) {
             double dmin = DBL_MAX;
-            for (int h = 0; h < nr; h++) dmin = rd_min(dmin, S->dep[h][0] + S->dep[h][1] * v2[k][0] + S->dep[h][2] * v2[k][1]);
+            for (int h = 0; h < nr; h++)
+                dmin =
+                    rd_min(dmin, S->dep[h][0] + S->dep[h][1] * v2[k][0] + S->dep[h][2] * v2[k][1]);
             deep = rd_min(deep, dmin);
         }
         if (deep > cap) continue;
         for (int h = 0; h < nr && alive; h++) {
             const double *dh = S->dep[h];
             int cut = 0;
-            for (int k = 0; k < a->n && !cut; k++) cut = dh[0] + dh[1] * a->p[k][0] + dh[2] * a->p[k][1] < 0;
+            for (int k = 0; k < a->n && !cut; k++)
+                cut = dh[0] + dh[1] * a->p[k][0] + dh[2] * a->p[k][1] < 0;
             if (!cut) continue;
             alive = rd_patch_clip_half(a, dh[1], dh[2], dh[0], b) > 0;
-            rd_poly2 *t = a; a = b; b = t;
+            rd_poly2 *t = a;
+            a = b;
+            b = t;
         }
         if (!alive) continue;
         if (a != &S->ins[n]) poly_copy(&S->ins[n], a);
@@ -465,7 +527,7 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
 {
     const double *dg = S->dep[g];
     int n = 0;
-    *m = (rd_moments){0, 0, 0, 0, 0, 0};
+    *m = (rd_moments){ 0, 0, 0, 0, 0, 0 };
     for (int e = 0; e < nin; e++) {
         if (grow((void **)&S->comp, &S->cap_comp, n + 2, sizeof *S->comp)) return -1;
         rd_poly2 *a = &S->comp[n], *b = &S->comp[n + 1];
@@ -479,14 +541,21 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
             for (int k = 0; k < a->n && !cut; k++) cut = c0 + cx * a->p[k][0] + cy * a->p[k][1] < 0;
             if (!cut) continue;
             alive = rd_patch_clip_half(a, cx, cy, c0, b) > 0;
-            rd_poly2 *t = a; a = b; b = t;
+            rd_poly2 *t = a;
+            a = b;
+            b = t;
         }
         if (!alive) continue;
         if (a != &S->comp[n]) poly_copy(&S->comp[n], a);
         rd_moments pm;
         rd_patch_moments(&S->comp[n], &pm);
         if (!(pm.a > 0)) continue;
-        m->a += pm.a; m->sx += pm.sx; m->sy += pm.sy; m->sxx += pm.sxx; m->sxy += pm.sxy; m->syy += pm.syy;
+        m->a += pm.a;
+        m->sx += pm.sx;
+        m->sy += pm.sy;
+        m->sxx += pm.sxx;
+        m->sxy += pm.sxy;
+        m->syy += pm.syy;
         n++;
     }
     return n;
@@ -513,11 +582,12 @@ static int pair_step(rd_sim *s, int pair)
         pl[3] = dw - rd_dot(uw, s->x[i]);
     }
     const double cap = RD_SURF_DEPTH_CAP * rd_min(Pr->radius, s->poly[i].radius);
-    const double c_a = (j->damping > 0 && pr->k_active > 0) ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
-                                                            : 0.0;
-    surf_sums sum = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0};
+    const double c_a = (j->damping > 0 && pr->k_active > 0)
+                           ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
+                           : 0.0;
+    surf_sums sum = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0, 0, 0, 0 };
     for (int P = 0; P < B->nplane; P++) {
-        const double (*fr)[3] = B->frame[P];
+        const double(*fr)[3] = B->frame[P];
         for (int h = 0; h < nr; h++) { /* depth below plane h of r, in P's coordinates */
             const double *pl = S->pl[h];
             S->dep[h][0] = pl[3] - rd_dot(pl, fr[0]);
@@ -535,7 +605,7 @@ static int pair_step(rd_sim *s, int pair)
             const double *dg = S->dep[g];
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
-            const double c[2] = {ld.cx, ld.cy};
+            const double c[2] = { ld.cx, ld.cy };
             double tors = rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
             if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, tors, fr, dg, c_a, &sum)) return -1;
         }
@@ -544,14 +614,16 @@ static int pair_step(rd_sim *s, int pair)
     rd_axpy(1.0, sum.f, s->f[i]);
     rd_axpy(1.0, sum.tq, s->tq[i]);
     if (!s->fixed[r]) {
-        double d[3] = {s->x[i][0] - s->x[r][0], s->x[i][1] - s->x[r][1], s->x[i][2] - s->x[r][2]}, t[3];
+        double d[3] = { s->x[i][0] - s->x[r][0], s->x[i][1] - s->x[r][1], s->x[i][2] - s->x[r][2] },
+               t[3];
         rd_cross(d, sum.f, t);
         rd_axpy(-1.0, sum.f, s->f[r]);
         for (int k = 0; k < 3; k++) s->tq[r][k] -= sum.tq[k] + t[k];
     }
     pr->k_active = sum.k_active;
     double nn = rd_norm(sum.nsum);
-    if (nn > 0) for (int k = 0; k < 3; k++) pr->n[k] = sum.nsum[k] / nn;
+    if (nn > 0)
+        for (int k = 0; k < 3; k++) pr->n[k] = sum.nsum[k] / nn;
     rd_watch *w = rd_monitor_contact_watch(s, i, r);
     if (w) {
         w->area += sum.area;
@@ -590,10 +662,14 @@ void rd_surface_step(rd_sim *s)
         if (st->stamp == S->stamp) continue;
         s->e_fric += state_energy(st);
         st->e2 = 0;
-        st->sp = (rd_patch_spring){{0, 0, 0}, 0, 0, 0};
+        st->sp = (rd_patch_spring){ { 0, 0, 0 }, 0, 0, 0 };
     }
-    int *t = S->on; S->on = S->on_next; S->on_next = t;
-    int c = S->cap_on; S->cap_on = S->cap_on_next; S->cap_on_next = c;
+    int *t = S->on;
+    S->on = S->on_next;
+    S->on_next = t;
+    int c = S->cap_on;
+    S->cap_on = S->cap_on_next;
+    S->cap_on_next = c;
     S->non = S->non_next;
 }
 
@@ -612,6 +688,6 @@ void rd_surface_reset(rd_sim *s, int body)
         const rd_pair *pr = &s->pair[S->st[k].key >> 42];
         if (pr->a != body && pr->b != body) continue;
         S->st[k].e2 = 0;
-        S->st[k].sp = (rd_patch_spring){{0, 0, 0}, 0, 0, 0};
+        S->st[k].sp = (rd_patch_spring){ { 0, 0, 0 }, 0, 0, 0 };
     }
 }

@@ -45,8 +45,12 @@ static double bearing_area(const rd_sim *s, int i)
     for (int c = s->cf0[i]; c < s->cf0[i + 1]; c++) {
         double a = 0;
         for (int j = s->cf_pt0[c]; j < s->cf_pt0[c + 1]; j++) a += s->pa[j];
-        if (s->cf_facing[c]) late = fmax(late, a);
-        else { bed += a; bed_max = fmax(bed_max, a); }
+        if (s->cf_facing[c])
+            late = fmax(late, a);
+        else {
+            bed += a;
+            bed_max = fmax(bed_max, a);
+        }
     }
     return fmax(bed, late + 0.5 * bed_max);
 }
@@ -55,10 +59,10 @@ static double bearing_area(const rd_sim *s, int i)
  * areas (area[k] = sum of the first k) and of area times mobility (ag[k]). */
 typedef struct partners {
     int n;
-    int *body;          /* [n] */
-    double *g, *a;      /* [n] mobility, bearing area */
-    double *area, *ag;  /* [n + 1] prefix sums */
-    int *rank;          /* [nb] position of a body in the list, or -1 */
+    int *body;         /* [n] */
+    double *g, *a;     /* [n] mobility, bearing area */
+    double *area, *ag; /* [n + 1] prefix sums */
+    int *rank;         /* [nb] position of a body in the list, or -1 */
 } partners;
 
 static const double *sort_g; /* qsort has no context argument: the mobilities it sorts by */
@@ -142,8 +146,10 @@ static double partner_mobility(const partners *p, int i, double a, int *first)
     while (lo < hi) {
         int mid = (lo + hi) / 2;
         first_k(p, skip, mid, &area, &ag);
-        if (area >= a) hi = mid;
-        else lo = mid + 1;
+        if (area >= a)
+            hi = mid;
+        else
+            lo = mid + 1;
     }
     first_k(p, skip, lo - 1, &area, &ag);
     return (ag + (a - area) * p->g[kth(skip, lo - 1)]) / a;
@@ -153,7 +159,7 @@ double rd_timestep_critical(const rd_sim *s, int pair[2])
 {
     double w2max = 0, lmax = 0;
     pair[0] = pair[1] = -1;
-    partners p = {0};
+    partners p = { 0 };
     double *g = malloc((size_t)(s->nb > 0 ? s->nb : 1) * sizeof *g);
     if (!g || partners_make(s, &p, g)) {
         partners_free(&p);
@@ -184,7 +190,11 @@ double rd_timestep_critical(const rd_sim *s, int pair[2])
 void rd_timestep_pair_text(const rd_sim *s, char *buf, size_t n)
 {
     int i = s->dt_pair[0], j = s->dt_pair[1];
-    if (i < 0) snprintf(buf, n, "%s", "");
-    else if (j < 0) snprintf(buf, n, " set by block '%s' bearing on fixed bodies", s->sc.bodies[i].name);
-    else snprintf(buf, n, " set by block '%s' bearing on '%s'", s->sc.bodies[i].name, s->sc.bodies[j].name);
+    if (i < 0)
+        snprintf(buf, n, "%s", "");
+    else if (j < 0)
+        snprintf(buf, n, " set by block '%s' bearing on fixed bodies", s->sc.bodies[i].name);
+    else
+        snprintf(buf, n, " set by block '%s' bearing on '%s'", s->sc.bodies[i].name,
+                 s->sc.bodies[j].name);
 }

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_CAL_ITER 12 /* secant steps on e inside one bracket */
+#define RD_CAL_ITER          12 /* secant steps on e inside one bracket */
 /* The speeds either side of impact k are averaged over the band of |theta| from RD_BAND_LO to
  * RD_BAND_HI times the smaller of the two amplitudes around it, the same band on both sides:
  * outside the impact (the compliant impact turns the block through about 1e-5 rad at KN
@@ -24,15 +24,15 @@
  * periods of the block's vibration on its contact springs (under 2 ms at KN >= 1e10 against
  * a band crossed in tens of ms), which would otherwise put about 1 % of scatter on one
  * sample. */
-#define RD_BAND_LO 0.25
-#define RD_BAND_HI 0.75
+#define RD_BAND_LO           0.25
+#define RD_BAND_HI           0.75
 /* A swing (a run of one sign of theta) starts once |theta| exceeds this fraction of the
  * release angle: below it the block is in the impact, where the compliant contact lets theta
  * jitter about 0. */
-#define RD_SWING_EPS 1e-3
-#define RD_NRATIO 3 /* impacts whose restitution is averaged */
-#define RD_LOG_STEP (1 << 15) /* samples the speed log grows by */
-#define RD_SAMPLE_EVERY_STEP 1e-12 /* s: output interval below any step: every step sampled */
+#define RD_SWING_EPS         1e-3
+#define RD_NRATIO            3         /* impacts whose restitution is averaged */
+#define RD_LOG_STEP          (1 << 15) /* samples the speed log grows by */
+#define RD_SAMPLE_EVERY_STEP 1e-12     /* s: output interval below any step: every step sampled */
 
 /* Signed in-plane rocking and squared angular speed of the free block at every step, until
  * the swing after impact RD_NRATIO + 1 begins (the amplitudes of the ratios are then known). */
@@ -60,8 +60,14 @@ static int speed_log_sample(void *user, rd_sim *sim, const rd_sample *s, rd_erro
     lg->th[lg->n] = th;
     lg->w2[lg->n++] = rd_dot(s->angular_velocity, s->angular_velocity);
     int sg = th > lg->eps ? 1 : th < -lg->eps ? -1 : lg->sign;
-    if (sg != lg->sign) { lg->sign = sg; lg->swings++; }
-    if (lg->swings == RD_NRATIO + 2) { lg->done = 1; rd_sim_stop(sim); }
+    if (sg != lg->sign) {
+        lg->sign = sg;
+        lg->swings++;
+    }
+    if (lg->swings == RD_NRATIO + 2) {
+        lg->done = 1;
+        rd_sim_stop(sim);
+    }
     return 0;
 }
 
@@ -81,7 +87,10 @@ static double band_mean(const speed_log *lg, double p, double alpha, size_t i0, 
     int n = 0;
     for (size_t i = i0;; i += i1 > i0 ? 1 : (size_t)-1) {
         double t = fabs(lg->th[i]);
-        if (t >= lo && t <= hi) { sum += upright_w2(p, alpha, lg->th[i], lg->w2[i]); n++; }
+        if (t >= lo && t <= hi) {
+            sum += upright_w2(p, alpha, lg->th[i], lg->w2[i]);
+            n++;
+        }
         if (i == i1) break;
     }
     return n ? sum / n : -1;
@@ -92,8 +101,8 @@ static double band_mean(const speed_log *lg, double p, double alpha, size_t i0, 
  * theta = 0 (rigid theory's instant of impact) by energy. Returns the number of ratios. */
 static int speed_ratios(const speed_log *lg, double p, double alpha, double *ratio, int nmax)
 {
-    size_t start[5] = {0}, end[5] = {0}, top[5] = {0};
-    double peak[5] = {0};
+    size_t start[5] = { 0 }, end[5] = { 0 }, top[5] = { 0 };
+    double peak[5] = { 0 };
     int ns = 0, sign = 0;
     for (size_t i = 0; i < lg->n; i++) {
         double t = lg->th[i];
@@ -106,7 +115,10 @@ static int speed_ratios(const speed_log *lg, double p, double alpha, double *rat
             ns++;
         }
         end[ns - 1] = i;
-        if (fabs(t) > peak[ns - 1]) { peak[ns - 1] = fabs(t); top[ns - 1] = i; }
+        if (fabs(t) > peak[ns - 1]) {
+            peak[ns - 1] = fabs(t);
+            top[ns - 1] = i;
+        }
     }
     int n = ns - 2 < nmax ? ns - 2 : nmax; /* impact k needs swing k + 1 complete */
     for (int k = 0; k < n; k++) {
@@ -124,14 +136,20 @@ int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error
     int nfree = 0;
     for (int i = 0; i < sc->nbodies; i++) nfree += !sc->bodies[i].fixed;
     if (nfree != 1)
-        return rd_error_set(err, "%s: restitution: needs exactly one free body (found %d): the free rocking of "
-                                 "an assembly has no single sequence of impacts to measure; give one of its "
-                                 "bodies alone on a fixed base", sc->file, nfree);
+        return rd_error_set(
+            err,
+            "%s: restitution: needs exactly one free body (found %d): the free rocking of "
+            "an assembly has no single sequence of impacts to measure; give one of its "
+            "bodies alone on a fixed base",
+            sc->file, nfree);
     rd_refscene *rs = malloc(sizeof *rs);
     if (!rs) return rd_error_set(err, "out of memory");
     rd_error ref_err;
-    if (rd_refscene_map(sc, rs, &ref_err) == 0 && rs->model == RD_REFMODEL_HOUSNER && !rs->equivalent) {
-        *out = (rd_rocking_scales){.alpha = rs->alpha, .p = rs->p, .R = hypot(rs->b[0], rs->h[0]), .lean = 0, .housner = 1};
+    if (rd_refscene_map(sc, rs, &ref_err) == 0 && rs->model == RD_REFMODEL_HOUSNER &&
+        !rs->equivalent) {
+        *out = (rd_rocking_scales){
+            .alpha = rs->alpha, .p = rs->p, .R = hypot(rs->b[0], rs->h[0]), .lean = 0, .housner = 1
+        };
         free(rs);
         return 0;
     }
@@ -140,12 +158,17 @@ int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error
     if (rd_check_scene(sc, &rep, err)) return -1;
     for (int i = 0; i < rep.nbodies; i++)
         if (!rep.body[i].fixed)
-            *out = (rd_rocking_scales){.alpha = rep.body[i].alpha_tower, .p = rep.body[i].p_tower,
-                                       .R = rep.body[i].R_tower, .lean = rep.body[i].lean_tower};
+            *out = (rd_rocking_scales){ .alpha = rep.body[i].alpha_tower,
+                                        .p = rep.body[i].p_tower,
+                                        .R = rep.body[i].R_tower,
+                                        .lean = rep.body[i].lean_tower };
     rd_check_free(&rep);
     if (!(out->alpha > 0 && out->p > 0))
-        return rd_error_set(err, "%s: restitution: the free body does not stand on a base it can rock on "
-                                 "(tipping angle %.3g deg)", sc->file, out->alpha * 180 / M_PI);
+        return rd_error_set(
+            err,
+            "%s: restitution: the free body does not stand on a base it can rock on "
+            "(tipping angle %.3g deg)",
+            sc->file, out->alpha * 180 / M_PI);
     return 0;
 }
 
@@ -158,8 +181,8 @@ double rd_rigid_restitution(const rd_rocking_scales *s, double gravity)
 /* The free-rocking scene: no motion, the single body tilted by theta0 towards the side it tips
  * to first (rd_rocking_scales_of; +x for a brick), its in-plane rocking measured in that plane (a
  * copy of base the caller frees with rd_scenario_free, also on error). */
-static int free_rocking_scene(const rd_scenario *base, double theta0, rd_scenario *sc,
-                              double *p, double *alpha, rd_error *err)
+static int free_rocking_scene(const rd_scenario *base, double theta0, rd_scenario *sc, double *p,
+                              double *alpha, rd_error *err)
 {
     rd_rocking_scales rk;
     if (rd_scenario_copy(sc, base, err)) return -1;
@@ -205,12 +228,20 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     int rc = free_rocking_scene(base, theta0, sc, &p, &alpha, err);
     sc->output.interval = RD_SAMPLE_EVERY_STEP;
     rd_sim *sim = rc ? NULL : rd_sim_create(sc, err); /* no file: events and the speed log */
-    speed_log lg = {.eps = RD_SWING_EPS * theta0};
-    rd_observer obs = {.user = &lg, .sample = speed_log_sample};
-    if (sim && rd_sim_add_observer(sim, &obs, err)) { rd_sim_free(sim); sim = NULL; }
-    if (!sim) { rd_scenario_free(sc); free(sc); return -1; }
+    speed_log lg = { .eps = RD_SWING_EPS * theta0 };
+    rd_observer obs = { .user = &lg, .sample = speed_log_sample };
+    if (sim && rd_sim_add_observer(sim, &obs, err)) {
+        rd_sim_free(sim);
+        sim = NULL;
+    }
+    if (!sim) {
+        rd_scenario_free(sc);
+        free(sc);
+        return -1;
+    }
     rd_status st = rd_sim_run(sim);
-    if (st != RD_STATUS_DONE && st != RD_STATUS_OVERTURNED && !(st == RD_STATUS_INTERRUPTED && lg.done))
+    if (st != RD_STATUS_DONE && st != RD_STATUS_OVERTURNED &&
+        !(st == RD_STATUS_INTERRUPTED && lg.done))
         rc = rd_error_set(err, "restitution: %s", rd_sim_error(sim));
     int n, npeak = 0;
     const rd_event *ev = rd_sim_events(sim, &n);
@@ -230,7 +261,10 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     double logsum = 0, logspeed = 0;
     for (int k = 0; k < out->n; k++) {
         out->ratio[k] = decay_ratio(alpha, out->amplitude[k], out->amplitude[k + 1]);
-        if (out->ratio[k] <= 0 || out->speed_ratio[k] <= 0) { out->n = k; break; }
+        if (out->ratio[k] <= 0 || out->speed_ratio[k] <= 0) {
+            out->n = k;
+            break;
+        }
         logsum += log(out->ratio[k]);
         logspeed += log(out->speed_ratio[k]);
     }
@@ -248,8 +282,10 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
 static int too_few(const rd_restitution *m, double e, rd_error *err)
 {
     if (m->r >= 0) return 0;
-    return rd_error_set(err, "restitution: fewer than two impacts at contact restitution %g "
-                             "(the block does not rock freely)", e);
+    return rd_error_set(err,
+                        "restitution: fewer than two impacts at contact restitution %g "
+                        "(the block does not rock freely)",
+                        e);
 }
 
 /* The measurement at contact restitution e. */
@@ -280,10 +316,21 @@ static int refine(const rd_scenario *sc, double theta0, double target, double lo
         rd_restitution m;
         if (measure_at(sc, theta0, mid, &m, err)) return -1;
         double r = m.r;
-        if (fabs(r - target) < fabs(*reached - target)) { *e = mid; *reached = r; *at = m; }
+        if (fabs(r - target) < fabs(*reached - target)) {
+            *e = mid;
+            *reached = r;
+            *at = m;
+        }
         if (fabs(r - target) < RD_CAL_RTOL) return 0;
-        if ((r - target) * flo > 0) { lo = mid; flo = r - target; fhi *= 0.5; }
-        else { hi = mid; fhi = r - target; flo *= 0.5; }
+        if ((r - target) * flo > 0) {
+            lo = mid;
+            flo = r - target;
+            fhi *= 0.5;
+        } else {
+            hi = mid;
+            fhi = r - target;
+            flo *= 0.5;
+        }
     }
     return 2;
 }
@@ -316,7 +363,12 @@ int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double t
         }
         fg[k] = mg[k].r - target;
         if (fabs(fg[k]) < fabs(fg[best])) best = k;
-        if (fabs(fg[k]) < RD_CAL_RTOL) { *e = eg[k]; *reached = mg[k].r; *at = mg[k]; return 0; }
+        if (fabs(fg[k]) < RD_CAL_RTOL) {
+            *e = eg[k];
+            *reached = mg[k].r;
+            *at = mg[k];
+            return 0;
+        }
     }
     *e = eg[best];
     *reached = fg[best] + target;

@@ -15,7 +15,8 @@
 #include <unistd.h>
 
 #define RD_PULSE_SAMPLES 4000 /* samples of a pulse for its intensity measures */
-#define RD_SA_PAD 2.0 /* s of rest after a pulse for its Sa: two periods of the longest oscillator */
+#define RD_SA_PAD                                                                                  \
+    2.0 /* s of rest after a pulse for its Sa: two periods of the longest oscillator */
 
 static volatile sig_atomic_t stop_flag;
 
@@ -38,7 +39,10 @@ static int fail(rd_error *err, const char *fmt, ...)
 static char *dup_text(const char *s, size_t n)
 {
     char *d = malloc(n + 1);
-    if (d) { memcpy(d, s, n); d[n] = '\0'; }
+    if (d) {
+        memcpy(d, s, n);
+        d[n] = '\0';
+    }
     return d;
 }
 
@@ -76,7 +80,8 @@ static int scale_numbers(rd_sweep_axis *a, rd_error *err)
         double x = strtod(a->value[i], &end);
         int g = end != a->value[i] && (end[0] == 'g' || end[0] == 'G') && end[1] == '\0';
         if (!(g || (end != a->value[i] && *end == '\0')) || !(x > 0) || !isfinite(x))
-            return fail(err, "--scales: expected a positive factor or a PGA with a g suffix, got '%s'",
+            return fail(err,
+                        "--scales: expected a positive factor or a PGA with a g suffix, got '%s'",
                         a->value[i]);
         a->number[i] = g ? x * RD_G_STANDARD : x;
         ng += g;
@@ -109,8 +114,10 @@ static int interface_axis(rd_sweep_axis *a, const char *spec, rd_error *err)
 {
     double k;
     if (a->n != 1 || !plain_number(a->value[0], &k) || k != floor(k) || k < 1 || k > 100000)
-        return fail(err, "--axis '%s': expected interface=K, K = number of seeded interface "
-                         "perturbations (1 to 100000)", spec);
+        return fail(err,
+                    "--axis '%s': expected interface=K, K = number of seeded interface "
+                    "perturbations (1 to 100000)",
+                    spec);
     a->kind = RD_AXIS_INTERFACE;
     free(a->value[0]);
     free(a->value);
@@ -126,27 +133,34 @@ static int interface_axis(rd_sweep_axis *a, const char *spec, rd_error *err)
 
 int rd_sweep_add_axis(rd_sweep_plan *p, rd_axis_kind kind, const char *spec, rd_error *err)
 {
-    static const char *const names[] = {"", "record", "scale", "direction", "interface"};
-    static const char *const opts[] = {"--axis", "--records", "--scales", "--directions", "--axis"};
-    if (p->naxes == RD_SWEEP_MAX_AXES) return fail(err, "too many axes (at most %d)", RD_SWEEP_MAX_AXES);
+    static const char *const names[] = { "", "record", "scale", "direction", "interface" };
+    static const char *const opts[] = { "--axis", "--records", "--scales", "--directions",
+                                        "--axis" };
+    if (p->naxes == RD_SWEEP_MAX_AXES)
+        return fail(err, "too many axes (at most %d)", RD_SWEEP_MAX_AXES);
     rd_sweep_axis *a = &p->axis[p->naxes];
-    *a = (rd_sweep_axis){.kind = kind, .units = ""};
+    *a = (rd_sweep_axis){ .kind = kind, .units = "" };
     const char *list = spec, *eq = strchr(spec, '=');
     if (kind == RD_AXIS_SET) {
         size_t klen = eq ? (size_t)(eq - spec) : 0;
         if (!eq || klen == 0 || klen >= RD_NAME_MAX || !eq[1] || strchr(eq + 1, '='))
-            return fail(err, "--axis '%s': expected KEY=V1,V2,... (e.g. contact.stiffness-normal=5e9,1e10 "
-                             "or interface=10)", spec);
+            return fail(
+                err,
+                "--axis '%s': expected KEY=V1,V2,... (e.g. contact.stiffness-normal=5e9,1e10 "
+                "or interface=10)",
+                spec);
         memcpy(a->key, spec, klen);
         list = eq + 1;
     } else {
         snprintf(a->key, sizeof a->key, "%s", names[kind]);
     }
     for (int i = 0; i < p->naxes; i++)
-        if (!strcmp(p->axis[i].key, a->key)) return fail(err, "%s '%s': axis '%s' given twice", opts[kind], spec, a->key);
+        if (!strcmp(p->axis[i].key, a->key))
+            return fail(err, "%s '%s': axis '%s' given twice", opts[kind], spec, a->key);
     if (split_values(a, list, opts[kind], err)) return -1;
     p->naxes++; /* owned from here: rd_sweep_plan_free releases it */
-    if (kind == RD_AXIS_SET && !strcmp(a->key, "interface") && interface_axis(a, spec, err)) return -1;
+    if (kind == RD_AXIS_SET && !strcmp(a->key, "interface") && interface_axis(a, spec, err))
+        return -1;
     return kind == RD_AXIS_RECORD ? 0 : axis_numbers(a, opts[a->kind], err);
 }
 
@@ -187,10 +201,12 @@ unsigned long long rd_sweep_hash(const rd_sweep_plan *p, long k)
     unsigned long long h = 1469598103934665603ULL;
     char line[RD_NAME_MAX + RD_SWEEP_TEXT + 16];
     for (int i = 0; i < p->nsets + p->naxes; i++) {
-        if (i < p->nsets) snprintf(line, sizeof line, "--set %s\n", p->sets[i]);
+        if (i < p->nsets)
+            snprintf(line, sizeof line, "--set %s\n", p->sets[i]);
         else {
             const rd_sweep_axis *a = &p->axis[i - p->nsets];
-            snprintf(line, sizeof line, "%s=%s\n", a->key, a->value[rd_sweep_value_index(p, k, i - p->nsets)]);
+            snprintf(line, sizeof line, "%s=%s\n", a->key,
+                     a->value[rd_sweep_value_index(p, k, i - p->nsets)]);
         }
         for (const char *c = line; *c; c++) h = (h ^ (unsigned char)*c) * 1099511628211ULL;
     }
@@ -207,14 +223,16 @@ static int base_scenario(const rd_sweep_plan *p, rd_scenario *sc, rd_error *err)
 }
 
 /* Case k's scenario (base + every axis value), its run file (if kept) in dir. */
-static int case_scenario(const rd_sweep_plan *p, long k, const char *dir, rd_scenario *sc, rd_error *err)
+static int case_scenario(const rd_sweep_plan *p, long k, const char *dir, rd_scenario *sc,
+                         rd_error *err)
 {
     char a[4096 + 64];
     if (base_scenario(p, sc, err)) return -1;
     for (int i = 0; i < p->naxes; i++) {
         int v = rd_sweep_value_index(p, k, i);
         if (assignment(p, i, v, a, sizeof a))
-            return rd_error_set(err, "rockdem sweep: --records: cannot find '%s'", p->axis[i].value[v]);
+            return rd_error_set(err, "rockdem sweep: --records: cannot find '%s'",
+                                p->axis[i].value[v]);
         if (rd_scenario_set(sc, a, err)) return -1;
     }
     if (dir) snprintf(sc->output.path, sizeof sc->output.path, "%s/case-%06ld.h5", dir, k);
@@ -230,8 +248,11 @@ static int read_text(rd_sweep_plan *p, rd_error *err)
     while (t && (got = fread(t + n, 1, cap - n - 1, f)) > 0) {
         n += got;
         char *g = n + 1 == cap ? realloc(t, cap *= 2) : t;
-        if (!g) { free(t); t = NULL; }
-        else t = g;
+        if (!g) {
+            free(t);
+            t = NULL;
+        } else
+            t = g;
     }
     fclose(f);
     if (!t) return fail(err, "out of memory");
@@ -247,8 +268,10 @@ static int inspect_base(rd_sweep_plan *p, rd_error *err)
     int rc = base_scenario(p, &sc, err) || rd_scenario_validate(&sc, err) ? -1 : 0;
     for (int i = 0; !rc && i < sc.nbodies; i++)
         if (!sc.bodies[i].fixed && p->nbodies == RD_SWEEP_BODIES)
-            rc = rd_error_set(err, "rockdem sweep: more than %d free blocks (the table's per-block "
-                                   "columns hold %d)", RD_SWEEP_BODIES, RD_SWEEP_BODIES);
+            rc = rd_error_set(err,
+                              "rockdem sweep: more than %d free blocks (the table's per-block "
+                              "columns hold %d)",
+                              RD_SWEEP_BODIES, RD_SWEEP_BODIES);
         else if (!sc.bodies[i].fixed)
             snprintf(p->body[p->nbodies++], RD_NAME_MAX, "%s", sc.bodies[i].name);
     p->pulse = !rd_motion_has_records(&sc.motion);
@@ -268,14 +291,16 @@ static int check_values(const rd_sweep_plan *p, rd_error *err)
         if (x->kind == RD_AXIS_SCALE && p->pulse && !(p->amplitude != 0) && !strcmp(x->units, "1"))
             return fail(err, "--scales: factors need a pulse amplitude or a record to scale");
         if (x->kind == RD_AXIS_INTERFACE && !p->perturbed)
-            return fail(err, "--axis interface: the scenario has no 'contact interface-perturbation' "
-                             "with remove, raise or scatter; every seed would be the same interface");
+            return fail(err,
+                        "--axis interface: the scenario has no 'contact interface-perturbation' "
+                        "with remove, raise or scatter; every seed would be the same interface");
         for (int v = 0; v < x->n; v++) {
             rd_scenario sc;
             rd_error e;
             if (assignment(p, i, v, a, sizeof a))
                 return fail(err, "--records: cannot find '%s'", x->value[v]);
-            int rc = base_scenario(p, &sc, &e) || rd_scenario_set(&sc, a, &e) || rd_scenario_validate(&sc, &e);
+            int rc = base_scenario(p, &sc, &e) || rd_scenario_set(&sc, a, &e) ||
+                     rd_scenario_validate(&sc, &e);
             rd_scenario_free(&sc);
             if (rc) return fail(err, "axis %s=%s: %s", x->key, x->value[v], e.msg);
         }
@@ -287,13 +312,15 @@ static int make_axes_text(rd_sweep_plan *p, rd_error *err)
 {
     size_t n = 1;
     for (int i = 0; i < p->naxes; i++)
-        for (int v = 0; v < p->axis[i].n; v++) n += strlen(p->axis[i].key) + strlen(p->axis[i].value[v]) + 2;
+        for (int v = 0; v < p->axis[i].n; v++)
+            n += strlen(p->axis[i].key) + strlen(p->axis[i].value[v]) + 2;
     for (int i = 0; i < p->nsets; i++) n += strlen(p->sets[i]) + 8;
     char *t = p->axes_text = calloc(n, 1);
     if (!t) return fail(err, "out of memory");
     for (int i = 0; i < p->naxes; i++) {
         t += sprintf(t, "%s=", p->axis[i].key);
-        for (int v = 0; v < p->axis[i].n; v++) t += sprintf(t, "%s%c", p->axis[i].value[v], v + 1 < p->axis[i].n ? ',' : '\n');
+        for (int v = 0; v < p->axis[i].n; v++)
+            t += sprintf(t, "%s%c", p->axis[i].value[v], v + 1 < p->axis[i].n ? ',' : '\n');
     }
     for (int i = 0; i < p->nsets; i++) t += sprintf(t, "--set %s\n", p->sets[i]);
     return 0;
@@ -329,21 +356,22 @@ void rd_sweep_plan_free(rd_sweep_plan *p)
  * (5 % damping) after RD_SA_PAD s of rest, as rd_motion_im pads records. */
 static void pulse_im(const rd_pulse_def *h, double im[RD_SWEEP_NIM])
 {
-    static const double periods[2] = {0.2, 1.0}; /* s */
+    static const double periods[2] = { 0.2, 1.0 }; /* s */
     double end = rd_pulse_end(h);
-    rd_record r = {0};
+    rd_record r = { 0 };
     rd_error e;
     if (h->kind == RD_PULSE_NONE || !(end > 0) ||
         rd_record_alloc(&r, RD_PULSE_SAMPLES + 1, end / RD_PULSE_SAMPLES, &e))
         return;
-    for (size_t i = 0; i < r.npts; i++) rd_pulse_eval(h, (double)i * r.dt, &r.acc[i], &r.vel[i], &r.disp[i]);
+    for (size_t i = 0; i < r.npts; i++)
+        rd_pulse_eval(h, (double)i * r.dt, &r.acc[i], &r.vel[i], &r.disp[i]);
     rd_im m;
-    double sa[2] = {0, 0};
+    double sa[2] = { 0, 0 };
     rd_im_compute(&r, &m);
     if (rd_record_pad(&r, RD_SA_PAD, &e) || rd_im_psa(&r, periods, 2, 0.05, sa, &e))
         sa[0] = sa[1] = NAN;
     rd_record_free(&r);
-    double v[RD_SWEEP_NIM] = {m.pga, m.pgv, m.pgd, m.pgv_pga, m.arias, m.d5_95, sa[0], sa[1]};
+    double v[RD_SWEEP_NIM] = { m.pga, m.pgv, m.pgd, m.pgv_pga, m.arias, m.d5_95, sa[0], sa[1] };
     memcpy(im, v, sizeof v);
 }
 
@@ -357,7 +385,7 @@ static int record_im(const rd_motion_def *m, double im[RD_SWEEP_NIM], rd_error *
         double sa[2];
         if (!m->record[c].applied || (horiz && c == RD_VERTICAL)) continue;
         if (rd_motion_im(m, c, &x, sa, err)) return -1;
-        double v[RD_SWEEP_NIM] = {x.pga, x.pgv, x.pgd, x.pgv_pga, x.arias, x.d5_95, sa[0], sa[1]};
+        double v[RD_SWEEP_NIM] = { x.pga, x.pgv, x.pgd, x.pgv_pga, x.arias, x.d5_95, sa[0], sa[1] };
         for (int i = 0; i < RD_SWEEP_NIM; i++) im[i] = fmax(im[i], v[i]);
     }
     return 0;
@@ -381,7 +409,8 @@ static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result
     r->overturned = s->any_overturned;
     r->energy_residual = s->energy_residual_max;
     r->end_time = s->end_time;
-    r->nbodies = s->nbodies < RD_SWEEP_BODIES ? s->nbodies : RD_SWEEP_BODIES; /* inspect_base checked */
+    r->nbodies =
+        s->nbodies < RD_SWEEP_BODIES ? s->nbodies : RD_SWEEP_BODIES; /* inspect_base checked */
     r->overturn_time = -1;
     rd_sweep_mode mode = RD_MODE_REST;
     for (int k = 0; k < r->nbodies; k++) {
@@ -425,7 +454,8 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, rd_sweep_result *r)
     rd_error err;
     rd_sim *sim = NULL;
     if (case_scenario(p, k, p->keep_dir, &sc, &err) ||
-        (rd_motion_has_records(&sc.motion) ? record_im(&sc.motion, r->im, &err) : (pulse_im(&sc.motion.horizontal, r->im), 0)) ||
+        (rd_motion_has_records(&sc.motion) ? record_im(&sc.motion, r->im, &err)
+                                           : (pulse_im(&sc.motion.horizontal, r->im), 0)) ||
         !(sim = rd_sim_create(&sc, &err)) ||
         (p->keep_dir && rd_sim_write_hdf5(sim, sc.output.path, &err))) {
         r->status = -1;

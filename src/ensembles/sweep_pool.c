@@ -24,8 +24,8 @@
 typedef struct pool_ctx {
     int n;
     pid_t *pid;
-    int *task;    /* write end of each worker's task pipe (-1 once closed) */
-    int *result;  /* read end of each worker's result pipe (-1 once closed) */
+    int *task;   /* write end of each worker's task pipe (-1 once closed) */
+    int *result; /* read end of each worker's result pipe (-1 once closed) */
 } pool_ctx;
 
 static void on_stop(int sig)
@@ -59,7 +59,7 @@ static int pool_recv(void *ctx, int wait_ms, int *worker, rd_sweep_result *r)
 {
     pool_ctx *c = ctx;
     struct pollfd fds[c->n];
-    for (int w = 0; w < c->n; w++) fds[w] = (struct pollfd){.fd = c->result[w], .events = POLLIN};
+    for (int w = 0; w < c->n; w++) fds[w] = (struct pollfd){ .fd = c->result[w], .events = POLLIN };
     int rc = poll(fds, (nfds_t)c->n, wait_ms);
     if (rc <= 0) return 0; /* timeout, or a signal: the caller looks at its flags and waits again */
     for (int w = 0; w < c->n; w++) {
@@ -98,13 +98,22 @@ static void pool_finish(void *ctx)
 int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_error *err)
 {
     pool_ctx *c = calloc(1, sizeof *c);
-    if (!c || !(c->pid = calloc((size_t)n, sizeof *c->pid)) || !(c->task = malloc((size_t)n * sizeof(int))) ||
+    if (!c || !(c->pid = calloc((size_t)n, sizeof *c->pid)) ||
+        !(c->task = malloc((size_t)n * sizeof(int))) ||
         !(c->result = malloc((size_t)n * sizeof(int)))) {
-        if (c) { free(c->pid); free(c->task); free(c); }
+        if (c) {
+            free(c->pid);
+            free(c->task);
+            free(c);
+        }
         return rd_error_set(err, "rockdem sweep: out of memory");
     }
-    *pool = (rd_sweep_pool){.nworkers = n, .ctx = c, .send = pool_send, .recv = pool_recv,
-                            .interrupt = pool_interrupt, .finish = pool_finish};
+    *pool = (rd_sweep_pool){ .nworkers = n,
+                             .ctx = c,
+                             .send = pool_send,
+                             .recv = pool_recv,
+                             .interrupt = pool_interrupt,
+                             .finish = pool_finish };
     fflush(NULL);
     pid_t coordinator = getpid();
     for (int w = 0; w < n; w++) {
@@ -117,7 +126,10 @@ int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_er
                its case; then the closed pipe ends it. The check closes the race with a
                coordinator that died before prctl. */
             if (prctl(PR_SET_PDEATHSIG, SIGTERM) || getppid() != coordinator) _exit(3);
-            for (int v = 0; v < w; v++) { close(c->task[v]); close(c->result[v]); }
+            for (int v = 0; v < w; v++) {
+                close(c->task[v]);
+                close(c->result[v]);
+            }
             close(tp[1]);
             close(rp[0]);
             worker(p, tp[0], rp[1]);
@@ -131,7 +143,8 @@ int rd_sweep_pool_fork(const rd_sweep_plan *p, int n, rd_sweep_pool *pool, rd_er
     }
     if (c->n < n || c->pid[n - 1] < 0) {
         pool_finish(c);
-        return rd_error_set(err, "rockdem sweep: cannot start %d worker processes: %s", n, strerror(errno));
+        return rd_error_set(err, "rockdem sweep: cannot start %d worker processes: %s", n,
+                            strerror(errno));
     }
     return 0;
 }

@@ -32,7 +32,8 @@
 #include <unistd.h>
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
-#define RD_SWEEP_LAYOUT 3 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
+#define RD_SWEEP_LAYOUT                                                                            \
+    3 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
                             3 = Sa, max twist, joint slip, response modes */
 /* Space reserved before a row: a new chunk for every column when the row starts one (chunks
  * are allocated whole), plus 32 KiB for chunk-index (B-tree) nodes and object-header updates. */
@@ -43,56 +44,68 @@ typedef enum col_type { C_I32, C_I64, C_U64, C_F64, C_STR, C_STATUS } col_type;
 typedef struct col_spec {
     const char *name;
     col_type type;
-    size_t off;       /* in rd_sweep_result */
-    int per_body;     /* 1: [rows][nbodies] */
+    size_t off;   /* in rd_sweep_result */
+    int per_body; /* 1: [rows][nbodies] */
     const char *units;
     const char *long_name;
 } col_spec;
 
 #define R(f) offsetof(rd_sweep_result, f)
 static const col_spec outcome_cols[] = {
-    {"pga", C_F64, R(im[RD_IM_PGA]), 0, "m/s^2", "peak ground acceleration"},
-    {"pgv", C_F64, R(im[RD_IM_PGV]), 0, "m/s", "peak ground velocity"},
-    {"pgd", C_F64, R(im[RD_IM_PGD]), 0, "m", "peak ground displacement"},
-    {"pgv_pga", C_F64, R(im[RD_IM_PGV_PGA]), 0, "s", "PGV / PGA"},
-    {"arias", C_F64, R(im[RD_IM_ARIAS]), 0, "m/s", "Arias intensity"},
-    {"d5_95", C_F64, R(im[RD_IM_D5_95]), 0, "s", "significant duration D5-95"},
-    {"sa_0_2", C_F64, R(im[RD_IM_SA_0_2]), 0, "m/s^2", "pseudo-spectral acceleration, 5 % damping, T = 0.2 s"},
-    {"sa_1", C_F64, R(im[RD_IM_SA_1]), 0, "m/s^2", "pseudo-spectral acceleration, 5 % damping, T = 1 s"},
-    {"overturned", C_I32, R(overturned), 0, "1", "1 if any free body overturned"},
-    {"overturn_time", C_F64, R(overturn_time), 0, "s", "time of the first overturn (-1: none)"},
-    {"max_tilt_ratio", C_F64, R(max_tilt_ratio), 0, "1", "largest max tilt / alpha over the free bodies"},
-    {"max_slide", C_F64, R(max_slide), 0, "m", "largest max slide over the free bodies"},
-    {"final_twist", C_F64, R(final_twist), 0, "rad", "largest |twist at the end| over the free bodies (signed)"},
-    {"max_twist", C_F64, R(max_twist), 0, "rad", "largest max |twist about the vertical| over the free bodies"},
-    {"max_slip", C_F64, R(max_slip), 0, "m", "largest joint slip of a free body (not its centre's sway)"},
-    {"mode", C_STR, R(mode), 0, "", "response mode, most severe over the bodies: rest, slide, rock, "
-                                   "rock-slide, rock-twist, overturn (docs/FRAGILITY.md)"},
-    {"status", C_STATUS, R(status), 0, "", "how the run ended"},
-    {"energy_residual", C_F64, R(energy_residual), 0, "1", "max |energy balance residual| / energy scale"},
-    {"end_time", C_F64, R(end_time), 0, "s", "simulated time reached"},
-    {"wall_seconds", C_F64, R(wall_seconds), 0, "s", "wall time of the case (setup and run)"},
-    {"hash", C_U64, R(hash), 0, "", "FNV-1a 64 hash of the case overrides"},
-    {"body_overturned", C_I32, R(b_overturned), 1, "1", "1 if the body overturned"},
-    {"body_overturn_time", C_F64, R(b_overturn_time), 1, "s", "time the body overturned (-1: never)"},
-    {"body_max_tilt_ratio", C_F64, R(b_max_tilt_ratio), 1, "1", "max tilt / alpha of the body"},
-    {"body_max_slide", C_F64, R(b_max_slide), 1, "m", "max slide of the body"},
-    {"body_final_twist", C_F64, R(b_final_twist), 1, "rad", "twist of the body at the end"},
-    {"body_max_twist", C_F64, R(b_max_twist), 1, "rad", "max |twist about the vertical| of the body"},
-    {"body_max_slip", C_F64, R(b_max_slip), 1, "m", "largest slip of the body's joints"},
-    {"body_mode", C_I32, R(b_mode), 1, "", "response mode: 0 rest, 1 slide, 2 rock, 3 rock-slide, "
-                                          "4 rock-twist, 5 overturn (docs/FRAGILITY.md)"},
-    {"case", C_I64, R(index), 0, "", "case index in the sweep plan"}, /* last: writing it commits the row */
+    { "pga", C_F64, R(im[RD_IM_PGA]), 0, "m/s^2", "peak ground acceleration" },
+    { "pgv", C_F64, R(im[RD_IM_PGV]), 0, "m/s", "peak ground velocity" },
+    { "pgd", C_F64, R(im[RD_IM_PGD]), 0, "m", "peak ground displacement" },
+    { "pgv_pga", C_F64, R(im[RD_IM_PGV_PGA]), 0, "s", "PGV / PGA" },
+    { "arias", C_F64, R(im[RD_IM_ARIAS]), 0, "m/s", "Arias intensity" },
+    { "d5_95", C_F64, R(im[RD_IM_D5_95]), 0, "s", "significant duration D5-95" },
+    { "sa_0_2", C_F64, R(im[RD_IM_SA_0_2]), 0, "m/s^2",
+      "pseudo-spectral acceleration, 5 % damping, T = 0.2 s" },
+    { "sa_1", C_F64, R(im[RD_IM_SA_1]), 0, "m/s^2",
+      "pseudo-spectral acceleration, 5 % damping, T = 1 s" },
+    { "overturned", C_I32, R(overturned), 0, "1", "1 if any free body overturned" },
+    { "overturn_time", C_F64, R(overturn_time), 0, "s", "time of the first overturn (-1: none)" },
+    { "max_tilt_ratio", C_F64, R(max_tilt_ratio), 0, "1",
+      "largest max tilt / alpha over the free bodies" },
+    { "max_slide", C_F64, R(max_slide), 0, "m", "largest max slide over the free bodies" },
+    { "final_twist", C_F64, R(final_twist), 0, "rad",
+      "largest |twist at the end| over the free bodies (signed)" },
+    { "max_twist", C_F64, R(max_twist), 0, "rad",
+      "largest max |twist about the vertical| over the free bodies" },
+    { "max_slip", C_F64, R(max_slip), 0, "m",
+      "largest joint slip of a free body (not its centre's sway)" },
+    { "mode", C_STR, R(mode), 0, "",
+      "response mode, most severe over the bodies: rest, slide, rock, "
+      "rock-slide, rock-twist, overturn (docs/FRAGILITY.md)" },
+    { "status", C_STATUS, R(status), 0, "", "how the run ended" },
+    { "energy_residual", C_F64, R(energy_residual), 0, "1",
+      "max |energy balance residual| / energy scale" },
+    { "end_time", C_F64, R(end_time), 0, "s", "simulated time reached" },
+    { "wall_seconds", C_F64, R(wall_seconds), 0, "s", "wall time of the case (setup and run)" },
+    { "hash", C_U64, R(hash), 0, "", "FNV-1a 64 hash of the case overrides" },
+    { "body_overturned", C_I32, R(b_overturned), 1, "1", "1 if the body overturned" },
+    { "body_overturn_time", C_F64, R(b_overturn_time), 1, "s",
+      "time the body overturned (-1: never)" },
+    { "body_max_tilt_ratio", C_F64, R(b_max_tilt_ratio), 1, "1", "max tilt / alpha of the body" },
+    { "body_max_slide", C_F64, R(b_max_slide), 1, "m", "max slide of the body" },
+    { "body_final_twist", C_F64, R(b_final_twist), 1, "rad", "twist of the body at the end" },
+    { "body_max_twist", C_F64, R(b_max_twist), 1, "rad",
+      "max |twist about the vertical| of the body" },
+    { "body_max_slip", C_F64, R(b_max_slip), 1, "m", "largest slip of the body's joints" },
+    { "body_mode", C_I32, R(b_mode), 1, "",
+      "response mode: 0 rest, 1 slide, 2 rock, 3 rock-slide, "
+      "4 rock-twist, 5 overturn (docs/FRAGILITY.md)" },
+    { "case", C_I64, R(index), 0, "",
+      "case index in the sweep plan" }, /* last: writing it commits the row */
 };
 #define NOUT (int)(sizeof outcome_cols / sizeof outcome_cols[0])
 
 typedef struct column {
     char name[RD_NAME_MAX];
     hid_t dset;
-    hid_t mtype;   /* memory type of one element */
-    size_t size;   /* bytes of one element */
-    int width;     /* elements per row */
-    int axis;      /* axis index, or -1 */
+    hid_t mtype; /* memory type of one element */
+    size_t size; /* bytes of one element */
+    int width;   /* elements per row */
+    int axis;    /* axis index, or -1 */
     const col_spec *spec;
 } column;
 
@@ -109,15 +122,18 @@ struct rd_sweep_table {
     int fd;       /* the file's descriptor (sec2 driver), for reserve() */
 };
 
-
 static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty, int width)
 {
     snprintf(c->name, sizeof c->name, "%s", name);
     c->width = width;
     c->axis = -1;
     c->dset = -1;
-    c->mtype = ty == C_I32 ? H5T_NATIVE_INT : ty == C_I64 ? H5T_NATIVE_LONG : ty == C_U64 ? H5T_NATIVE_ULLONG
-             : ty == C_F64 ? H5T_NATIVE_DOUBLE : ty == C_STATUS ? t->status_t : t->str;
+    c->mtype = ty == C_I32      ? H5T_NATIVE_INT
+               : ty == C_I64    ? H5T_NATIVE_LONG
+               : ty == C_U64    ? H5T_NATIVE_ULLONG
+               : ty == C_F64    ? H5T_NATIVE_DOUBLE
+               : ty == C_STATUS ? t->status_t
+                                : t->str;
     c->size = H5Tget_size(c->mtype);
 }
 
@@ -176,7 +192,10 @@ static char *attr_read(hid_t obj, const char *name)
         H5free_memory(v);
     } else if (H5Tget_class(ty) == H5T_STRING) {
         size_t n = H5Tget_size(ty);
-        if ((s = calloc(n + 1, 1)) && H5Aread(a, ty, s) < 0) { free(s); s = NULL; }
+        if ((s = calloc(n + 1, 1)) && H5Aread(a, ty, s) < 0) {
+            free(s);
+            s = NULL;
+        }
     }
     H5Tclose(ty);
     H5Aclose(a);
@@ -186,8 +205,8 @@ static char *attr_read(hid_t obj, const char *name)
 static int create_column(rd_sweep_table *t, column *c)
 {
     int rank = c->width > 1 || (c->spec && c->spec->per_body) ? 2 : 1;
-    hsize_t dims[2] = {0, (hsize_t)c->width}, maxd[2] = {H5S_UNLIMITED, (hsize_t)c->width};
-    hsize_t chunk[2] = {RD_SWEEP_CHUNK, (hsize_t)c->width};
+    hsize_t dims[2] = { 0, (hsize_t)c->width }, maxd[2] = { H5S_UNLIMITED, (hsize_t)c->width };
+    hsize_t chunk[2] = { RD_SWEEP_CHUNK, (hsize_t)c->width };
     hid_t sp = H5Screate_simple(rank, dims, maxd), dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, rank, chunk);
     c->dset = H5Dcreate2(t->group, c->name, c->mtype, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
@@ -197,7 +216,9 @@ static int create_column(rd_sweep_table *t, column *c)
     const char *units = c->axis >= 0 ? t->plan->axis[c->axis].units : c->spec->units;
     const char *lname = c->axis >= 0 ? "swept value" : c->spec->long_name;
     return (units[0] && attr_text(t, c->dset, "units", units)) ||
-           attr_text(t, c->dset, "long_name", lname) ? -1 : 0;
+                   attr_text(t, c->dset, "long_name", lname)
+               ? -1
+               : 0;
 }
 
 /* `case` becomes the scale of every column's rows, /sweep/body that of the per-body axis. */
@@ -212,8 +233,10 @@ static int attach_scales(rd_sweep_table *t)
     H5Sclose(sp);
     hid_t ck = t->col[t->ncols - 1].dset;
     int rc = b >= 0 && H5Dwrite(b, t->vstr, H5S_ALL, H5S_ALL, H5P_DEFAULT, names) >= 0 &&
-             H5DSset_scale(b, "body") >= 0 && !attr_text(t, b, "long_name", "free body") &&
-             H5DSset_scale(ck, "case") >= 0 ? 0 : -1;
+                     H5DSset_scale(b, "body") >= 0 && !attr_text(t, b, "long_name", "free body") &&
+                     H5DSset_scale(ck, "case") >= 0
+                 ? 0
+                 : -1;
     for (int i = 0; !rc && i < t->ncols - 1; i++) {
         const column *c = &t->col[i];
         if (H5DSattach_scale(c->dset, ck, 0) < 0 ||
@@ -238,12 +261,17 @@ static int write_meta(rd_sweep_table *t)
     long ncases = p->ncases;
     int layout = RD_SWEEP_LAYOUT;
     return bad || attr_text(t, t->file, "Conventions", "rockdem-2") ||
-           attr_text(t, t->file, "scenario", p->text) || attr_text(t, t->file, "scenario_file", p->path) ||
-           attr_text(t, t->file, "axes", p->axes_text) || attr_text(t, t->file, "program", "rockdem " RD_VERSION) ||
-           attr_number(t->group, "layout_version", H5T_NATIVE_INT, &layout) ||
-           attr_number(t->group, "ncases", H5T_NATIVE_LONG, &ncases) ||
-           attr_text(t, t->group, "im_source", p->pulse ? "pulse: sampled along its direction"
-                                                        : "records: max over horizontal components") ? -1 : 0;
+                   attr_text(t, t->file, "scenario", p->text) ||
+                   attr_text(t, t->file, "scenario_file", p->path) ||
+                   attr_text(t, t->file, "axes", p->axes_text) ||
+                   attr_text(t, t->file, "program", "rockdem " RD_VERSION) ||
+                   attr_number(t->group, "layout_version", H5T_NATIVE_INT, &layout) ||
+                   attr_number(t->group, "ncases", H5T_NATIVE_LONG, &ncases) ||
+                   attr_text(t, t->group, "im_source",
+                             p->pulse ? "pulse: sampled along its direction"
+                                      : "records: max over horizontal components")
+               ? -1
+               : 0;
 }
 
 /* The descriptor behind t->file. 0 or -1. */
@@ -265,8 +293,9 @@ static int reserve(rd_sweep_table *t, size_t bytes, rd_error *err)
     do e = posix_fallocate(t->fd, (off_t)used, (off_t)(bytes + RD_SWEEP_RESERVE_FIXED));
     while (e == EINTR);
     if (e)
-        return rd_error_set(err, "rockdem sweep: %s: cannot extend the table by %zu bytes for row %ld: %s", t->path,
-                            bytes + RD_SWEEP_RESERVE_FIXED, t->rows, strerror(e));
+        return rd_error_set(
+            err, "rockdem sweep: %s: cannot extend the table by %zu bytes for row %ld: %s", t->path,
+            bytes + RD_SWEEP_RESERVE_FIXED, t->rows, strerror(e));
     return 0;
 }
 
@@ -284,15 +313,17 @@ static int h5fail_errno(rd_sweep_table *t, rd_error *err, const char *what)
 {
     int e = errno;
     return rd_error_set(err, "rockdem sweep: %s: %s: %s", t->path, what,
-                        e ? strerror(e) : "HDF5 library error (the file may be damaged: check it with h5dump, "
-                                          "or choose another -o)");
+                        e ? strerror(e)
+                          : "HDF5 library error (the file may be damaged: check it with h5dump, "
+                            "or choose another -o)");
 }
 
 /* A new, empty table at t->path; `excl`: the path must not exist yet (else it is a temporary
  * made for it). 0 or -1. */
 static int create_table(rd_sweep_table *t, int excl, rd_error *err)
 {
-    int fd = excl ? open(t->path, O_WRONLY | O_CREAT | O_EXCL, 0666) : 0; /* the system's reason, if any */
+    int fd = excl ? open(t->path, O_WRONLY | O_CREAT | O_EXCL, 0666)
+                  : 0; /* the system's reason, if any */
     if (fd < 0) return h5fail_errno(t, err, "cannot create the table");
     if (excl) close(fd);
     t->file = H5Fcreate(t->path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -315,7 +346,7 @@ static int trim(rd_sweep_table *t, rd_error *err)
     H5Sclose(sp);
     t->rows = (long)dims[0];
     for (int i = 0; i < t->ncols; i++) {
-        hsize_t d[2] = {dims[0], (hsize_t)t->col[i].width};
+        hsize_t d[2] = { dims[0], (hsize_t)t->col[i].width };
         if (H5Dset_extent(t->col[i].dset, d) < 0) return h5fail(t, err, "cannot trim a column");
     }
     return 0;
@@ -326,8 +357,12 @@ static const char *one_line(const char *text, char *buf, size_t n)
 {
     size_t k = 0;
     for (const char *c = text; *c && k + 3 < n; c++) {
-        if (*c != '\n') buf[k++] = *c;
-        else if (c[1]) { buf[k++] = ';'; buf[k++] = ' '; }
+        if (*c != '\n')
+            buf[k++] = *c;
+        else if (c[1]) {
+            buf[k++] = ';';
+            buf[k++] = ' ';
+        }
     }
     buf[k] = '\0';
     return buf;
@@ -336,20 +371,27 @@ static const char *one_line(const char *text, char *buf, size_t n)
 /* The table's root attribute `attr` must read `now`. `what` says what differs: the axes and
  * overrides (quoted from the table in the message), or NULL for the scenario text (too long to
  * quote). */
-static int check_same(rd_sweep_table *t, const char *attr, const char *now, const char *what, rd_error *err)
+static int check_same(rd_sweep_table *t, const char *attr, const char *now, const char *what,
+                      rd_error *err)
 {
     char *was = attr_read(t->file, attr);
     int same = was && !strcmp(was, now);
     char had[RD_ERROR_MAX / 2];
     if (!same && !was)
-        rd_error_set(err, "rockdem sweep: %s: not a sweep table of rockdem (no '%s' attribute); "
-                          "choose another -o", t->path, attr);
+        rd_error_set(err,
+                     "rockdem sweep: %s: not a sweep table of rockdem (no '%s' attribute); "
+                     "choose another -o",
+                     t->path, attr);
     else if (!same && what)
-        rd_error_set(err, "rockdem sweep: %s holds a sweep with other %s (it has: %s); re-run with "
-                          "the same ones or choose another -o", t->path, what, one_line(was, had, sizeof had));
+        rd_error_set(err,
+                     "rockdem sweep: %s holds a sweep with other %s (it has: %s); re-run with "
+                     "the same ones or choose another -o",
+                     t->path, what, one_line(was, had, sizeof had));
     else if (!same)
-        rd_error_set(err, "rockdem sweep: %s holds a sweep of another scenario text; re-run with the "
-                          "scenario it was made with or choose another -o", t->path);
+        rd_error_set(err,
+                     "rockdem sweep: %s holds a sweep of another scenario text; re-run with the "
+                     "scenario it was made with or choose another -o",
+                     t->path);
     free(was);
     return same ? 0 : -1;
 }
@@ -365,7 +407,7 @@ static const column *find_col(const rd_sweep_table *t, const char *name)
 static int set_rows(rd_sweep_table *t, rd_error *err)
 {
     for (int i = 0; i < t->ncols; i++) {
-        hsize_t d[2] = {(hsize_t)t->rows, (hsize_t)t->col[i].width};
+        hsize_t d[2] = { (hsize_t)t->rows, (hsize_t)t->col[i].width };
         if (H5Dset_extent(t->col[i].dset, d) < 0) return h5fail(t, err, "cannot trim a column");
     }
     return 0;
@@ -391,12 +433,17 @@ static int verify_axes(rd_sweep_table *t, const long *k, long n, rd_error *err)
             const char *cellv = v + c->size * (size_t)r;
             double num;
             if (a->number) memcpy(&num, cellv, sizeof num);
-            if (a->number ? num != a->number[x] : strncmp(cellv, a->value[x], RD_SWEEP_TEXT - 1) != 0) bad = r;
+            if (a->number ? num != a->number[x]
+                          : strncmp(cellv, a->value[x], RD_SWEEP_TEXT - 1) != 0)
+                bad = r;
         }
         free(v);
         if (bad >= 0)
-            return rd_error_set(err, "rockdem sweep: %s is damaged: row %ld (case %ld) holds a '%s' value of another "
-                                     "case; choose another -o (the table cannot be resumed)", t->path, bad, k[bad], c->name);
+            return rd_error_set(
+                err,
+                "rockdem sweep: %s is damaged: row %ld (case %ld) holds a '%s' value of another "
+                "case; choose another -o (the table cannot be resumed)",
+                t->path, bad, k[bad], c->name);
     }
     return 0;
 }
@@ -410,23 +457,33 @@ static int read_done(rd_sweep_table *t, char *done, rd_error *err)
     long *k = malloc((size_t)(n > 0 ? n : 1) * sizeof *k);
     unsigned long long *h = malloc((size_t)(n > 0 ? n : 1) * sizeof *h);
     int rc = !k || !h ? h5fail(t, err, "out of memory") : 0;
-    if (!rc && n > 0 && (H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) < 0 ||
-                         H5Dread(ch->dset, ch->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, h) < 0))
+    if (!rc && n > 0 &&
+        (H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) < 0 ||
+         H5Dread(ch->dset, ch->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, h) < 0))
         rc = h5fail(t, err, "cannot read the case and hash columns");
-    while (!rc && n > 0 && (k[n - 1] < 0 || k[n - 1] >= t->plan->ncases || h[n - 1] != rd_sweep_hash(t->plan, k[n - 1])))
+    while (!rc && n > 0 &&
+           (k[n - 1] < 0 || k[n - 1] >= t->plan->ncases ||
+            h[n - 1] != rd_sweep_hash(t->plan, k[n - 1])))
         n--, t->dropped++;
     if (!rc && t->dropped) {
         t->rows = n;
-        rc = set_rows(t, err) || flush_table(t) ? h5fail_errno(t, err, "cannot drop the partially written rows") : 0;
+        rc = set_rows(t, err) || flush_table(t)
+                 ? h5fail_errno(t, err, "cannot drop the partially written rows")
+                 : 0;
     }
     for (long i = 0; !rc && i < n; i++) {
         if (k[i] < 0 || k[i] >= t->plan->ncases || h[i] != rd_sweep_hash(t->plan, k[i]))
-            rc = rd_error_set(err, "rockdem sweep: %s: row %ld (case %ld) does not match this sweep's "
-                                   "overrides; choose another -o", t->path, i, k[i]);
+            rc = rd_error_set(err,
+                              "rockdem sweep: %s: row %ld (case %ld) does not match this sweep's "
+                              "overrides; choose another -o",
+                              t->path, i, k[i]);
         else if (done[k[i]])
-            rc = rd_error_set(err, "rockdem sweep: %s is damaged: case %ld is in two rows; choose "
-                                   "another -o (the table cannot be resumed)", t->path, k[i]);
-        else done[k[i]] = 1;
+            rc = rd_error_set(err,
+                              "rockdem sweep: %s is damaged: case %ld is in two rows; choose "
+                              "another -o (the table cannot be resumed)",
+                              t->path, k[i]);
+        else
+            done[k[i]] = 1;
     }
     if (!rc) rc = verify_axes(t, k, n, err);
     free(k);
@@ -441,16 +498,20 @@ static int open_table(rd_sweep_table *t, char *done, rd_error *err)
     errno = 0;
     t->file = H5Fopen(t->path, H5F_ACC_RDWR, H5P_DEFAULT);
     if (t->file < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
-        return rd_error_set(err, "rockdem sweep: %s: cannot resume it: %s", t->path, RD_PATH_LOCKED);
+        return rd_error_set(err, "rockdem sweep: %s: cannot resume it: %s", t->path,
+                            RD_PATH_LOCKED);
     if (t->file < 0 || get_fd(t, err)) return h5fail_errno(t, err, "cannot open for writing");
     if (check_same(t, "axes", t->plan->axes_text, "axes or --set overrides", err) ||
         check_same(t, "scenario", t->plan->text, NULL, err))
         return -1;
-    if ((t->group = H5Gopen2(t->file, "sweep", H5P_DEFAULT)) < 0) return h5fail(t, err, "no /sweep group");
+    if ((t->group = H5Gopen2(t->file, "sweep", H5P_DEFAULT)) < 0)
+        return h5fail(t, err, "no /sweep group");
     int layout = 0;
     if (H5Aexists(t->group, "layout_version") <= 0 ||
-        H5LTget_attribute_int(t->group, ".", "layout_version", &layout) < 0 || layout != RD_SWEEP_LAYOUT)
-        return h5fail(t, err, "was written by an older rockdem (another table layout); choose another -o");
+        H5LTget_attribute_int(t->group, ".", "layout_version", &layout) < 0 ||
+        layout != RD_SWEEP_LAYOUT)
+        return h5fail(t, err,
+                      "was written by an older rockdem (another table layout); choose another -o");
     for (int i = 0; i < t->ncols; i++)
         if ((t->col[i].dset = H5Dopen2(t->group, t->col[i].name, H5P_DEFAULT)) < 0)
             return h5fail(t, err, "a column of /sweep is missing");
@@ -480,16 +541,21 @@ static rd_sweep_table *new_table(const char *path, const rd_sweep_plan *p)
 
 static void sweep_table_close(rd_sweep_table *t);
 
-static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p, char *done,
+                                        rd_error *err)
 {
     if (rd_path_same(path, p->path)) {
-        rd_error_set(err, "%s: cannot write the table there: it is the scenario file being read", path);
+        rd_error_set(err, "%s: cannot write the table there: it is the scenario file being read",
+                     path);
         return NULL;
     }
     struct stat st;
     if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
-        rd_error_set(err, "%s: cannot write the table there: it is a symbolic link (rockdem does not write "
-                          "through links: remove it or give the file's own path)", path);
+        rd_error_set(
+            err,
+            "%s: cannot write the table there: it is a symbolic link (rockdem does not write "
+            "through links: remove it or give the file's own path)",
+            path);
         return NULL;
     }
     if (rd_path_special(path)) {
@@ -497,11 +563,17 @@ static rd_sweep_table *sweep_table_open(const char *path, const rd_sweep_plan *p
         return NULL;
     }
     rd_sweep_table *t = new_table(path, p);
-    if (!t) { rd_error_set(err, "rockdem sweep: out of memory"); return NULL; }
+    if (!t) {
+        rd_error_set(err, "rockdem sweep: out of memory");
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
     int rc = f ? open_table(t, done, err) : create_table(t, 1, err);
     if (f) fclose(f);
-    if (rc) { rd_sweep_table_close(t); return NULL; }
+    if (rc) {
+        rd_sweep_table_close(t);
+        return NULL;
+    }
     return t;
 }
 
@@ -512,10 +584,13 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
     if (c->axis >= 0) {
         const rd_sweep_axis *a = &t->plan->axis[c->axis];
         int v = rd_sweep_value_index(t->plan, r->index, c->axis);
-        if (a->number) memcpy(buf, &a->number[v], sizeof(double));
-        else snprintf(buf, RD_SWEEP_TEXT, "%s", a->value[v]);
+        if (a->number)
+            memcpy(buf, &a->number[v], sizeof(double));
+        else
+            snprintf(buf, RD_SWEEP_TEXT, "%s", a->value[v]);
     } else if (c->spec->type == C_STATUS) {
-        buf[0] = (char)(r->status >= 0 && r->status <= RD_STATUS_UNTRUSTED ? r->status : RD_STATUS_ERROR);
+        buf[0] = (char)(r->status >= 0 && r->status <= RD_STATUS_UNTRUSTED ? r->status
+                                                                           : RD_STATUS_ERROR);
     } else {
         size_t n = c->spec->per_body ? (size_t)t->plan->nbodies : 1;
         memcpy(buf, (const char *)r + c->spec->off, n * c->size);
@@ -542,8 +617,9 @@ static int sweep_table_append(rd_sweep_table *t, const rd_sweep_result *r, rd_er
     errno = 0;
     for (int i = 0; i < t->ncols; i++) {
         column *c = &t->col[i];
-        hsize_t d[2] = {(hsize_t)t->rows + 1, (hsize_t)c->width}, start[2] = {(hsize_t)t->rows, 0};
-        hsize_t count[2] = {1, (hsize_t)c->width};
+        hsize_t d[2] = { (hsize_t)t->rows + 1, (hsize_t)c->width },
+                start[2] = { (hsize_t)t->rows, 0 };
+        hsize_t count[2] = { 1, (hsize_t)c->width };
         int rank = c->spec && c->spec->per_body ? 2 : 1;
         cell(t, c, r, buf);
         if (H5Dset_extent(c->dset, d) < 0) return undo_row(t, err, "cannot extend a column");
@@ -573,15 +649,19 @@ static int cmp_key(const void *a, const void *b)
 static int copy_sorted(rd_sweep_table *t, rd_sweep_table *u, const long *perm, rd_error *err)
 {
     size_t bytes = 0;
-    for (int i = 0; i < t->ncols; i++) bytes += t->col[i].size * (size_t)t->col[i].width * (size_t)t->rows;
-    if (reserve(u, 2 * bytes, err)) return -1; /* the data and its chunk rounding, before HDF5 writes */
+    for (int i = 0; i < t->ncols; i++)
+        bytes += t->col[i].size * (size_t)t->col[i].width * (size_t)t->rows;
+    if (reserve(u, 2 * bytes, err))
+        return -1; /* the data and its chunk rounding, before HDF5 writes */
     for (int i = 0; i < t->ncols; i++) {
         column *c = &t->col[i];
         size_t row = c->size * (size_t)c->width;
-        hsize_t d[2] = {(hsize_t)t->rows, (hsize_t)c->width};
+        hsize_t d[2] = { (hsize_t)t->rows, (hsize_t)c->width };
         char *a = malloc(row * (size_t)t->rows), *b = malloc(row * (size_t)t->rows);
-        int rc = a && b && H5Dread(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 ? 0 : -1;
-        for (long r = 0; !rc && r < t->rows; r++) memcpy(b + (size_t)r * row, a + (size_t)perm[r] * row, row);
+        int rc =
+            a && b && H5Dread(c->dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, a) >= 0 ? 0 : -1;
+        for (long r = 0; !rc && r < t->rows; r++)
+            memcpy(b + (size_t)r * row, a + (size_t)perm[r] * row, row);
         errno = 0;
         if (!rc && (H5Dset_extent(u->col[i].dset, d) < 0 ||
                     H5Dwrite(u->col[i].dset, c->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0))
@@ -602,18 +682,22 @@ static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
 {
     char tmp[RD_PATH_MAX];
     int fd = rd_path_temp(t->path, tmp);
-    if (fd < 0) return h5fail_errno(t, err, "cannot create a temporary file beside it to sort the rows");
+    if (fd < 0)
+        return h5fail_errno(t, err, "cannot create a temporary file beside it to sort the rows");
     close(fd);
     rd_sweep_table *u = new_table(tmp, t->plan);
-    int rc = !u ? h5fail(t, err, "out of memory") : create_table(u, 0, err) || copy_sorted(t, u, perm, err);
+    int rc = !u ? h5fail(t, err, "out of memory")
+                : create_table(u, 0, err) || copy_sorted(t, u, perm, err);
     sweep_table_close(u);
     rd_fault_point("sweep-sort-rename");
-    if (!rc && rd_path_commit(tmp, t->path)) rc = h5fail_errno(t, err, "cannot rename the sorted table into place");
+    if (!rc && rd_path_commit(tmp, t->path))
+        rc = h5fail_errno(t, err, "cannot rename the sorted table into place");
     if (rc) {
         unlink(tmp);
         char why[RD_ERROR_MAX];
         snprintf(why, sizeof why, "%s", err->msg);
-        return rd_error_set(err, "%s (the table keeps its rows unsorted; the same command sorts them)", why);
+        return rd_error_set(
+            err, "%s (the table keeps its rows unsorted; the same command sorts them)", why);
     }
     rd_fault_point("sweep-sort-renamed");
     return 0;
@@ -622,8 +706,12 @@ static int permute(rd_sweep_table *t, const long *perm, rd_error *err)
 static int sweep_table_sort(rd_sweep_table *t, rd_error *err)
 {
     const column *ck = &t->col[t->ncols - 1];
-    long n = t->rows, *k = malloc((size_t)(n > 0 ? n : 1) * sizeof *k), *kv = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *kv);
-    int rc = k && kv && (n == 0 || H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) >= 0) ? 0 : -1;
+    long n = t->rows, *k = malloc((size_t)(n > 0 ? n : 1) * sizeof *k),
+         *kv = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *kv);
+    int rc =
+        k && kv && (n == 0 || H5Dread(ck->dset, ck->mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) >= 0)
+            ? 0
+            : -1;
     int sorted = 1;
     for (long i = 0; !rc && i < n; i++) {
         kv[2 * i] = k[i];
@@ -657,7 +745,8 @@ static void sweep_table_close(rd_sweep_table *t)
 
 /* ---- the entry points: HDF5 error printing off around each (io/h5_quiet.h) ---- */
 
-rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done, rd_error *err)
+rd_sweep_table *rd_sweep_table_open(const char *path, const rd_sweep_plan *p, char *done,
+                                    rd_error *err)
 {
     RD_H5_QUIETLY(rd_sweep_table *, sweep_table_open(path, p, done, err));
 }

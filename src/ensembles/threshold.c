@@ -24,7 +24,7 @@
 
 rd_threshold_opts rd_threshold_opts_default(void)
 {
-    return (rd_threshold_opts){.lo = 0, .hi = 0, .nscan = 24, .jobs = 0, .rtol = 0.005};
+    return (rd_threshold_opts){ .lo = 0, .hi = 0, .nscan = 24, .jobs = 0, .rtol = 0.005 };
 }
 
 /* DEM run (no file: only the summary is needed); *over = any free body overturned. */
@@ -55,9 +55,12 @@ static int ref_overturns(const rd_scenario *base, double amplitude, int *over, r
 {
     rd_scenario *sc = malloc(sizeof *sc);
     rd_refscene *rs = malloc(sizeof *rs);
-    rd_ref_result res = {0};
+    rd_ref_result res = { 0 };
     int rc = -1;
-    if (!sc || !rs) { rd_error_set(err, "out of memory"); goto done; }
+    if (!sc || !rs) {
+        rd_error_set(err, "out of memory");
+        goto done;
+    }
     *sc = *base;
     sc->motion.horizontal.amplitude = amplitude;
     sc->output.interval = sc->duration; /* no history needed */
@@ -96,7 +99,8 @@ typedef struct scan_message {
 
 #define RD_SCAN_REPORTS 200 /* progress messages per worker run, at most (one per 0.5 % of it) */
 
-#define RD_SCAN_MAX_JOBS 256 /* worker processes at once, at most (each batch's state is on the stack) */
+#define RD_SCAN_MAX_JOBS                                                                           \
+    256 /* worker processes at once, at most (each batch's state is on the stack) */
 
 /* Worker processes for the scan: opts->jobs, or every online core when it is <= 0. */
 static int scan_jobs(const rd_threshold_opts *opts)
@@ -107,7 +111,10 @@ static int scan_jobs(const rd_threshold_opts *opts)
 
 /* A worker's progress callback: its run's progress on its pipe, each 1 / RD_SCAN_REPORTS of the
    run at most (the scan reads it while it waits, so the pipe never fills). */
-typedef struct worker_pipe { int fd; double sent, t_end; } worker_pipe;
+typedef struct worker_pipe {
+    int fd;
+    double sent, t_end;
+} worker_pipe;
 static void worker_progress(void *ctx, double t, double t_end)
 {
     worker_pipe *w = ctx;
@@ -115,16 +122,16 @@ static void worker_progress(void *ctx, double t, double t_end)
     w->t_end = t_end;
     if (f - w->sent < 1.0 / RD_SCAN_REPORTS && f < 1.0) return;
     w->sent = f;
-    scan_message m = {.done = 0, .t = t, .t_end = t_end};
+    scan_message m = { .done = 0, .t = t, .t_end = t_end };
     if (rd_pipe_write(w->fd, &m, sizeof m)) _exit(3);
 }
 
 /* The worker: one run, its progress and outcome on fd, never returns. */
 static void scan_worker(const rd_scenario *sc, rd_engine engine, double amplitude, int fd)
 {
-    scan_message m = {.done = 1};
-    rd_error err = {{0}};
-    worker_pipe w = {fd, -1.0, 0.0};
+    scan_message m = { .done = 1 };
+    rd_error err = { { 0 } };
+    worker_pipe w = { fd, -1.0, 0.0 };
     rd_set_progress(worker_progress, &w);
     m.o.rc = rd_overturns(sc, engine, amplitude, &m.o.over, &err);
     m.t = m.t_end = w.t_end;
@@ -142,11 +149,11 @@ static void relay_progress(double base, const double *f, int n, double t_end, do
     double done = base;
     for (int k = 0; k < n; k++) done += f[k];
     if (!(done > *told) || !(t_end > 0)) return;
-    if (*told == 0) rd_progress_report(0, t_end);      /* the scan's first run starts */
-    int run = *told > 0 ? (int)ceil(*told) : 1;          /* the run the callback is in */
+    if (*told == 0) rd_progress_report(0, t_end); /* the scan's first run starts */
+    int run = *told > 0 ? (int)ceil(*told) : 1;   /* the run the callback is in */
     int last = done > floor(done) ? (int)floor(done) + 1 : (int)done; /* the one done ends in */
     for (; run < last; run++) {
-        rd_progress_report(t_end, t_end);                /* it is complete, the next starts */
+        rd_progress_report(t_end, t_end); /* it is complete, the next starts */
         rd_progress_report(0, t_end);
     }
     rd_progress_report(done < last ? (done - floor(done)) * t_end : t_end, t_end);
@@ -167,7 +174,11 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
         int p[2];
         if (pipe(p)) break;
         pid[started] = fork();
-        if (pid[started] < 0) { close(p[0]); close(p[1]); break; }
+        if (pid[started] < 0) {
+            close(p[0]);
+            close(p[1]);
+            break;
+        }
         if (pid[started] == 0) {
             /* the worker dies with the scan; the check closes the race with a parent gone first */
             if (prctl(PR_SET_PDEATHSIG, SIGKILL) || getppid() != parent) _exit(3);
@@ -180,7 +191,10 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
     }
     double f[n], t_end = 0;
     struct pollfd pfd[n];
-    for (int k = 0; k < started; k++) { f[k] = 0; pfd[k] = (struct pollfd){.fd = fd[k], .events = POLLIN}; }
+    for (int k = 0; k < started; k++) {
+        f[k] = 0;
+        pfd[k] = (struct pollfd){ .fd = fd[k], .events = POLLIN };
+    }
     for (int open = started, waiting = 1; open > 0;) {
         if (waiting && poll(pfd, (nfds_t)started, -1) < 0) {
             if (errno == EINTR) continue;
@@ -196,8 +210,9 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
                 continue;
             }
             if (lost) { /* the pipe closed with no outcome: the worker died */
-                m.o = (scan_outcome){.rc = -1};
-                snprintf(m.o.msg, sizeof m.o.msg, "threshold: the worker for %.4g m/s^2 died", a[k]);
+                m.o = (scan_outcome){ .rc = -1 };
+                snprintf(m.o.msg, sizeof m.o.msg, "threshold: the worker for %.4g m/s^2 died",
+                         a[k]);
             }
             out[k] = m.o;
             f[k] = 1;
@@ -218,7 +233,8 @@ static int scan_batch(const rd_scenario *sc, rd_engine engine, const double *a, 
    bracket (*above < 0: none did; *below: the last one below it). jobs runs at a time; the
    outcomes are taken in scan order, so the bracket is the serial scan's. */
 static int coarse_scan(const rd_scenario *sc, rd_engine engine, double lo, double hi, int n,
-                       int jobs, double *below, double *above, rd_threshold_result *out, rd_error *err)
+                       int jobs, double *below, double *above, rd_threshold_result *out,
+                       rd_error *err)
 {
     double told = 0; /* runs' worth told to the progress callback (relay_progress) */
     *below = lo;
@@ -237,8 +253,11 @@ static int coarse_scan(const rd_scenario *sc, rd_engine engine, double lo, doubl
         out->runs += m;
         for (int i = 0; i < m && *above < 0; i++) {
             if (o[i].rc) return rd_error_set(err, "%s", o[i].msg);
-            if (o[i].over) { *above = a[i]; out->lifted_off = o[i].over == RD_LIFTS_OFF; }
-            else *below = a[i];
+            if (o[i].over) {
+                *above = a[i];
+                out->lifted_off = o[i].over == RD_LIFTS_OFF;
+            } else
+                *below = a[i];
         }
     }
     return 0;
@@ -256,13 +275,20 @@ static int own_scales(const rd_scenario *sc, rd_threshold_result *out, rd_error 
     for (int i = 0; i < rep.nbodies; i++) {
         const rd_check_body *b = &rep.body[i];
         if (b->fixed) continue;
-        double a = fmin(b->alpha_shaking, b->alpha_tower); /* (p: the assembly's, or its own alone) */
-        if (a < alpha) { alpha = a; p = b->p_tower; }
+        double a =
+            fmin(b->alpha_shaking, b->alpha_tower); /* (p: the assembly's, or its own alone) */
+        if (a < alpha) {
+            alpha = a;
+            p = b->p_tower;
+        }
     }
     rd_check_free(&rep);
     if (!(alpha > 0 && alpha < M_PI / 2))
-        return rd_error_set(err, "%s: threshold: no free body stands on a support that can tip it (static "
-                                 "tipping angle %.3g deg); give --lo and --hi", sc->file, alpha * 180 / M_PI);
+        return rd_error_set(
+            err,
+            "%s: threshold: no free body stands on a support that can tip it (static "
+            "tipping angle %.3g deg); give --lo and --hi",
+            sc->file, alpha * 180 / M_PI);
     out->static_amp = sc->gravity * tan(alpha);
     out->w_over_p = p > 0 ? 2 * M_PI * sc->motion.horizontal.frequency / p : 0;
     out->own_scale = 1;
@@ -277,7 +303,8 @@ static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_erro
     if (!rs) return rd_error_set(err, "out of memory");
     rd_error ref_err;
     int rc = rd_refscene_map(sc, rs, &ref_err);
-    if (rc) rc = own_scales(sc, out, err);
+    if (rc)
+        rc = own_scales(sc, out, err);
     else {
         out->static_amp = sc->gravity * tan(rs->alpha);
         if (rs->model == RD_REFMODEL_KOUNADIS) {
@@ -293,24 +320,29 @@ static int scene_scales(const rd_scenario *sc, rd_threshold_result *out, rd_erro
 }
 
 /* rd_threshold_range with the scene's scales into out (static uplift, w/p). */
-static int search_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo, double *hi,
-                        rd_threshold_result *out, rd_error *err)
+static int search_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo,
+                        double *hi, rd_threshold_result *out, rd_error *err)
 {
     if (sc->motion.horizontal.kind == RD_PULSE_NONE)
         return rd_error_set(err, "%s: threshold: the scenario has no horizontal pulse to scale",
                             sc->file);
     if (!(opts->rtol >= RD_THRESHOLD_RTOL_MIN && opts->rtol <= RD_THRESHOLD_RTOL_MAX))
-        return rd_error_set(err, "threshold: --rtol %g is outside its range [%g, %g] (the bisection's "
-                                 "relative bracket)", opts->rtol, RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX);
+        return rd_error_set(err,
+                            "threshold: --rtol %g is outside its range [%g, %g] (the bisection's "
+                            "relative bracket)",
+                            opts->rtol, RD_THRESHOLD_RTOL_MIN, RD_THRESHOLD_RTOL_MAX);
     if (opts->nscan > RD_THRESHOLD_SCAN_MAX)
-        return rd_error_set(err, "threshold: --steps %d is above its cap %d (coarse scan steps, one "
-                                 "run each)", opts->nscan, RD_THRESHOLD_SCAN_MAX);
+        return rd_error_set(err,
+                            "threshold: --steps %d is above its cap %d (coarse scan steps, one "
+                            "run each)",
+                            opts->nscan, RD_THRESHOLD_SCAN_MAX);
     if (scene_scales(sc, out, err)) return -1;
     *lo = opts->lo > 0 ? opts->lo : 0.9 * out->static_amp;
     *hi = opts->hi > 0 ? opts->hi : 10 * out->static_amp;
     if (!(*lo > 0 && *hi > *lo))
-        return rd_error_set(err, "%s: threshold: --lo %.5g m/s^2 is not below --hi %.5g m/s^2 (their "
-                                 "defaults: 0.9 and 10 times the static uplift threshold %.5g m/s^2)",
+        return rd_error_set(err,
+                            "%s: threshold: --lo %.5g m/s^2 is not below --hi %.5g m/s^2 (their "
+                            "defaults: 0.9 and 10 times the static uplift threshold %.5g m/s^2)",
                             sc->file, *lo, *hi, out->static_amp);
     return 0;
 }
@@ -318,7 +350,7 @@ static int search_range(const rd_scenario *sc, const rd_threshold_opts *opts, do
 int rd_threshold_range(const rd_scenario *sc, const rd_threshold_opts *opts, double *lo, double *hi,
                        rd_error *err)
 {
-    rd_threshold_result scales = {0};
+    rd_threshold_result scales = { 0 };
     return search_range(sc, opts, lo, hi, &scales, err);
 }
 
@@ -333,13 +365,20 @@ int rd_threshold(const rd_scenario *sc, rd_engine engine, const rd_threshold_opt
        closes on the onset of jumping, reported as such) */
     if (coarse_scan(sc, engine, lo, hi, n, scan_jobs(opts), &below, &above, out, err)) return -1;
     if (above < 0) return 0;
-    if (above == lo) { out->found = 1; out->amplitude = out->below = lo; return 0; }
+    if (above == lo) {
+        out->found = 1;
+        out->amplitude = out->below = lo;
+        return 0;
+    }
     while ((above - below) / above > opts->rtol) {
         double mid = 0.5 * (below + above);
         if (rd_overturns(sc, engine, mid, &over, err)) return -1;
         out->runs++;
-        if (over) { above = mid; out->lifted_off = over == RD_LIFTS_OFF; }
-        else below = mid;
+        if (over) {
+            above = mid;
+            out->lifted_off = over == RD_LIFTS_OFF;
+        } else
+            below = mid;
     }
     out->found = 1;
     out->amplitude = above;

@@ -14,13 +14,16 @@ int rd_column_members(const rd_column_spec *c) { return c->drums + 3; }
 
 static rd_body_def brick(double w, double h)
 {
-    return (rd_body_def){.shape = RD_SHAPE_BRICK, .size = {w, w, h}};
+    return (rd_body_def){ .shape = RD_SHAPE_BRICK, .size = { w, w, h } };
 }
 
 static rd_body_def drum(int sides, double r_bottom, double r_top, double h)
 {
-    return (rd_body_def){.shape = RD_SHAPE_PRISM, .sides = sides, .radius = r_bottom,
-                         .radius_top = r_top, .size = {0, 0, h}};
+    return (rd_body_def){ .shape = RD_SHAPE_PRISM,
+                          .sides = sides,
+                          .radius = r_bottom,
+                          .radius_top = r_top,
+                          .size = { 0, 0, h } };
 }
 
 int rd_build_column(const rd_column_spec *c, rd_body_def *out, char (*suffix)[16])
@@ -51,8 +54,8 @@ int rd_build_column(const rd_column_spec *c, rd_body_def *out, char (*suffix)[16
 void rd_build_stack(const double lower[3], const double upper[3], rd_body_def out[2],
                     char suffix[2][16])
 {
-    out[0] = (rd_body_def){.shape = RD_SHAPE_BRICK, .size = {lower[0], lower[1], lower[2]}};
-    out[1] = (rd_body_def){.shape = RD_SHAPE_BRICK, .size = {upper[0], upper[1], upper[2]}};
+    out[0] = (rd_body_def){ .shape = RD_SHAPE_BRICK, .size = { lower[0], lower[1], lower[2] } };
+    out[1] = (rd_body_def){ .shape = RD_SHAPE_BRICK, .size = { upper[0], upper[1], upper[2] } };
     snprintf(suffix[0], sizeof suffix[0], "lower");
     snprintf(suffix[1], sizeof suffix[1], "upper");
 }

@@ -15,13 +15,13 @@
  * taper diameter/2 up the shaft, an echinus capital (a frustum widening by
  * RD_CAPITAL_FLARE, skipped when capital = 0) and a square abacus (skipped when abacus[0] = 0). */
 typedef struct rd_column_spec {
-    int drums, sides;  /* number of drums (>= 1), sides of each drum's polygon (>= 3) */
-    double diameter;   /* shaft diameter at the base, m */
-    double height;     /* height of one drum, m */
-    double taper;      /* top-to-base diameter ratio of the shaft, (0, 1] */
-    double plinth[2];  /* plinth width and height, m */
-    double capital;    /* capital height, m */
-    double abacus[2];  /* abacus width and height, m */
+    int drums, sides; /* number of drums (>= 1), sides of each drum's polygon (>= 3) */
+    double diameter;  /* shaft diameter at the base, m */
+    double height;    /* height of one drum, m */
+    double taper;     /* top-to-base diameter ratio of the shaft, (0, 1] */
+    double plinth[2]; /* plinth width and height, m */
+    double capital;   /* capital height, m */
+    double abacus[2]; /* abacus width and height, m */
 } rd_column_spec;
 
 /* The largest number of members a column can have: plinth, drums, capital, abacus. */

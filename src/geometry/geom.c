@@ -16,15 +16,20 @@ static void poly_zero(rd_poly *p) { memset(p, 0, sizeof *p); }
 void rd_poly_free(rd_poly *p)
 {
     if (!p) return;
-    free(p->v); free(p->fstart); free(p->flen); free(p->fidx);
-    free(p->fn); free(p->fd); free(p->tri);
+    free(p->v);
+    free(p->fstart);
+    free(p->flen);
+    free(p->fidx);
+    free(p->fn);
+    free(p->fd);
+    free(p->tri);
     poly_zero(p);
 }
 
 static void tri_normal(const double a[3], const double b[3], const double c[3], double n[3])
 {
-    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    double w[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
     rd_cross(u, w, n); /* |n| = twice the triangle area */
 }
 
@@ -53,7 +58,9 @@ void rd_poly_update(rd_poly *p)
         double n[3];
         area_vector(p, f, n);
         for (int k = 1; k + 1 < p->flen[f]; k++) {
-            p->tri[t][0] = ix[0]; p->tri[t][1] = ix[k]; p->tri[t][2] = ix[k + 1];
+            p->tri[t][0] = ix[0];
+            p->tri[t][1] = ix[k];
+            p->tri[t][2] = ix[k + 1];
             t++;
         }
         double len = rd_norm(n);
@@ -66,7 +73,8 @@ void rd_poly_update(rd_poly *p)
 int rd_poly_alloc(rd_poly *p, int nv, int nf, int nidx, rd_error *err)
 {
     poly_zero(p);
-    p->nv = nv; p->nf = nf;
+    p->nv = nv;
+    p->nf = nf;
     p->v = calloc((size_t)nv, sizeof *p->v);
     p->fstart = calloc((size_t)nf, sizeof *p->fstart);
     p->flen = calloc((size_t)nf, sizeof *p->flen);
@@ -84,9 +92,9 @@ int rd_poly_alloc(rd_poly *p, int nv, int nf, int nidx, rd_error *err)
 int rd_poly_brick(rd_poly *p, const double size[3], rd_error *err)
 {
     static const int faces[6][4] = {
-        {0, 2, 3, 1}, /* -z: bottom */ {4, 5, 7, 6}, /* +z: top */
-        {0, 1, 5, 4}, /* -y */          {2, 6, 7, 3}, /* +y */
-        {0, 4, 6, 2}, /* -x */          {1, 3, 7, 5}  /* +x */
+        { 0, 2, 3, 1 }, /* -z: bottom */ { 4, 5, 7, 6 }, /* +z: top */
+        { 0, 1, 5, 4 }, /* -y */ { 2, 6, 7, 3 },         /* +y */
+        { 0, 4, 6, 2 }, /* -x */ { 1, 3, 7, 5 }          /* +x */
     };
     if (rd_poly_alloc(p, 8, 6, 24, err)) return -1;
     for (int i = 0; i < 8; i++) {
@@ -95,7 +103,8 @@ int rd_poly_brick(rd_poly *p, const double size[3], rd_error *err)
         p->v[i][2] = (i & 4 ? 0.5 : -0.5) * size[2];
     }
     for (int f = 0; f < 6; f++) {
-        p->fstart[f] = 4 * f; p->flen[f] = 4;
+        p->fstart[f] = 4 * f;
+        p->flen[f] = 4;
         memcpy(p->fidx + 4 * f, faces[f], sizeof faces[f]);
     }
     rd_poly_update(p);
@@ -107,20 +116,22 @@ int rd_poly_brick(rd_poly *p, const double size[3], rd_error *err)
  * s = a + b + c (exact for a tetrahedron with one vertex at the origin). */
 int rd_poly_mass(const rd_poly *p, rd_mass *m, rd_error *err)
 {
-    double vol = 0, c[3] = {0, 0, 0}, s2[9] = {0};
+    double vol = 0, c[3] = { 0, 0, 0 }, s2[9] = { 0 };
     for (int t = 0; t < p->ntri; t++) {
         const double *a = p->v[p->tri[t][0]], *b = p->v[p->tri[t][1]], *d = p->v[p->tri[t][2]];
         double bxd[3];
         rd_cross(b, d, bxd);
         double v6 = rd_dot(a, bxd) / 6.0;
-        double s[3] = {a[0] + b[0] + d[0], a[1] + b[1] + d[1], a[2] + b[2] + d[2]};
+        double s[3] = { a[0] + b[0] + d[0], a[1] + b[1] + d[1], a[2] + b[2] + d[2] };
         vol += v6;
         rd_axpy(v6 / 4.0, s, c);
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
-                s2[3 * i + j] += v6 / 20.0 * (a[i] * a[j] + b[i] * b[j] + d[i] * d[j] + s[i] * s[j]);
+                s2[3 * i + j] +=
+                    v6 / 20.0 * (a[i] * a[j] + b[i] * b[j] + d[i] * d[j] + s[i] * s[j]);
     }
-    if (!(vol > 0)) return rd_error_set(err, "polyhedron has non-positive volume %g (inside out?)", vol);
+    if (!(vol > 0))
+        return rd_error_set(err, "polyhedron has non-positive volume %g (inside out?)", vol);
     for (int i = 0; i < 3; i++) c[i] /= vol;
     double cov[9];
     for (int i = 0; i < 3; i++)
@@ -130,7 +141,8 @@ int rd_poly_mass(const rd_poly *p, rd_mass *m, rd_error *err)
     rd_copy3(c, m->centroid);
     for (int i = 0; i < 9; i++) m->inertia[i] = (i % 4 == 0 ? tr : 0.0) - cov[i];
 
-    gsl_matrix_view A = gsl_matrix_view_array(memcpy((double[9]){0}, m->inertia, sizeof m->inertia), 3, 3);
+    gsl_matrix_view A =
+        gsl_matrix_view_array(memcpy((double[9]){ 0 }, m->inertia, sizeof m->inertia), 3, 3);
     gsl_vector *eval = gsl_vector_alloc(3);
     gsl_matrix *evec = gsl_matrix_alloc(3, 3);
     gsl_eigen_symmv_workspace *w = gsl_eigen_symmv_alloc(3);
@@ -152,7 +164,8 @@ int rd_poly_mass(const rd_poly *p, rd_mass *m, rd_error *err)
         if (m->axes[3 * big + j] < 0)
             for (int i = 0; i < 3; i++) m->axes[3 * i + j] = -m->axes[3 * i + j];
     }
-    double c0[3] = {m->axes[0], m->axes[3], m->axes[6]}, c1[3] = {m->axes[1], m->axes[4], m->axes[7]};
+    double c0[3] = { m->axes[0], m->axes[3], m->axes[6] },
+           c1[3] = { m->axes[1], m->axes[4], m->axes[7] };
     double c2[3];
     rd_cross(c0, c1, c2);
     for (int i = 0; i < 3; i++) m->axes[3 * i + 2] = c2[i];
@@ -162,7 +175,8 @@ int rd_poly_mass(const rd_poly *p, rd_mass *m, rd_error *err)
 void rd_poly_to_frame(rd_poly *p, const rd_mass *m)
 {
     for (int i = 0; i < p->nv; i++) {
-        double d[3] = {p->v[i][0] - m->centroid[0], p->v[i][1] - m->centroid[1], p->v[i][2] - m->centroid[2]};
+        double d[3] = { p->v[i][0] - m->centroid[0], p->v[i][1] - m->centroid[1],
+                        p->v[i][2] - m->centroid[2] };
         rd_mat_tvec(m->axes, d, p->v[i]);
     }
     rd_poly_update(p);
@@ -180,14 +194,19 @@ double rd_poly_face_area(const rd_poly *p, int f)
  * cells of size tol (the 27 cells around a point hold every point within tol of it), so a face
  * of a million points meshes in linear time, not quadratic. */
 typedef struct pts {
-    double (*x)[3]; double *a; int n, cap; double tol, tol2;
-    int *head, *next; size_t nbucket; /* hash chains: head[bucket], next[point]; -1 ends */
+    double (*x)[3];
+    double *a;
+    int n, cap;
+    double tol, tol2;
+    int *head, *next;
+    size_t nbucket; /* hash chains: head[bucket], next[point]; -1 ends */
 } pts;
 
 /* Hash of the cell (ix, iy, iz) into s->nbucket (a power of two) buckets. */
 static size_t pts_bucket(const pts *s, const long long c[3])
 {
-    unsigned long long h = (unsigned long long)c[0] * 73856093ULL ^ (unsigned long long)c[1] * 19349663ULL ^
+    unsigned long long h = (unsigned long long)c[0] * 73856093ULL ^
+                           (unsigned long long)c[1] * 19349663ULL ^
                            (unsigned long long)c[2] * 83492791ULL;
     return (size_t)(h & (s->nbucket - 1));
 }
@@ -196,7 +215,8 @@ static size_t pts_bucket(const pts *s, const long long c[3])
 
 static void pts_cell(const pts *s, const double x[3], long long c[3])
 {
-    for (int k = 0; k < 3; k++) c[k] = (long long)fmax(-PTS_CELL_MAX, fmin(PTS_CELL_MAX, floor(x[k] / s->tol)));
+    for (int k = 0; k < 3; k++)
+        c[k] = (long long)fmax(-PTS_CELL_MAX, fmin(PTS_CELL_MAX, floor(x[k] / s->tol)));
 }
 
 /* First point (lowest index) within tol of x, or -1. */
@@ -209,7 +229,7 @@ static int pts_find(const pts *s, const double x[3])
         for (d[1] = c[1] - 1; d[1] <= c[1] + 1; d[1]++)
             for (d[2] = c[2] - 1; d[2] <= c[2] + 1; d[2]++)
                 for (int i = s->head[pts_bucket(s, d)]; i >= 0; i = s->next[i]) {
-                    double e[3] = {s->x[i][0] - x[0], s->x[i][1] - x[1], s->x[i][2] - x[2]};
+                    double e[3] = { s->x[i][0] - x[0], s->x[i][1] - x[1], s->x[i][2] - x[2] };
                     if (rd_dot(e, e) <= s->tol2 && (best < 0 || i < best)) best = i;
                 }
     return best;
@@ -229,7 +249,7 @@ static void pts_link(pts *s, int i)
 static int pts_grow(pts *s)
 {
     int cap = s->cap ? 2 * s->cap : 64;
-    double (*nx)[3] = realloc(s->x, (size_t)cap * sizeof *nx);
+    double(*nx)[3] = realloc(s->x, (size_t)cap * sizeof *nx);
     if (!nx) return -1;
     s->x = nx;
     double *na = realloc(s->a, (size_t)cap * sizeof *na);
@@ -250,7 +270,10 @@ static int pts_grow(pts *s)
 static int pts_add(pts *s, const double x[3], double area)
 {
     int i = s->n ? pts_find(s, x) : -1;
-    if (i >= 0) { s->a[i] += area; return 0; }
+    if (i >= 0) {
+        s->a[i] += area;
+        return 0;
+    }
     if (s->n == s->cap && pts_grow(s)) return -1;
     rd_copy3(x, s->x[s->n]);
     s->a[s->n] = area;
@@ -259,15 +282,21 @@ static int pts_add(pts *s, const double x[3], double area)
 }
 
 /* Grid point (i, j) of triangle (a, b, c) subdivided n times. */
-static void grid_point(const double a[3], const double b[3], const double c[3], int n, int i, int j, double out[3])
+static void grid_point(const double a[3], const double b[3], const double c[3], int n, int i, int j,
+                       double out[3])
 {
     for (int k = 0; k < 3; k++) out[k] = a[k] + (b[k] - a[k]) * i / n + (c[k] - a[k]) * j / n;
 }
 
-static int mesh_triangle(pts *s, const double a[3], const double b[3], const double c[3], double spacing)
+static int mesh_triangle(pts *s, const double a[3], const double b[3], const double c[3],
+                         double spacing)
 {
     double e[3][3], tn[3];
-    for (int k = 0; k < 3; k++) { e[0][k] = b[k] - a[k]; e[1][k] = c[k] - b[k]; e[2][k] = a[k] - c[k]; }
+    for (int k = 0; k < 3; k++) {
+        e[0][k] = b[k] - a[k];
+        e[1][k] = c[k] - b[k];
+        e[2][k] = a[k] - c[k];
+    }
     double lmax = fmax(rd_norm(e[0]), fmax(rd_norm(e[1]), rd_norm(e[2])));
     int n = spacing > 0 ? (int)ceil(lmax / spacing - 1e-9) : 1;
     if (n < 1) n = 1;
@@ -275,7 +304,8 @@ static int mesh_triangle(pts *s, const double a[3], const double b[3], const dou
     double sub = 0.5 * rd_norm(tn) / ((double)n * n) / 3.0; /* a third of a sub-triangle */
     for (int i = 0; i < n; i++)
         for (int j = 0; i + j < n; j++) {
-            int tri[2][3][2] = {{{i, j}, {i + 1, j}, {i, j + 1}}, {{i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+            int tri[2][3][2] = { { { i, j }, { i + 1, j }, { i, j + 1 } },
+                                 { { i + 1, j }, { i + 1, j + 1 }, { i, j + 1 } } };
             int ntri = (i + j < n - 1) ? 2 : 1;
             for (int t = 0; t < ntri; t++)
                 for (int v = 0; v < 3; v++) {
@@ -303,7 +333,10 @@ static int is_parallelogram(const rd_poly *p, int f, double tol)
 static int mesh_grid(pts *s, const double *o, const double *a, const double *b, double spacing)
 {
     double e1[3], e2[3], cr[3];
-    for (int k = 0; k < 3; k++) { e1[k] = a[k] - o[k]; e2[k] = b[k] - o[k]; }
+    for (int k = 0; k < 3; k++) {
+        e1[k] = a[k] - o[k];
+        e2[k] = b[k] - o[k];
+    }
     int nu = spacing > 0 ? (int)ceil(rd_norm(e1) / spacing - 1e-9) : 1;
     int nv = spacing > 0 ? (int)ceil(rd_norm(e2) / spacing - 1e-9) : 1;
     if (nu < 1) nu = 1;
@@ -330,7 +363,8 @@ static void face_centroid(const rd_poly *p, int f, double c[3])
         double tn[3];
         tri_normal(p->v[ix[0]], p->v[ix[k]], p->v[ix[k + 1]], tn);
         double t = rd_norm(tn);
-        for (int j = 0; j < 3; j++) c[j] += t * (p->v[ix[0]][j] + p->v[ix[k]][j] + p->v[ix[k + 1]][j]) / 3;
+        for (int j = 0; j < 3; j++)
+            c[j] += t * (p->v[ix[0]][j] + p->v[ix[k]][j] + p->v[ix[k + 1]][j]) / 3;
         a += t;
     }
     for (int j = 0; j < 3; j++) c[j] /= a;
@@ -361,7 +395,7 @@ static int mesh_polygon(pts *s, const rd_poly *p, int f, double spacing)
 
 static double dist(const double a[3], const double b[3])
 {
-    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double d[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
     return rd_norm(d);
 }
 
@@ -393,10 +427,11 @@ double rd_poly_face_points_bound(const rd_poly *p, int f, double spacing)
     return total;
 }
 
-int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area, int cap)
+int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area,
+                        int cap)
 {
     const int *ix = p->fidx + p->fstart[f];
-    pts s = {0};
+    pts s = { 0 };
     s.tol = 1e-9 * (p->radius > 0 ? p->radius : 1.0);
     s.tol2 = s.tol * s.tol;
     double tol = s.tol;
@@ -407,12 +442,16 @@ int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3
         rc = mesh_polygon(&s, p, f, spacing);
     int n = rc ? -1 : s.n;
     if (n > 0 && cap > 0) {
-        if (n > cap) n = -1;
+        if (n > cap)
+            n = -1;
         else {
             memcpy(xyz, s.x, (size_t)n * sizeof *xyz);
             memcpy(area, s.a, (size_t)n * sizeof *area);
         }
     }
-    free(s.x); free(s.a); free(s.next); free(s.head);
+    free(s.x);
+    free(s.a);
+    free(s.next);
+    free(s.head);
     return n;
 }

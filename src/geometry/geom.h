@@ -12,17 +12,17 @@
 
 typedef struct rd_poly {
     int nv;
-    double (*v)[3];   /* vertices, m */
+    double (*v)[3]; /* vertices, m */
     int nf;
-    int *fstart;      /* face f uses fidx[fstart[f] .. fstart[f]+flen[f]-1], counter-clockwise seen
+    int *fstart; /* face f uses fidx[fstart[f] .. fstart[f]+flen[f]-1], counter-clockwise seen
                          from outside */
     int *flen;
     int *fidx;
-    double (*fn)[3];  /* outward unit normal of each face */
-    double *fd;       /* plane offset: points x on face f satisfy fn[f].x = fd[f], m */
+    double (*fn)[3]; /* outward unit normal of each face */
+    double *fd;      /* plane offset: points x on face f satisfy fn[f].x = fd[f], m */
     int ntri;
-    int (*tri)[3];    /* fan triangulation of the faces (for output and mass properties) */
-    double radius;    /* max vertex distance from the origin, m */
+    int (*tri)[3]; /* fan triangulation of the faces (for output and mass properties) */
+    double radius; /* max vertex distance from the origin, m */
 } rd_poly;
 
 /* Mass properties of a closed polyhedron of uniform density (divergence theorem). */
@@ -56,7 +56,8 @@ void rd_poly_free(rd_poly *p);
  * takes half of the two centroid triangles beside it. The areas sum to the face area.
  * Writes at most `cap` points into xyz[][3] and area[]; returns the count, or -1 if cap is too
  * small (call with cap = 0 to learn the count). */
-int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area, int cap);
+int rd_poly_face_points(const rd_poly *p, int f, double spacing, double (*xyz)[3], double *area,
+                        int cap);
 
 /* At least as many points as rd_poly_face_points makes on face f at this spacing, cheaply
  * (nothing is meshed), as a double: what a spacing far below the face's size would ask for. */

@@ -19,17 +19,22 @@
 /* Vertices and faces as they are read. */
 typedef struct mesh {
     const char *path;
-    double (*v)[3]; int nv, vcap;
-    int *flen; int nf, fcap;
-    int *fline; int flcap; /* source line of each face (0: a binary file, no lines) */
-    int *idx; int ni, icap;
-    int *tline; int nt, tcap; /* ASCII STL: line of each facet's endfacet */
-    double f32_max;           /* largest |coordinate| read as float32 (binary STL, PLY float), m */
+    double (*v)[3];
+    int nv, vcap;
+    int *flen;
+    int nf, fcap;
+    int *fline;
+    int flcap; /* source line of each face (0: a binary file, no lines) */
+    int *idx;
+    int ni, icap;
+    int *tline;
+    int nt, tcap;   /* ASCII STL: line of each facet's endfacet */
+    double f32_max; /* largest |coordinate| read as float32 (binary STL, PLY float), m */
 } mesh;
 
 /* Largest |coordinate| accepted, m: map coordinates are ~1e7 m; beyond 1e9 m products of
  * coordinates (areas, volumes, inertia) lose all precision relative to a rock's size. */
-#define MESH_COORD_MAX 1e9
+#define MESH_COORD_MAX   1e9
 /* A float32 mesh is refused when its coordinates' resolution (the float32 spacing at their
  * magnitude) exceeds this fraction of the mesh's radius (half its bounding-box diagonal): the
  * contact band, RD_CONTACT_BAND of engine/sim.h, within which a point counts as touching; a
@@ -43,7 +48,8 @@ static int grow(void **a, int *cap, int need, size_t size)
     while (c < need) c *= 2;
     void *n = realloc(*a, (size_t)c * size);
     if (!n) return -1;
-    *a = n; *cap = c;
+    *a = n;
+    *cap = c;
     return 0;
 }
 
@@ -54,8 +60,9 @@ static int add_vertex(mesh *m, const double x[3], int line, rd_error *err)
         if (!(fabs(x[k]) <= MESH_COORD_MAX)) {
             char at[32] = "";
             if (line > 0) snprintf(at, sizeof at, ":%d", line);
-            return rd_error_set(err, "%s%s: vertex %d: coordinate %c = %g %s", m->path, at, m->nv, 'x' + k, x[k],
-                                isfinite(x[k]) ? "m is beyond the 1e9 m accepted" : "is not a finite number");
+            return rd_error_set(
+                err, "%s%s: vertex %d: coordinate %c = %g %s", m->path, at, m->nv, 'x' + k, x[k],
+                isfinite(x[k]) ? "m is beyond the 1e9 m accepted" : "is not a finite number");
         }
     if (grow((void **)&m->v, &m->vcap, m->nv + 1, sizeof *m->v))
         return rd_error_set(err, "%s: out of memory", m->path);
@@ -82,7 +89,14 @@ static int end_face(mesh *m, int len, int line, rd_error *err)
     return 0;
 }
 
-static void mesh_free(mesh *m) { free(m->v); free(m->flen); free(m->fline); free(m->idx); free(m->tline); }
+static void mesh_free(mesh *m)
+{
+    free(m->v);
+    free(m->flen);
+    free(m->fline);
+    free(m->idx);
+    free(m->tline);
+}
 
 /* Whole file, NUL-terminated. */
 static int read_all(const char *path, char **buf, size_t *len, rd_error *err)
@@ -96,15 +110,24 @@ static int read_all(const char *path, char **buf, size_t *len, rd_error *err)
         n += fread(b + n, 1, cap - n, f);
         if (n < cap) break;
         char *nb = realloc(b, 2 * cap + 1);
-        if (!nb) { free(b); b = NULL; break; }
-        b = nb; cap *= 2;
+        if (!nb) {
+            free(b);
+            b = NULL;
+            break;
+        }
+        b = nb;
+        cap *= 2;
     }
     int bad = ferror(f) ? errno : 0;
     fclose(f);
     if (!b) return rd_error_set(err, "%s: out of memory", path);
-    if (bad) { free(b); return rd_error_set(err, "%s: read error: %s", path, strerror(bad)); }
+    if (bad) {
+        free(b);
+        return rd_error_set(err, "%s: read error: %s", path, strerror(bad));
+    }
     b[n] = '\0';
-    *buf = b; *len = n;
+    *buf = b;
+    *len = n;
     return 0;
 }
 
@@ -120,7 +143,10 @@ static int text_coord(const char *s, const char *eol, double *x, const char **to
     *end = e;
     char *stop;
     *x = strtod(s, &stop);
-    return e > s && stop == e && !memchr(s, 'x', (size_t)(e - s)) && !memchr(s, 'X', (size_t)(e - s)) ? 0 : -1;
+    return e > s && stop == e && !memchr(s, 'x', (size_t)(e - s)) &&
+                   !memchr(s, 'X', (size_t)(e - s))
+               ? 0
+               : -1;
 }
 
 /* ---- OBJ: "v x y z", "f a b c ..." with a/b/c tokens and negative (relative) indices ---- */
@@ -134,7 +160,8 @@ static int obj_face(mesh *m, const char *s, const char *eol, int line, rd_error 
         char *end;
         long i = strtol(s, &end, 10);
         if (end == s || (end < eol && *end != '/' && !isspace((unsigned char)*end)))
-            return rd_error_set(err, "%s:%d: bad vertex index in face %d", m->path, line, m->nf + 1);
+            return rd_error_set(err, "%s:%d: bad vertex index in face %d", m->path, line,
+                                m->nf + 1);
         long k = i > 0 ? i - 1 : m->nv + i;
         if (i == 0 || k < 0 || k >= m->nv)
             return rd_error_set(err, "%s:%d: face %d uses vertex %ld but the file has %d vertices",
@@ -144,8 +171,8 @@ static int obj_face(mesh *m, const char *s, const char *eol, int line, rd_error 
         for (s = end; s < eol && !isspace((unsigned char)*s); s++) {}
     }
     if (len < 3)
-        return rd_error_set(err, "%s:%d: face %d has %d vertices (at least 3 needed)", m->path, line,
-                            m->nf + 1, len);
+        return rd_error_set(err, "%s:%d: face %d has %d vertices (at least 3 needed)", m->path,
+                            line, m->nf + 1, len);
     return end_face(m, len, line, err);
 }
 
@@ -161,9 +188,10 @@ static int obj_read(mesh *m, const char *buf, rd_error *err)
             const char *at = s + 1, *tok;
             for (int k = 0; k < 3; k++)
                 if (text_coord(at, eol, &x[k], &tok, &at))
-                    return tok == at ? rd_error_set(err, "%s:%d: expected 3 coordinates after 'v'", m->path, line)
-                                     : rd_error_set(err, "%s:%d: bad coordinate '%.*s' after 'v'", m->path, line,
-                                                    (int)(at - tok), tok);
+                    return tok == at ? rd_error_set(err, "%s:%d: expected 3 coordinates after 'v'",
+                                                    m->path, line)
+                                     : rd_error_set(err, "%s:%d: bad coordinate '%.*s' after 'v'",
+                                                    m->path, line, (int)(at - tok), tok);
             if (add_vertex(m, x, line, err)) return -1;
         } else if (s[0] == 'f' && (s[1] == ' ' || s[1] == '\t')) {
             if (obj_face(m, s + 1, eol, line, err)) return -1;
@@ -178,10 +206,19 @@ static int obj_read(mesh *m, const char *buf, rd_error *err)
 /* Header limits, and the longest list (a face's vertex count) an element may hold. */
 enum { PLY_MAXEL = 16, PLY_MAXPROP = 32, PLY_MAXLIST = 1000000 };
 typedef enum { T_BAD, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 } ply_type;
-typedef struct ply_prop { char name[32]; ply_type type, count_type; int is_list; } ply_prop;
-typedef struct ply_elem { char name[32]; long count; int np; ply_prop p[PLY_MAXPROP]; } ply_elem;
+typedef struct ply_prop {
+    char name[32];
+    ply_type type, count_type;
+    int is_list;
+} ply_prop;
+typedef struct ply_elem {
+    char name[32];
+    long count;
+    int np;
+    ply_prop p[PLY_MAXPROP];
+} ply_elem;
 typedef struct ply {
-    int format;          /* 0 ascii, 1 binary little endian, 2 binary big endian */
+    int format; /* 0 ascii, 1 binary little endian, 2 binary big endian */
     int nel;
     ply_elem el[PLY_MAXEL];
     const char *s, *end; /* data cursor */
@@ -190,11 +227,15 @@ typedef struct ply {
 
 static ply_type ply_type_of(const char *t)
 {
-    static const struct { const char *name; ply_type type; } names[] = {
-        {"char", T_I8}, {"int8", T_I8}, {"uchar", T_U8}, {"uint8", T_U8}, {"short", T_I16},
-        {"int16", T_I16}, {"ushort", T_U16}, {"uint16", T_U16}, {"int", T_I32}, {"int32", T_I32},
-        {"uint", T_U32}, {"uint32", T_U32}, {"float", T_F32}, {"float32", T_F32},
-        {"double", T_F64}, {"float64", T_F64}};
+    static const struct {
+        const char *name;
+        ply_type type;
+    } names[] = { { "char", T_I8 },    { "int8", T_I8 },     { "uchar", T_U8 },
+                  { "uint8", T_U8 },   { "short", T_I16 },   { "int16", T_I16 },
+                  { "ushort", T_U16 }, { "uint16", T_U16 },  { "int", T_I32 },
+                  { "int32", T_I32 },  { "uint", T_U32 },    { "uint32", T_U32 },
+                  { "float", T_F32 },  { "float32", T_F32 }, { "double", T_F64 },
+                  { "float64", T_F64 } };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
         if (!strcmp(t, names[i].name)) return names[i].type;
     return T_BAD;
@@ -206,14 +247,19 @@ static int ply_header_line(ply *h, const char *path, char *ln, int line, rd_erro
     int n = sscanf(ln, "%31s %31s %31s %31s", a, b, c, d);
     if (n <= 0 || !strcmp(a, "comment") || !strcmp(a, "obj_info")) return 0;
     if (!strcmp(a, "format")) {
-        if (!strcmp(b, "ascii")) h->format = 0;
-        else if (!strcmp(b, "binary_little_endian")) h->format = 1;
-        else if (!strcmp(b, "binary_big_endian")) h->format = 2;
-        else return rd_error_set(err, "%s:%d: unknown PLY format '%s'", path, line, b);
+        if (!strcmp(b, "ascii"))
+            h->format = 0;
+        else if (!strcmp(b, "binary_little_endian"))
+            h->format = 1;
+        else if (!strcmp(b, "binary_big_endian"))
+            h->format = 2;
+        else
+            return rd_error_set(err, "%s:%d: unknown PLY format '%s'", path, line, b);
         return 0;
     }
     if (!strcmp(a, "element") && n == 3) {
-        if (h->nel == PLY_MAXEL) return rd_error_set(err, "%s:%d: too many PLY elements", path, line);
+        if (h->nel == PLY_MAXEL)
+            return rd_error_set(err, "%s:%d: too many PLY elements", path, line);
         ply_elem *e = &h->el[h->nel++];
         memset(e, 0, sizeof *e);
         snprintf(e->name, sizeof e->name, "%s", b);
@@ -225,14 +271,17 @@ static int ply_header_line(ply *h, const char *path, char *ln, int line, rd_erro
     }
     if (!strcmp(a, "property") && h->nel > 0) {
         ply_elem *e = &h->el[h->nel - 1];
-        if (e->np == PLY_MAXPROP) return rd_error_set(err, "%s:%d: too many PLY properties", path, line);
+        if (e->np == PLY_MAXPROP)
+            return rd_error_set(err, "%s:%d: too many PLY properties", path, line);
         ply_prop *p = &e->p[e->np++];
         p->is_list = !strcmp(b, "list");
         p->count_type = p->is_list ? ply_type_of(c) : T_BAD;
         p->type = ply_type_of(p->is_list ? d : b);
-        int ok = p->is_list ? n == 4 && sscanf(ln, "%*s %*s %*s %*s %31s", p->name) == 1 && p->count_type != T_BAD
+        int ok = p->is_list ? n == 4 && sscanf(ln, "%*s %*s %*s %*s %31s", p->name) == 1 &&
+                                  p->count_type != T_BAD
                             : n == 3 && snprintf(p->name, sizeof p->name, "%s", c) > 0;
-        if (!ok || p->type == T_BAD) return rd_error_set(err, "%s:%d: bad PLY property line", path, line);
+        if (!ok || p->type == T_BAD)
+            return rd_error_set(err, "%s:%d: bad PLY property line", path, line);
         return 0;
     }
     return rd_error_set(err, "%s:%d: unexpected PLY header line '%s'", path, line, a);
@@ -251,22 +300,28 @@ static int ply_header(ply *h, const char *path, const char *buf, size_t len, rd_
         if (!eol) return rd_error_set(err, "%s: truncated PLY header (no end_header)", path);
         char ln[256];
         size_t n = (size_t)(eol - s) < sizeof ln - 1 ? (size_t)(eol - s) : sizeof ln - 1;
-        memcpy(ln, s, n); ln[n] = '\0';
+        memcpy(ln, s, n);
+        ln[n] = '\0';
         if (n && ln[n - 1] == '\r') ln[n - 1] = '\0';
         s = eol + 1;
         if (line == 1) continue;
-        if (!strcmp(ln, "end_header")) { h->line = line + 1; break; }
+        if (!strcmp(ln, "end_header")) {
+            h->line = line + 1;
+            break;
+        }
         if (ply_header_line(h, path, ln, line, err)) return -1;
     }
     if (h->format < 0) return rd_error_set(err, "%s: PLY header has no format line", path);
-    h->s = s; h->end = end;
-    while (h->format == 0 && h->s < h->end && isspace((unsigned char)*h->s)) h->line += *h->s++ == '\n';
+    h->s = s;
+    h->end = end;
+    while (h->format == 0 && h->s < h->end && isspace((unsigned char)*h->s))
+        h->line += *h->s++ == '\n';
     return 0;
 }
 
 static int type_size(ply_type t)
 {
-    static const int size[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
+    static const int size[] = { 0, 1, 1, 2, 2, 4, 4, 4, 8 };
     return size[t];
 }
 
@@ -288,9 +343,19 @@ static int ply_value(ply *h, ply_type t, double *out)
     unsigned char b[8];
     static const uint16_t one = 1;
     int little_host = *(const unsigned char *)&one == 1;
-    for (int i = 0; i < n; i++) b[i] = (unsigned char)h->s[(h->format == 1) == little_host ? i : n - 1 - i];
+    for (int i = 0; i < n; i++)
+        b[i] = (unsigned char)h->s[(h->format == 1) == little_host ? i : n - 1 - i];
     h->s += n;
-    union { int8_t i8; uint8_t u8; int16_t i16; uint16_t u16; int32_t i32; uint32_t u32; float f; double d; } u;
+    union {
+        int8_t i8;
+        uint8_t u8;
+        int16_t i16;
+        uint16_t u16;
+        int32_t i32;
+        uint32_t u32;
+        float f;
+        double d;
+    } u;
     memcpy(&u, b, (size_t)n);
     switch (t) {
     case T_I8: *out = u.i8; break;
@@ -313,9 +378,11 @@ static int ply_short(const ply *h, const char *path, const ply_elem *e, long i, 
                             (int)(n < left ? n : left), h->s, e->name, i, e->count);
     }
     if (h->format == 0)
-        return rd_error_set(err, "%s:%d: %s %ld of %ld has fewer values than the header's properties%s", path,
-                            h->line, e->name, i, e->count, h->s >= h->end ? " (file ends)" : "");
-    return rd_error_set(err, "%s: truncated binary file (%s %ld of %ld)", path, e->name, i, e->count);
+        return rd_error_set(
+            err, "%s:%d: %s %ld of %ld has fewer values than the header's properties%s", path,
+            h->line, e->name, i, e->count, h->s >= h->end ? " (file ends)" : "");
+    return rd_error_set(err, "%s: truncated binary file (%s %ld of %ld)", path, e->name, i,
+                        e->count);
 }
 
 /* One face list: count then indices, checked against the vertex count. */
@@ -324,12 +391,14 @@ static int ply_face(ply *h, mesh *m, const ply_elem *e, const ply_prop *p, long 
     double c;
     if (ply_value(h, p->count_type, &c)) return ply_short(h, m->path, e, i, err);
     if (!(c >= 3 && c <= PLY_MAXLIST) || c != floor(c))
-        return rd_error_set(err, "%s: face %ld has %g vertices (3 to %d allowed)", m->path, i, c, PLY_MAXLIST);
+        return rd_error_set(err, "%s: face %ld has %g vertices (3 to %d allowed)", m->path, i, c,
+                            PLY_MAXLIST);
     for (int k = 0; k < (int)c; k++) {
         double x;
         if (ply_value(h, p->type, &x)) return ply_short(h, m->path, e, i, err);
         if (x < 0 || x >= m->nv || x != floor(x))
-            return rd_error_set(err, "%s: face %ld uses vertex %g but the file has %d vertices", m->path, i, x, m->nv);
+            return rd_error_set(err, "%s: face %ld uses vertex %g but the file has %d vertices",
+                                m->path, i, x, m->nv);
         if (add_index(m, (int)x, err)) return -1;
     }
     return end_face(m, (int)c, h->format == 0 ? h->line : 0, err);
@@ -337,13 +406,14 @@ static int ply_face(ply *h, mesh *m, const ply_elem *e, const ply_prop *p, long 
 
 /* A list property this reader does not use (a face's texture coordinates, ...): count, then
  * that many values read past. */
-static int ply_skip_list(ply *h, const char *path, const ply_elem *e, const ply_prop *p, long i, rd_error *err)
+static int ply_skip_list(ply *h, const char *path, const ply_elem *e, const ply_prop *p, long i,
+                         rd_error *err)
 {
     double cnt, val;
     if (ply_value(h, p->count_type, &cnt)) return ply_short(h, path, e, i, err);
     if (!(cnt >= 0 && cnt <= PLY_MAXLIST) || cnt != floor(cnt))
-        return rd_error_set(err, "%s: %s %ld: list '%s' has %g entries (0 to %d allowed)", path, e->name, i,
-                            p->name, cnt, PLY_MAXLIST);
+        return rd_error_set(err, "%s: %s %ld: list '%s' has %g entries (0 to %d allowed)", path,
+                            e->name, i, p->name, cnt, PLY_MAXLIST);
     for (long k = 0; k < (long)cnt; k++)
         if (ply_value(h, p->type, &val)) return ply_short(h, path, e, i, err);
     return 0;
@@ -353,10 +423,11 @@ static int ply_skip_list(ply *h, const char *path, const ply_elem *e, const ply_
 static int ply_instance(ply *h, mesh *m, const ply_elem *e, long i, rd_error *err)
 {
     int is_vertex = !strcmp(e->name, "vertex"), is_face = !strcmp(e->name, "face");
-    double x[3] = {0, 0, 0};
+    double x[3] = { 0, 0, 0 };
     for (int j = 0; j < e->np; j++) {
         const ply_prop *p = &e->p[j];
-        if (is_face && p->is_list && (!strcmp(p->name, "vertex_indices") || !strcmp(p->name, "vertex_index"))) {
+        if (is_face && p->is_list &&
+            (!strcmp(p->name, "vertex_indices") || !strcmp(p->name, "vertex_index"))) {
             if (ply_face(h, m, e, p, i, err)) return -1;
             continue;
         }
@@ -382,8 +453,10 @@ static int ply_end_line(ply *h, const char *path, const ply_elem *e, long i, rd_
     if (h->format != 0) return 0;
     while (h->s < h->end && (*h->s == ' ' || *h->s == '\t' || *h->s == '\r')) h->s++;
     if (h->s < h->end && *h->s != '\n')
-        return rd_error_set(err, "%s:%d: %s %ld of %ld has more values than the header's %d properties "
-                            "(do the element counts match the data?)", path, h->line, e->name, i, e->count, e->np);
+        return rd_error_set(err,
+                            "%s:%d: %s %ld of %ld has more values than the header's %d properties "
+                            "(do the element counts match the data?)",
+                            path, h->line, e->name, i, e->count, e->np);
     while (h->s < h->end && isspace((unsigned char)*h->s)) h->line += *h->s++ == '\n';
     return 0;
 }
@@ -398,19 +471,24 @@ static int ply_read(mesh *m, const char *buf, size_t len, rd_error *err)
         if (!strcmp(e->name, "vertex")) {
             int xyz = 0;
             for (int j = 0; j < e->np; j++)
-                if (!e->p[j].is_list && e->p[j].name[0] >= 'x' && e->p[j].name[0] <= 'z' && !e->p[j].name[1])
+                if (!e->p[j].is_list && e->p[j].name[0] >= 'x' && e->p[j].name[0] <= 'z' &&
+                    !e->p[j].name[1])
                     xyz |= 1 << (e->p[j].name[0] - 'x');
-            if (xyz != 7) return rd_error_set(err, "%s: PLY vertex element lacks x, y or z", m->path);
+            if (xyz != 7)
+                return rd_error_set(err, "%s: PLY vertex element lacks x, y or z", m->path);
             seen_v = 1;
         }
         if (!strcmp(e->name, "face")) {
-            if (!seen_v) return rd_error_set(err, "%s: PLY face element comes before the vertices", m->path);
+            if (!seen_v)
+                return rd_error_set(err, "%s: PLY face element comes before the vertices", m->path);
             seen_f = 1;
         }
         for (long i = 0; i < e->count; i++)
             if (ply_instance(&h, m, e, i, err) || ply_end_line(&h, m->path, e, i, err)) return -1;
     }
-    if (!seen_v || !seen_f) return rd_error_set(err, "%s: PLY file has no %s element", m->path, seen_v ? "face" : "vertex");
+    if (!seen_v || !seen_f)
+        return rd_error_set(err, "%s: PLY file has no %s element", m->path,
+                            seen_v ? "face" : "vertex");
     return 0;
 }
 
@@ -431,22 +509,30 @@ static int stl_merge(mesh *m, rd_error *err)
 {
     int n = m->nv;
     int *order = malloc((size_t)n * sizeof *order);
-    double (*u)[3] = malloc((size_t)n * sizeof *u);
-    if (!order || !u) { free(order); free(u); return rd_error_set(err, "%s: out of memory", m->path); }
+    double(*u)[3] = malloc((size_t)n * sizeof *u);
+    if (!order || !u) {
+        free(order);
+        free(u);
+        return rd_error_set(err, "%s: out of memory", m->path);
+    }
     for (int i = 0; i < n; i++) order[i] = i;
-    sort_base = (const double (*)[3])m->v;
+    sort_base = (const double(*)[3])m->v;
     qsort(order, (size_t)n, sizeof *order, by_xyz);
     int nu = 0, rc = 0;
     m->ni = 0;
-    if (grow((void **)&m->idx, &m->icap, n, sizeof *m->idx)) rc = rd_error_set(err, "%s: out of memory", m->path);
+    if (grow((void **)&m->idx, &m->icap, n, sizeof *m->idx))
+        rc = rd_error_set(err, "%s: out of memory", m->path);
     for (int i = 0; i < n && rc == 0; i++) {
         if (i == 0 || by_xyz(&order[i - 1], &order[i])) memcpy(u[nu++], m->v[order[i]], sizeof *u);
         m->idx[order[i]] = nu - 1;
     }
-    for (int t = 0; t < n / 3 && rc == 0; t++) rc = end_face(m, 3, t < m->nt ? m->tline[t] : 0, err);
+    for (int t = 0; t < n / 3 && rc == 0; t++)
+        rc = end_face(m, 3, t < m->nt ? m->tline[t] : 0, err);
     m->ni = n;
     free(m->v);
-    m->v = u; m->nv = nu; m->vcap = n;
+    m->v = u;
+    m->nv = nu;
+    m->vcap = n;
     free(order);
     return rc;
 }
@@ -454,18 +540,24 @@ static int stl_merge(mesh *m, rd_error *err)
 static int stl_binary(mesh *m, const char *buf, size_t len, rd_error *err)
 {
     if (len < 84)
-        return rd_error_set(err, "%s: truncated binary STL (%zu bytes; the header alone has 84)", m->path, len);
+        return rd_error_set(err, "%s: truncated binary STL (%zu bytes; the header alone has 84)",
+                            m->path, len);
     const unsigned char *b = (const unsigned char *)buf;
-    uint32_t nt = (uint32_t)b[80] | (uint32_t)b[81] << 8 | (uint32_t)b[82] << 16 | (uint32_t)b[83] << 24;
+    uint32_t nt =
+        (uint32_t)b[80] | (uint32_t)b[81] << 8 | (uint32_t)b[82] << 16 | (uint32_t)b[83] << 24;
     if (84 + 50 * (uint64_t)nt != len)
-        return rd_error_set(err, "%s: truncated binary STL: the header says %u triangles (%llu bytes) but "
-                            "the file has %zu bytes", m->path, nt, 84 + 50 * (unsigned long long)nt, len);
+        return rd_error_set(
+            err,
+            "%s: truncated binary STL: the header says %u triangles (%llu bytes) but "
+            "the file has %zu bytes",
+            m->path, nt, 84 + 50 * (unsigned long long)nt, len);
     for (uint32_t t = 0; t < nt; t++)
         for (int c = 0; c < 3; c++) {
             double x[3];
             for (int k = 0; k < 3; k++) {
                 const unsigned char *q = b + 84 + 50 * (size_t)t + 12 + 12 * c + 4 * k;
-                uint32_t w = (uint32_t)q[0] | (uint32_t)q[1] << 8 | (uint32_t)q[2] << 16 | (uint32_t)q[3] << 24;
+                uint32_t w = (uint32_t)q[0] | (uint32_t)q[1] << 8 | (uint32_t)q[2] << 16 |
+                             (uint32_t)q[3] << 24;
                 float f;
                 memcpy(&f, &w, sizeof f);
                 x[k] = f;
@@ -482,7 +574,10 @@ static int stl_ascii(mesh *m, const char *buf, rd_error *err)
 {
     int line = 1, corners = 0, facet = 0;
     for (const char *s = buf; *s;) {
-        if (isspace((unsigned char)*s)) { line += *s++ == '\n'; continue; }
+        if (isspace((unsigned char)*s)) {
+            line += *s++ == '\n';
+            continue;
+        }
         const char *w = s;
         while (*s && !isspace((unsigned char)*s)) s++;
         size_t n = (size_t)(s - w);
@@ -491,14 +586,17 @@ static int stl_ascii(mesh *m, const char *buf, rd_error *err)
             const char *eol = s + strcspn(s, "\n"), *tok;
             for (int k = 0; k < 3; k++)
                 if (text_coord(s, eol, &x[k], &tok, &s))
-                    return tok == s ? rd_error_set(err, "%s:%d: expected 3 coordinates after 'vertex'", m->path, line)
-                                    : rd_error_set(err, "%s:%d: bad coordinate '%.*s' after 'vertex'", m->path,
-                                                   line, (int)(s - tok), tok);
+                    return tok == s
+                               ? rd_error_set(err, "%s:%d: expected 3 coordinates after 'vertex'",
+                                              m->path, line)
+                               : rd_error_set(err, "%s:%d: bad coordinate '%.*s' after 'vertex'",
+                                              m->path, line, (int)(s - tok), tok);
             if (add_vertex(m, x, line, err)) return -1;
             corners++;
         } else if (n == 8 && !strncmp(w, "endfacet", 8)) {
             if (corners != 3)
-                return rd_error_set(err, "%s:%d: facet %d has %d vertices (3 expected)", m->path, line, facet, corners);
+                return rd_error_set(err, "%s:%d: facet %d has %d vertices (3 expected)", m->path,
+                                    line, facet, corners);
             corners = 0;
             facet++;
             if (grow((void **)&m->tline, &m->tcap, m->nt + 1, sizeof *m->tline))
@@ -506,7 +604,9 @@ static int stl_ascii(mesh *m, const char *buf, rd_error *err)
             m->tline[m->nt++] = line;
         }
     }
-    if (corners) return rd_error_set(err, "%s:%d: truncated ASCII STL (facet without endfacet)", m->path, line);
+    if (corners)
+        return rd_error_set(err, "%s:%d: truncated ASCII STL (facet without endfacet)", m->path,
+                            line);
     return 0;
 }
 
@@ -532,10 +632,12 @@ static int check_f32(const mesh *m, double size, rd_error *err)
     double ulp = f32_ulp(m->f32_max);
     double radius = 0.5 * size;
     if (m->f32_max == 0 || ulp <= MESH_F32_REL_MAX * radius) return 0;
-    return rd_error_set(err, "%s: float32 coordinates up to %.3g m are resolved to %.3g m only, %.2g %% of the "
-                        "mesh's radius %.3g m, more than the contact band (%g %%): export the scan in a local "
-                        "frame (subtract an origin) or in double precision (PLY 'property double')", m->path,
-                        m->f32_max, ulp, 100 * ulp / radius, radius, 100 * MESH_F32_REL_MAX);
+    return rd_error_set(
+        err,
+        "%s: float32 coordinates up to %.3g m are resolved to %.3g m only, %.2g %% of the "
+        "mesh's radius %.3g m, more than the contact band (%g %%): export the scan in a local "
+        "frame (subtract an origin) or in double precision (PLY 'property double')",
+        m->path, m->f32_max, ulp, 100 * ulp / radius, radius, 100 * MESH_F32_REL_MAX);
 }
 
 /* Turn "path: message" into "path:line: message". */
@@ -556,8 +658,10 @@ static void f32_note(const mesh *m, double size, rd_error *err)
 {
     if (strstr(err->msg, "float32")) return;
     size_t n = strlen(err->msg);
-    snprintf(err->msg + n, sizeof err->msg - n, " (float32 coordinates up to %.3g m are resolved to %.3g m; "
-             "the mesh is %.3g m across)", m->f32_max, f32_ulp(m->f32_max), size);
+    snprintf(err->msg + n, sizeof err->msg - n,
+             " (float32 coordinates up to %.3g m are resolved to %.3g m; "
+             "the mesh is %.3g m across)",
+             m->f32_max, f32_ulp(m->f32_max), size);
 }
 
 /* Drop unused vertices, subtract the bounding-box centre, check, fill p. */
@@ -569,15 +673,23 @@ static int mesh_finish(mesh *m, rd_poly *p, double offset[3], int base, rd_error
     for (int i = 0; i < m->ni; i++) map[m->idx[i]] = 0;
     int nv = 0;
     for (int i = 0; i < m->nv; i++)
-        if (map[i] == 0) { map[i] = nv; memmove(m->v[nv++], m->v[i], sizeof *m->v); }
+        if (map[i] == 0) {
+            map[i] = nv;
+            memmove(m->v[nv++], m->v[i], sizeof *m->v);
+        }
     for (int i = 0; i < m->ni; i++) m->idx[i] = map[m->idx[i]];
     free(map);
     m->nv = nv;
-    if (nv == 0 || m->nf == 0) return rd_error_set(err, "%s: empty mesh (%d vertices, %d faces)", m->path, nv, m->nf);
+    if (nv == 0 || m->nf == 0)
+        return rd_error_set(err, "%s: empty mesh (%d vertices, %d faces)", m->path, nv, m->nf);
     double lo[3], hi[3], c[3];
-    memcpy(lo, m->v[0], sizeof lo); memcpy(hi, m->v[0], sizeof hi);
+    memcpy(lo, m->v[0], sizeof lo);
+    memcpy(hi, m->v[0], sizeof hi);
     for (int i = 1; i < nv; i++)
-        for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], m->v[i][k]); hi[k] = fmax(hi[k], m->v[i][k]); }
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], m->v[i][k]);
+            hi[k] = fmax(hi[k], m->v[i][k]);
+        }
     for (int k = 0; k < 3; k++) c[k] = 0.5 * (lo[k] + hi[k]);
     for (int i = 0; i < nv; i++)
         for (int k = 0; k < 3; k++) m->v[i][k] -= c[k];
@@ -585,16 +697,22 @@ static int mesh_finish(mesh *m, rd_poly *p, double offset[3], int base, rd_error
     if (rd_poly_alloc(p, nv, m->nf, m->ni, err)) return -1;
     memcpy(p->v, m->v, (size_t)nv * sizeof *p->v);
     memcpy(p->fidx, m->idx, (size_t)m->ni * sizeof *p->fidx);
-    for (int f = 0, at = 0; f < m->nf; f++) { p->fstart[f] = at; p->flen[f] = m->flen[f]; at += m->flen[f]; }
+    for (int f = 0, at = 0; f < m->nf; f++) {
+        p->fstart[f] = at;
+        p->flen[f] = m->flen[f];
+        at += m->flen[f];
+    }
     double size = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
     int bad;
     if (rd_poly_check_at(p, m->path, base, &bad, err) || check_f32(m, size, err)) {
-        if (bad >= 0 && m->fline[bad] > 0) at_line(m, m->fline[bad], err);
-        else if (strstr(err->msg, "volume") && m->fline[0] > 0) { /* the whole surface is at fault */
+        if (bad >= 0 && m->fline[bad] > 0)
+            at_line(m, m->fline[bad], err);
+        else if (strstr(err->msg, "volume") &&
+                 m->fline[0] > 0) { /* the whole surface is at fault */
             size_t n = strlen(err->msg);
-            snprintf(err->msg + n, sizeof err->msg - n, " (its %d faces are on lines %d-%d)", m->nf, m->fline[0],
-                     m->fline[m->nf - 1]);
+            snprintf(err->msg + n, sizeof err->msg - n, " (its %d faces are on lines %d-%d)", m->nf,
+                     m->fline[0], m->fline[m->nf - 1]);
         }
         if (m->f32_max > 0) f32_note(m, size, err);
         rd_poly_free(p);
@@ -608,13 +726,20 @@ int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
 {
     const char *dot = strrchr(path, '.');
     const char *ext = dot && !strchr(dot, '/') ? dot + 1 : "";
-    int kind = !strcasecmp(ext, "obj") ? 1 : !strcasecmp(ext, "ply") ? 2 : !strcasecmp(ext, "stl") ? 3 : 0;
-    if (!kind) return rd_error_set(err, "%s: unknown mesh format '%s' (expected .obj, .ply or .stl)", path, ext);
+    int kind = !strcasecmp(ext, "obj")   ? 1
+               : !strcasecmp(ext, "ply") ? 2
+               : !strcasecmp(ext, "stl") ? 3
+                                         : 0;
+    if (!kind)
+        return rd_error_set(err, "%s: unknown mesh format '%s' (expected .obj, .ply or .stl)", path,
+                            ext);
     char *buf = NULL;
     size_t len = 0;
     if (read_all(path, &buf, &len, err)) return -1;
-    mesh m = {.path = path};
-    int rc = kind == 1 ? obj_read(&m, buf, err) : kind == 2 ? ply_read(&m, buf, len, err) : stl_read(&m, buf, len, err);
+    mesh m = { .path = path };
+    int rc = kind == 1   ? obj_read(&m, buf, err)
+             : kind == 2 ? ply_read(&m, buf, len, err)
+                         : stl_read(&m, buf, len, err);
     free(buf);
     if (rc == 0) rc = mesh_finish(&m, p, offset, kind == 1, err);
     mesh_free(&m);

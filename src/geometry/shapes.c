@@ -23,17 +23,27 @@ int rd_poly_prism(rd_poly *p, int nsides, double radius_bottom, double radius_to
     if (rd_poly_alloc(p, 2 * n, n + 2, 2 * n + 4 * n, err)) return -1;
     for (int k = 0; k < n; k++) {
         double a = 2.0 * M_PI * k / n, c = cos(a), s = sin(a);
-        p->v[k][0] = radius_bottom * c; p->v[k][1] = radius_bottom * s; p->v[k][2] = -0.5 * height;
-        p->v[n + k][0] = radius_top * c; p->v[n + k][1] = radius_top * s; p->v[n + k][2] = 0.5 * height;
+        p->v[k][0] = radius_bottom * c;
+        p->v[k][1] = radius_bottom * s;
+        p->v[k][2] = -0.5 * height;
+        p->v[n + k][0] = radius_top * c;
+        p->v[n + k][1] = radius_top * s;
+        p->v[n + k][2] = 0.5 * height;
     }
-    p->fstart[0] = 0; p->flen[0] = n;     /* base, seen from below: clockwise from above */
-    p->fstart[1] = n; p->flen[1] = n;     /* top */
+    p->fstart[0] = 0;
+    p->flen[0] = n; /* base, seen from below: clockwise from above */
+    p->fstart[1] = n;
+    p->flen[1] = n; /* top */
     for (int k = 0; k < n; k++) {
         p->fidx[k] = n - 1 - k;
         p->fidx[n + k] = n + k;
         int *q = p->fidx + 2 * n + 4 * k, k1 = (k + 1) % n;
-        q[0] = k; q[1] = k1; q[2] = n + k1; q[3] = n + k;
-        p->fstart[2 + k] = 2 * n + 4 * k; p->flen[2 + k] = 4;
+        q[0] = k;
+        q[1] = k1;
+        q[2] = n + k1;
+        q[3] = n + k;
+        p->fstart[2 + k] = 2 * n + 4 * k;
+        p->flen[2 + k] = 4;
     }
     rd_poly_update(p);
     return 0;
@@ -47,7 +57,9 @@ static void sub3(const double a[3], const double b[3], double out[3])
 }
 
 /* One side of a face: its vertices (a < b) and the face. */
-typedef struct side { int a, b, f, k; } side;
+typedef struct side {
+    int a, b, f, k;
+} side;
 
 static int by_vertices(const void *x, const void *y)
 {
@@ -118,7 +130,10 @@ static int hull_measure(const rd_poly *p, double *volume, double *area, rd_error
     qh_memfreeshort(qh, &curlong, &totlong);
     if (devnull) fclose(devnull);
     free(xyz);
-    return rc ? rd_error_set(err, "the convex hull of the body's %d vertices failed (qhull code %d)", p->nv, rc) : 0;
+    return rc ? rd_error_set(err,
+                             "the convex hull of the body's %d vertices failed (qhull code %d)",
+                             p->nv, rc)
+              : 0;
 }
 
 /* Signed volume of p from its triangulation, m^3. */
@@ -165,12 +180,13 @@ int rd_poly_convex(const rd_poly *p, double tol, int *convex, rd_error *err)
     for (int f = 0; f < p->nf; f++)
         for (int k = 0; k < p->flen[f]; k++) {
             int a = p->fidx[p->fstart[f] + k], b = p->fidx[p->fstart[f] + (k + 1) % p->flen[f]];
-            e[m++] = (side){a < b ? a : b, a < b ? b : a, f, k};
+            e[m++] = (side){ a < b ? a : b, a < b ? b : a, f, k };
         }
     qsort(e, (size_t)m, sizeof *e, by_vertices);
     /* a closed manifold (rd_poly_check): every side meets exactly one other, of another face */
     for (int i = 0; i + 1 < m && *convex; i += 2)
-        if (rise(p, e[i].f, e[i].k, e[i + 1].f, w) > tol || rise(p, e[i + 1].f, e[i + 1].k, e[i].f, w) > tol)
+        if (rise(p, e[i].f, e[i].k, e[i + 1].f, w) > tol ||
+            rise(p, e[i + 1].f, e[i + 1].k, e[i].f, w) > tol)
             *convex = 0;
     free(e);
     free(w);
@@ -183,7 +199,10 @@ int rd_poly_convex(const rd_poly *p, double tol, int *convex, rd_error *err)
 
 /* ---- convex hull ---- */
 
-typedef struct angled { double angle; int id; } angled;
+typedef struct angled {
+    double angle;
+    int id;
+} angled;
 
 static int by_angle(const void *a, const void *b)
 {
@@ -194,12 +213,12 @@ static int by_angle(const void *a, const void *b)
 /* Sort the vertices of a convex planar face counter-clockwise about its outward normal n. */
 static void order_face(const double (*v)[3], int *ids, int len, const double n[3], angled *buf)
 {
-    double c[3] = {0, 0, 0}, u[3], w[3];
+    double c[3] = { 0, 0, 0 }, u[3], w[3];
     for (int k = 0; k < len; k++) rd_axpy(1.0 / len, v[ids[k]], c);
     for (int i = 0; i < 3; i++) u[i] = v[ids[0]][i] - c[i];
     rd_cross(n, u, w);
     for (int k = 0; k < len; k++) {
-        double d[3] = {v[ids[k]][0] - c[0], v[ids[k]][1] - c[1], v[ids[k]][2] - c[2]};
+        double d[3] = { v[ids[k]][0] - c[0], v[ids[k]][1] - c[1], v[ids[k]][2] - c[2] };
         buf[k].angle = atan2(rd_dot(d, w), rd_dot(d, u));
         buf[k].id = ids[k];
     }
@@ -215,25 +234,35 @@ static int hull_extract(qhT *qh, rd_poly *p, const double (*pts)[3], int n, rd_e
     int nv = 0, nf = 0, nidx = 0, rc = -1;
     int *map = malloc((size_t)n * sizeof *map);
     angled *buf = malloc((size_t)n * sizeof *buf);
-    if (!map || !buf) { rd_error_set(err, "out of memory in the convex hull"); goto done; }
+    if (!map || !buf) {
+        rd_error_set(err, "out of memory in the convex hull");
+        goto done;
+    }
     for (int i = 0; i < n; i++) map[i] = -1;
     FORALLvertices map[qh_pointid(qh, vertex->point)] = nv++;
-    FORALLfacets { nf++; nidx += qh_setsize(qh, facet->vertices); }
+    FORALLfacets
+    {
+        nf++;
+        nidx += qh_setsize(qh, facet->vertices);
+    }
     if (rd_poly_alloc(p, nv, nf, nidx, err)) goto done;
     for (int i = 0; i < n; i++)
         if (map[i] >= 0) rd_copy3(pts[i], p->v[map[i]]);
     int f = 0, at = 0;
-    FORALLfacets {
+    FORALLfacets
+    {
         p->fstart[f] = at;
         FOREACHvertex_(facet->vertices) p->fidx[at++] = map[qh_pointid(qh, vertex->point)];
         p->flen[f] = at - p->fstart[f];
-        order_face((const double (*)[3])p->v, p->fidx + p->fstart[f], p->flen[f], facet->normal, buf);
+        order_face((const double(*)[3])p->v, p->fidx + p->fstart[f], p->flen[f], facet->normal,
+                   buf);
         f++;
     }
     rd_poly_update(p);
     rc = 0;
 done:
-    free(map); free(buf);
+    free(map);
+    free(buf);
     return rc;
 }
 
@@ -243,9 +272,13 @@ static int hull_run(const double (*pts)[3], int n, rd_poly *p, char *on_hull, rd
 {
     if (n < 4) return rd_error_set(err, "convex hull needs at least 4 points, got %d", n);
     double lo[3], hi[3], centre[3];
-    rd_copy3(pts[0], lo); rd_copy3(pts[0], hi);
+    rd_copy3(pts[0], lo);
+    rd_copy3(pts[0], hi);
     for (int i = 1; i < n; i++)
-        for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], pts[i][k]); hi[k] = fmax(hi[k], pts[i][k]); }
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], pts[i][k]);
+            hi[k] = fmax(hi[k], pts[i][k]);
+        }
     for (int k = 0; k < 3; k++) centre[k] = 0.5 * (lo[k] + hi[k]);
     coordT *xyz = malloc((size_t)n * 3 * sizeof *xyz);
     char *msg = NULL;
@@ -294,7 +327,7 @@ int rd_poly_hull(rd_poly *p, const double (*pts)[3], int n, rd_error *err)
 
 int rd_poly_hull_marks(const rd_poly *p, char *on_hull, rd_error *err)
 {
-    return hull_run((const double (*)[3])p->v, p->nv, NULL, on_hull, err);
+    return hull_run((const double(*)[3])p->v, p->nv, NULL, on_hull, err);
 }
 
 /* ---- explicit faces and the closed-mesh check ---- */
@@ -305,19 +338,27 @@ int rd_poly_from_faces(rd_poly *p, const double (*v)[3], int nv, const int *face
     int nidx = 0;
     for (int f = 0; f < nf; f++) {
         if (face_len[f] < 3)
-            return rd_error_set(err, "faces: face %d has %d vertices (at least 3 needed)", f, face_len[f]);
+            return rd_error_set(err, "faces: face %d has %d vertices (at least 3 needed)", f,
+                                face_len[f]);
         nidx += face_len[f];
     }
-    if (nv < 4 || nf < 4) return rd_error_set(err, "faces: a closed polyhedron needs at least 4 "
-                                              "vertices and 4 faces (got %d, %d)", nv, nf);
+    if (nv < 4 || nf < 4)
+        return rd_error_set(err,
+                            "faces: a closed polyhedron needs at least 4 "
+                            "vertices and 4 faces (got %d, %d)",
+                            nv, nf);
     if (rd_poly_alloc(p, nv, nf, nidx, err)) return -1;
     memcpy(p->v, v, (size_t)nv * sizeof *p->v);
     for (int f = 0, at = 0; f < nf; f++) {
-        p->fstart[f] = at; p->flen[f] = face_len[f];
+        p->fstart[f] = at;
+        p->flen[f] = face_len[f];
         memcpy(p->fidx + at, idx + face_start[f], (size_t)face_len[f] * sizeof *idx);
         at += face_len[f];
     }
-    if (rd_poly_check(p, "faces", 0, err)) { rd_poly_free(p); return -1; }
+    if (rd_poly_check(p, "faces", 0, err)) {
+        rd_poly_free(p);
+        return -1;
+    }
     rd_poly_update(p);
     return 0;
 }
@@ -327,12 +368,13 @@ static int check_indices(const rd_poly *p, const char *what, int base, rd_error 
 {
     for (int f = 0; f < p->nf; f++) {
         if (p->flen[f] < 3)
-            return rd_error_set(err, "%s: face %d has %d vertices (at least 3 needed)", what, f + base, p->flen[f]);
+            return rd_error_set(err, "%s: face %d has %d vertices (at least 3 needed)", what,
+                                f + base, p->flen[f]);
         for (int k = 0; k < p->flen[f]; k++) {
             int i = p->fidx[p->fstart[f] + k];
             if (i < 0 || i >= p->nv)
-                return rd_error_set(err, "%s: face %d uses vertex %d but there are %d vertices", what,
-                                    f + base, i + base, p->nv);
+                return rd_error_set(err, "%s: face %d uses vertex %d but there are %d vertices",
+                                    what, f + base, i + base, p->nv);
         }
     }
     return 0;
@@ -354,15 +396,19 @@ static int check_used(const rd_poly *p, const char *what, int base, rd_error *er
 
 /* Each face: not degenerate, planar, and its fan triangulation from the first vertex does not
  * fold over (convex faces always pass). L is the bounding-box diagonal, m. */
-static int check_faces(const rd_poly *p, const char *what, int base, double L, int *bad, rd_error *err)
+static int check_faces(const rd_poly *p, const char *what, int base, double L, int *bad,
+                       rd_error *err)
 {
     for (int f = 0; f < p->nf; f++) {
         *bad = f;
         const int *ix = p->fidx + p->fstart[f];
-        double n[3] = {0, 0, 0}, tn[3];
+        double n[3] = { 0, 0, 0 }, tn[3];
         for (int k = 1; k + 1 < p->flen[f]; k++) {
             double a[3], b[3];
-            for (int i = 0; i < 3; i++) { a[i] = p->v[ix[k]][i] - p->v[ix[0]][i]; b[i] = p->v[ix[k + 1]][i] - p->v[ix[0]][i]; }
+            for (int i = 0; i < 3; i++) {
+                a[i] = p->v[ix[k]][i] - p->v[ix[0]][i];
+                b[i] = p->v[ix[k + 1]][i] - p->v[ix[0]][i];
+            }
             rd_cross(a, b, tn);
             rd_axpy(1.0, tn, n);
         }
@@ -371,19 +417,24 @@ static int check_faces(const rd_poly *p, const char *what, int base, double L, i
             return rd_error_set(err, "%s: degenerate face %d (zero area)", what, f + base);
         for (int k = 0; k < 3; k++) n[k] /= n2;
         for (int k = 1; k < p->flen[f]; k++) {
-            double d[3] = {p->v[ix[k]][0] - p->v[ix[0]][0], p->v[ix[k]][1] - p->v[ix[0]][1],
-                           p->v[ix[k]][2] - p->v[ix[0]][2]};
+            double d[3] = { p->v[ix[k]][0] - p->v[ix[0]][0], p->v[ix[k]][1] - p->v[ix[0]][1],
+                            p->v[ix[k]][2] - p->v[ix[0]][2] };
             double off = fabs(rd_dot(n, d));
             if (off > 1e-6 * L)
-                return rd_error_set(err, "%s: face %d is not planar (vertex %d is %.3g m off its plane)",
+                return rd_error_set(err,
+                                    "%s: face %d is not planar (vertex %d is %.3g m off its plane)",
                                     what, f + base, ix[k] + base, off);
         }
         for (int k = 1; k + 1 < p->flen[f]; k++) {
             double a[3], b[3];
-            for (int i = 0; i < 3; i++) { a[i] = p->v[ix[k]][i] - p->v[ix[0]][i]; b[i] = p->v[ix[k + 1]][i] - p->v[ix[0]][i]; }
+            for (int i = 0; i < 3; i++) {
+                a[i] = p->v[ix[k]][i] - p->v[ix[0]][i];
+                b[i] = p->v[ix[k + 1]][i] - p->v[ix[0]][i];
+            }
             rd_cross(a, b, tn);
             if (!(rd_dot(tn, n) > tiny))
-                return rd_error_set(err, "%s: face %d folds over when fanned from its first vertex "
+                return rd_error_set(err,
+                                    "%s: face %d folds over when fanned from its first vertex "
                                     "(non-convex, or collinear vertices); split it into triangles",
                                     what, f + base);
         }
@@ -392,7 +443,9 @@ static int check_faces(const rd_poly *p, const char *what, int base, double L, i
     return 0;
 }
 
-typedef struct edge { int lo, hi, from, face; } edge;
+typedef struct edge {
+    int lo, hi, from, face;
+} edge;
 
 static int by_edge(const void *a, const void *b)
 {
@@ -413,29 +466,36 @@ static int check_edges(const rd_poly *p, const char *what, int base, int *bad_fa
     for (int f = 0, t = 0; f < p->nf; f++)
         for (int k = 0; k < p->flen[f]; k++, t++) {
             int a = p->fidx[p->fstart[f] + k], b = p->fidx[p->fstart[f] + (k + 1) % p->flen[f]];
-            e[t] = (edge){a < b ? a : b, a < b ? b : a, a, f};
+            e[t] = (edge){ a < b ? a : b, a < b ? b : a, a, f };
         }
     qsort(e, (size_t)ne, sizeof *e, by_edge);
     int bad = -1, badn = 0;
     for (int i = 0, j; i < ne; i = j) {
         for (j = i + 1; j < ne && e[j].lo == e[i].lo && e[j].hi == e[i].hi;) j++;
         int ok = j - i == 2 && e[i].from != e[i + 1].from;
-        if (!ok && (bad < 0 || e[i].face < e[bad].face)) { bad = i; badn = j - i; }
+        if (!ok && (bad < 0 || e[i].face < e[bad].face)) {
+            bad = i;
+            badn = j - i;
+        }
     }
     int rc = 0;
     if (bad >= 0) {
         const edge *x = e + bad;
         *bad_face = x->face;
         if (badn == 1)
-            rc = rd_error_set(err, "%s: open mesh: edge (%d, %d) belongs to 1 face (first: face %d)",
-                              what, x->lo + base, x->hi + base, x->face + base);
+            rc =
+                rd_error_set(err, "%s: open mesh: edge (%d, %d) belongs to 1 face (first: face %d)",
+                             what, x->lo + base, x->hi + base, x->face + base);
         else if (badn > 2)
-            rc = rd_error_set(err, "%s: non-manifold mesh: edge (%d, %d) belongs to %d faces (first: face %d)",
-                              what, x->lo + base, x->hi + base, badn, x->face + base);
+            rc = rd_error_set(
+                err, "%s: non-manifold mesh: edge (%d, %d) belongs to %d faces (first: face %d)",
+                what, x->lo + base, x->hi + base, badn, x->face + base);
         else
-            rc = rd_error_set(err, "%s: inconsistent orientation: faces %d and %d both run edge (%d, %d) "
-                              "from vertex %d; flip one of them", what, x->face + base, x[1].face + base,
-                              x->lo + base, x->hi + base, x->from + base);
+            rc = rd_error_set(
+                err,
+                "%s: inconsistent orientation: faces %d and %d both run edge (%d, %d) "
+                "from vertex %d; flip one of them",
+                what, x->face + base, x[1].face + base, x->lo + base, x->hi + base, x->from + base);
     }
     free(e);
     return rc;
@@ -444,7 +504,10 @@ static int check_edges(const rd_poly *p, const char *what, int base, int *bad_fa
 /* Root of vertex v's set in the union-find forest up (path halving). */
 static int shell_root(int *up, int v)
 {
-    while (up[v] != v) { up[v] = up[up[v]]; v = up[v]; }
+    while (up[v] != v) {
+        up[v] = up[up[v]];
+        v = up[v];
+    }
     return v;
 }
 
@@ -456,7 +519,11 @@ static int check_shells(const rd_poly *p, const char *what, int base, int *bad_f
 {
     int *up = malloc((size_t)p->nv * sizeof *up);
     char *seen = calloc((size_t)p->nv, 1);
-    if (!up || !seen) { free(up); free(seen); return rd_error_set(err, "%s: out of memory", what); }
+    if (!up || !seen) {
+        free(up);
+        free(seen);
+        return rd_error_set(err, "%s: out of memory", what);
+    }
     for (int v = 0; v < p->nv; v++) up[v] = v;
     for (int f = 0; f < p->nf; f++)
         for (int k = 1; k < p->flen[f]; k++)
@@ -472,8 +539,11 @@ static int check_shells(const rd_poly *p, const char *what, int base, int *bad_f
     free(seen);
     if (other < 0) return 0;
     *bad_face = other;
-    return rd_error_set(err, "%s: the mesh holds %d separate closed surfaces (face %d starts the second); "
-                        "a block is one: give each its own block", what, shells, other + base);
+    return rd_error_set(
+        err,
+        "%s: the mesh holds %d separate closed surfaces (face %d starts the second); "
+        "a block is one: give each its own block",
+        what, shells, other + base);
 }
 
 /* Signed volume of the closed surface, m^3 (tetrahedra from the first vertex, for precision). */
@@ -486,7 +556,9 @@ static double signed_volume(const rd_poly *p)
         for (int k = 1; k + 1 < p->flen[f]; k++) {
             double a[3], b[3], c[3], bxc[3];
             for (int i = 0; i < 3; i++) {
-                a[i] = p->v[ix[0]][i] - o[i]; b[i] = p->v[ix[k]][i] - o[i]; c[i] = p->v[ix[k + 1]][i] - o[i];
+                a[i] = p->v[ix[0]][i] - o[i];
+                b[i] = p->v[ix[k]][i] - o[i];
+                c[i] = p->v[ix[k + 1]][i] - o[i];
             }
             rd_cross(b, c, bxc);
             vol += rd_dot(a, bxc) / 6.0;
@@ -505,20 +577,27 @@ int rd_poly_check_at(const rd_poly *p, const char *what, int base, int *bad, rd_
 {
     *bad = -1;
     if (p->nv < 4 || p->nf < 4)
-        return rd_error_set(err, "%s: empty or too small mesh (%d vertices, %d faces; a closed "
-                            "polyhedron needs at least 4 of each)", what, p->nv, p->nf);
+        return rd_error_set(err,
+                            "%s: empty or too small mesh (%d vertices, %d faces; a closed "
+                            "polyhedron needs at least 4 of each)",
+                            what, p->nv, p->nf);
     if (check_indices(p, what, base, err)) return -1;
     double lo[3], hi[3], d[3];
-    rd_copy3(p->v[0], lo); rd_copy3(p->v[0], hi);
+    rd_copy3(p->v[0], lo);
+    rd_copy3(p->v[0], hi);
     for (int i = 1; i < p->nv; i++)
-        for (int k = 0; k < 3; k++) { lo[k] = fmin(lo[k], p->v[i][k]); hi[k] = fmax(hi[k], p->v[i][k]); }
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], p->v[i][k]);
+            hi[k] = fmax(hi[k], p->v[i][k]);
+        }
     for (int k = 0; k < 3; k++) d[k] = hi[k] - lo[k];
     if (check_faces(p, what, base, rd_norm(d), bad, err) || check_edges(p, what, base, bad, err) ||
         check_used(p, what, base, err) || check_shells(p, what, base, bad, err))
         return -1;
     double vol = signed_volume(p);
     if (vol < 0)
-        return rd_error_set(err, "%s: inside-out mesh (volume %.3g m^3); flip the face orientation", what, vol);
+        return rd_error_set(err, "%s: inside-out mesh (volume %.3g m^3); flip the face orientation",
+                            what, vol);
     if (!(vol > 0)) return rd_error_set(err, "%s: mesh encloses no volume", what);
     return 0;
 }

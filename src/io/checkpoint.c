@@ -39,7 +39,8 @@ static int write_build(rd_sim *s, long long f, rd_error *err)
     rd_state_array a[RD_STATE_ARRAYS];
     int na = rd_state_build_arrays(&b, a), rc = 0;
     for (int k = 0; k < na && !rc; k++)
-        rc = rd_h5t_write(f, a[k].name, h5t_type(a[k].type), a[k].data, a[k].n, 0, NULL, NULL, NULL, err);
+        rc = rd_h5t_write(f, a[k].name, h5t_type(a[k].type), a[k].data, a[k].n, 0, NULL, NULL, NULL,
+                          err);
     rd_state_build_free(&b);
     return rc;
 }
@@ -55,14 +56,17 @@ static int write_image(rd_sim *s, long long f, rd_error *err)
     for (int i = 0; names && i < sc->nbodies; i++) names[i] = sc->bodies[i].name;
     if (!rc) rc = rd_h5t_strings(f, "bodies/names", names, sc->nbodies, "block names", NULL, err);
     free(names);
-    if (!rc) rc = rd_h5t_write(f, "state/header", RD_H5T_LONG, h, RD_STATE_HEADER, 0, NULL,
-                               RD_STATE_HEADER_NAMES, NULL, err);
-    if (!rc) rc = rd_h5t_write(f, "state/settle", RD_H5T_DOUBLE, fig, 2, 0, NULL,
-                               "settle time (s), unbalanced-force ratio reached", NULL, err);
+    if (!rc)
+        rc = rd_h5t_write(f, "state/header", RD_H5T_LONG, h, RD_STATE_HEADER, 0, NULL,
+                          RD_STATE_HEADER_NAMES, NULL, err);
+    if (!rc)
+        rc = rd_h5t_write(f, "state/settle", RD_H5T_DOUBLE, fig, 2, 0, NULL,
+                          "settle time (s), unbalanced-force ratio reached", NULL, err);
     rd_state_array a[RD_STATE_ARRAYS];
     int na = rd_state_arrays(s, a);
     for (int k = 0; k < na && !rc; k++)
-        rc = rd_h5t_write(f, a[k].name, h5t_type(a[k].type), a[k].data, a[k].n, 0, NULL, NULL, NULL, err);
+        rc = rd_h5t_write(f, a[k].name, h5t_type(a[k].type), a[k].data, a[k].n, 0, NULL, NULL, NULL,
+                          err);
     return rc ? rc : write_build(s, f, err);
 }
 
@@ -74,8 +78,9 @@ static int save_at_rest(void *user, rd_sim *s, rd_error *err)
     const char *path = user;
     char tmp[RD_PATH_MAX];
     int fd = rd_path_temp(path, tmp);
-    if (fd < 0) return rd_error_set(err, "%s: model save: cannot create a temporary file beside it: %s", path,
-                                    strerror(errno));
+    if (fd < 0)
+        return rd_error_set(err, "%s: model save: cannot create a temporary file beside it: %s",
+                            path, strerror(errno));
     close(fd);
     long long f = rd_h5t_create(tmp, err);
     int rc = f < 0 ? -1 : write_image(s, f, err);
@@ -111,7 +116,8 @@ static char **read_names(long long f, long nb, rd_error *err)
 static int read_build(long long f, int nb, rd_state_build *b, rd_error *err)
 {
     long n = rd_h5t_count(f, "bodies/vertices"), sum = 0;
-    if (n < 0 || n % 3) return rd_error_set(err, "dataset 'bodies/vertices': %s", n < 0 ? "missing" : "wrong size");
+    if (n < 0 || n % 3)
+        return rd_error_set(err, "dataset 'bodies/vertices': %s", n < 0 ? "missing" : "wrong size");
     if (rd_state_build_alloc(b, nb, n / 3)) return rd_error_set(err, "out of memory");
     rd_state_array a[RD_STATE_ARRAYS];
     int na = rd_state_build_arrays(b, a);
@@ -122,22 +128,26 @@ static int read_build(long long f, int nb, rd_state_build *b, rd_error *err)
         return -1;
     for (int i = 0; i < nb && sum >= 0; i++) sum = b->nv[i] < 0 ? -1 : sum + b->nv[i];
     if (sum != b->nvert)
-        return rd_error_set(err, "dataset 'bodies/vertex_count' does not count the %ld of bodies/vertices", b->nvert);
+        return rd_error_set(
+            err, "dataset 'bodies/vertex_count' does not count the %ld of bodies/vertices",
+            b->nvert);
     return 0;
 }
 
 /* Does the image fit s (the same blocks, by name, shape, mass and fixed pose)? NULL, or what
  * is wrong (in buf, err's message or a constant). */
-static const char *image_mismatch(rd_sim *s, long long f, const long h[RD_STATE_HEADER], char *buf, size_t n,
-                                  rd_error *err)
+static const char *image_mismatch(rd_sim *s, long long f, const long h[RD_STATE_HEADER], char *buf,
+                                  size_t n, rd_error *err)
 {
     int nb = rd_sim_scenario(s)->nbodies;
     int same = h[RD_STATE_H_VERSION] == RD_STATE_VERSION && h[RD_STATE_H_NB] == nb;
     char **names = same ? read_names(f, nb, err) : NULL;
-    rd_state_build there = {0};
-    const char *bad = same && !names                       ? "no block names"
-                      : same && read_build(f, nb, &there, err) ? err->msg
-                      : rd_state_mismatch(s, h, (const char *const *)names, same ? &there : NULL, buf, n);
+    rd_state_build there = { 0 };
+    const char *bad =
+        same && !names ? "no block names"
+        : same && read_build(f, nb, &there, err)
+            ? err->msg
+            : rd_state_mismatch(s, h, (const char *const *)names, same ? &there : NULL, buf, n);
     for (int i = 0; names && i < nb; i++) free(names[i]);
     free(names);
     rd_state_build_free(&there);
@@ -168,7 +178,8 @@ static int restore(rd_sim *s, const char *path, rd_error *err)
     if (rd_path_special(path))
         return rd_error_set(err, "%s: model restore '%s': %s", file, path, RD_PATH_INPUT_NOT_FILE);
     long long f = rd_h5t_open(path, err);
-    if (f < 0) return rd_error_set(err, "%s: model restore: cannot open '%s' as a checkpoint", file, path);
+    if (f < 0)
+        return rd_error_set(err, "%s: model restore: cannot open '%s' as a checkpoint", file, path);
     char buf[RD_ERROR_MAX]; /* what differs: block names, numbers and the words around them */
     const char *bad = read_image(s, f, buf, sizeof buf, err);
     rd_h5t_close(f);
@@ -183,9 +194,11 @@ rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err)
     rd_sim *s = rd_sim_build(sc, err);
     if (!s) return NULL;
     const rd_scenario *own = rd_sim_scenario(s); /* its paths live as long as s */
-    const rd_observer save = {.user = (void *)own->save_path, .begin = save_at_rest};
+    const rd_observer save = { .user = (void *)own->save_path, .begin = save_at_rest };
     int rc = own->restore_path[0] ? restore(s, own->restore_path, err)
-           : own->save_path[0] ? rd_path_check_save(own, err) || rd_sim_add_observer(s, &save, err) : 0;
+             : own->save_path[0]
+                 ? rd_path_check_save(own, err) || rd_sim_add_observer(s, &save, err)
+                 : 0;
     if (rc) {
         rd_sim_free(s);
         return NULL;

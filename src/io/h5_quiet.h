@@ -21,7 +21,7 @@ typedef struct rd_h5_quiet {
 static inline rd_h5_quiet rd_h5_quiet_begin(void)
 {
     H5dont_atexit();
-    rd_h5_quiet q = {NULL, NULL};
+    rd_h5_quiet q = { NULL, NULL };
     H5Eget_auto2(H5E_DEFAULT, &q.fn, &q.data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     return q;
@@ -32,12 +32,12 @@ static inline void rd_h5_quiet_end(rd_h5_quiet q) { H5Eset_auto2(H5E_DEFAULT, q.
 
 /* The whole body of an entry point: returns `call` (of type `type`), evaluated with HDF5's
  * error printing off. */
-#define RD_H5_QUIETLY(type, call)                                                              \
-    do {                                                                                       \
-        rd_h5_quiet q_ = rd_h5_quiet_begin();                                                  \
-        type r_ = (call);                                                                      \
-        rd_h5_quiet_end(q_);                                                                   \
-        return r_;                                                                             \
+#define RD_H5_QUIETLY(type, call)                                                                  \
+    do {                                                                                           \
+        rd_h5_quiet q_ = rd_h5_quiet_begin();                                                      \
+        type r_ = (call);                                                                          \
+        rd_h5_quiet_end(q_);                                                                       \
+        return r_;                                                                                 \
     } while (0)
 
 #endif

@@ -42,12 +42,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define RD_H5_BUF 256     /* rows buffered between writes; also the chunk length in time */
-#define RD_H5_DEFLATE 4   /* deflate level */
-#define RD_H5_SERNAME 48  /* bytes of a series path */
-#define RD_H5_LAYOUT 2    /* layout_version: 2 = dimension scales, enums, /events group */
-#define RD_H5_STATUS 16   /* bytes of the root `status` attribute, NUL included */
-#define RD_H5_STATUS_MSG 512 /* bytes of the root `status_message` attribute */
+#define RD_H5_BUF           256 /* rows buffered between writes; also the chunk length in time */
+#define RD_H5_DEFLATE       4   /* deflate level */
+#define RD_H5_SERNAME       48  /* bytes of a series path */
+#define RD_H5_LAYOUT        2   /* layout_version: 2 = dimension scales, enums, /events group */
+#define RD_H5_STATUS        16  /* bytes of the root `status` attribute, NUL included */
+#define RD_H5_STATUS_MSG    512 /* bytes of the root `status_message` attribute */
 /* Space reserved before each batch of writes: the batch's raw size plus an eighth (shuffle keeps
  * the size; deflate expands incompressible data by at most 0.03 % + 13 bytes per chunk, zlib's
  * deflateBound) plus 64 KiB for metadata (attributes, chunk-index B-tree nodes of every
@@ -56,30 +56,34 @@
 /* Bytes a body's group takes in the file besides its vertex and triangle tables, generously:
  * its object headers, about 20 attributes, the tables' dimension scales (a 33-body drum column's
  * file is 180 KB after opening, about 4 KB per body over a 2-body scene's). */
-#define RD_H5_BODY_BYTES (8 << 10)
+#define RD_H5_BODY_BYTES    (8 << 10)
 /* Bytes one event can take on disk (its columns, 25 bytes, and its body name in the global
  * heap of variable-length strings, with the heap's per-object overhead), generously. */
-#define RD_H5_EVENT_BYTES 128
+#define RD_H5_EVENT_BYTES   128
 
-const char *const rd_energy_names[RD_NENERGY] = {
-    "kinetic", "gravitational", "elastic", "friction", "damping", "ground_work", "residual"};
+const char *const rd_energy_names[RD_NENERGY] = { "kinetic", "gravitational", "elastic", "friction",
+                                                  "damping", "ground_work",   "residual" };
 
 static const char *const energy_long_names[RD_NENERGY] = {
-    "kinetic energy (ground frame), leapfrog's 1/2 m v(n-1/2).v(n+1/2)", "gravitational potential energy",
-    "elastic energy stored in the contact springs", "energy dissipated by friction (cumulative)",
-    "energy dissipated by damping (cumulative)", "work done by the ground motion (cumulative)",
-    "energy balance residual"};
+    "kinetic energy (ground frame), leapfrog's 1/2 m v(n-1/2).v(n+1/2)",
+    "gravitational potential energy",
+    "elastic energy stored in the contact springs",
+    "energy dissipated by friction (cumulative)",
+    "energy dissipated by damping (cumulative)",
+    "work done by the ground motion (cumulative)",
+    "energy balance residual"
+};
 
 /* Event types, in the order of the HDF5 enum /events/type (value = index). */
-static const char *const event_types[] = {"uplift", "impact", "slip", "overturn", "recover",
-                                          "unstable", "unsettled", "rest", "lock", "liftoff", "lost",
-                                          "peak"};
+static const char *const event_types[] = { "uplift",  "impact",   "slip",      "overturn",
+                                           "recover", "unstable", "unsettled", "rest",
+                                           "lock",    "liftoff",  "lost",      "peak" };
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
 #define RD_H5_NSTATUS (RD_STATUS_UNTRUSTED + 1) /* run statuses, named by rd_status_name */
 
 /* How subcontact points were spaced (root attribute spacing_rule). */
-static const char *const spacing_rules[] = {"auto", "vertices", "fixed"};
+static const char *const spacing_rules[] = { "auto", "vertices", "fixed" };
 
 /* Dimension scales at the root: name, labels, long name. /time and /body are made elsewhere. */
 typedef enum { DIM_NONE = -1, DIM_XYZ, DIM_WXYZ, DIM_ROTATION, DIM_CORNER, DIM_COUNT } rd_h5_dim;
@@ -92,40 +96,52 @@ typedef struct rd_h5_dim_spec {
 } rd_h5_dim_spec;
 
 static const rd_h5_dim_spec dim_spec[DIM_COUNT] = {
-    {"xyz", 3, {"x", "y", "z"}, "Cartesian component, ground frame (z up)"},
-    {"wxyz", 4, {"w", "x", "y", "z"}, "quaternion component (scalar first)"},
-    {"rotation_part", 3, {"in_plane", "out_of_plane", "twist"},
-     "part of the rotation from rest: in-plane rocking, out-of-plane rocking, twist"},
-    {"corner", 3, {"0", "1", "2"}, "corner of a triangle"},
+    { "xyz", 3, { "x", "y", "z" }, "Cartesian component, ground frame (z up)" },
+    { "wxyz", 4, { "w", "x", "y", "z" }, "quaternion component (scalar first)" },
+    { "rotation_part",
+      3,
+      { "in_plane", "out_of_plane", "twist" },
+      "part of the rotation from rest: in-plane rocking, out-of-plane rocking, twist" },
+    { "corner", 3, { "0", "1", "2" }, "corner of a triangle" },
 };
 
 /* Per-sample series, in rd_h5_sample order; energies follow. */
 enum {
-    SER_TIME, SER_POSITION, SER_QUATERNION, SER_VELOCITY, SER_ANGULAR_VELOCITY, SER_TILT,
-    SER_ROTATION, SER_GROUND_ACC, SER_GROUND_VEL, SER_GROUND_DISP, SER_ENERGY,
+    SER_TIME,
+    SER_POSITION,
+    SER_QUATERNION,
+    SER_VELOCITY,
+    SER_ANGULAR_VELOCITY,
+    SER_TILT,
+    SER_ROTATION,
+    SER_GROUND_ACC,
+    SER_GROUND_VEL,
+    SER_GROUND_DISP,
+    SER_ENERGY,
     SER_COUNT = SER_ENERGY + RD_NENERGY
 };
 
 typedef struct rd_h5_series_spec {
     const char *name;
-    int per_body;  /* 1: one row per free body */
+    int per_body;    /* 1: one row per free body */
     rd_h5_dim inner; /* dimension of the components per body or sample, DIM_NONE for a scalar */
     const char *units;
     const char *long_name;
 } rd_h5_series_spec;
 
 static const rd_h5_series_spec series_spec[SER_ENERGY] = {
-    {"time", 0, DIM_NONE, "s", "time since the shaking started"},
-    {"position", 1, DIM_XYZ, "m", "centre of mass, ground frame"},
-    {"quaternion", 1, DIM_WXYZ, "1", "orientation, body to ground frame"},
-    {"velocity", 1, DIM_XYZ, "m/s", "velocity of the centre of mass relative to the ground"},
-    {"angular_velocity", 1, DIM_XYZ, "rad/s", "angular velocity, ground frame"},
-    {"tilt", 1, DIM_NONE, "rad", "angle of the body's rest vertical axis from the vertical"},
-    {"rotation", 1, DIM_ROTATION, "rad", "rotation from rest: in-plane rocking, out-of-plane "
-                                         "rocking, twist about the vertical (unwrapped)"},
-    {"ground/acceleration", 0, DIM_XYZ, "m/s^2", "ground acceleration as applied"},
-    {"ground/velocity", 0, DIM_XYZ, "m/s", "ground velocity"},
-    {"ground/displacement", 0, DIM_XYZ, "m", "ground displacement"},
+    { "time", 0, DIM_NONE, "s", "time since the shaking started" },
+    { "position", 1, DIM_XYZ, "m", "centre of mass, ground frame" },
+    { "quaternion", 1, DIM_WXYZ, "1", "orientation, body to ground frame" },
+    { "velocity", 1, DIM_XYZ, "m/s", "velocity of the centre of mass relative to the ground" },
+    { "angular_velocity", 1, DIM_XYZ, "rad/s", "angular velocity, ground frame" },
+    { "tilt", 1, DIM_NONE, "rad", "angle of the body's rest vertical axis from the vertical" },
+    { "rotation", 1, DIM_ROTATION, "rad",
+      "rotation from rest: in-plane rocking, out-of-plane "
+      "rocking, twist about the vertical (unwrapped)" },
+    { "ground/acceleration", 0, DIM_XYZ, "m/s^2", "ground acceleration as applied" },
+    { "ground/velocity", 0, DIM_XYZ, "m/s", "ground velocity" },
+    { "ground/displacement", 0, DIM_XYZ, "m", "ground displacement" },
 };
 
 typedef struct rd_h5_series {
@@ -142,16 +158,16 @@ enum { EV_INDEX, EV_TIME, EV_BODY, EV_BODY_INDEX, EV_TYPE, EV_VALUE, EV_COUNT };
 
 typedef struct rd_h5_event_buf {
     int index[RD_H5_BUF];
-    double time[RD_H5_BUF];  /* s */
-    const char *body[RD_H5_BUF]; /* body name ("" for the whole scene) */
-    int body_index[RD_H5_BUF];   /* index into /body, -1 = the whole scene */
+    double time[RD_H5_BUF];        /* s */
+    const char *body[RD_H5_BUF];   /* body name ("" for the whole scene) */
+    int body_index[RD_H5_BUF];     /* index into /body, -1 = the whole scene */
     unsigned char type[RD_H5_BUF]; /* index into event_types */
     double value[RD_H5_BUF];
 } rd_h5_event_buf;
 
 struct rd_h5 {
-    char *path;        /* the file written: the output, or a temporary beside target */
-    char *target;      /* NULL, or the output the temporary replaces at rd_h5_commit */
+    char *path;   /* the file written: the output, or a temporary beside target */
+    char *target; /* NULL, or the output the temporary replaces at rd_h5_commit */
     hid_t file;
     hid_t str_type;    /* variable-length UTF-8 string */
     hid_t status_type; /* enum of the run statuses */
@@ -162,14 +178,14 @@ struct rd_h5 {
     rd_h5_series ser[SER_COUNT];
     hid_t dims[DIM_COUNT]; /* root dimension scales */
     hid_t body_dim;        /* /body */
-    int nbuf; /* samples buffered */
+    int nbuf;              /* samples buffered */
     hid_t ev[EV_COUNT];
     hsize_t ev_written;
     int nev; /* events buffered */
     rd_h5_event_buf evb;
-    int fd;           /* the file's descriptor (sec2 driver), for reserve() */
-    struct stat id;   /* device and inode of the file at open: is it still at path? */
-    int broken;       /* a write failed: nothing more is written; fault holds why */
+    int fd;         /* the file's descriptor (sec2 driver), for reserve() */
+    struct stat id; /* device and inode of the file at open: is it still at path? */
+    int broken;     /* a write failed: nothing more is written; fault holds why */
     char fault[RD_ERROR_MAX];
     struct ref_list *later; /* [DIM_COUNT] while the bodies are written (attach_later), else NULL */
 };
@@ -196,7 +212,7 @@ static hid_t enum_type(const char *const *names, int n)
  * n - 1 bytes). Its global-heap space was reserved when it was created (reserve_status). */
 static int overwrite_status(const rd_h5 *h, const char *name, size_t n, const char *value)
 {
-    char buf[RD_H5_STATUS_MSG] = {0};
+    char buf[RD_H5_STATUS_MSG] = { 0 };
     snprintf(buf, n < sizeof buf ? n : sizeof buf, "%s", value);
     const char *v = buf;
     hid_t a = H5Aopen(h->file, name, H5P_DEFAULT);
@@ -284,16 +300,14 @@ static int attr_write(const rd_h5 *h, hid_t loc, const char *name, hid_t type, h
     return ok ? 0 : rd_error_set(err, "%s: cannot write attribute '%s'", h->path, name);
 }
 
-static int attr_str(const rd_h5 *h, hid_t loc, const char *name, const char *value,
-                    rd_error *err)
+static int attr_str(const rd_h5 *h, hid_t loc, const char *name, const char *value, rd_error *err)
 {
     const char *v = value ? value : "";
     return attr_write(h, loc, name, h->str_type, 0, &v, err);
 }
 
 /* The companion attribute "<name>_units" (none when units is NULL). */
-static int attr_units(const rd_h5 *h, hid_t loc, const char *name, const char *units,
-                      rd_error *err)
+static int attr_units(const rd_h5 *h, hid_t loc, const char *name, const char *units, rd_error *err)
 {
     if (!units) return 0;
     char un[96];
@@ -302,11 +316,13 @@ static int attr_units(const rd_h5 *h, hid_t loc, const char *name, const char *u
 }
 
 /* A double attribute and its units ("1" for a ratio, NULL for none). */
-static int attr_double(const rd_h5 *h, hid_t loc, const char *name, double value,
-                       const char *units, rd_error *err)
+static int attr_double(const rd_h5 *h, hid_t loc, const char *name, double value, const char *units,
+                       rd_error *err)
 {
     return attr_write(h, loc, name, H5T_NATIVE_DOUBLE, 0, &value, err) ||
-           attr_units(h, loc, name, units, err) ? -1 : 0;
+                   attr_units(h, loc, name, units, err)
+               ? -1
+               : 0;
 }
 
 static int attr_int(const rd_h5 *h, hid_t loc, const char *name, int value, rd_error *err)
@@ -326,7 +342,9 @@ static int describe(const rd_h5 *h, hid_t d, const char *units, const char *long
                     rd_error *err)
 {
     return (units && attr_str(h, d, "units", units, err)) ||
-           attr_str(h, d, "long_name", long_name, err) ? -1 : 0;
+                   attr_str(h, d, "long_name", long_name, err)
+               ? -1
+               : 0;
 }
 
 /* ---- dimension scales ---- */
@@ -337,8 +355,8 @@ static hid_t scale_create(const rd_h5 *h, hid_t loc, const char *name, hid_t typ
                           const void *data, const char *long_name, rd_error *err)
 {
     hid_t space = H5Screate_simple(1, &n, NULL);
-    hid_t d = space >= 0 ? H5Dcreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT) : H5I_INVALID_HID;
+    hid_t d = space >= 0 ? H5Dcreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)
+                         : H5I_INVALID_HID;
     int ok = d >= 0 && (n == 0 || H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0) &&
              H5DSset_scale(d, name) >= 0;
     if (space >= 0) H5Sclose(space);
@@ -349,8 +367,8 @@ static hid_t scale_create(const rd_h5 *h, hid_t loc, const char *name, hid_t typ
 }
 
 /* A scale of the indices 0..n-1 (an axis with no better labels). */
-static hid_t index_scale(const rd_h5 *h, hid_t loc, const char *name, int n,
-                         const char *long_name, rd_error *err)
+static hid_t index_scale(const rd_h5 *h, hid_t loc, const char *name, int n, const char *long_name,
+                         rd_error *err)
 {
     int *ix = malloc((size_t)(n > 0 ? n : 1) * sizeof *ix);
     if (!ix) {
@@ -366,8 +384,8 @@ static hid_t index_scale(const rd_h5 *h, hid_t loc, const char *name, int n,
 /* One entry of a dimension scale's REFERENCE_LIST attribute: HDF5 1.10's ds_list_t (H5DS
  * writes it with this compound type: "dataset" an object reference, "dimension" an int). */
 typedef struct ds_ref {
-    hobj_ref_t ref;        /* the dataset the scale is attached to */
-    unsigned int dim_idx;  /* the axis of that dataset */
+    hobj_ref_t ref;       /* the dataset the scale is attached to */
+    unsigned int dim_idx; /* the axis of that dataset */
 } ds_ref;
 
 /* The attachments to a root scale gathered while the bodies are written. H5DSattach_scale
@@ -414,12 +432,13 @@ static int dimension_list_add(hid_t d, hid_t scale, int k)
             memcpy(buf, old, sizeof buf);
             if (old[k].len) memcpy(list, old[k].p, old[k].len * sizeof *list);
             list[old[k].len] = ref;
-            buf[k] = (hvl_t){.len = old[k].len + 1, .p = list};
+            buf[k] = (hvl_t){ .len = old[k].len + 1, .p = list };
             /* replaced, not written over: overwriting leaves the old lists in the global heap */
             if (exists) {
                 H5Aclose(a);
-                a = H5Adelete(d, "DIMENSION_LIST") < 0 ? H5I_INVALID_HID
-                    : H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
+                a = H5Adelete(d, "DIMENSION_LIST") < 0
+                        ? H5I_INVALID_HID
+                        : H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
             } else {
                 a = H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
             }
@@ -444,7 +463,8 @@ static int attach_later(hid_t d, hid_t scale, int k, ref_list *l)
         l->cap = cap;
     }
     ds_ref *r = &l->e[l->n];
-    if (H5Rcreate(&r->ref, d, ".", H5R_OBJECT, -1) < 0 || dimension_list_add(d, scale, k)) return -1;
+    if (H5Rcreate(&r->ref, d, ".", H5R_OBJECT, -1) < 0 || dimension_list_add(d, scale, k))
+        return -1;
     r->dim_idx = (unsigned)k;
     l->n++;
     return 0;
@@ -468,7 +488,7 @@ static int ref_list_write(rd_h5 *h, int i, rd_error *err)
         if (t >= 0) H5Tclose(t);
     }
     free(l->e);
-    *l = (ref_list){0};
+    *l = (ref_list){ 0 };
     return rc ? rd_error_set(err, "%s: cannot write the dimension scales' references", h->path) : 0;
 }
 
@@ -481,7 +501,8 @@ static int attach(const rd_h5 *h, hid_t d, const hid_t *scales, int rank, const 
         int root = -1;
         for (int i = 0; h->later && i < DIM_COUNT; i++)
             if (scales[k] == h->dims[i]) root = i;
-        if (root >= 0 ? attach_later(d, scales[k], k, &h->later[root]) : H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
+        if (root >= 0 ? attach_later(d, scales[k], k, &h->later[root])
+                      : H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
             return rd_error_set(err, "%s: cannot attach dimension %d of '%s'", h->path, k, what);
     }
     return 0;
@@ -491,8 +512,8 @@ static int create_dims(rd_h5 *h, rd_error *err)
 {
     for (int i = 0; i < DIM_COUNT; i++) {
         const rd_h5_dim_spec *ds = &dim_spec[i];
-        h->dims[i] = scale_create(h, h->file, ds->name, h->str_type, (hsize_t)ds->n,
-                                  ds->labels, ds->long_name, err);
+        h->dims[i] = scale_create(h, h->file, ds->name, h->str_type, (hsize_t)ds->n, ds->labels,
+                                  ds->long_name, err);
         if (h->dims[i] < 0) return -1;
     }
     h->body_dim = scale_create(h, h->file, "body", h->str_type, (hsize_t)h->nb, h->name_list,
@@ -515,10 +536,11 @@ static int make_group(const rd_h5 *h, const char *name, const char *long_name, r
  * each group opens in a netCDF reader (xarray) with its coordinates (io_table.h). */
 static int link_scales(const rd_h5 *h, rd_error *err)
 {
-    static const char *const groups[] = {"/bodies", "/ground", "/energy"};
+    static const char *const groups[] = { "/bodies", "/ground", "/energy" };
     for (size_t k = 0; k < sizeof groups / sizeof groups[0]; k++)
         if (rd_h5t_link_scales(h->file, groups[k], err))
-            return rd_error_set(err, "%s: cannot link the dimension scales of %s", h->path, groups[k]);
+            return rd_error_set(err, "%s: cannot link the dimension scales of %s", h->path,
+                                groups[k]);
     return 0;
 }
 
@@ -539,22 +561,24 @@ static int write_root_attrs(const rd_h5 *h, const rd_h5_meta *m, rd_error *err)
     hid_t r = h->file;
     const double deg = 180.0 / 3.14159265358979323846; /* degrees per radian */
     return attr_str(h, r, "Conventions", "rockdem-2", err) ||
-           attr_int(h, r, "layout_version", RD_H5_LAYOUT, err) ||
-           attr_str(h, r, "program", "rockdem", err) ||
-           attr_str(h, r, "version", RD_VERSION, err) ||
-           attr_str(h, r, "scenario", m->scenario_text, err) ||
-           attr_str(h, r, "scenario_file", m->scenario_file, err) ||
-           attr_str(h, r, "title", m->title, err) ||
-           attr_double(h, r, "dt", m->dt, "s", err) ||
-           attr_double(h, r, "dt_critical", m->dt_critical, "s", err) ||
-           attr_str(h, r, "damping", m->damping, err) ||
-           attr_str(h, r, "overturn_criterion", m->overturn_criterion, err) ||
-           attr_double(h, r, "kn", m->kn, "Pa/m", err) ||
-           attr_double(h, r, "ks", m->ks, "Pa/m", err) ||
-           attr_double(h, r, "friction_deg", m->friction * deg, "degree", err) ||
-           attr_double(h, r, "cohesion", m->cohesion, "Pa", err) ||
-           attr_double(h, r, "tension", m->tension, "Pa", err) ||
-           write_spacing(h, m->spacing, err) ? -1 : 0;
+                   attr_int(h, r, "layout_version", RD_H5_LAYOUT, err) ||
+                   attr_str(h, r, "program", "rockdem", err) ||
+                   attr_str(h, r, "version", RD_VERSION, err) ||
+                   attr_str(h, r, "scenario", m->scenario_text, err) ||
+                   attr_str(h, r, "scenario_file", m->scenario_file, err) ||
+                   attr_str(h, r, "title", m->title, err) ||
+                   attr_double(h, r, "dt", m->dt, "s", err) ||
+                   attr_double(h, r, "dt_critical", m->dt_critical, "s", err) ||
+                   attr_str(h, r, "damping", m->damping, err) ||
+                   attr_str(h, r, "overturn_criterion", m->overturn_criterion, err) ||
+                   attr_double(h, r, "kn", m->kn, "Pa/m", err) ||
+                   attr_double(h, r, "ks", m->ks, "Pa/m", err) ||
+                   attr_double(h, r, "friction_deg", m->friction * deg, "degree", err) ||
+                   attr_double(h, r, "cohesion", m->cohesion, "Pa", err) ||
+                   attr_double(h, r, "tension", m->tension, "Pa", err) ||
+                   write_spacing(h, m->spacing, err)
+               ? -1
+               : 0;
 }
 
 /* Small contiguous [n][3] dataset under loc (n may be 0), axes (row scale, columns scale). */
@@ -562,11 +586,11 @@ static int write_table3(const rd_h5 *h, hid_t loc, const char *name, hid_t ftype
                         int n, const void *data, const hid_t scales[2], const char *units,
                         const char *long_name, rd_error *err)
 {
-    hsize_t dims[2] = {(hsize_t)n, 3};
+    hsize_t dims[2] = { (hsize_t)n, 3 };
     hid_t space = H5Screate_simple(2, dims, NULL);
-    hid_t d = space >= 0 ? H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT)
-                         : H5I_INVALID_HID;
+    hid_t d = space >= 0
+                  ? H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)
+                  : H5I_INVALID_HID;
     int ok = d >= 0 && (n == 0 || H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
     if (space >= 0) H5Sclose(space);
     if (!ok) {
@@ -584,14 +608,18 @@ static int write_geometry(const rd_h5 *h, hid_t g, const rd_h5_body *b, rd_error
     hid_t vs = index_scale(h, g, "vertex", b->nvert, "vertex of the body", err);
     hid_t fs = vs >= 0 ? index_scale(h, g, "face", b->ntri, "triangle of the surface", err)
                        : H5I_INVALID_HID;
-    hid_t vdims[2] = {vs, h->dims[DIM_XYZ]}, fdims[2] = {fs, h->dims[DIM_CORNER]};
+    hid_t vdims[2] = { vs, h->dims[DIM_XYZ] }, fdims[2] = { fs, h->dims[DIM_CORNER] };
     int rc = vs < 0 || fs < 0 ||
-             write_table3(h, g, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, b->nvert,
-                          b->vertices, vdims, "m", "vertex, body frame, about the centre of mass",
-                          err) ||
-             write_table3(h, g, "faces", H5T_STD_I32LE, H5T_NATIVE_INT, b->ntri, b->triangles,
-                          fdims, NULL, "triangle, indices into vertices (outward normal by the "
-                          "right-hand rule)", err) ? -1 : 0;
+                     write_table3(h, g, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, b->nvert,
+                                  b->vertices, vdims, "m",
+                                  "vertex, body frame, about the centre of mass", err) ||
+                     write_table3(h, g, "faces", H5T_STD_I32LE, H5T_NATIVE_INT, b->ntri,
+                                  b->triangles, fdims, NULL,
+                                  "triangle, indices into vertices (outward normal by the "
+                                  "right-hand rule)",
+                                  err)
+                 ? -1
+                 : 0;
     if (fs >= 0) H5Dclose(fs);
     if (vs >= 0) H5Dclose(vs);
     return rc;
@@ -604,17 +632,19 @@ static int write_body(const rd_h5 *h, const rd_h5_body *b, rd_error *err)
     hid_t g = H5Gcreate2(h->file, path, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '%s'", h->path, path);
     int rc = attr_double(h, g, "mass", b->mass, "kg", err) ||
-             attr_write(h, g, "inertia_principal", H5T_NATIVE_DOUBLE, 3, b->inertia, err) ||
-             attr_units(h, g, "inertia_principal", "kg m^2", err) ||
-             attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, b->size, err) ||
-             attr_units(h, g, "size", "m", err) ||
-             attr_double(h, g, "alpha", b->alpha, "rad", err) ||
-             attr_int(h, g, "fixed", b->fixed, err) ||
-             (b->fixed && (attr_write(h, g, "position", H5T_NATIVE_DOUBLE, 3, b->position, err) ||
-                           attr_units(h, g, "position", "m", err) ||
-                           attr_write(h, g, "quaternion", H5T_NATIVE_DOUBLE, 4, b->quaternion,
-                                      err))) ||
-             write_geometry(h, g, b, err) ? -1 : 0;
+                     attr_write(h, g, "inertia_principal", H5T_NATIVE_DOUBLE, 3, b->inertia, err) ||
+                     attr_units(h, g, "inertia_principal", "kg m^2", err) ||
+                     attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, b->size, err) ||
+                     attr_units(h, g, "size", "m", err) ||
+                     attr_double(h, g, "alpha", b->alpha, "rad", err) ||
+                     attr_int(h, g, "fixed", b->fixed, err) ||
+                     (b->fixed &&
+                      (attr_write(h, g, "position", H5T_NATIVE_DOUBLE, 3, b->position, err) ||
+                       attr_units(h, g, "position", "m", err) ||
+                       attr_write(h, g, "quaternion", H5T_NATIVE_DOUBLE, 4, b->quaternion, err))) ||
+                     write_geometry(h, g, b, err)
+                 ? -1
+                 : 0;
     H5Gclose(g);
     return rc;
 }
@@ -625,8 +655,7 @@ static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
 {
     if (m->nbodies < 1)
         return rd_error_set(err, "%s: %d free bodies (at least 1 is written)", path, m->nbodies);
-    if (m->nfixed < 0)
-        return rd_error_set(err, "%s: %d fixed bodies", path, m->nfixed);
+    if (m->nfixed < 0) return rd_error_set(err, "%s: %d fixed bodies", path, m->nfixed);
     for (int i = 0; i < m->nbodies + m->nfixed; i++) {
         const char *n = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
         if (!n || !n[0] || strlen(n) >= RD_NAME_MAX || strchr(n, '/') || !strcmp(n, ".") ||
@@ -639,7 +668,7 @@ static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
 /* Every body's group, its attachments to the root scales gathered and written once. */
 static int write_groups(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
 {
-    ref_list later[DIM_COUNT] = {{0}};
+    ref_list later[DIM_COUNT] = { { 0 } };
     h->later = later;
     int rc = 0;
     for (int i = 0; !rc && i < h->nb; i++) rc = write_body(h, &m->bodies[i], err);
@@ -656,21 +685,23 @@ static int write_bodies(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
     hsize_t n = (hsize_t)h->nb;
     hid_t space = H5Screate_simple(1, &n, NULL);
     hid_t d = space >= 0 ? H5Dcreate2(h->file, "/bodies/names", h->str_type, space, H5P_DEFAULT,
-                                      H5P_DEFAULT, H5P_DEFAULT) : H5I_INVALID_HID;
+                                      H5P_DEFAULT, H5P_DEFAULT)
+                         : H5I_INVALID_HID;
     int ok = d >= 0 && H5Dwrite(d, h->str_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, h->name_list) >= 0 &&
-             !describe(h, d, NULL, "free bodies, in output order (fixed bodies: groups with "
-                                   "fixed = 1)", err) &&
+             !describe(h, d, NULL,
+                       "free bodies, in output order (fixed bodies: groups with "
+                       "fixed = 1)",
+                       err) &&
              !attach(h, d, &h->body_dim, 1, "/bodies/names", err);
     if (d >= 0) H5Dclose(d);
     if (space >= 0) H5Sclose(space);
     return ok ? 0 : rd_error_set(err, "%s: cannot write /bodies/names", h->path);
 }
 
-static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp,
-                         rd_error *err)
+static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp, rd_error *err)
 {
-    hsize_t maxd[3] = {H5S_UNLIMITED, 0, 0}, chunk[3] = {RD_H5_BUF, 0, 0};
-    hid_t scales[3] = {h->ser[SER_TIME].dset, 0, 0};
+    hsize_t maxd[3] = { H5S_UNLIMITED, 0, 0 }, chunk[3] = { RD_H5_BUF, 0, 0 };
+    hid_t scales[3] = { h->ser[SER_TIME].dset, 0, 0 };
     int r = 1;
     s->dims[0] = 0;
     if (sp->per_body) {
@@ -693,8 +724,9 @@ static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp,
     hid_t space = H5Screate_simple(r, s->dims, maxd);
     int ok = s->buf && dcpl >= 0 && space >= 0 && H5Pset_chunk(dcpl, r, chunk) >= 0 &&
              H5Pset_shuffle(dcpl) >= 0 && H5Pset_deflate(dcpl, RD_H5_DEFLATE) >= 0;
-    if (ok) s->dset = H5Dcreate2(h->file, s->name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl,
-                                 H5P_DEFAULT);
+    if (ok)
+        s->dset =
+            H5Dcreate2(h->file, s->name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (space >= 0) H5Sclose(space);
     if (dcpl >= 0) H5Pclose(dcpl);
     if (!ok || s->dset < 0)
@@ -702,7 +734,8 @@ static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp,
     if (describe(h, s->dset, sp->units, sp->long_name, err)) return -1;
     if (s == &h->ser[SER_TIME]) /* /time is the time axis of every series */
         return H5DSset_scale(s->dset, "time") < 0
-                   ? rd_error_set(err, "%s: cannot make /time a dimension scale", h->path) : 0;
+                   ? rd_error_set(err, "%s: cannot make /time a dimension scale", h->path)
+                   : 0;
     return attach(h, s->dset, scales, r, s->name, err);
 }
 
@@ -713,7 +746,7 @@ static int create_series(rd_h5 *h, rd_error *err)
         return -1;
     for (int i = 0; i < SER_COUNT; i++) {
         char name[RD_H5_SERNAME];
-        rd_h5_series_spec sp = {name, 0, DIM_NONE, "J", NULL};
+        rd_h5_series_spec sp = { name, 0, DIM_NONE, "J", NULL };
         if (i < SER_ENERGY) {
             sp = series_spec[i];
         } else {
@@ -726,8 +759,8 @@ static int create_series(rd_h5 *h, rd_error *err)
 }
 
 /* One extendible, chunked 1-D column of /events. */
-static hid_t event_column(const rd_h5 *h, hid_t g, const char *name, hid_t type,
-                          const char *units, const char *long_name, rd_error *err)
+static hid_t event_column(const rd_h5 *h, hid_t g, const char *name, hid_t type, const char *units,
+                          const char *long_name, rd_error *err)
 {
     hsize_t dims = 0, maxd = H5S_UNLIMITED, chunk = RD_H5_BUF;
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -748,17 +781,19 @@ static int create_events(rd_h5 *h, rd_error *err)
     if (make_group(h, "/events", "what happened during the run, in time order", err)) return -1;
     hid_t g = H5Gopen2(h->file, "/events", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot open /events", h->path);
-    static const struct { const char *name, *units, *long_name; } col[EV_COUNT] = {
-        {"event", NULL, "event number"},
-        {"time", "s", "time of the event"},
-        {"body", NULL, "free body concerned (empty: the whole scene)"},
-        {"body_index", NULL, "index of the body in /body (-1: the whole scene)"},
-        {"type", NULL, "kind of event"},
-        {"value", NULL, "uplift, overturn, recover: tilt (rad); impact: angular speed before "
-                        "(rad/s); slip: slide so far (m); unstable: speed (m/s); unsettled: "
-                        "force ratio reached (1)"}};
-    const hid_t type[EV_COUNT] = {H5T_NATIVE_INT, H5T_IEEE_F64LE, h->str_type, H5T_NATIVE_INT,
-                                  h->event_type, H5T_IEEE_F64LE};
+    static const struct {
+        const char *name, *units, *long_name;
+    } col[EV_COUNT] = { { "event", NULL, "event number" },
+                        { "time", "s", "time of the event" },
+                        { "body", NULL, "free body concerned (empty: the whole scene)" },
+                        { "body_index", NULL, "index of the body in /body (-1: the whole scene)" },
+                        { "type", NULL, "kind of event" },
+                        { "value", NULL,
+                          "uplift, overturn, recover: tilt (rad); impact: angular speed before "
+                          "(rad/s); slip: slide so far (m); unstable: speed (m/s); unsettled: "
+                          "force ratio reached (1)" } };
+    const hid_t type[EV_COUNT] = { H5T_NATIVE_INT, H5T_IEEE_F64LE, h->str_type,
+                                   H5T_NATIVE_INT, h->event_type,  H5T_IEEE_F64LE };
     int rc = 0;
     for (int c = 0; c < EV_COUNT && !rc; c++) {
         h->ev[c] = event_column(h, g, col[c].name, type[c], col[c].units, col[c].long_name, err);
@@ -766,7 +801,8 @@ static int create_events(rd_h5 *h, rd_error *err)
     }
     if (!rc && H5DSset_scale(h->ev[EV_INDEX], "event") < 0)
         rc = rd_error_set(err, "%s: cannot make /events/event a dimension scale", h->path);
-    for (int c = 1; c < EV_COUNT && !rc; c++) rc = attach(h, h->ev[c], &h->ev[EV_INDEX], 1, "/events", err);
+    for (int c = 1; c < EV_COUNT && !rc; c++)
+        rc = attach(h, h->ev[c], &h->ev[EV_INDEX], 1, "/events", err);
     H5Gclose(g);
     return rc;
 }
@@ -786,7 +822,11 @@ static void close_file(rd_h5 *h)
     if (h->str_type >= 0) H5Tclose(h->str_type);
     if (h->file >= 0) H5Fclose(h->file);
     h->file = h->str_type = h->status_type = h->event_type = h->body_dim = H5I_INVALID_HID;
-    for (int i = 0; i < SER_COUNT; i++) { h->ser[i].dset = H5I_INVALID_HID; free(h->ser[i].buf); h->ser[i].buf = NULL; }
+    for (int i = 0; i < SER_COUNT; i++) {
+        h->ser[i].dset = H5I_INVALID_HID;
+        free(h->ser[i].buf);
+        h->ser[i].buf = NULL;
+    }
     for (int i = 0; i < EV_COUNT; i++) h->ev[i] = H5I_INVALID_HID;
     for (int i = 0; i < DIM_COUNT; i++) h->dims[i] = H5I_INVALID_HID;
 }
@@ -835,8 +875,10 @@ static int make_types(rd_h5 *h)
     h->status_type = enum_type(status_names, RD_H5_NSTATUS);
     h->event_type = enum_type(event_types, RD_H5_NEVTYPES);
     return h->str_type >= 0 && H5Tset_size(h->str_type, H5T_VARIABLE) >= 0 &&
-           H5Tset_cset(h->str_type, H5T_CSET_UTF8) >= 0 && h->status_type >= 0 &&
-           h->event_type >= 0 ? 0 : -1;
+                   H5Tset_cset(h->str_type, H5T_CSET_UTF8) >= 0 && h->status_type >= 0 &&
+                   h->event_type >= 0
+               ? 0
+               : -1;
 }
 
 /* Root `status` ("running" until the run ends) and `status_message` (""), variable-length
@@ -884,7 +926,9 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
         fstat(*fdp, &h->id)) {
         rd_error_set(err, "%s: cannot create file: %s", path,
                      errno == EAGAIN || errno == EWOULDBLOCK ? RD_PATH_LOCKED
-                     : errno ? strerror(errno) : "HDF5 library error (no system error: check the folder with df and ls)");
+                     : errno
+                         ? strerror(errno)
+                         : "HDF5 library error (no system error: check the folder with df and ls)");
         destroy(h);
         return NULL;
     }
@@ -894,8 +938,10 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
        full disk or size limit and left a file no reader opens) */
     size_t tables = 0;
     for (int i = 0; i < meta->nbodies + meta->nfixed; i++) {
-        const rd_h5_body *b = i < meta->nbodies ? &meta->bodies[i] : &meta->fixed_bodies[i - meta->nbodies];
-        tables += 3 * (sizeof(double) * (size_t)b->nvert + sizeof(int) * (size_t)b->ntri) + RD_H5_BODY_BYTES;
+        const rd_h5_body *b =
+            i < meta->nbodies ? &meta->bodies[i] : &meta->fixed_bodies[i - meta->nbodies];
+        tables += 3 * (sizeof(double) * (size_t)b->nvert + sizeof(int) * (size_t)b->ntri) +
+                  RD_H5_BODY_BYTES;
     }
     if (make_types(h)) {
         rd_error_set(err, "%s: cannot create the string and enum types", path);
@@ -968,10 +1014,9 @@ static int h5_event(rd_h5 *h, double time, int body, const char *type, double va
 }
 
 /* Append n rows from buf to an extendible dataset whose first dimension is *written. */
-static int extend_write(hid_t d, hid_t mtype, int rank, hsize_t *dims, hsize_t n,
-                        const void *buf)
+static int extend_write(hid_t d, hid_t mtype, int rank, hsize_t *dims, hsize_t n, const void *buf)
 {
-    hsize_t start[3] = {dims[0], 0, 0}, count[3] = {n, 0, 0}, grown[3] = {dims[0] + n, 0, 0};
+    hsize_t start[3] = { dims[0], 0, 0 }, count[3] = { n, 0, 0 }, grown[3] = { dims[0] + n, 0, 0 };
     for (int k = 1; k < rank; k++) count[k] = grown[k] = dims[k];
     if (H5Dset_extent(d, grown) < 0) return -1;
     hid_t fs = H5Dget_space(d);
@@ -989,9 +1034,9 @@ static int extend_write(hid_t d, hid_t mtype, int rank, hsize_t *dims, hsize_t n
 static int write_events(rd_h5 *h, int n)
 {
     const rd_h5_event_buf *b = &h->evb;
-    const void *src[EV_COUNT] = {b->index, b->time, b->body, b->body_index, b->type, b->value};
-    const hid_t mt[EV_COUNT] = {H5T_NATIVE_INT, H5T_NATIVE_DOUBLE, h->str_type, H5T_NATIVE_INT,
-                                h->event_type, H5T_NATIVE_DOUBLE};
+    const void *src[EV_COUNT] = { b->index, b->time, b->body, b->body_index, b->type, b->value };
+    const hid_t mt[EV_COUNT] = { H5T_NATIVE_INT, H5T_NATIVE_DOUBLE, h->str_type,
+                                 H5T_NATIVE_INT, h->event_type,     H5T_NATIVE_DOUBLE };
     for (int c = 0; c < EV_COUNT; c++) {
         hsize_t written = h->ev_written;
         if (extend_write(h->ev[c], mt[c], 1, &written, (hsize_t)n, src[c])) return -1;
@@ -1004,11 +1049,10 @@ static int h5_flush(rd_h5 *h, rd_error *err)
 {
     int n = h->nbuf, nev = h->nev;
     h->nbuf = h->nev = 0; /* a failed write is not retried: it would duplicate rows */
-    size_t width = 0; /* doubles per sample, all series */
+    size_t width = 0;     /* doubles per sample, all series */
     for (int i = 0; i < SER_COUNT; i++) width += h->ser[i].width;
     size_t raw = sizeof(double) * width * (size_t)n + RD_H5_EVENT_BYTES * (size_t)nev;
-    if (reserve(h, raw + raw / 8, err))
-        return -1;
+    if (reserve(h, raw + raw / 8, err)) return -1;
     char what[RD_H5_SERNAME + 32];
     for (int i = 0; n > 0 && i < SER_COUNT; i++) {
         rd_h5_series *s = &h->ser[i];
@@ -1031,18 +1075,27 @@ typedef struct rd_h5_body_field {
     const char *units; /* NULL: a 0/1 flag (an int member); else a double in these units */
 } rd_h5_body_field;
 
-#define RD_FIELD(attr, member, units) {attr, offsetof(rd_body_summary, member), units}
+#define RD_FIELD(attr, member, units)                                                              \
+    {                                                                                              \
+        attr, offsetof(rd_body_summary, member), units                                             \
+    }
 static const rd_h5_body_field body_fields[] = {
-    RD_FIELD("overturned", overturned, NULL), RD_FIELD("uplifted", uplifted, NULL),
+    RD_FIELD("overturned", overturned, NULL),
+    RD_FIELD("uplifted", uplifted, NULL),
     RD_FIELD("slid", slid, NULL),
-    RD_FIELD("overturn_time", overturn_time, "s"), RD_FIELD("max_tilt_ratio", max_tilt_ratio, "1"),
+    RD_FIELD("overturn_time", overturn_time, "s"),
+    RD_FIELD("max_tilt_ratio", max_tilt_ratio, "1"),
     RD_FIELD("tip_accel_min", tip_accel_min, "m/s^2"),
-    RD_FIELD("max_slide", max_slide, "m"), RD_FIELD("final_slide", final_slide, "m"),
-    RD_FIELD("max_tilt", max_tilt, "rad"), RD_FIELD("alpha", alpha, "rad"),
+    RD_FIELD("max_slide", max_slide, "m"),
+    RD_FIELD("final_slide", final_slide, "m"),
+    RD_FIELD("max_tilt", max_tilt, "rad"),
+    RD_FIELD("alpha", alpha, "rad"),
     RD_FIELD("max_rocking_in_plane", max_rocking_in, "rad"),
     RD_FIELD("max_rocking_out_of_plane", max_rocking_out, "rad"),
-    RD_FIELD("max_twist", max_twist, "rad"), RD_FIELD("final_twist", final_twist, "rad"),
-    RD_FIELD("alpha_min", alpha_min, "rad"), RD_FIELD("alpha_min_direction", alpha_min_direction, "rad"),
+    RD_FIELD("max_twist", max_twist, "rad"),
+    RD_FIELD("final_twist", final_twist, "rad"),
+    RD_FIELD("alpha_min", alpha_min, "rad"),
+    RD_FIELD("alpha_min_direction", alpha_min_direction, "rad"),
 };
 #undef RD_FIELD
 
@@ -1053,8 +1106,8 @@ static int h5_precariousness(rd_h5 *h, const char *body, const double *table, in
     snprintf(path, sizeof path, "/bodies/%s", body);
     hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
-    static const char *const cols[3] = {"lean_direction", "alpha", "tip_acceleration"};
-    static const char *const units[3] = {"rad", "rad", "m/s^2"};
+    static const char *const cols[3] = { "lean_direction", "alpha", "tip_acceleration" };
+    static const char *const units[3] = { "rad", "rad", "m/s^2" };
     if (H5Lexists(g, "precariousness", H5P_DEFAULT) > 0) { /* replaced: no dangling scales */
         H5Ldelete(g, "precariousness", H5P_DEFAULT);
         H5Ldelete(g, "lean", H5P_DEFAULT);
@@ -1064,12 +1117,17 @@ static int h5_precariousness(rd_h5 *h, const char *body, const double *table, in
     hid_t qs = ls >= 0 ? scale_create(h, g, "quantity", h->str_type, 3, cols,
                                       "column of the precariousness table", err)
                        : H5I_INVALID_HID;
-    hid_t scales[2] = {ls, qs};
-    int rc = ls < 0 || qs < 0 || attr_write(h, qs, "units", h->str_type, 3, units, err) ||
-             write_table3(h, g, "precariousness", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, table,
-                          scales, NULL, "lean direction the body tips towards (rad from +x), "
-                          "static tipping angle alpha (rad), quasi-static tipping acceleration "
-                          "g tan(alpha) (m/s^2); units per column in quantity.units", err) ? -1 : 0;
+    hid_t scales[2] = { ls, qs };
+    int rc =
+        ls < 0 || qs < 0 || attr_write(h, qs, "units", h->str_type, 3, units, err) ||
+                write_table3(h, g, "precariousness", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, table,
+                             scales, NULL,
+                             "lean direction the body tips towards (rad from +x), "
+                             "static tipping angle alpha (rad), quasi-static tipping acceleration "
+                             "g tan(alpha) (m/s^2); units per column in quantity.units",
+                             err)
+            ? -1
+            : 0;
     if (qs >= 0) H5Dclose(qs);
     if (ls >= 0) H5Dclose(ls);
     H5Gclose(g);
@@ -1083,7 +1141,9 @@ static int h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_err
     hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
     int rc = attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, size, err) ||
-             attr_units(h, g, "size", "m", err) ? -1 : 0;
+                     attr_units(h, g, "size", "m", err)
+                 ? -1
+                 : 0;
     H5Gclose(g);
     return rc;
 }
@@ -1116,12 +1176,16 @@ static int write_body_fields(const rd_h5 *h, hid_t g, const rd_summary *s, const
         const rd_h5_body_field *bf = &body_fields[f];
         for (int i = 0; i < h->nb; i++) {
             const char *p = (const char *)&s->body[order[i]] + bf->offset;
-            if (!bf->units) memcpy(&n[i], p, sizeof n[i]);
-            else memcpy(&d[i], p, sizeof d[i]);
+            if (!bf->units)
+                memcpy(&n[i], p, sizeof n[i]);
+            else
+                memcpy(&d[i], p, sizeof d[i]);
         }
         rc = attr_write(h, g, bf->name, bf->units ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT,
                         (hsize_t)h->nb, bf->units ? (const void *)d : (const void *)n, err) ||
-             attr_units(h, g, bf->name, bf->units, err) ? -1 : 0;
+                     attr_units(h, g, bf->name, bf->units, err)
+                 ? -1
+                 : 0;
     }
     free(d);
     free(n);
@@ -1152,14 +1216,16 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
         return rd_error_set(err, "%s: unknown run status %d", h->path, st);
     long steps = s->steps;
     return attr_enum(h, g, "status", h->status_type, st, err) ||
-           attr_int(h, g, "any_overturned", s->any_overturned, err) ||
-           attr_double(h, g, "end_time", s->end_time, "s", err) ||
-           attr_double(h, g, "dt", s->dt, "s", err) ||
-           attr_double(h, g, "dt_critical", s->dt_critical, "s", err) ||
-           attr_write(h, g, "steps", H5T_NATIVE_LONG, 0, &steps, err) ||
-           attr_double(h, g, "settle_time", s->settle_time, "s", err) ||
-           attr_double(h, g, "energy_residual_max", s->energy_residual_max, "1", err) ||
-           attr_double(h, g, "wall_seconds", s->wall_seconds, "s", err) ? -1 : 0;
+                   attr_int(h, g, "any_overturned", s->any_overturned, err) ||
+                   attr_double(h, g, "end_time", s->end_time, "s", err) ||
+                   attr_double(h, g, "dt", s->dt, "s", err) ||
+                   attr_double(h, g, "dt_critical", s->dt_critical, "s", err) ||
+                   attr_write(h, g, "steps", H5T_NATIVE_LONG, 0, &steps, err) ||
+                   attr_double(h, g, "settle_time", s->settle_time, "s", err) ||
+                   attr_double(h, g, "energy_residual_max", s->energy_residual_max, "1", err) ||
+                   attr_double(h, g, "wall_seconds", s->wall_seconds, "s", err)
+               ? -1
+               : 0;
 }
 
 /* /summary: the run's attributes and the per-body arrays. 0, -1 (err set), or 1: a write
@@ -1167,8 +1233,10 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
 static int summary_group(rd_h5 *h, const rd_summary *s, const int *order, rd_error *err)
 {
     htri_t exists = H5Lexists(h->file, "/summary", H5P_DEFAULT);
-    if (exists <= 0 && make_group(h, "/summary", "what the run found (per-body attributes in "
-                                                 "/body order)", err))
+    if (exists <= 0 && make_group(h, "/summary",
+                                  "what the run found (per-body attributes in "
+                                  "/body order)",
+                                  err))
         return -1;
     hid_t g = H5Gopen2(h->file, "/summary", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '/summary'", h->path);
@@ -1206,8 +1274,9 @@ static int h5_commit(rd_h5 *h, int ok, rd_error *err)
     close_file(h);
     rd_fault_point("run-rename");
     if (rd_path_commit(h->path, h->target))
-        return rd_error_set(err, "%s: cannot rename the finished run over %s: %s; the run's output is in %s",
-                            h->target, h->target, strerror(errno), h->path);
+        return rd_error_set(
+            err, "%s: cannot rename the finished run over %s: %s; the run's output is in %s",
+            h->target, h->target, strerror(errno), h->path);
     free(h->target);
     h->target = NULL;
     return 0;
@@ -1231,11 +1300,15 @@ static int write_component_im(const rd_h5 *h, hid_t g, const rd_motion_def *m, i
     rd_im im;
     double sa[2];
     if (rd_motion_im(m, c, &im, sa, err)) return -1;
-    const struct { const char *key; double v; const char *units; } f[] = {
-        {"pga", im.pga, "m/s^2"}, {"pgv", im.pgv, "m/s"}, {"pgd", im.pgd, "m"},
-        {"pgv_pga", im.pgv_pga, "s"}, {"arias", im.arias, "m/s"}, {"d5_95", im.d5_95, "s"},
-        {"sa_0.2s", sa[0], "m/s^2"}, {"sa_1s", sa[1], "m/s^2"}, {"dt", r->dt, "s"},
-        {"duration", rd_record_duration(r), "s"}};
+    const struct {
+        const char *key;
+        double v;
+        const char *units;
+    } f[] = { { "pga", im.pga, "m/s^2" },    { "pgv", im.pgv, "m/s" },
+              { "pgd", im.pgd, "m" },        { "pgv_pga", im.pgv_pga, "s" },
+              { "arias", im.arias, "m/s" },  { "d5_95", im.d5_95, "s" },
+              { "sa_0.2s", sa[0], "m/s^2" }, { "sa_1s", sa[1], "m/s^2" },
+              { "dt", r->dt, "s" },          { "duration", rd_record_duration(r), "s" } };
     char name[64];
     for (size_t i = 0; i < sizeof f / sizeof f[0]; i++) {
         snprintf(name, sizeof name, "%s_%s", cn, f[i].key);
@@ -1254,8 +1327,10 @@ static int h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err)
     hid_t g = H5Gopen2(h->file, "/ground", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot open group '/ground'", h->path);
     int rc = attr_double(h, g, "direction", m->direction, "rad", err) ||
-             attr_double(h, g, "scale_factor", m->factor, "1", err) ||
-             attr_int(h, g, "baseline_degree", m->baseline, err) ? -1 : 0;
+                     attr_double(h, g, "scale_factor", m->factor, "1", err) ||
+                     attr_int(h, g, "baseline_degree", m->baseline, err)
+                 ? -1
+                 : 0;
     for (int c = 0; c < RD_NCOMPONENTS && !rc; c++)
         if (m->record[c].applied) rc = write_component_im(h, g, m, c, err);
     H5Gclose(g);
@@ -1279,10 +1354,7 @@ int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value,
     RD_H5_QUIETLY(int, h5_event(h, time, body, type, value, err));
 }
 
-int rd_h5_flush(rd_h5 *h, rd_error *err)
-{
-    RD_H5_QUIETLY(int, h5_flush(h, err));
-}
+int rd_h5_flush(rd_h5 *h, rd_error *err) { RD_H5_QUIETLY(int, h5_flush(h, err)); }
 
 int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
 {
@@ -1311,10 +1383,7 @@ int rd_h5_fail(rd_h5 *h, const char *what, rd_error *err)
     RD_H5_QUIETLY(int, fault(h, err, what, why));
 }
 
-int rd_h5_commit(rd_h5 *h, int ok, rd_error *err)
-{
-    RD_H5_QUIETLY(int, h5_commit(h, ok, err));
-}
+int rd_h5_commit(rd_h5 *h, int ok, rd_error *err) { RD_H5_QUIETLY(int, h5_commit(h, ok, err)); }
 
 void rd_h5_close(rd_h5 *h)
 {

@@ -50,17 +50,17 @@ extern const char *const rd_energy_names[RD_NENERGY]; /* order of rd_h5_sample.e
 
 typedef struct rd_h5_body {
     const char *name;
-    double mass;          /* kg */
-    double inertia[3];    /* principal moments, kg m^2 */
-    double size[3];       /* m (brick) */
-    double alpha;         /* static tipping angle, rad */
+    double mass;       /* kg */
+    double inertia[3]; /* principal moments, kg m^2 */
+    double size[3];    /* m (brick) */
+    double alpha;      /* static tipping angle, rad */
     int nvert;
     const double *vertices; /* [nvert][3], body frame, m */
     int ntri;
-    const int *triangles;   /* [ntri][3] */
-    int fixed;              /* 1: a fixed body (pedestal), drawn but not in the time series */
-    double position[3];     /* fixed bodies: centre of mass, ground frame, m */
-    double quaternion[4];   /* fixed bodies: orientation (w, x, y, z), body -> ground frame */
+    const int *triangles; /* [ntri][3] */
+    int fixed;            /* 1: a fixed body (pedestal), drawn but not in the time series */
+    double position[3];   /* fixed bodies: centre of mass, ground frame, m */
+    double quaternion[4]; /* fixed bodies: orientation (w, x, y, z), body -> ground frame */
 } rd_h5_body;
 
 typedef struct rd_h5_meta {
@@ -71,11 +71,11 @@ typedef struct rd_h5_meta {
     const char *damping;            /* e.g. "none", "viscous 0.05", "local 0.8" */
     const char *overturn_criterion; /* e.g. "tilt-ratio 1.5" */
     double kn, ks, friction, cohesion, tension, spacing; /* contact law, SI (friction in rad) */
-    int nbodies;                    /* free bodies written per sample */
+    int nbodies;                                         /* free bodies written per sample */
     const rd_h5_body *bodies;
-    int nfixed;                     /* fixed bodies (geometry only; may be 0) */
+    int nfixed; /* fixed bodies (geometry only; may be 0) */
     const rd_h5_body *fixed_bodies;
-    const char *target;             /* NULL: the file is written at its path; else the path is a
+    const char *target; /* NULL: the file is written at its path; else the path is a
                                        temporary, renamed to target by rd_h5_commit */
 } rd_h5_meta;
 

@@ -32,7 +32,8 @@ long long rd_h5t_create(const char *path, rd_error *err)
 {
     hid_t f = H5I_INVALID_HID;
     H5dont_atexit(); /* before HDF5 is up, if this is its first use (io/h5_quiet.h) */
-    H5E_BEGIN_TRY { f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); } H5E_END_TRY;
+    H5E_BEGIN_TRY { f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); }
+    H5E_END_TRY;
     if (f < 0) rd_error_set(err, "%s: cannot create the file", path);
     return f < 0 ? -1 : (long long)f;
 }
@@ -41,7 +42,8 @@ long long rd_h5t_open(const char *path, rd_error *err)
 {
     hid_t f = H5I_INVALID_HID;
     H5dont_atexit(); /* before HDF5 is up, if this is its first use (io/h5_quiet.h) */
-    H5E_BEGIN_TRY { f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT); } H5E_END_TRY;
+    H5E_BEGIN_TRY { f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT); }
+    H5E_END_TRY;
     if (f < 0) rd_error_set(err, "cannot open '%s'", path);
     return f < 0 ? -1 : (long long)f;
 }
@@ -77,7 +79,8 @@ static hid_t make(hid_t loc, const char *name, hid_t ftype, hid_t space)
 static int exists(hid_t loc, const char *name)
 {
     htri_t r = 0;
-    H5E_BEGIN_TRY { r = H5Oexists_by_name(loc, name, H5P_DEFAULT); } H5E_END_TRY;
+    H5E_BEGIN_TRY { r = H5Oexists_by_name(loc, name, H5P_DEFAULT); }
+    H5E_END_TRY;
     return r > 0;
 }
 
@@ -105,13 +108,18 @@ static hid_t scale(hid_t loc, const char *dim, const char *labels, long n)
         int *ix = malloc((size_t)(n > 0 ? n : 1) * sizeof *ix);
         for (long k = 0; ix && k < n; k++) ix[k] = (int)k;
         d = ix ? make(loc, dim, H5T_NATIVE_INT, sp) : H5I_INVALID_HID;
-        ok = d >= 0 && (n == 0 || H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, ix) >= 0);
+        ok = d >= 0 &&
+             (n == 0 || H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, ix) >= 0);
         free(ix);
     }
     H5Sclose(sp);
     const char *base = strrchr(dim, '/');
-    ok = ok && H5DSset_scale(d, base ? base + 1 : dim) >= 0 && str_attr(d, "long_name", labels ? "component" : "index") == 0;
-    if (!ok && d >= 0) { H5Dclose(d); d = H5I_INVALID_HID; }
+    ok = ok && H5DSset_scale(d, base ? base + 1 : dim) >= 0 &&
+         str_attr(d, "long_name", labels ? "component" : "index") == 0;
+    if (!ok && d >= 0) {
+        H5Dclose(d);
+        d = H5I_INVALID_HID;
+    }
     return d;
 }
 
@@ -127,15 +135,17 @@ static int attach_axes(hid_t loc, hid_t d, const rd_h5t_axes *axes, const long *
     return 0;
 }
 
-int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *data, long rows, int cols,
-                 const char *units, const char *long_name, const rd_h5t_axes *axes, rd_error *err)
+int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *data, long rows,
+                 int cols, const char *units, const char *long_name, const rd_h5t_axes *axes,
+                 rd_error *err)
 {
-    hsize_t dims[2] = {(hsize_t)rows, (hsize_t)cols};
-    long n[2] = {rows, cols};
+    hsize_t dims[2] = { (hsize_t)rows, (hsize_t)cols };
+    long n[2] = { rows, cols };
     int rank = cols > 0 ? 2 : 1;
     hid_t sp = H5Screate_simple(rank, dims, NULL);
     hid_t d = sp >= 0 ? make((hid_t)loc, name, mem_type(t), sp) : H5I_INVALID_HID;
-    int ok = d >= 0 && (rows == 0 || H5Dwrite(d, mem_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
+    int ok =
+        d >= 0 && (rows == 0 || H5Dwrite(d, mem_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
     if (ok && units) ok = str_attr(d, "units", units) == 0;
     if (ok && long_name) ok = str_attr(d, "long_name", long_name) == 0;
     if (ok) ok = attach_axes((hid_t)loc, d, axes, n, rank) == 0;
@@ -146,8 +156,9 @@ int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *dat
 
 long long rd_h5t_group(long long loc, const char *name, rd_error *err)
 {
-    hid_t g = exists((hid_t)loc, name) ? H5Gopen2((hid_t)loc, name, H5P_DEFAULT)
-                                       : H5Gcreate2((hid_t)loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = exists((hid_t)loc, name)
+                  ? H5Gopen2((hid_t)loc, name, H5P_DEFAULT)
+                  : H5Gcreate2((hid_t)loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (g < 0) rd_error_set(err, "cannot create group '%s'", name);
     return g < 0 ? -1 : (long long)g;
 }
@@ -181,7 +192,8 @@ long rd_h5t_count(long long loc, const char *name)
 int rd_h5t_read(long long loc, const char *name, rd_h5t_type t, void *data, long n, rd_error *err)
 {
     long have = rd_h5t_count(loc, name);
-    if (have != n) return rd_error_set(err, "dataset '%s': %s", name, have < 0 ? "missing" : "wrong size");
+    if (have != n)
+        return rd_error_set(err, "dataset '%s': %s", name, have < 0 ? "missing" : "wrong size");
     if (n == 0) return 0;
     hid_t d = H5Dopen2((hid_t)loc, name, H5P_DEFAULT);
     int ok = d >= 0 && H5Dread(d, mem_type(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0;
@@ -189,8 +201,8 @@ int rd_h5t_read(long long loc, const char *name, rd_h5t_type t, void *data, long
     return ok ? 0 : rd_error_set(err, "cannot read dataset '%s'", name);
 }
 
-int rd_h5t_strings(long long loc, const char *name, const char *const *s, int n, const char *long_name,
-                   const char *dim, rd_error *err)
+int rd_h5t_strings(long long loc, const char *name, const char *const *s, int n,
+                   const char *long_name, const char *dim, rd_error *err)
 {
     hsize_t len = (hsize_t)n;
     hid_t t = utf8_type(), sp = H5Screate_simple(1, &len, NULL);
@@ -201,8 +213,8 @@ int rd_h5t_strings(long long loc, const char *name, const char *const *s, int n,
         const char *base = strrchr(name, '/');
         ok = H5DSset_scale(d, base ? base + 1 : name) >= 0;
     } else if (ok && dim) {
-        long nn[1] = {n};
-        rd_h5t_axes ax = {{dim, NULL}, {NULL, NULL}};
+        long nn[1] = { n };
+        rd_h5t_axes ax = { { dim, NULL }, { NULL, NULL } };
         ok = attach_axes((hid_t)loc, d, &ax, nn, 1) == 0;
     }
     if (d >= 0) H5Dclose(d);
@@ -228,24 +240,27 @@ int rd_h5t_string(long long loc, const char *name, int k, char *out, int size, r
         H5Dvlen_reclaim(t, sp, H5P_DEFAULT, buf);
     }
     free(buf);
-    H5Sclose(sp); H5Tclose(t); H5Dclose(d);
+    H5Sclose(sp);
+    H5Tclose(t);
+    H5Dclose(d);
     return ok ? 0 : rd_error_set(err, "cannot read dataset '%s'", name);
 }
 
 /* ---- scales linked into the groups that use them ---- */
 
-enum { LINK_MAX = 32 };  /* distinct outside scales one group may use */
+enum { LINK_MAX = 32 }; /* distinct outside scales one group may use */
 
 typedef struct link_ctx {
-    hid_t group;               /* the group whose datasets are visited */
+    hid_t group; /* the group whose datasets are visited */
     int n, failed;
-    char path[LINK_MAX][256];  /* the outside scales found, linked once the visit is over */
+    char path[LINK_MAX][256]; /* the outside scales found, linked once the visit is over */
 } link_ctx;
 
 /* H5DSiterate_scales callback: note scale `sc` unless it is already a member of ctx->group. */
 static herr_t note_scale(hid_t did, unsigned dim, hid_t sc, void *op)
 {
-    (void)did; (void)dim;
+    (void)did;
+    (void)dim;
     link_ctx *c = op;
     char path[256];
     if (H5Iget_name(sc, path, sizeof path) <= 0) return 0;
@@ -254,7 +269,10 @@ static herr_t note_scale(hid_t did, unsigned dim, hid_t sc, void *op)
     if (!base[0] || exists(c->group, base)) return 0;
     for (int k = 0; k < c->n; k++)
         if (!strcmp(c->path[k], path)) return 0;
-    if (c->n == LINK_MAX) { c->failed = 1; return 0; }
+    if (c->n == LINK_MAX) {
+        c->failed = 1;
+        return 0;
+    }
     snprintf(c->path[c->n++], sizeof c->path[0], "%s", path);
     return 0;
 }
@@ -267,7 +285,8 @@ static herr_t visit_member(hid_t g, const char *name, const H5L_info_t *info, vo
 {
     link_ctx *c = op;
     H5O_info_t oi;
-    if (info->type != H5L_TYPE_HARD || H5Oget_info_by_name2(g, name, &oi, H5O_INFO_BASIC, H5P_DEFAULT) < 0)
+    if (info->type != H5L_TYPE_HARD ||
+        H5Oget_info_by_name2(g, name, &oi, H5O_INFO_BASIC, H5P_DEFAULT) < 0)
         return 0;
     if (oi.type == H5O_TYPE_GROUP) {
         hid_t sub = H5Gopen2(g, name, H5P_DEFAULT);
@@ -277,7 +296,8 @@ static herr_t visit_member(hid_t g, const char *name, const H5L_info_t *info, vo
         hid_t d = H5Dopen2(g, name, H5P_DEFAULT), sp = d < 0 ? -1 : H5Dget_space(d);
         int rank = sp < 0 ? 0 : H5Sget_simple_extent_ndims(sp);
         for (int k = 0; k < rank; k++)
-            if (H5DSget_num_scales(d, (unsigned)k) > 0) H5DSiterate_scales(d, (unsigned)k, NULL, note_scale, c);
+            if (H5DSget_num_scales(d, (unsigned)k) > 0)
+                H5DSiterate_scales(d, (unsigned)k, NULL, note_scale, c);
         if (sp >= 0) H5Sclose(sp);
         if (d >= 0) H5Dclose(d);
     }

@@ -12,7 +12,12 @@
 
 #include "rockdem/error.h"
 
-typedef enum rd_h5t_type { RD_H5T_DOUBLE = 0, RD_H5T_INT = 1, RD_H5T_BYTE = 2, RD_H5T_LONG = 3 } rd_h5t_type;
+typedef enum rd_h5t_type {
+    RD_H5T_DOUBLE = 0,
+    RD_H5T_INT = 1,
+    RD_H5T_BYTE = 2,
+    RD_H5T_LONG = 3
+} rd_h5t_type;
 
 /* The axes of a table: each names a dimension scale (a path from loc, or absolute). A scale
  * that does not exist yet is created: from `labels` (comma-separated strings, one per row of
@@ -30,8 +35,9 @@ void rd_h5t_close(long long file);
 
 /* Write dataset `name` under loc: rows x cols (cols 0: 1-D of rows) of type t, with units
  * (may be NULL) and long_name (NULL: none) attributes and the axes' scales. 0 or -1. */
-int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *data, long rows, int cols,
-                 const char *units, const char *long_name, const rd_h5t_axes *axes, rd_error *err);
+int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *data, long rows,
+                 int cols, const char *units, const char *long_name, const rd_h5t_axes *axes,
+                 rd_error *err);
 /* Open (creating it when missing) group `name` under loc: its id, or -1. */
 long long rd_h5t_group(long long loc, const char *name, rd_error *err);
 void rd_h5t_close_group(long long g);
@@ -49,8 +55,8 @@ int rd_h5t_read(long long loc, const char *name, rd_h5t_type t, void *data, long
 long rd_h5t_count(long long loc, const char *name);
 /* Write a 1-D dataset of n variable-length UTF-8 strings (axis: dim, may be NULL; the
  * dataset itself becomes that scale when dim equals name). 0 or -1. */
-int rd_h5t_strings(long long loc, const char *name, const char *const *s, int n, const char *long_name,
-                   const char *dim, rd_error *err);
+int rd_h5t_strings(long long loc, const char *name, const char *const *s, int n,
+                   const char *long_name, const char *dim, rd_error *err);
 /* Read string k of such a dataset into buf (size bytes). 0 or -1. */
 int rd_h5t_string(long long loc, const char *name, int k, char *buf, int size, rd_error *err);
 

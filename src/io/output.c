@@ -19,15 +19,18 @@
 
 static const char *damping_text(const rd_damping_def *d, char *buf, size_t n)
 {
-    if (d->kind == RD_DAMPING_VISCOUS) snprintf(buf, n, "viscous %g", d->value);
-    else if (d->kind == RD_DAMPING_LOCAL) snprintf(buf, n, "local %g", d->value);
-    else snprintf(buf, n, "none");
+    if (d->kind == RD_DAMPING_VISCOUS)
+        snprintf(buf, n, "viscous %g", d->value);
+    else if (d->kind == RD_DAMPING_LOCAL)
+        snprintf(buf, n, "local %g", d->value);
+    else
+        snprintf(buf, n, "none");
     return buf;
 }
 
 static const char *overturn_text(const rd_overturn_def *o, char *buf, size_t n)
 {
-    static const char *kind[] = {"tilt-ratio", "angle", "height", "off-pedestal"};
+    static const char *kind[] = { "tilt-ratio", "angle", "height", "off-pedestal" };
     double v = o->kind == RD_OVERTURN_ANGLE ? o->value * 180.0 / M_PI : o->value;
     snprintf(buf, n, "%s %g%s", kind[o->kind], v, o->kind == RD_OVERTURN_ANGLE ? " deg" : "");
     return buf;
@@ -50,9 +53,13 @@ static int on_begin(void *user, rd_sim *sim, rd_error *err)
 static int on_sample(void *user, rd_sim *sim, const rd_sample *s, rd_error *err)
 {
     (void)sim;
-    rd_h5_sample smp = {.time = s->time, .position = s->position, .quaternion = s->quaternion,
-                        .velocity = s->velocity, .angular_velocity = s->angular_velocity,
-                        .tilt = s->tilt, .rotation = s->rotation};
+    rd_h5_sample smp = { .time = s->time,
+                         .position = s->position,
+                         .quaternion = s->quaternion,
+                         .velocity = s->velocity,
+                         .angular_velocity = s->angular_velocity,
+                         .tilt = s->tilt,
+                         .rotation = s->rotation };
     for (int j = 0; j < 3; j++) {
         smp.ground_acc[j] = s->ground_acc[j];
         smp.ground_vel[j] = s->ground_vel[j];
@@ -74,7 +81,9 @@ static int on_end(void *user, rd_sim *sim, const rd_summary *s, rd_error *err)
        the file closes) */
     int ok = s->status == RD_STATUS_DONE || s->status == RD_STATUS_OVERTURNED;
     return rd_h5_summary(user, s, err) || rd_h5_flush(user, err) ||
-           rd_h5_scene_tables(user, sim, s, err) || rd_h5_commit(user, ok, err) ? -1 : 0;
+                   rd_h5_scene_tables(user, sim, s, err) || rd_h5_commit(user, ok, err)
+               ? -1
+               : 0;
 }
 
 static void on_release(void *user) { rd_h5_close(user); }
@@ -84,9 +93,14 @@ static rd_h5_body h5_body(rd_sim *sim, int k)
 {
     rd_body_info b;
     rd_sim_body_info(sim, k, &b);
-    rd_h5_body h = {.name = b.name, .mass = b.mass, .alpha = b.alpha, .nvert = b.nvert,
-                    .vertices = b.vertices, .ntri = b.ntri, .triangles = b.triangles,
-                    .fixed = b.fixed};
+    rd_h5_body h = { .name = b.name,
+                     .mass = b.mass,
+                     .alpha = b.alpha,
+                     .nvert = b.nvert,
+                     .vertices = b.vertices,
+                     .ntri = b.ntri,
+                     .triangles = b.triangles,
+                     .fixed = b.fixed };
     memcpy(h.inertia, b.inertia, sizeof h.inertia);
     memcpy(h.size, b.size, sizeof h.size);
     memcpy(h.position, b.position, sizeof h.position);
@@ -110,13 +124,24 @@ static rd_h5 *open_file(rd_sim *sim, const char *path, const char *tmp, rd_error
     rd_sim_summary(sim, &sum);
     char dbuf[64], obuf[64];
     const rd_contact_def *c = &sc->contact;
-    rd_h5_meta meta = {.scenario_text = sc->text ? sc->text : "", .scenario_file = sc->file,
-                       .title = sc->title, .dt = rd_sim_dt(sim), .dt_critical = sum.dt_critical,
-                       .damping = damping_text(&sc->damping, dbuf, sizeof dbuf),
-                       .overturn_criterion = overturn_text(&sc->overturn, obuf, sizeof obuf),
-                       .kn = c->kn, .ks = c->ks, .friction = c->friction, .cohesion = c->cohesion,
-                       .tension = c->tension, .spacing = c->spacing, .nbodies = nfree, .bodies = hb,
-                       .nfixed = nfixed, .fixed_bodies = hb + nfree, .target = tmp ? path : NULL};
+    rd_h5_meta meta = { .scenario_text = sc->text ? sc->text : "",
+                        .scenario_file = sc->file,
+                        .title = sc->title,
+                        .dt = rd_sim_dt(sim),
+                        .dt_critical = sum.dt_critical,
+                        .damping = damping_text(&sc->damping, dbuf, sizeof dbuf),
+                        .overturn_criterion = overturn_text(&sc->overturn, obuf, sizeof obuf),
+                        .kn = c->kn,
+                        .ks = c->ks,
+                        .friction = c->friction,
+                        .cohesion = c->cohesion,
+                        .tension = c->tension,
+                        .spacing = c->spacing,
+                        .nbodies = nfree,
+                        .bodies = hb,
+                        .nfixed = nfixed,
+                        .fixed_bodies = hb + nfree,
+                        .target = tmp ? path : NULL };
     rd_h5 *h = rd_h5_open(tmp ? tmp : path, &meta, err);
     free(hb);
     return h;
@@ -126,15 +151,21 @@ int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err)
 {
     const rd_scenario *sc = rd_sim_scenario(sim);
     char why[RD_ERROR_MAX];
-    const char *bad = rd_path_output_conflict(sc, path, sc->save_path, RD_OUTPUT_RUN, why, sizeof why);
+    const char *bad =
+        rd_path_output_conflict(sc, path, sc->save_path, RD_OUTPUT_RUN, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     char tmp[RD_PATH_MAX];
     int staged = rd_output_staging(path, sc->force, tmp, sizeof tmp);
     rd_h5 *h = open_file(sim, path, staged ? tmp : NULL, err);
     if (!h) return -1;
-    rd_observer o = {.user = h, .begin = on_begin, .sample = on_sample, .event = on_event,
-                     .end = on_end, .release = on_release};
-    if (rd_h5_ground_im(h, &rd_sim_scenario(sim)->motion, err) || rd_sim_add_observer(sim, &o, err)) {
+    rd_observer o = { .user = h,
+                      .begin = on_begin,
+                      .sample = on_sample,
+                      .event = on_event,
+                      .end = on_end,
+                      .release = on_release };
+    if (rd_h5_ground_im(h, &rd_sim_scenario(sim)->motion, err) ||
+        rd_sim_add_observer(sim, &o, err)) {
         rd_h5_close(h);
         return -1;
     }

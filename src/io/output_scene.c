@@ -43,9 +43,9 @@ static int history(long long f, const rd_sim *sim, rd_error *err)
             snprintf(dim, sizeof dim, "%.*s/%s", (int)(slash - path), path, se.dim);
         else
             snprintf(dim, sizeof dim, "%s", se.dim ? se.dim : "");
-        rd_h5t_axes ax = {{"/history/time", se.ncol > 1 ? dim : NULL}, {NULL, se.labels}};
-        rc = rd_h5t_write(f, path, RD_H5T_DOUBLE, buf, rows, se.ncol > 1 ? se.ncol : 0, se.units, se.long_name,
-                          &ax, err);
+        rd_h5t_axes ax = { { "/history/time", se.ncol > 1 ? dim : NULL }, { NULL, se.labels } };
+        rc = rd_h5t_write(f, path, RD_H5T_DOUBLE, buf, rows, se.ncol > 1 ? se.ncol : 0, se.units,
+                          se.long_name, &ax, err);
     }
     free(buf);
     return rc ? -1 : 0;
@@ -57,39 +57,57 @@ static int joints(long long f, const rd_sim *sim, rd_error *err)
 {
     int n = rd_sim_joint_count(sim), rc = 0;
     rd_joint_summary *j = malloc((size_t)(n + 1) * sizeof *j);
-    char (*label)[2 * RD_NAME_MAX + 2] = malloc((size_t)(n + 1) * sizeof *label);
+    char(*label)[2 * RD_NAME_MAX + 2] = malloc((size_t)(n + 1) * sizeof *label);
     const char **lab = malloc((size_t)(n + 1) * 3 * sizeof *lab);
-    double *prop = malloc((size_t)(n + 1) * NPROP * sizeof *prop), *out = malloc((size_t)(n + 1) * NOUT * sizeof *out);
+    double *prop = malloc((size_t)(n + 1) * NPROP * sizeof *prop),
+           *out = malloc((size_t)(n + 1) * NOUT * sizeof *out);
     if (!j || !label || !lab || !prop || !out) rc = rd_error_set(err, "out of memory");
     const char **a = lab + n, **b = lab + 2 * n;
     for (int p = 0; !rc && p < n; p++) {
         rd_sim_joint(sim, p, &j[p]);
         snprintf(label[p], sizeof label[p], "%s-%s", j[p].a, j[p].b);
-        lab[p] = label[p]; a[p] = j[p].a; b[p] = j[p].b;
-        double v[NPROP] = {j[p].kn, j[p].ks, j[p].friction, j[p].cohesion, j[p].tension, j[p].damping};
-        double o[NOUT] = {j[p].max_opening, j[p].max_slip, j[p].final_slip, j[p].closed};
+        lab[p] = label[p];
+        a[p] = j[p].a;
+        b[p] = j[p].b;
+        double v[NPROP] = { j[p].kn,       j[p].ks,      j[p].friction,
+                            j[p].cohesion, j[p].tension, j[p].damping };
+        double o[NOUT] = { j[p].max_opening, j[p].max_slip, j[p].final_slip, j[p].closed };
         memcpy(prop + NPROP * p, v, sizeof v);
         memcpy(out + NOUT * p, o, sizeof o);
     }
-    rd_h5t_axes pax = {{"joint", "property"}, {NULL, "kn,ks,friction,cohesion,tension,damping_ratio"}};
-    rd_h5t_axes oax = {{"joint", "outcome"}, {NULL, "max_opening,max_slip,final_slip,closed"}};
-    if (!rc) rc = rd_h5t_strings(f, "joints/joint", lab, n, "joint: its two bodies", "joints/joint", err) ||
-                  rd_h5t_strings(f, "joints/body_a", a, n, "first body of the joint", "/joints/joint", err) ||
-                  rd_h5t_strings(f, "joints/body_b", b, n, "second body of the joint", "/joints/joint", err);
+    rd_h5t_axes pax = { { "joint", "property" },
+                        { NULL, "kn,ks,friction,cohesion,tension,damping_ratio" } };
+    rd_h5t_axes oax = { { "joint", "outcome" },
+                        { NULL, "max_opening,max_slip,final_slip,closed" } };
+    if (!rc)
+        rc = rd_h5t_strings(f, "joints/joint", lab, n, "joint: its two bodies", "joints/joint",
+                            err) ||
+             rd_h5t_strings(f, "joints/body_a", a, n, "first body of the joint", "/joints/joint",
+                            err) ||
+             rd_h5t_strings(f, "joints/body_b", b, n, "second body of the joint", "/joints/joint",
+                            err);
     long long g = rc ? -1 : rd_h5t_group(f, "joints", err);
     if (g >= 0) {
-        rc = rd_h5t_write(g, "properties", RD_H5T_DOUBLE, prop, n, NPROP, "Pa/m,Pa/m,rad,Pa,Pa,1",
-                          "joint properties: kn, ks (per unit area), friction angle, cohesion, tensile "
-                          "strength, normal dashpot ratio", &pax, err) ||
-             rd_h5t_write(g, "outcomes", RD_H5T_DOUBLE, out, n, NOUT, "m,m,m,1",
-                          "largest opening and slip while shaking, final slip (slip of the second body "
-                          "against the first at the centre of pressure, elastic shear removed), 1 if it "
-                          "carried load", &oax, err);
+        rc = rd_h5t_write(
+                 g, "properties", RD_H5T_DOUBLE, prop, n, NPROP, "Pa/m,Pa/m,rad,Pa,Pa,1",
+                 "joint properties: kn, ks (per unit area), friction angle, cohesion, tensile "
+                 "strength, normal dashpot ratio",
+                 &pax, err) ||
+             rd_h5t_write(
+                 g, "outcomes", RD_H5T_DOUBLE, out, n, NOUT, "m,m,m,1",
+                 "largest opening and slip while shaking, final slip (slip of the second body "
+                 "against the first at the centre of pressure, elastic shear removed), 1 if it "
+                 "carried load",
+                 &oax, err);
         rd_h5t_close_group(g);
     } else {
         rc = -1;
     }
-    free(j); free(label); free(lab); free(prop); free(out);
+    free(j);
+    free(label);
+    free(lab);
+    free(prop);
+    free(out);
     return rc ? -1 : 0;
 }
 
@@ -100,16 +118,20 @@ static int outcomes(long long f, const rd_summary *s, rd_error *err)
     if (!v) return rd_error_set(err, "out of memory");
     for (int k = 0; k < nf; k++) {
         const rd_body_summary *b = &s->body[k];
-        double row[NBODY] = {b->final_position[0], b->final_position[1], b->final_position[2],
-                             b->travel, b->drop, b->unsupported};
+        double row[NBODY] = {
+            b->final_position[0], b->final_position[1], b->final_position[2], b->travel, b->drop,
+            b->unsupported
+        };
         memcpy(v + NBODY * k, row, sizeof row);
     }
-    rd_h5t_axes ax = {{"/body", "quantity"}, {NULL, "x,y,z,travel,drop,unsupported"}};
+    rd_h5t_axes ax = { { "/body", "quantity" }, { NULL, "x,y,z,travel,drop,unsupported" } };
     long long g = rd_h5t_group(f, "outcomes", err);
-    int rc = g < 0 || rd_h5t_write(g, "bodies", RD_H5T_DOUBLE, v, nf, NBODY, "m,m,m,m,m,1",
-                                   "where each free body ended up: centre of mass x, y, z at the end, "
-                                   "horizontal travel from rest, drop from placement, 1 if it touched "
-                                   "nothing (fell freely)", &ax, err);
+    int rc =
+        g < 0 || rd_h5t_write(g, "bodies", RD_H5T_DOUBLE, v, nf, NBODY, "m,m,m,m,m,1",
+                              "where each free body ended up: centre of mass x, y, z at the end, "
+                              "horizontal travel from rest, drop from placement, 1 if it touched "
+                              "nothing (fell freely)",
+                              &ax, err);
     rd_h5t_close_group(g);
     free(v);
     return rc ? -1 : 0;

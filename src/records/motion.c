@@ -20,15 +20,11 @@ static double pulse_length(const rd_pulse_def *p)
 {
     switch (p->kind) {
     case RD_PULSE_ONE_SINE:
-    case RD_PULSE_ONE_COSINE:
-        return 1.0 / p->frequency;
-    case RD_PULSE_HARMONIC:
-        return p->cycles / p->frequency;
+    case RD_PULSE_ONE_COSINE: return 1.0 / p->frequency;
+    case RD_PULSE_HARMONIC: return p->cycles / p->frequency;
     case RD_PULSE_RECTANGULAR:
-    case RD_PULSE_TRIANGLE:
-        return p->duration;
-    case RD_PULSE_NONE:
-        break;
+    case RD_PULSE_TRIANGLE: return p->duration;
+    case RD_PULSE_NONE: break;
     }
     return 0.0;
 }
@@ -65,7 +61,8 @@ static void eval_triangle(double amp, double T, double tau, double *a, double *v
     double u = T - tau;
     *a = 2.0 * amp * u / T;
     *v = 0.5 * amp * T - amp * u * u / T;
-    *d = amp * T * T / 24.0 + 0.5 * amp * T * (tau - 0.5 * T) + amp * (u * u * u - T * T * T / 8.0) / (3.0 * T);
+    *d = amp * T * T / 24.0 + 0.5 * amp * T * (tau - 0.5 * T) +
+         amp * (u * u * u - T * T * T / 8.0) / (3.0 * T);
 }
 
 /* The pulse at 0 <= tau <= its length. */
@@ -74,22 +71,15 @@ static void eval_inside(const rd_pulse_def *p, double tau, double *a, double *v,
     double w = 2.0 * M_PI * p->frequency; /* rad/s */
     switch (p->kind) {
     case RD_PULSE_ONE_SINE:
-    case RD_PULSE_HARMONIC:
-        eval_sine(p->amplitude, w, tau, a, v, d);
-        return;
-    case RD_PULSE_ONE_COSINE:
-        eval_cosine(p->amplitude, w, tau, a, v, d);
-        return;
+    case RD_PULSE_HARMONIC: eval_sine(p->amplitude, w, tau, a, v, d); return;
+    case RD_PULSE_ONE_COSINE: eval_cosine(p->amplitude, w, tau, a, v, d); return;
     case RD_PULSE_RECTANGULAR:
         *a = p->amplitude;
         *v = p->amplitude * tau;
         *d = 0.5 * p->amplitude * tau * tau;
         return;
-    case RD_PULSE_TRIANGLE:
-        eval_triangle(p->amplitude, p->duration, tau, a, v, d);
-        return;
-    case RD_PULSE_NONE:
-        break;
+    case RD_PULSE_TRIANGLE: eval_triangle(p->amplitude, p->duration, tau, a, v, d); return;
+    case RD_PULSE_NONE: break;
     }
     *a = *v = *d = 0.0;
 }
@@ -99,8 +89,7 @@ void rd_pulse_eval(const rd_pulse_def *p, double t, double *a, double *v, double
     double tau = t - p->start;
     double len = pulse_length(p);
     *a = *v = *d = 0.0;
-    if (p->kind == RD_PULSE_NONE || tau <= 0.0)
-        return;
+    if (p->kind == RD_PULSE_NONE || tau <= 0.0) return;
     if (tau < len) {
         eval_inside(p, tau, a, v, d);
         return;
@@ -113,8 +102,7 @@ void rd_pulse_eval(const rd_pulse_def *p, double t, double *a, double *v, double
 
 double rd_pulse_end(const rd_pulse_def *p)
 {
-    if (p->kind == RD_PULSE_NONE)
-        return 0.0;
+    if (p->kind == RD_PULSE_NONE) return 0.0;
     return p->start + pulse_length(p);
 }
 
@@ -128,17 +116,17 @@ void rd_motion_axes_of(const rd_motion_def *m, rd_motion_axes *ax)
 
 /* Adds the applied records at t: h1 along (cos, sin) of m->direction (ax->record), h2 along
  * (-sin, cos), vertical along z. Absent components cost nothing. */
-static void add_records(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3], double vel[3],
-                        double disp[3])
+static void add_records(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3],
+                        double vel[3], double disp[3])
 {
-    if (!m->record[RD_H1].applied && !m->record[RD_H2].applied && !m->record[RD_VERTICAL].applied) return;
+    if (!m->record[RD_H1].applied && !m->record[RD_H2].applied && !m->record[RD_VERTICAL].applied)
+        return;
     double c = ax->record[0], s = ax->record[1];
-    const double axis[RD_NCOMPONENTS][3] = {{c, s, 0}, {-s, c, 0}, {0, 0, 1}};
+    const double axis[RD_NCOMPONENTS][3] = { { c, s, 0 }, { -s, c, 0 }, { 0, 0, 1 } };
     for (int k = 0; k < RD_NCOMPONENTS; k++) {
         const rd_record *r = m->record[k].applied;
         double a, v, d;
-        if (!r)
-            continue;
+        if (!r) continue;
         rd_record_eval(r, t, &a, &v, &d);
         for (int j = 0; j < 3; j++) {
             acc[j] += a * axis[k][j];
@@ -148,8 +136,8 @@ static void add_records(const rd_motion_def *m, const rd_motion_axes *ax, double
     }
 }
 
-void rd_motion_eval_axes(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3], double vel[3],
-                         double disp[3])
+void rd_motion_eval_axes(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3],
+                         double vel[3], double disp[3])
 {
     double ah, vh, dh, az, vz, dz;
     rd_pulse_eval(&m->horizontal, t, &ah, &vh, &dh);
@@ -172,7 +160,6 @@ double rd_motion_end(const rd_motion_def *m)
 {
     double end = fmax(rd_pulse_end(&m->horizontal), rd_pulse_end(&m->vertical));
     for (int k = 0; k < RD_NCOMPONENTS; k++)
-        if (m->record[k].applied)
-            end = fmax(end, rd_record_duration(m->record[k].applied));
+        if (m->record[k].applied) end = fmax(end, rd_record_duration(m->record[k].applied));
     return end;
 }

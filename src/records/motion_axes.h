@@ -16,7 +16,7 @@ typedef struct rd_motion_axes {
 void rd_motion_axes_of(const rd_motion_def *m, rd_motion_axes *ax);
 
 /* rd_motion_eval with m's axes already found (rd_motion_axes_of): the same values. */
-void rd_motion_eval_axes(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3], double vel[3],
-                         double disp[3]);
+void rd_motion_eval_axes(const rd_motion_def *m, const rd_motion_axes *ax, double t, double acc[3],
+                         double vel[3], double disp[3]);
 
 #endif

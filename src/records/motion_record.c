@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const component_names[RD_NCOMPONENTS] = {"h1", "h2", "vertical"};
+static const char *const component_names[RD_NCOMPONENTS] = { "h1", "h2", "vertical" };
 
 const char *rd_motion_component_name(int c)
 {
@@ -26,8 +26,7 @@ const char *rd_motion_component_name(int c)
 
 static void record_destroy(rd_record **r)
 {
-    if (!*r)
-        return;
+    if (!*r) return;
     rd_record_free(*r);
     free(*r);
     *r = NULL;
@@ -77,8 +76,7 @@ int rd_motion_copy(rd_motion_def *dst, const rd_motion_def *src, rd_error *err)
 int rd_motion_has_records(const rd_motion_def *m)
 {
     for (int c = 0; c < RD_NCOMPONENTS; c++)
-        if (m->record[c].source != RD_SOURCE_NONE)
-            return 1;
+        if (m->record[c].source != RD_SOURCE_NONE) return 1;
     return 0;
 }
 
@@ -86,19 +84,14 @@ int rd_motion_has_records(const rd_motion_def *m)
 static int read_source(const rd_component_def *d, rd_record *r, rd_error *err)
 {
     switch (d->source) {
-    case RD_SOURCE_AT2:
-        return rd_record_read_at2(r, d->path, err);
+    case RD_SOURCE_AT2: return rd_record_read_at2(r, d->path, err);
     case RD_SOURCE_TEXT:
-        if (rd_record_read_text_as(r, d->path, d->unit, d->dt, err))
-            return -1;
+        if (rd_record_read_text_as(r, d->path, d->unit, d->dt, err)) return -1;
         rd_record_scale(r, d->unit);
         return 0;
-    case RD_SOURCE_FEMA:
-        return rd_record_read_fema(r, d->path, d->record, d->fema_b, err);
-    case RD_SOURCE_STOCHASTIC:
-        return rd_record_stochastic(r, &d->stochastic, err);
-    case RD_SOURCE_NONE:
-        break;
+    case RD_SOURCE_FEMA: return rd_record_read_fema(r, d->path, d->record, d->fema_b, err);
+    case RD_SOURCE_STOCHASTIC: return rd_record_stochastic(r, &d->stochastic, err);
+    case RD_SOURCE_NONE: break;
     }
     return rd_error_set(err, "ground motion: component has no source");
 }
@@ -107,8 +100,7 @@ int rd_motion_load(rd_motion_def *m, int c, rd_error *err)
 {
     rd_component_def *d = &m->record[c];
     rd_record *r = calloc(1, sizeof *r);
-    if (!r)
-        return rd_error_set(err, "ground motion: out of memory");
+    if (!r) return rd_error_set(err, "ground motion: out of memory");
     if (read_source(d, r, err)) {
         rd_record_free(r);
         free(r);
@@ -142,8 +134,7 @@ static rd_record *record_copy(const rd_record *src, rd_error *err)
 static double peak(const double *x, size_t n)
 {
     double p = 0.0;
-    for (size_t i = 0; i < n; i++)
-        p = fmax(p, fabs(x[i]));
+    for (size_t i = 0; i < n; i++) p = fmax(p, fabs(x[i]));
     return p;
 }
 
@@ -155,8 +146,7 @@ static double reference_peak(const rd_motion_def *m, int pgv)
     int n = 0;
     for (int c = 0; c < RD_NCOMPONENTS && (c < RD_VERTICAL || n == 0); c++) {
         const rd_record *r = m->record[c].applied;
-        if (!r)
-            continue;
+        if (!r) continue;
         logsum += log(peak(pgv ? r->vel : r->acc, r->npts));
         n++;
     }
@@ -167,10 +157,8 @@ static double reference_peak(const rd_motion_def *m, int pgv)
 static int scale_factor(rd_motion_def *m, rd_error *err)
 {
     m->factor = 1.0;
-    if (m->scale == RD_SCALE_FACTOR)
-        m->factor = m->scale_value;
-    if (m->scale != RD_SCALE_PGA && m->scale != RD_SCALE_PGV)
-        return 0;
+    if (m->scale == RD_SCALE_FACTOR) m->factor = m->scale_value;
+    if (m->scale != RD_SCALE_PGA && m->scale != RD_SCALE_PGV) return 0;
     double p = reference_peak(m, m->scale == RD_SCALE_PGV);
     if (!(p > 0.0) || !isfinite(p))
         return rd_error_set(err, "ground motion: cannot scale to a %s: a record is zero",
@@ -184,11 +172,12 @@ static int scale_factor(rd_motion_def *m, rd_error *err)
 static int too_short(const rd_component_def *d, int degree, rd_error *err)
 {
     size_t need = (size_t)degree + 1, n = d->applied->npts;
-    if (n >= need)
-        return 0;
-    return rd_error_set(err, "%s: %zu sample%s, too few for the degree-%d baseline (at least %zu, or 'baseline "
-                             "off')",
-                        d->path[0] ? d->path : d->applied->name, n, n == 1 ? "" : "s", degree, need);
+    if (n >= need) return 0;
+    return rd_error_set(
+        err,
+        "%s: %zu sample%s, too few for the degree-%d baseline (at least %zu, or 'baseline "
+        "off')",
+        d->path[0] ? d->path : d->applied->name, n, n == 1 ? "" : "s", degree, need);
 }
 
 int rd_motion_prepare(rd_motion_def *m, rd_error *err)
@@ -196,35 +185,27 @@ int rd_motion_prepare(rd_motion_def *m, rd_error *err)
     for (int c = 0; c < RD_NCOMPONENTS; c++) {
         rd_component_def *d = &m->record[c];
         record_destroy(&d->applied);
-        if (!d->raw)
-            continue;
+        if (!d->raw) continue;
         d->applied = record_copy(d->raw, err);
-        if (!d->applied)
-            return -1;
-        if (m->baseline > 0 && too_short(d, m->baseline, err))
-            return -1;
-        if (m->baseline > 0 && rd_record_baseline(d->applied, m->baseline, err))
-            return -1;
+        if (!d->applied) return -1;
+        if (m->baseline > 0 && too_short(d, m->baseline, err)) return -1;
+        if (m->baseline > 0 && rd_record_baseline(d->applied, m->baseline, err)) return -1;
     }
-    if (scale_factor(m, err))
-        return -1;
+    if (scale_factor(m, err)) return -1;
     for (int c = 0; c < RD_NCOMPONENTS; c++)
-        if (m->record[c].applied)
-            rd_record_scale(m->record[c].applied, m->factor);
+        if (m->record[c].applied) rd_record_scale(m->record[c].applied, m->factor);
     return 0;
 }
 
 int rd_motion_im(const rd_motion_def *m, int c, rd_im *im, double sa[2], rd_error *err)
 {
-    static const double periods[2] = {0.2, 1.0}; /* s */
+    static const double periods[2] = { 0.2, 1.0 }; /* s */
     const double pad = 2.0; /* s of rest: two periods of the longest oscillator */
     const rd_record *r = m->record[c].applied;
-    if (!r)
-        return rd_error_set(err, "ground motion: no %s record", rd_motion_component_name(c));
+    if (!r) return rd_error_set(err, "ground motion: no %s record", rd_motion_component_name(c));
     rd_im_compute(r, im);
     rd_record *p = record_copy(r, err);
-    if (!p)
-        return -1;
+    if (!p) return -1;
     int rc = rd_record_pad(p, pad, err) || rd_im_psa(p, periods, 2, 0.05, sa, err) ? -1 : 0;
     rd_record_free(p);
     free(p);

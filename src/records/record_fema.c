@@ -22,22 +22,23 @@ static int read_series(hid_t file, const char *path, const char *name, double **
                        rd_error *err)
 {
     hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
-    if (ds < 0)
-        return rd_error_set(err, "%s: no dataset %s", path, name);
+    if (ds < 0) return rd_error_set(err, "%s: no dataset %s", path, name);
     hid_t sp = H5Dget_space(ds);
     hssize_t count = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
     int rank = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
     int rc = 0;
     *out = NULL;
     if (rank != 1 || count < 2 || (double)count > RD_RECORD_NPTS_MAX)
-        rc = rd_error_set(err, "%s: %s must be 1-D with 2 to %g samples", path, name, RD_RECORD_NPTS_MAX);
+        rc = rd_error_set(err, "%s: %s must be 1-D with 2 to %g samples", path, name,
+                          RD_RECORD_NPTS_MAX);
     else if (!(*out = malloc((size_t)count * sizeof **out)))
         rc = rd_error_set(err, "%s: out of memory", path);
     else if (H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out) < 0)
-        rc = rd_error_set(err, "%s: cannot read %s (BLOSC-compressed sets need the HDF5 BLOSC "
-                               "filter plugin: hdf5-filter-plugin-blosc-serial)", path, name);
-    if (sp >= 0)
-        H5Sclose(sp);
+        rc = rd_error_set(err,
+                          "%s: cannot read %s (BLOSC-compressed sets need the HDF5 BLOSC "
+                          "filter plugin: hdf5-filter-plugin-blosc-serial)",
+                          path, name);
+    if (sp >= 0) H5Sclose(sp);
     H5Dclose(ds);
     if (rc) {
         free(*out);
@@ -50,12 +51,13 @@ static int read_series(hid_t file, const char *path, const char *name, double **
 /* The uniform step of t[0..n), s: every time finite, every step within 1e-3 of the first (the
  * files store times rounded to about 1e-15 s), the step within the records' range (a step of
  * 1e-9 s would pad the record to billions of samples). */
-static int uniform_step(const double *t, size_t n, const char *path, const char *name,
-                        double *dt, rd_error *err)
+static int uniform_step(const double *t, size_t n, const char *path, const char *name, double *dt,
+                        rd_error *err)
 {
     for (size_t i = 0; i < n; i++)
         if (!isfinite(t[i]))
-            return rd_error_set(err, "%s: %s: time %g s at sample %zu is not a finite number", path, name, t[i], i);
+            return rd_error_set(err, "%s: %s: time %g s at sample %zu is not a finite number", path,
+                                name, t[i], i);
     double h = t[1] - t[0];
     char why[128];
     if (!(h > 0))
@@ -70,30 +72,33 @@ static int uniform_step(const double *t, size_t n, const char *path, const char 
 }
 
 /* Every sample of a[0..n) (g) finite and within RD_RECORD_ACC_MAX. */
-static int check_samples(const double *a, size_t n, const char *path, const char *name, rd_error *err)
+static int check_samples(const double *a, size_t n, const char *path, const char *name,
+                         rd_error *err)
 {
     char why[128];
     for (size_t i = 0; i < n; i++)
         if (rd_record_sample_error(a[i], RD_G_STANDARD, why, sizeof why))
-            return rd_error_set(err, "%s: %s: acceleration %g g at sample %zu %s", path, name, a[i], i, why);
+            return rd_error_set(err, "%s: %s: acceleration %g g at sample %zu %s", path, name, a[i],
+                                i, why);
     return 0;
 }
 
 /* Fills r from the open file's group /_timeseries/<id>/<c>. */
-static int read_component(hid_t file, rd_record *r, const char *path, const char *group, rd_error *err)
+static int read_component(hid_t file, rd_record *r, const char *path, const char *group,
+                          rd_error *err)
 {
     char tname[128], aname[128]; /* group (< 96) + dataset name */
     double *t = NULL, *a = NULL, dt = 0;
     size_t nt = 0, na = 0;
     snprintf(tname, sizeof tname, "%s/Time", group);
     snprintf(aname, sizeof aname, "%s/RecordedAcceleration", group);
-    int rc = read_series(file, path, tname, &t, &nt, err) || read_series(file, path, aname, &a, &na, err) ||
+    int rc = read_series(file, path, tname, &t, &nt, err) ||
+             read_series(file, path, aname, &a, &na, err) ||
              uniform_step(t, nt, path, tname, &dt, err) || check_samples(a, na, path, aname, err);
     if (!rc && nt != na)
         rc = rd_error_set(err, "%s: %s has %zu samples but %s has %zu", path, tname, nt, aname, na);
     if (!rc && !(rc = rd_record_alloc(r, na, dt, err))) {
-        for (size_t i = 0; i < na; i++)
-            r->acc[i] = a[i] * RD_G_STANDARD;
+        for (size_t i = 0; i < na; i++) r->acc[i] = a[i] * RD_G_STANDARD;
         rd_record_integrate(r);
     }
     free(t);
@@ -123,14 +128,15 @@ static hid_t open_record(const char *path, const char *group, const char *id, rd
     return -1;
 }
 
-int rd_record_read_fema(rd_record *r, const char *path, const char *id, int component_b, rd_error *err)
+int rd_record_read_fema(rd_record *r, const char *path, const char *id, int component_b,
+                        rd_error *err)
 {
     char group[80], comp[96]; /* "/_timeseries/" + id (<= 64) [+ "/a"] */
     memset(r, 0, sizeof *r);
     if (!id[0] || strchr(id, '/') || strlen(id) > 64)
         return rd_error_set(err, "%s: invalid record id '%s'", path, id);
     snprintf(group, sizeof group, "/_timeseries/%s", id);
-    static const char *const names[3] = {"a", "b", "v"};
+    static const char *const names[3] = { "a", "b", "v" };
     const char *cn = names[component_b >= 0 && component_b <= 2 ? component_b : 0];
     snprintf(comp, sizeof comp, "%s/%s", group, cn);
     H5E_auto2_t old_fn;
@@ -140,11 +146,9 @@ int rd_record_read_fema(rd_record *r, const char *path, const char *id, int comp
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported through err */
     hid_t file = open_record(path, group, id, err);
     int rc = file < 0 ? -1 : read_component(file, r, path, comp, err);
-    if (file >= 0)
-        H5Fclose(file);
+    if (file >= 0) H5Fclose(file);
     H5Eset_auto2(H5E_DEFAULT, old_fn, old_data);
-    if (rc)
-        return -1;
+    if (rc) return -1;
     snprintf(r->name, sizeof r->name, "FEMA P695 %s%s", id, cn);
     snprintf(r->source, sizeof r->source, "%s record %s component %s", path, id, cn);
     return 0;

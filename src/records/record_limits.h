@@ -10,13 +10,13 @@
 
 /* Valid sample steps, s: strong-motion records are sampled at 1 Hz to 1 MHz; a step outside
  * this range is a misread header (or a unit error), not a record. */
-#define RD_RECORD_DT_MIN 1e-6
-#define RD_RECORD_DT_MAX 1.0
+#define RD_RECORD_DT_MIN   1e-6
+#define RD_RECORD_DT_MAX   1.0
 /* Most samples a record may hold: 1e9 (8 GB of doubles), far beyond any real record. */
 #define RD_RECORD_NPTS_MAX 1e9
 /* Largest |acceleration| a sample may have, m/s^2: the pulse amplitude's cap (scenario/values.c,
  * docs/LIMITS.md); earthquakes stay below 10 g, so a larger sample is a unit or format error. */
-#define RD_RECORD_ACC_MAX 1e6
+#define RD_RECORD_ACC_MAX  1e6
 
 /* NULL when the sample step dt (s) lies in [RD_RECORD_DT_MIN, RD_RECORD_DT_MAX], else why not
  * (in buf). */

@@ -20,20 +20,20 @@
 
 const char *rd_record_step_error(double dt, char *buf, size_t size)
 {
-    if (dt >= RD_RECORD_DT_MIN && dt <= RD_RECORD_DT_MAX)
-        return NULL;
-    snprintf(buf, size, "time step %g s is outside [%g, %g] s", dt, RD_RECORD_DT_MIN, RD_RECORD_DT_MAX);
+    if (dt >= RD_RECORD_DT_MIN && dt <= RD_RECORD_DT_MAX) return NULL;
+    snprintf(buf, size, "time step %g s is outside [%g, %g] s", dt, RD_RECORD_DT_MIN,
+             RD_RECORD_DT_MAX);
     return buf;
 }
 
 const char *rd_record_sample_error(double x, double unit, char *buf, size_t size)
 {
-    if (fabs(x * unit) <= RD_RECORD_ACC_MAX)
-        return NULL;
+    if (fabs(x * unit) <= RD_RECORD_ACC_MAX) return NULL;
     if (!isfinite(x))
         snprintf(buf, size, "is not a finite number");
     else
-        snprintf(buf, size, "is outside the valid |acceleration| <= %g m/s^2 (%.4g g; docs/LIMITS.md)",
+        snprintf(buf, size,
+                 "is outside the valid |acceleration| <= %g m/s^2 (%.4g g; docs/LIMITS.md)",
                  RD_RECORD_ACC_MAX, RD_RECORD_ACC_MAX / RD_G_STANDARD);
     return buf;
 }
@@ -41,8 +41,7 @@ const char *rd_record_sample_error(double x, double unit, char *buf, size_t size
 int rd_record_alloc(rd_record *r, size_t npts, double dt, rd_error *err)
 {
     memset(r, 0, sizeof *r);
-    if (npts == 0)
-        return rd_error_set(err, "record: no samples");
+    if (npts == 0) return rd_error_set(err, "record: no samples");
     if (!(dt > 0.0) || !isfinite(dt))
         return rd_error_set(err, "record: time step %g s must be positive", dt);
     r->acc = calloc(npts, sizeof *r->acc);
@@ -68,12 +67,9 @@ void rd_record_free(rd_record *r)
 double rd_accel_unit_factor(rd_accel_unit unit)
 {
     switch (unit) {
-    case RD_UNIT_G:
-        return RD_G_STANDARD;
-    case RD_UNIT_CM_S2:
-        return 0.01;
-    case RD_UNIT_M_S2:
-        break;
+    case RD_UNIT_G: return RD_G_STANDARD;
+    case RD_UNIT_CM_S2: return 0.01;
+    case RD_UNIT_M_S2: break;
     }
     return 1.0;
 }
@@ -111,19 +107,21 @@ void rd_record_scale(rd_record *r, double factor)
 static double peak_abs(const double *x, size_t n)
 {
     double m = 0.0;
-    for (size_t i = 0; i < n; i++)
-        m = fmax(m, fabs(x[i]));
+    for (size_t i = 0; i < n; i++) m = fmax(m, fabs(x[i]));
     return m;
 }
 
 /* Scale so that the peak of |series| becomes target. */
-static int scale_peak(rd_record *r, const double *series, double target, const char *what, rd_error *err)
+static int scale_peak(rd_record *r, const double *series, double target, const char *what,
+                      rd_error *err)
 {
     double peak = peak_abs(series, r->npts);
     if (!(peak > 0.0))
-        return rd_error_set(err, "record %s: cannot scale to a target %s: the record is zero", r->name, what);
+        return rd_error_set(err, "record %s: cannot scale to a target %s: the record is zero",
+                            r->name, what);
     if (!(target >= 0.0) || !isfinite(target))
-        return rd_error_set(err, "record %s: target %s %g must be finite and >= 0", r->name, what, target);
+        return rd_error_set(err, "record %s: target %s %g must be finite and >= 0", r->name, what,
+                            target);
     rd_record_scale(r, target / peak);
     return 0;
 }
@@ -155,11 +153,11 @@ static int interpolate(const rd_record *r, rd_record *out)
     gsl_interp_accel *acc = gsl_interp_accel_alloc();
     int status = (t && lin && acc) ? 0 : -1;
     if (status == 0) {
-        for (size_t i = 0; i < r->npts; i++)
-            t[i] = (double)i * r->dt;
+        for (size_t i = 0; i < r->npts; i++) t[i] = (double)i * r->dt;
         gsl_interp_init(lin, t, r->acc, r->npts);
         for (size_t k = 0; k < out->npts; k++) /* clamp: k*dt may pass the last time by rounding */
-            out->acc[k] = gsl_interp_eval(lin, t, r->acc, fmin((double)k * out->dt, t[r->npts - 1]), acc);
+            out->acc[k] =
+                gsl_interp_eval(lin, t, r->acc, fmin((double)k * out->dt, t[r->npts - 1]), acc);
     }
     free(t);
     gsl_interp_free(lin);
@@ -171,10 +169,10 @@ int rd_record_resample(rd_record *r, double dt, rd_error *err)
 {
     if (!(dt > 0.0) || !isfinite(dt))
         return rd_error_set(err, "record %s: resampling step %g s must be positive", r->name, dt);
-    size_t n = (size_t)floor(rd_record_duration(r) / dt * (1.0 + 1e-12)) + 1; /* samples within [0, T] */
+    size_t n =
+        (size_t)floor(rd_record_duration(r) / dt * (1.0 + 1e-12)) + 1; /* samples within [0, T] */
     rd_record out;
-    if (rd_record_alloc(&out, n, dt, err))
-        return -1;
+    if (rd_record_alloc(&out, n, dt, err)) return -1;
     if (r->npts < 2)
         out.acc[0] = r->acc[0];
     else if (interpolate(r, &out)) {
@@ -189,11 +187,11 @@ int rd_record_resample(rd_record *r, double dt, rd_error *err)
 int rd_record_pad(rd_record *r, double duration, rd_error *err)
 {
     if (!(duration >= 0.0) || !isfinite(duration))
-        return rd_error_set(err, "record %s: padding %g s must be finite and >= 0", r->name, duration);
+        return rd_error_set(err, "record %s: padding %g s must be finite and >= 0", r->name,
+                            duration);
     size_t extra = (size_t)ceil(duration / r->dt * (1.0 - 1e-12));
     rd_record out;
-    if (rd_record_alloc(&out, r->npts + extra, r->dt, err))
-        return -1;
+    if (rd_record_alloc(&out, r->npts + extra, r->dt, err)) return -1;
     memcpy(out.acc, r->acc, r->npts * sizeof *r->acc);
     rd_record_integrate(&out);
     adopt(r, &out);
@@ -208,15 +206,12 @@ static int baseline_basis(const rd_record *r, int degree, gsl_matrix *d, gsl_vec
     size_t n = r->npts;
     double T = rd_record_duration(r);
     double *a = malloc(3 * n * sizeof *a);
-    if (!a)
-        return -1;
+    if (!a) return -1;
     double *v = a + n, *x = a + 2 * n;
     for (int k = 2; k <= degree; k++) {
-        for (size_t i = 0; i < n; i++)
-            a[i] = pow((double)i * r->dt / T, k - 2);
+        for (size_t i = 0; i < n; i++) a[i] = pow((double)i * r->dt / T, k - 2);
         integrate_series(a, n, r->dt, v, x);
-        for (size_t i = 0; i < n; i++)
-            gsl_matrix_set(d, i, (size_t)(k - 2), x[i]);
+        for (size_t i = 0; i < n; i++) gsl_matrix_set(d, i, (size_t)(k - 2), x[i]);
         gsl_vector_set(vend, (size_t)(k - 2), v[n - 1]);
     }
     free(a);
@@ -226,7 +221,8 @@ static int baseline_basis(const rd_record *r, int degree, gsl_matrix *d, gsl_vec
 /* Least-squares coefficients c of the basis displacements fitting r->disp subject to
  * sum c_k vend_k = v(T). The constraint is solved for the constant-acceleration term
  * c_0 (vend_0 = T exactly), the others come from gsl_multifit_linear on the rest. */
-static int baseline_fit(const rd_record *r, const gsl_matrix *d, const gsl_vector *vend, gsl_vector *c)
+static int baseline_fit(const rd_record *r, const gsl_matrix *d, const gsl_vector *vend,
+                        gsl_vector *c)
 {
     size_t n = r->npts, m = c->size;
     double vT = r->vel[n - 1], v0 = gsl_vector_get(vend, 0);
@@ -245,7 +241,8 @@ static int baseline_fit(const rd_record *r, const gsl_matrix *d, const gsl_vecto
             double d0 = gsl_matrix_get(d, i, 0);
             gsl_vector_set(y, i, r->disp[i] - vT / v0 * d0);
             for (size_t k = 1; k < m; k++)
-                gsl_matrix_set(X, i, k - 1, gsl_matrix_get(d, i, k) - gsl_vector_get(vend, k) / v0 * d0);
+                gsl_matrix_set(X, i, k - 1,
+                               gsl_matrix_get(d, i, k) - gsl_vector_get(vend, k) / v0 * d0);
         }
         double chisq;
         status = gsl_multifit_linear(X, y, cr, cov, &chisq, w) ? -1 : 0;
@@ -267,14 +264,17 @@ static int baseline_fit(const rd_record *r, const gsl_matrix *d, const gsl_vecto
 int rd_record_baseline(rd_record *r, int degree, rd_error *err)
 {
     if (degree < 2 || degree > 8)
-        return rd_error_set(err, "record %s: baseline polynomial degree %d outside [2, 8]", r->name, degree);
-    if (r->npts < (size_t)degree + 1)
-        return rd_error_set(err, "record %s: %zu samples are too few for a degree-%d baseline", r->name, r->npts,
+        return rd_error_set(err, "record %s: baseline polynomial degree %d outside [2, 8]", r->name,
                             degree);
+    if (r->npts < (size_t)degree + 1)
+        return rd_error_set(err, "record %s: %zu samples are too few for a degree-%d baseline",
+                            r->name, r->npts, degree);
     size_t m = (size_t)degree - 1;
     gsl_matrix *d = gsl_matrix_alloc(r->npts, m);
     gsl_vector *vend = gsl_vector_alloc(m), *c = gsl_vector_alloc(m);
-    int status = (d && vend && c && baseline_basis(r, degree, d, vend) == 0) ? baseline_fit(r, d, vend, c) : -1;
+    int status = (d && vend && c && baseline_basis(r, degree, d, vend) == 0)
+                     ? baseline_fit(r, d, vend, c)
+                     : -1;
     if (status == 0) {
         double T = rd_record_duration(r);
         for (size_t i = 0; i < r->npts; i++)
@@ -291,8 +291,7 @@ int rd_record_baseline(rd_record *r, int degree, rd_error *err)
 void rd_record_eval(const rd_record *r, double t, double *a, double *v, double *d)
 {
     *a = *v = *d = 0.0;
-    if (t < 0.0 || r->npts == 0)
-        return;
+    if (t < 0.0 || r->npts == 0) return;
     size_t last = r->npts - 1;
     double T = rd_record_duration(r);
     if (t >= T) {
@@ -302,8 +301,7 @@ void rd_record_eval(const rd_record *r, double t, double *a, double *v, double *
         return;
     }
     size_t i = (size_t)(t / r->dt);
-    if (i >= last)
-        i = last - 1;
+    if (i >= last) i = last - 1;
     double s = t - (double)i * r->dt, h = r->dt;
     double a0 = r->acc[i], slope = (r->acc[i + 1] - a0) / h; /* m/s^3 */
     *a = a0 + slope * s;

@@ -29,7 +29,8 @@ static void nigam_jennings(double w, double zeta, double h, double A[2][2], doub
     B[1][1] = -e * (t1 * cs - t2 * ws) - 1.0 / (w2 * h);
 }
 
-int rd_sdof_response(const rd_record *r, double period, double zeta, double *u, double *du, rd_error *err)
+int rd_sdof_response(const rd_record *r, double period, double zeta, double *u, double *du,
+                     rd_error *err)
 {
     if (!(period > 0.0) || !isfinite(period))
         return rd_error_set(err, "oscillator period %g s must be positive", period);
@@ -45,10 +46,8 @@ int rd_sdof_response(const rd_record *r, double period, double zeta, double *u, 
             v = A[1][0] * x + A[1][1] * v + B[1][0] * a0 + B[1][1] * a1;
             x = xn;
         }
-        if (u)
-            u[i] = x;
-        if (du)
-            du[i] = v;
+        if (u) u[i] = x;
+        if (du) du[i] = v;
     }
     return 0;
 }

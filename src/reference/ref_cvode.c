@@ -50,8 +50,7 @@ void rd_ref_result_init(rd_ref_result *res)
 
 void rd_ref_result_free(rd_ref_result *res)
 {
-    if (!res)
-        return;
+    if (!res) return;
     free(res->samples);
     free(res->events);
     res->samples = NULL;
@@ -63,12 +62,10 @@ void rd_ref_result_free(rd_ref_result *res)
 /* Grow *arr (elements of size sz) so that one more fits. */
 static int grow(void **arr, size_t *cap, size_t n, size_t sz, rd_error *err)
 {
-    if (n < *cap)
-        return 0;
+    if (n < *cap) return 0;
     size_t ncap = *cap ? 2 * *cap : 256;
     void *p = realloc(*arr, ncap * sz);
-    if (!p)
-        return rd_error_set(err, "reference solver: out of memory (%zu records)", ncap);
+    if (!p) return rd_error_set(err, "reference solver: out of memory (%zu records)", ncap);
     *arr = p;
     *cap = ncap;
     return 0;
@@ -77,8 +74,7 @@ static int grow(void **arr, size_t *cap, size_t n, size_t sz, rd_error *err)
 int rd_ref_push_sample(rd_ref_result *res, const rd_ref_sample *s, rd_error *err)
 {
     void *p = res->samples;
-    if (grow(&p, &res->cap_samples, res->nsamples, sizeof *s, err))
-        return -1;
+    if (grow(&p, &res->cap_samples, res->nsamples, sizeof *s, err)) return -1;
     res->samples = p;
     res->samples[res->nsamples++] = *s;
     return 0;
@@ -90,8 +86,7 @@ int rd_ref_push_event(rd_ref_result *res, const rd_ref_event *e, rd_error *err)
         return rd_error_set(err, "reference solver: more than %d events by t = %.9g s",
                             RD_REF_MAX_EVENTS, e->t);
     void *p = res->events;
-    if (grow(&p, &res->cap_events, res->nevents, sizeof *e, err))
-        return -1;
+    if (grow(&p, &res->cap_events, res->nevents, sizeof *e, err)) return -1;
     res->events = p;
     res->events[res->nevents++] = *e;
     return 0;
@@ -100,8 +95,10 @@ int rd_ref_push_event(rd_ref_result *res, const rd_ref_event *e, rd_error *err)
 int rd_ground_check(const rd_ground *gm, rd_error *err)
 {
     if (gm->fn && !(gm->t_quiet > 0.0))
-        return rd_error_set(err, "ground motion: t_quiet must be > 0 (INFINITY if the motion "
-                                 "never ends), got %g", gm->t_quiet);
+        return rd_error_set(err,
+                            "ground motion: t_quiet must be > 0 (INFINITY if the motion "
+                            "never ends), got %g",
+                            gm->t_quiet);
     if (gm->nbreaks && !gm->breaks)
         return rd_error_set(err, "ground motion: %zu breaks but no array", gm->nbreaks);
     return 0;
@@ -111,8 +108,7 @@ void rd_ground_eval(const rd_ground *gm, double t, double *ug, double *vg)
 {
     *ug = 0.0;
     *vg = 0.0;
-    if (gm && gm->fn && !(t >= gm->t_quiet))
-        gm->fn(gm->ctx, t, ug, vg);
+    if (gm && gm->fn && !(t >= gm->t_quiet)) gm->fn(gm->ctx, t, ug, vg);
 }
 
 /* ---- CVODE session ------------------------------------------------------------------- */
@@ -157,16 +153,11 @@ static void cv_silent(int code, const char *module, const char *fn, char *msg, v
 
 static void cv_free(cv_session *s)
 {
-    if (s->mem)
-        CVodeFree(&s->mem);
-    if (s->ls)
-        SUNLinSolFree(s->ls);
-    if (s->a)
-        SUNMatDestroy(s->a);
-    if (s->y)
-        N_VDestroy(s->y);
-    if (s->ctx)
-        SUNContext_Free(&s->ctx);
+    if (s->mem) CVodeFree(&s->mem);
+    if (s->ls) SUNLinSolFree(s->ls);
+    if (s->a) SUNMatDestroy(s->a);
+    if (s->y) N_VDestroy(s->y);
+    if (s->ctx) SUNContext_Free(&s->ctx);
 }
 
 static int cv_create(cv_session *s, const rd_hybrid *h, const rd_ref_opts *o, rd_error *err)
@@ -179,8 +170,7 @@ static int cv_create(cv_session *s, const rd_hybrid *h, const rd_ref_opts *o, rd
     s->a = s->y ? SUNDenseMatrix(h->n, h->n, s->ctx) : NULL;
     s->ls = s->a ? SUNLinSol_Dense(s->y, s->a, s->ctx) : NULL;
     s->mem = s->ls ? CVodeCreate(CV_ADAMS, s->ctx) : NULL;
-    if (!s->mem)
-        return rd_error_set(err, "CVODE: cannot allocate the integrator (n = %d)", h->n);
+    if (!s->mem) return rd_error_set(err, "CVODE: cannot allocate the integrator (n = %d)", h->n);
     N_VConst(0.0, s->y);
     int f = CVodeInit(s->mem, cv_rhs, 0.0, s->y);
     f = f ? f : CVodeSetUserData(s->mem, s);
@@ -191,8 +181,7 @@ static int cv_create(cv_session *s, const rd_hybrid *h, const rd_ref_opts *o, rd
 #if SUNDIALS_VERSION_MAJOR < 7
     f = f ? f : CVodeSetErrHandlerFn(s->mem, cv_silent, NULL);
 #endif
-    if (f)
-        return rd_error_set(err, "CVODE: setup failed (flag %d)", f);
+    if (f) return rd_error_set(err, "CVODE: setup failed (flag %d)", f);
     return 0;
 }
 
@@ -210,8 +199,7 @@ static int cv_restart(cv_session *s, double t, const double *y, double tstop, rd
     }
     f = f ? f : CVodeSetStopTime(s->mem, tstop);
     f = f ? f : CVodeSetMaxStep(s->mem, s->h->hmax);
-    if (f)
-        return rd_error_set(err, "CVODE: restart at t = %.9g s failed (flag %d)", t, f);
+    if (f) return rd_error_set(err, "CVODE: restart at t = %.9g s failed (flag %d)", t, f);
     return 0;
 }
 
@@ -222,13 +210,10 @@ static double next_break(const rd_ground *gm, double t, double t_end)
 {
     double tb = t_end;
     double guard = 1e-13 * (1.0 + fabs(t));
-    if (!gm)
-        return tb;
+    if (!gm) return tb;
     for (size_t i = 0; i < gm->nbreaks; i++)
-        if (gm->breaks[i] > t + guard && gm->breaks[i] < tb)
-            tb = gm->breaks[i];
-    if (isfinite(gm->t_quiet) && gm->t_quiet > t + guard && gm->t_quiet < tb)
-        tb = gm->t_quiet;
+        if (gm->breaks[i] > t + guard && gm->breaks[i] < tb) tb = gm->breaks[i];
+    if (isfinite(gm->t_quiet) && gm->t_quiet > t + guard && gm->t_quiet < tb) tb = gm->t_quiet;
     return tb;
 }
 
@@ -237,8 +222,8 @@ typedef struct drive {
     const rd_ground *gm;
     cv_session cv;
     double t, t_end, dt_out;
-    long k_out;   /* index of the next output time k * dt_out */
-    int sampled;  /* the last sample was taken at t */
+    long k_out;  /* index of the next output time k * dt_out */
+    int sampled; /* the last sample was taken at t */
 } drive;
 
 static double next_out(const drive *d)
@@ -250,8 +235,7 @@ static double next_out(const drive *d)
 static int emit_due(drive *d, double *y)
 {
     while (next_out(d) <= d->t * (1.0 + 1e-15) + 1e-300) {
-        if (d->h->sample(d->h->sys, d->t, y))
-            return -1;
+        if (d->h->sample(d->h->sys, d->t, y)) return -1;
         d->k_out++;
         d->sampled = 1;
     }
@@ -268,8 +252,7 @@ static int run_stretch(drive *d, double tstop, double *y, rd_error *err)
         sunrealtype tret;
         int f = CVode(d->cv.mem, tout, d->cv.y, &tret, CV_NORMAL);
         memcpy(y, N_VGetArrayPointer(d->cv.y), (size_t)h->n * sizeof *y);
-        if (d->cv.cb_failed)
-            return -1;
+        if (d->cv.cb_failed) return -1;
         if (f < 0)
             return rd_error_set(err, "CVODE failed at t = %.9g s (flag %d)", (double)tret, f);
         d->t = tret;
@@ -278,14 +261,11 @@ static int run_stretch(drive *d, double tstop, double *y, rd_error *err)
             if (CVodeGetRootInfo(d->cv.mem, found))
                 return rd_error_set(err, "CVODE: no root information at t = %.9g s", d->t);
             int rc = h->event(h->sys, d->t, y, found);
-            if (rc != RD_HYB_GO)
-                return rc;
+            if (rc != RD_HYB_GO) return rc;
             continue;
         }
-        if (d->t >= tout && emit_due(d, y))
-            return -1;
-        if (d->t >= tstop)
-            return RD_HYB_RESTART;
+        if (d->t >= tout && emit_due(d, y)) return -1;
+        if (d->t >= tstop) return RD_HYB_RESTART;
     }
 }
 
@@ -296,23 +276,18 @@ static int drive_loop(drive *d, double *y, rd_error *err)
     int same = 0;
     for (;;) {
         int rc = h->settle(h->sys, d->t, y);
-        if (rc < 0 || rc == RD_HYB_STOP)
-            return rc;
-        if (emit_due(d, y))
-            return -1;
-        if (d->t >= d->t_end)
-            return RD_HYB_STOP;
+        if (rc < 0 || rc == RD_HYB_STOP) return rc;
+        if (emit_due(d, y)) return -1;
+        if (d->t >= d->t_end) return RD_HYB_STOP;
         same = d->t <= t_last + 1e-13 * (1.0 + fabs(d->t)) ? same + 1 : 0;
         if (same > RD_HYB_MAX_SAME_T)
             return rd_error_set(err, "reference solver: mode switching chatters at t = %.9g s",
                                 d->t);
         t_last = d->t;
         double tstop = next_break(d->gm, d->t, d->t_end);
-        if (cv_restart(&d->cv, d->t, y, tstop, err))
-            return -1;
+        if (cv_restart(&d->cv, d->t, y, tstop, err)) return -1;
         rc = run_stretch(d, tstop, y, err);
-        if (rc < 0 || rc == RD_HYB_STOP)
-            return rc;
+        if (rc < 0 || rc == RD_HYB_STOP) return rc;
     }
 }
 

@@ -22,9 +22,9 @@ enum {
 };
 
 typedef struct rd_hybrid {
-    int n;        /* state length (<= 4) */
-    double hmax;  /* s, largest CVODE step: keeps short excursions of a root function visible */
-    void *sys;    /* the model */
+    int n;       /* state length (<= 4) */
+    double hmax; /* s, largest CVODE step: keeps short excursions of a root function visible */
+    void *sys;   /* the model */
     /* y' = f(t, y) in the current mode; 0 ok, non-zero: CVODE retries/fails */
     int (*rhs)(void *sys, double t, const double *y, double *ydot);
     /* number of root functions of the current mode; dirs[i]: +1 rising, -1 falling, 0 both */

@@ -19,7 +19,7 @@
 
 rd_housner_def rd_housner_def_default(void)
 {
-    rd_housner_def d = {.b = 0.25, .h = 0.5, .g = 9.81, .e = -1.0};
+    rd_housner_def d = { .b = 0.25, .h = 0.5, .g = 9.81, .e = -1.0 };
     return d;
 }
 
@@ -38,8 +38,7 @@ int rd_housner_falls(double theta, double omega, double alpha, double p)
     double a = fabs(theta);
     int outward = theta != 0.0 ? theta * omega > 0.0 : omega != 0.0;
     double energy = 0.5 * omega * omega + p * p * cos(alpha - a); /* per unit I_O, 1/s^2 */
-    if (outward)
-        return a >= alpha || energy >= p * p;
+    if (outward) return a >= alpha || energy >= p * p;
     /* inward beyond the saddle: it turns back (and falls) unless it has the energy to pass */
     return a > alpha && energy < p * p;
 }
@@ -47,8 +46,8 @@ int rd_housner_falls(double theta, double omega, double alpha, double p)
 /* ---- exact free-rocking time ------------------------------------------------------------ */
 
 typedef struct free_time_ctx {
-    double a;  /* alpha - theta0, rad */
-    double p;  /* 1/s */
+    double a; /* alpha - theta0, rad */
+    double p; /* 1/s */
 } free_time_ctx;
 
 /* Integrand after theta = theta0 - u^2, q = u^2/2: sqrt(2) / (p sqrt(sin(a + q) sin(q)/q)),
@@ -64,13 +63,14 @@ static double free_time_integrand(double u, void *vctx)
 int rd_housner_free_time(double alpha, double p, double theta0, double *t, rd_error *err)
 {
     if (!(theta0 > 0.0 && theta0 < alpha) || !(p > 0.0) || !(alpha < 0.5 * M_PI))
-        return rd_error_set(err, "free rocking time: need 0 < theta0 (%g) < alpha (%g) < pi/2, "
-                                 "p > 0", theta0, alpha);
-    free_time_ctx c = {.a = alpha - theta0, .p = p};
-    gsl_function f = {.function = free_time_integrand, .params = &c};
+        return rd_error_set(err,
+                            "free rocking time: need 0 < theta0 (%g) < alpha (%g) < pi/2, "
+                            "p > 0",
+                            theta0, alpha);
+    free_time_ctx c = { .a = alpha - theta0, .p = p };
+    gsl_function f = { .function = free_time_integrand, .params = &c };
     gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
-    if (!w)
-        return rd_error_set(err, "free rocking time: out of memory");
+    if (!w) return rd_error_set(err, "free rocking time: out of memory");
     gsl_error_handler_t *old = gsl_set_error_handler_off();
     double abserr;
     int st = gsl_integration_qags(&f, 0.0, sqrt(theta0), 0.0, 1e-13, 200, w, t, &abserr);
@@ -86,13 +86,13 @@ int rd_housner_free_time(double alpha, double p, double theta0, double *t, rd_er
 enum root_kind { R_IMPACT, R_PEAK, R_SADDLE, R_FALLEN, R_LIFTOFF, R_UPLIFT_POS, R_UPLIFT_NEG };
 
 typedef struct housner {
-    double b, h, g, e;   /* m, m, m/s^2, - */
-    double alpha, p;     /* rad, 1/s */
-    double rest_omega;   /* rad/s: post-impact rate below which the block comes to rest */
+    double b, h, g, e; /* m, m, m/s^2, - */
+    double alpha, p;   /* rad, 1/s */
+    double rest_omega; /* rad/s: post-impact rate below which the block comes to rest */
     const rd_ground *gm;
     rd_ref_result *res;
     rd_error *err;
-    int s;               /* pivot side: +1 right corner, -1 left, 0 at rest */
+    int s; /* pivot side: +1 right corner, -1 left, 0 at rest */
     int nroots;
     int kind[RD_HYB_MAXROOTS];
     int dir[RD_HYB_MAXROOTS];
@@ -175,20 +175,17 @@ static int h_roots(void *sys, double t, const double *y, double *g)
     housner *m = sys;
     double ug, vg;
     rd_ground_eval(m->gm, t, &ug, &vg);
-    for (int i = 0; i < m->nroots; i++)
-        g[i] = root_value(m, m->kind[i], y, ug, vg);
+    for (int i = 0; i < m->nroots; i++) g[i] = root_value(m, m->kind[i], y, ug, vg);
     return 0;
 }
 
 static void note_angle(housner *m, double th)
 {
     double r = fabs(th) / m->alpha;
-    if (r > m->res->summary.max_ratio[0])
-        m->res->summary.max_ratio[0] = r;
+    if (r > m->res->summary.max_ratio[0]) m->res->summary.max_ratio[0] = r;
 }
 
-static int push_event(housner *m, double t, rd_ref_event_kind kind, const double *y,
-                      double om_pre)
+static int push_event(housner *m, double t, rd_ref_event_kind kind, const double *y, double om_pre)
 {
     rd_ref_event e;
     memset(&e, 0, sizeof e);
@@ -221,17 +218,14 @@ static int h_settle(void *sys, double t, double *y)
     double ug, vg;
     rd_ground_eval(m->gm, t, &ug, &vg);
     if (!m->s) {
-        if (m->g + vg < 0.0)
-            return stop(m, t, y, RD_REF_LIFTOFF);
+        if (m->g + vg < 0.0) return stop(m, t, y, RD_REF_LIFTOFF);
         if (fabs(ug) > (m->g + vg) * tan(m->alpha)) {
             m->s = ug > 0.0 ? -1 : 1;
-            if (push_event(m, t, RD_REF_UPLIFT, y, y[1]))
-                return -1;
+            if (push_event(m, t, RD_REF_UPLIFT, y, y[1])) return -1;
         }
     } else {
         double acc = rock_acc(m, m->s, y[0], ug, vg);
-        if (pivot_normal(m, y[0], y[1], acc, vg) < 0.0)
-            return stop(m, t, y, RD_REF_LIFTOFF);
+        if (pivot_normal(m, y[0], y[1], acc, vg) < 0.0) return stop(m, t, y, RD_REF_LIFTOFF);
         int quiet = t >= m->gm->t_quiet;
         if (fabs(y[0]) >= 0.5 * M_PI || (quiet && rd_housner_falls(y[0], y[1], m->alpha, m->p)))
             return stop(m, t, y, RD_REF_OVERTURN);
@@ -249,12 +243,9 @@ static int impact(housner *m, double t, double *y)
     m->res->summary.nimpacts++;
     int rest = fabs(y[1]) < m->rest_omega;
     m->s = rest ? 0 : -m->s;
-    if (rest)
-        y[1] = 0.0;
-    if (push_event(m, t, RD_REF_IMPACT, y, pre))
-        return -1;
-    if (rest && push_event(m, t, RD_REF_REST, y, 0.0))
-        return -1;
+    if (rest) y[1] = 0.0;
+    if (push_event(m, t, RD_REF_IMPACT, y, pre)) return -1;
+    if (rest && push_event(m, t, RD_REF_REST, y, 0.0)) return -1;
     return RD_HYB_RESTART;
 }
 
@@ -263,8 +254,7 @@ static int h_event(void *sys, double t, double *y, const int *found)
     housner *m = sys;
     int saddle = 0, peak = 0;
     for (int i = 0; i < m->nroots; i++) {
-        if (!found[i])
-            continue;
+        if (!found[i]) continue;
         switch (m->kind[i]) {
         case R_FALLEN: return stop(m, t, y, RD_REF_OVERTURN);
         case R_LIFTOFF: return stop(m, t, y, RD_REF_LIFTOFF);
@@ -278,8 +268,7 @@ static int h_event(void *sys, double t, double *y, const int *found)
     }
     if (saddle && t >= m->gm->t_quiet)
         return stop(m, t, y, RD_REF_OVERTURN); /* crossing alpha outward in free motion */
-    if (peak && push_event(m, t, RD_REF_PEAK, y, y[1]))
-        return -1;
+    if (peak && push_event(m, t, RD_REF_PEAK, y, y[1])) return -1;
     return RD_HYB_GO;
 }
 
@@ -321,14 +310,21 @@ static int housner_init(housner *m, const rd_housner_def *d, const rd_ground *gm
 int rd_housner_solve(const rd_housner_def *def, const rd_ground *gm, const rd_ref_opts *opts,
                      rd_ref_result *res, rd_error *err)
 {
-    static const rd_ground still = {.t_quiet = 0.0};
+    static const rd_ground still = { .t_quiet = 0.0 };
     housner m;
     rd_ref_result_init(res);
     if ((gm && rd_ground_check(gm, err)) || housner_init(&m, def, gm ? gm : &still, opts, res, err))
         return -1;
-    rd_hybrid h = {.n = 2, .hmax = 0.05 / m.p, .sys = &m, .rhs = h_rhs, .nroots = h_nroots,
-                   .roots = h_roots, .settle = h_settle, .event = h_event, .sample = h_sample};
-    double y[2] = {opts->theta0[0], opts->omega0[0]};
+    rd_hybrid h = { .n = 2,
+                    .hmax = 0.05 / m.p,
+                    .sys = &m,
+                    .rhs = h_rhs,
+                    .nroots = h_nroots,
+                    .roots = h_roots,
+                    .settle = h_settle,
+                    .event = h_event,
+                    .sample = h_sample };
+    double y[2] = { opts->theta0[0], opts->omega0[0] };
     if (rd_hybrid_run(&h, m.gm, opts, y, &res->summary.t_stop, err)) {
         rd_ref_result_free(res);
         return -1;

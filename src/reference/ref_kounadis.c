@@ -19,8 +19,9 @@
 
 rd_kounadis_def rd_kounadis_def_default(void)
 {
-    rd_kounadis_def d = {.b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.25, .h2 = 0.5, .m2 = 1.0,
-                         .g = 9.81};
+    rd_kounadis_def d = {
+        .b1 = 0.25, .h1 = 0.5, .m1 = 1.0, .b2 = 0.25, .h2 = 0.5, .m2 = 1.0, .g = 9.81
+    };
     return d;
 }
 
@@ -34,19 +35,19 @@ void rd_kounadis_matrix(const rd_kounadis_def *d, int s1, int s2, const double t
     double dx = s2 * b2 - s1 * b1;
     m[0][0] = 4.0 / 3.0 * m1 * (b1 * b1 + h1 * h1) + m2 * (dx * dx + 4.0 * h1 * h1);
     m[1][1] = 4.0 / 3.0 * m2 * (b2 * b2 + h2 * h2);
-    m[0][1] = m2 * ((s1 * s2 * b1 * b2 - b2 * b2 + 2.0 * h1 * h2) * cd
-                    + (s1 * b1 * h2 - 2.0 * s2 * b2 * h1 - s2 * b2 * h2) * sd);
+    m[0][1] = m2 * ((s1 * s2 * b1 * b2 - b2 * b2 + 2.0 * h1 * h2) * cd +
+                    (s1 * b1 * h2 - 2.0 * s2 * b2 * h1 - s2 * b2 * h2) * sd);
     m[1][0] = m[0][1];
     double gx1 = ug * s1t + vg * c1t, gy1 = ug * c1t - vg * s1t;
-    rest[0] = b1 * b2 * m2 * s1 * s2 * w2 * sd + b1 * g * (m1 + m2) * s1 * c1t
-              - b1 * h2 * m2 * s1 * w2 * cd + b1 * (m1 + m2) * s1 * gx1 - b2 * b2 * m2 * w2 * sd
-              - b2 * g * m2 * s2 * c1t + (2.0 * h1 + h2) * b2 * m2 * s2 * w2 * cd
-              - b2 * m2 * s2 * gx1 - g * h1 * (m1 + 2.0 * m2) * s1t
-              + 2.0 * h1 * h2 * m2 * w2 * sd + h1 * (m1 + 2.0 * m2) * gy1;
-    rest[1] = m2 * (-b1 * b2 * s1 * s2 * w1 * sd + b1 * h2 * s1 * w1 * cd + b2 * b2 * w1 * sd
-                    + b2 * g * s2 * c2t - (2.0 * h1 + h2) * b2 * s2 * w1 * cd
-                    + b2 * s2 * (ug * s2t + vg * c2t) - g * h2 * s2t - 2.0 * h1 * h2 * w1 * sd
-                    + h2 * (ug * c2t - vg * s2t));
+    rest[0] = b1 * b2 * m2 * s1 * s2 * w2 * sd + b1 * g * (m1 + m2) * s1 * c1t -
+              b1 * h2 * m2 * s1 * w2 * cd + b1 * (m1 + m2) * s1 * gx1 - b2 * b2 * m2 * w2 * sd -
+              b2 * g * m2 * s2 * c1t + (2.0 * h1 + h2) * b2 * m2 * s2 * w2 * cd -
+              b2 * m2 * s2 * gx1 - g * h1 * (m1 + 2.0 * m2) * s1t + 2.0 * h1 * h2 * m2 * w2 * sd +
+              h1 * (m1 + 2.0 * m2) * gy1;
+    rest[1] = m2 * (-b1 * b2 * s1 * s2 * w1 * sd + b1 * h2 * s1 * w1 * cd + b2 * b2 * w1 * sd +
+                    b2 * g * s2 * c2t - (2.0 * h1 + h2) * b2 * s2 * w1 * cd +
+                    b2 * s2 * (ug * s2t + vg * c2t) - g * h2 * s2t - 2.0 * h1 * h2 * w1 * sd +
+                    h2 * (ug * c2t - vg * s2t));
 }
 
 void rd_kounadis_uplift_thresholds(const rd_kounadis_def *d, double *stack, double *upper)
@@ -77,7 +78,7 @@ static void place(const double base[2], double th, double x, double y, double ou
 static void spin(const double x[2], const double z[2], double om, double acc, const double vz[2],
                  const double az[2], double v[2], double a[2])
 {
-    double r[2] = {x[0] - z[0], x[1] - z[1]};
+    double r[2] = { x[0] - z[0], x[1] - z[1] };
     v[0] = vz[0] + om * r[1];
     v[1] = vz[1] - om * r[0];
     a[0] = az[0] + acc * r[1] - om * om * r[0];
@@ -87,7 +88,7 @@ static void spin(const double x[2], const double z[2], double om, double acc, co
 static void kinematics(const rd_kounadis_def *d, int s1, int s2, const double th[2],
                        const double om[2], const double acc[2], kin *k)
 {
-    static const double zero[2] = {0.0, 0.0};
+    static const double zero[2] = { 0.0, 0.0 };
     double vp[2], ap[2];
     k->o[0] = s1 * d->b1;
     k->o[1] = 0.0;
@@ -119,11 +120,11 @@ static int mode_acc(const rd_kounadis_def *d, int s1, int s2, const double th[2]
         acc[0] = (-rest[0] * m[1][1] + rest[1] * m[0][1]) / det;
         acc[1] = (-rest[1] * m[0][0] + rest[0] * m[1][0]) / det;
     } else if (s1) { /* locked: delta theta1 = delta theta2, sum of both equations */
-        double t2[2] = {th[0], th[0]}, o2[2] = {om[0], om[0]};
+        double t2[2] = { th[0], th[0] }, o2[2] = { om[0], om[0] };
         rd_kounadis_matrix(d, s1, 1, t2, o2, ug, vg, m, rest);
         acc[0] = acc[1] = -(rest[0] + rest[1]) / (m[0][0] + 2.0 * m[0][1] + m[1][1]);
     } else if (s2) { /* lower block at rest: the upper block about P */
-        double t2[2] = {0.0, th[1]}, o2[2] = {0.0, om[1]};
+        double t2[2] = { 0.0, th[1] }, o2[2] = { 0.0, om[1] };
         rd_kounadis_matrix(d, 1, s2, t2, o2, ug, vg, m, rest);
         acc[1] = -rest[1] / m[1][1];
     }
@@ -147,23 +148,23 @@ int rd_kounadis_eval_mode(const rd_kounadis_def *d, int s1, int s2, const double
                           const double om[2], double ug, double vg, rd_kounadis_eval *out,
                           rd_error *err)
 {
-    if (mode_acc(d, s1, s2, th, om, ug, vg, out->acc, err))
-        return -1;
+    if (mode_acc(d, s1, s2, th, om, ug, vg, out->acc, err)) return -1;
     kin k;
     kinematics(d, s1, s2, th, om, out->acc, &k);
     double gx = -ug, gy = -(d->g + vg); /* apparent gravity in the ground frame, m/s^2 */
-    double f2[2] = {d->m2 * (k.a2[0] - gx), d->m2 * (k.a2[1] - gy)}; /* lower -> upper, N */
-    double f1[2] = {d->m1 * (k.a1[0] - gx), d->m1 * (k.a1[1] - gy)};
-    double fg[2] = {f1[0] + f2[0], f1[1] + f2[1]}; /* ground -> lower, N */
+    double f2[2] = { d->m2 * (k.a2[0] - gx), d->m2 * (k.a2[1] - gy) }; /* lower -> upper, N */
+    double f1[2] = { d->m1 * (k.a1[0] - gx), d->m1 * (k.a1[1] - gy) };
+    double fg[2] = { f1[0] + f2[0], f1[1] + f2[1] }; /* ground -> lower, N */
     double i1 = centroidal_inertia(d->m1, d->b1, d->h1) * out->acc[0];
     double i2 = centroidal_inertia(d->m2, d->b2, d->h2) * out->acc[1];
     /* ground moment about A = sum of centroidal rates + moments of m (a - g) about A */
-    const double *ag = s1 ? k.o : (const double[2]){0.0, 0.0};
-    double r1[2] = {k.c1[0] - ag[0], k.c1[1] - ag[1]}, r2[2] = {k.c2[0] - ag[0], k.c2[1] - ag[1]};
+    const double *ag = s1 ? k.o : (const double[2]){ 0.0, 0.0 };
+    double r1[2] = { k.c1[0] - ag[0], k.c1[1] - ag[1] },
+           r2[2] = { k.c2[0] - ag[0], k.c2[1] - ag[1] };
     double mg = i1 + i2 + cw(r1, f1) + cw(r2, f2);
     joint_forces(s1, fg[1], mg, d->b1, out->ground);
     const double *ai = s2 ? k.p : k.q2;
-    double ri[2] = {k.c2[0] - ai[0], k.c2[1] - ai[1]};
+    double ri[2] = { k.c2[0] - ai[0], k.c2[1] - ai[1] };
     double ni = f2[0] * sin(th[0]) + f2[1] * cos(th[0]); /* along the lower block's top normal */
     joint_forces(s2, ni, i2 + cw(ri, f2), d->b2, out->iface);
     return 0;
@@ -175,12 +176,12 @@ int rd_kounadis_eval_mode(const rd_kounadis_def *d, int s1, int s2, const double
 static double momentum(const rd_kounadis_def *d, const kin *k, const double om[2],
                        const double a[2], int whole)
 {
-    double r2[2] = {k->c2[0] - a[0], k->c2[1] - a[1]};
-    double mv2[2] = {d->m2 * k->v2[0], d->m2 * k->v2[1]};
+    double r2[2] = { k->c2[0] - a[0], k->c2[1] - a[1] };
+    double mv2[2] = { d->m2 * k->v2[0], d->m2 * k->v2[1] };
     double h = centroidal_inertia(d->m2, d->b2, d->h2) * om[1] + cw(r2, mv2);
     if (whole) {
-        double r1[2] = {k->c1[0] - a[0], k->c1[1] - a[1]};
-        double mv1[2] = {d->m1 * k->v1[0], d->m1 * k->v1[1]};
+        double r1[2] = { k->c1[0] - a[0], k->c1[1] - a[1] };
+        double mv1[2] = { d->m1 * k->v1[0], d->m1 * k->v1[1] };
         h += centroidal_inertia(d->m1, d->b1, d->h1) * om[0] + cw(r1, mv1);
     }
     return h;
@@ -211,7 +212,7 @@ static int basis(int s1, int s2, double e[2][2])
 static void plastic_impact(const rd_kounadis_def *d, int p1, int p2, int s1, int s2,
                            const double th[2], const double om_pre[2], double om_post[2])
 {
-    static const double zero[2] = {0.0, 0.0};
+    static const double zero[2] = { 0.0, 0.0 };
     double e[2][2];
     int n = basis(s1, s2, e);
     kin pre, post;
@@ -227,7 +228,7 @@ static void plastic_impact(const rd_kounadis_def *d, int p1, int p2, int s1, int
         pts[ne] = post.p;
         whole[ne++] = 0;
     }
-    double a[2][2] = {{0}}, rhs[2] = {0}, x[2] = {0};
+    double a[2][2] = { { 0 } }, rhs[2] = { 0 }, x[2] = { 0 };
     for (int i = 0; i < ne; i++) {
         rhs[i] = momentum(d, &pre, om_pre, pts[i], whole[i]);
         for (int j = 0; j < n; j++) {
@@ -242,15 +243,26 @@ static void plastic_impact(const rd_kounadis_def *d, int p1, int p2, int s1, int
     } else if (n == 1) {
         x[0] = rhs[0] / a[0][0];
     }
-    for (int c = 0; c < 2; c++)
-        om_post[c] = x[0] * e[0][c] + x[1] * e[1][c];
+    for (int c = 0; c < 2; c++) om_post[c] = x[0] * e[0][c] + x[1] * e[1][c];
 }
 
 /* ---- the hybrid model --------------------------------------------------------------------- */
 
 enum root_kind {
-    R_IMPACT0, R_IMPACT1, R_LIFT0, R_LIFT1, R_FALL0, R_FALL1, R_FALL2, R_CORNER0L, R_CORNER0R,
-    R_CORNER1L, R_CORNER1R, R_SADDLE, R_PEAK0, R_PEAK1
+    R_IMPACT0,
+    R_IMPACT1,
+    R_LIFT0,
+    R_LIFT1,
+    R_FALL0,
+    R_FALL1,
+    R_FALL2,
+    R_CORNER0L,
+    R_CORNER0R,
+    R_CORNER1L,
+    R_CORNER1R,
+    R_SADDLE,
+    R_PEAK0,
+    R_PEAK1
 };
 
 typedef struct stack {
@@ -273,17 +285,14 @@ typedef struct stack {
 /* Impose the pattern's constraints on y: closed joints have zero relative angle and rate. */
 static void normalize(const stack *m, double *y)
 {
-    if (!m->s1) {
-        y[0] = y[2] = 0.0;
-    }
+    if (!m->s1) { y[0] = y[2] = 0.0; }
     if (!m->s2) {
         y[1] = y[0];
         y[3] = y[2];
     }
 }
 
-static int eval_at(const stack *m, int s1, int s2, double t, const double *y,
-                   rd_kounadis_eval *ev)
+static int eval_at(const stack *m, int s1, int s2, double t, const double *y, rd_kounadis_eval *ev)
 {
     double ug, vg;
     rd_ground_eval(m->gm, t, &ug, &vg);
@@ -343,8 +352,7 @@ static void build_roots(stack *m)
         add_root(m, R_CORNER1L, -1);
         add_root(m, R_CORNER1R, -1);
     }
-    if (!m->s1 != !m->s2)
-        add_root(m, R_SADDLE, +1);
+    if (!m->s1 != !m->s2) add_root(m, R_SADDLE, +1);
 }
 
 static int k_nroots(void *sys, int *dirs)
@@ -388,8 +396,7 @@ static void note_angles(stack *m, const double *y)
 {
     for (int i = 0; i < 2; i++) {
         double r = fabs(y[i]) / m->alpha[i];
-        if (r > m->res->summary.max_ratio[i])
-            m->res->summary.max_ratio[i] = r;
+        if (r > m->res->summary.max_ratio[i]) m->res->summary.max_ratio[i] = r;
     }
 }
 
@@ -426,12 +433,9 @@ static int stop(stack *m, double t, const double *y, rd_ref_event_kind kind, int
  * a closed joint also needs both corner forces f compressive. */
 static int joint_fits(const stack *m, int s, double a, double w, double acc, const double f[2])
 {
-    if (!s)
-        return a == 0.0 && w == 0.0 && f[0] > 0.0 && f[1] > 0.0;
-    if (a != 0.0)
-        return a * s > 0.0;
-    if (w != 0.0)
-        return w * s > 0.0;
+    if (!s) return a == 0.0 && w == 0.0 && f[0] > 0.0 && f[1] > 0.0;
+    if (a != 0.0) return a * s > 0.0;
+    if (w != 0.0) return w * s > 0.0;
     return acc * s >= -m->tol_acc;
 }
 
@@ -440,10 +444,9 @@ static int joint_fits(const stack *m, int s, double a, double w, double acc, con
 static int mode_fits(stack *m, int s1, int s2, double t, const double *y, int *tension, int *ok)
 {
     rd_kounadis_eval ev;
-    if (eval_at(m, s1, s2, t, y, &ev))
-        return -1;
-    int fits = joint_fits(m, s1, y[0], y[2], ev.acc[0], ev.ground)
-               && joint_fits(m, s2, y[1] - y[0], y[3] - y[2], ev.acc[1] - ev.acc[0], ev.iface);
+    if (eval_at(m, s1, s2, t, y, &ev)) return -1;
+    int fits = joint_fits(m, s1, y[0], y[2], ev.acc[0], ev.ground) &&
+               joint_fits(m, s2, y[1] - y[0], y[3] - y[2], ev.acc[1] - ev.acc[0], ev.iface);
     int pulls = (s1 && ev.ground[0] < -m->tol_f) || (s2 && ev.iface[0] < -m->tol_f);
     *ok = fits && !pulls;
     *tension |= fits && pulls;
@@ -453,13 +456,11 @@ static int mode_fits(stack *m, int s1, int s2, double t, const double *y, int *t
 /* Record the joints that opened or closed going from (o1, o2) to the current pattern. */
 static int note_switch(stack *m, double t, const double *y, int o1, int o2)
 {
-    int was[2] = {o1, o2}, now[2] = {m->s1, m->s2};
+    int was[2] = { o1, o2 }, now[2] = { m->s1, m->s2 };
     for (int j = 0; j < 2; j++) {
-        if (!was[j] == !now[j])
-            continue;
+        if (!was[j] == !now[j]) continue;
         rd_ref_event_kind k = now[j] ? RD_REF_UPLIFT : j ? RD_REF_LOCK : RD_REF_REST;
-        if (push_event(m, t, k, j, y, NULL))
-            return -1;
+        if (push_event(m, t, k, j, y, NULL)) return -1;
     }
     return 0;
 }
@@ -468,44 +469,36 @@ static int note_switch(stack *m, double t, const double *y, int o1, int o2)
  * fits, closed joints first (a joint opens only when it must). */
 static int choose_mode(stack *m, double t, double *y)
 {
-    static const int order[9][2] = {{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1},
-                                     {1, 1}, {1, -1}, {-1, 1}, {-1, -1}};
+    static const int order[9][2] = { { 0, 0 }, { 1, 0 },  { -1, 0 }, { 0, 1 },  { 0, -1 },
+                                     { 1, 1 }, { 1, -1 }, { -1, 1 }, { -1, -1 } };
     int tension = 0, ok = 0;
-    if (mode_fits(m, m->s1, m->s2, t, y, &tension, &ok))
-        return -1;
+    if (mode_fits(m, m->s1, m->s2, t, y, &tension, &ok)) return -1;
     for (int i = 0; !ok && i < 9; i++) {
-        if (mode_fits(m, order[i][0], order[i][1], t, y, &tension, &ok))
-            return -1;
+        if (mode_fits(m, order[i][0], order[i][1], t, y, &tension, &ok)) return -1;
         if (ok) {
             int o1 = m->s1, o2 = m->s2;
             m->s1 = order[i][0];
             m->s2 = order[i][1];
             normalize(m, y);
-            if (note_switch(m, t, y, o1, o2))
-                return -1;
+            if (note_switch(m, t, y, o1, o2)) return -1;
         }
     }
-    if (ok)
-        return RD_HYB_GO;
-    if (tension)
-        return stop(m, t, y, RD_REF_LIFTOFF, 0);
-    return rd_error_set(m->err, "kounadis: no configuration fits the state at t = %.9g s "
-                                "(theta %g %g, rates %g %g)", t, y[0], y[1], y[2], y[3]);
+    if (ok) return RD_HYB_GO;
+    if (tension) return stop(m, t, y, RD_REF_LIFTOFF, 0);
+    return rd_error_set(m->err,
+                        "kounadis: no configuration fits the state at t = %.9g s "
+                        "(theta %g %g, rates %g %g)",
+                        t, y[0], y[1], y[2], y[3]);
 }
 
 /* Certain overturning: a tilt of pi/2, or the free-motion test of a one-DOF pattern. */
 static int overturn_joint(const stack *m, double t, const double *y)
 {
-    if (fabs(y[0]) >= 0.5 * M_PI)
-        return 0;
-    if (fabs(y[1]) >= 0.5 * M_PI || fabs(y[1] - y[0]) >= 0.5 * M_PI)
-        return 1;
-    if (!(t >= m->gm->t_quiet))
-        return -1;
-    if (m->s1 && !m->s2 && rd_housner_falls(y[0], y[2], m->alpha_c, m->p_c))
-        return 0;
-    if (!m->s1 && m->s2 && rd_housner_falls(y[1], y[3], m->alpha2, m->p2))
-        return 1;
+    if (fabs(y[0]) >= 0.5 * M_PI) return 0;
+    if (fabs(y[1]) >= 0.5 * M_PI || fabs(y[1] - y[0]) >= 0.5 * M_PI) return 1;
+    if (!(t >= m->gm->t_quiet)) return -1;
+    if (m->s1 && !m->s2 && rd_housner_falls(y[0], y[2], m->alpha_c, m->p_c)) return 0;
+    if (!m->s1 && m->s2 && rd_housner_falls(y[1], y[3], m->alpha2, m->p2)) return 1;
     return -1;
 }
 
@@ -514,11 +507,9 @@ static int k_settle(void *sys, double t, double *y)
     stack *m = sys;
     normalize(m, y);
     int rc = choose_mode(m, t, y);
-    if (rc != RD_HYB_GO)
-        return rc;
+    if (rc != RD_HYB_GO) return rc;
     int j = overturn_joint(m, t, y);
-    if (j >= 0)
-        return stop(m, t, y, RD_REF_OVERTURN, j);
+    if (j >= 0) return stop(m, t, y, RD_REF_OVERTURN, j);
     build_roots(m);
     return RD_HYB_GO;
 }
@@ -527,24 +518,22 @@ static int k_settle(void *sys, double t, double *y)
  * (a closed joint moves rigidly, so either corner serves as its pivot). */
 static double kinetic(const rd_kounadis_def *d, int s1, int s2, const double *y, const double om[2])
 {
-    double mm[2][2], rest[2], th[2] = {y[0], y[1]};
+    double mm[2][2], rest[2], th[2] = { y[0], y[1] };
     rd_kounadis_matrix(d, s1 ? s1 : 1, s2 ? s2 : 1, th, om, 0.0, 0.0, mm, rest);
-    return 0.5 * (mm[0][0] * om[0] * om[0] + 2.0 * mm[0][1] * om[0] * om[1] + mm[1][1] * om[1] * om[1]);
+    return 0.5 *
+           (mm[0][0] * om[0] * om[0] + 2.0 * mm[0][1] * om[0] * om[1] + mm[1][1] * om[1] * om[1]);
 }
 
 /* Candidate post-impact pattern (s1, s2) fits the velocities: an open joint at zero angle must
  * open faster than the rest threshold; a closed joint needs zero angle. */
 static int post_fits(const stack *m, int s1, int s2, const double *y, const double om[2])
 {
-    double a[2] = {y[0], y[1] - y[0]}, w[2] = {om[0], om[1] - om[0]};
-    int s[2] = {s1, s2};
+    double a[2] = { y[0], y[1] - y[0] }, w[2] = { om[0], om[1] - om[0] };
+    int s[2] = { s1, s2 };
     for (int j = 0; j < 2; j++) {
-        if (!s[j] && a[j] != 0.0)
-            return 0;
-        if (s[j] && a[j] != 0.0 && a[j] * s[j] < 0.0)
-            return 0;
-        if (s[j] && a[j] == 0.0 && !(w[j] * s[j] > m->rest_omega))
-            return 0;
+        if (!s[j] && a[j] != 0.0) return 0;
+        if (s[j] && a[j] != 0.0 && a[j] * s[j] < 0.0) return 0;
+        if (s[j] && a[j] == 0.0 && !(w[j] * s[j] > m->rest_omega)) return 0;
     }
     return 1;
 }
@@ -553,9 +542,13 @@ static int post_fits(const stack *m, int s1, int s2, const double *y, const doub
  * the impacting corner if its velocities fit, else locked, lower at rest, rest. */
 static int impact(stack *m, double t, double *y, int j)
 {
-    const int cand[6][2] = {{j ? m->s1 : -m->s1, j ? -m->s2 : m->s2},
-                            {1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0, 0}};
-    double pre[2] = {y[2], y[3]};
+    const int cand[6][2] = { { j ? m->s1 : -m->s1, j ? -m->s2 : m->s2 },
+                             { 1, 0 },
+                             { -1, 0 },
+                             { 0, 1 },
+                             { 0, -1 },
+                             { 0, 0 } };
+    double pre[2] = { y[2], y[3] };
     double rel = y[1] - y[0];
     y[0] = j ? y[0] : 0.0;
     y[1] = j || !m->s2 ? y[0] : y[0] + rel; /* a closed interface stays closed */
@@ -565,11 +558,11 @@ static int impact(stack *m, double t, double *y, int j)
         plastic_impact(&m->d, m->s1, m->s2, cand[i][0], cand[i][1], y, pre, post);
         post[0] *= m->kappa;
         post[1] *= m->kappa;
-        if (!post_fits(m, cand[i][0], cand[i][1], y, post))
-            continue;
-        if (m->kappa > 1.0
-            && kinetic(&m->d, cand[i][0], cand[i][1], y, post) > kinetic(&m->d, m->s1, m->s2, y, pre))
-            return rd_error_set(m->err, "kounadis: restitution %g gains energy at the impact at t = %.9g s",
+        if (!post_fits(m, cand[i][0], cand[i][1], y, post)) continue;
+        if (m->kappa > 1.0 &&
+            kinetic(&m->d, cand[i][0], cand[i][1], y, post) > kinetic(&m->d, m->s1, m->s2, y, pre))
+            return rd_error_set(m->err,
+                                "kounadis: restitution %g gains energy at the impact at t = %.9g s",
                                 m->d.r, t);
         int o1 = m->s1, o2 = m->s2;
         m->s1 = cand[i][0];
@@ -577,8 +570,7 @@ static int impact(stack *m, double t, double *y, int j)
         y[2] = post[0];
         y[3] = post[1];
         normalize(m, y);
-        if (push_event(m, t, RD_REF_IMPACT, j, y, pre) || note_switch(m, t, y, o1, o2))
-            return -1;
+        if (push_event(m, t, RD_REF_IMPACT, j, y, pre) || note_switch(m, t, y, o1, o2)) return -1;
         return RD_HYB_RESTART;
     }
     return rd_error_set(m->err, "kounadis: no pattern fits the impact at t = %.9g s", t);
@@ -588,27 +580,22 @@ static int k_event(void *sys, double t, double *y, const int *found)
 {
     stack *m = sys;
     normalize(m, y);
-    int restart = 0, peak[2] = {0, 0};
+    int restart = 0, peak[2] = { 0, 0 };
     for (int i = 0; i < m->nroots; i++) {
-        if (!found[i])
-            continue;
+        if (!found[i]) continue;
         int k = m->kind[i];
         if (k == R_FALL0 || k == R_FALL1 || k == R_FALL2)
             return stop(m, t, y, RD_REF_OVERTURN, k != R_FALL0);
-        if (k == R_LIFT0 || k == R_LIFT1)
-            return stop(m, t, y, RD_REF_LIFTOFF, k == R_LIFT1);
-        if (k == R_IMPACT0 || k == R_IMPACT1)
-            return impact(m, t, y, k == R_IMPACT1);
+        if (k == R_LIFT0 || k == R_LIFT1) return stop(m, t, y, RD_REF_LIFTOFF, k == R_LIFT1);
+        if (k == R_IMPACT0 || k == R_IMPACT1) return impact(m, t, y, k == R_IMPACT1);
         if (k == R_PEAK0 || k == R_PEAK1)
             peak[k == R_PEAK1] = 1;
         else
             restart = 1; /* a corner force reached 0, or a saddle crossing: settle decides */
     }
-    if (restart)
-        return RD_HYB_RESTART;
+    if (restart) return RD_HYB_RESTART;
     for (int j = 0; j < 2; j++)
-        if (peak[j] && push_event(m, t, RD_REF_PEAK, j, y, NULL))
-            return -1;
+        if (peak[j] && push_event(m, t, RD_REF_PEAK, j, y, NULL)) return -1;
     return RD_HYB_GO;
 }
 
@@ -629,11 +616,11 @@ static int k_sample(void *sys, double t, double *y)
 
 static int sgn(double x) { return (x > 0.0) - (x < 0.0); }
 
-static int stack_init(stack *m, const rd_kounadis_def *d, const rd_ground *gm,
-                      const rd_ref_opts *o, rd_ref_result *res, rd_error *err)
+static int stack_init(stack *m, const rd_kounadis_def *d, const rd_ground *gm, const rd_ref_opts *o,
+                      rd_ref_result *res, rd_error *err)
 {
-    if (!(d->b1 > 0.0 && d->h1 > 0.0 && d->m1 > 0.0 && d->b2 > 0.0 && d->h2 > 0.0
-          && d->m2 > 0.0 && d->g > 0.0 && d->b2 <= d->b1 && d->r <= 1.0))
+    if (!(d->b1 > 0.0 && d->h1 > 0.0 && d->m1 > 0.0 && d->b2 > 0.0 && d->h2 > 0.0 && d->m2 > 0.0 &&
+          d->g > 0.0 && d->b2 <= d->b1 && d->r <= 1.0))
         return rd_error_set(err, "kounadis: need positive sizes, masses, g, b2 <= b1 and r <= 1");
     memset(m, 0, sizeof *m);
     m->d = *d;
@@ -643,9 +630,9 @@ static int stack_init(stack *m, const rd_kounadis_def *d, const rd_ground *gm,
     m->p1 = rd_housner_p(d->b1, d->h1, d->g);
     double mt = d->m1 + d->m2;
     double hc = (d->m1 * d->h1 + d->m2 * (2.0 * d->h1 + d->h2)) / mt; /* stack centre height */
-    double io = 4.0 / 3.0 * d->m1 * (d->b1 * d->b1 + d->h1 * d->h1)
-                + d->m2 * (d->b1 * d->b1 + pow(2.0 * d->h1 + d->h2, 2))
-                + centroidal_inertia(d->m2, d->b2, d->h2);
+    double io = 4.0 / 3.0 * d->m1 * (d->b1 * d->b1 + d->h1 * d->h1) +
+                d->m2 * (d->b1 * d->b1 + pow(2.0 * d->h1 + d->h2, 2)) +
+                centroidal_inertia(d->m2, d->b2, d->h2);
     m->alpha_c = atan2(d->b1, hc);
     m->p_c = sqrt(mt * d->g * hypot(d->b1, hc) / io);
     m->alpha2 = m->alpha[1];
@@ -665,15 +652,22 @@ static int stack_init(stack *m, const rd_kounadis_def *d, const rd_ground *gm,
 int rd_kounadis_solve(const rd_kounadis_def *def, const rd_ground *gm, const rd_ref_opts *opts,
                       rd_ref_result *res, rd_error *err)
 {
-    static const rd_ground still = {.t_quiet = 0.0};
+    static const rd_ground still = { .t_quiet = 0.0 };
     stack m;
     rd_ref_result_init(res);
     if ((gm && rd_ground_check(gm, err)) || stack_init(&m, def, gm ? gm : &still, opts, res, err))
         return -1;
     double pmax = fmax(m.p1, m.p2);
-    rd_hybrid h = {.n = 4, .hmax = 0.05 / pmax, .sys = &m, .rhs = k_rhs, .nroots = k_nroots,
-                   .roots = k_roots, .settle = k_settle, .event = k_event, .sample = k_sample};
-    double y[4] = {opts->theta0[0], opts->theta0[1], opts->omega0[0], opts->omega0[1]};
+    rd_hybrid h = { .n = 4,
+                    .hmax = 0.05 / pmax,
+                    .sys = &m,
+                    .rhs = k_rhs,
+                    .nroots = k_nroots,
+                    .roots = k_roots,
+                    .settle = k_settle,
+                    .event = k_event,
+                    .sample = k_sample };
+    double y[4] = { opts->theta0[0], opts->theta0[1], opts->omega0[0], opts->omega0[1] };
     if (rd_hybrid_run(&h, m.gm, opts, y, &res->summary.t_stop, err)) {
         rd_ref_result_free(res);
         return -1;

@@ -20,7 +20,8 @@
 static void rotate(const double a[3], double th, const double r[3], double out[3])
 {
     double c = cos(th), s = sin(th), ad = a[0] * r[0] + a[1] * r[1] + a[2] * r[2];
-    double x[3] = {a[1] * r[2] - a[2] * r[1], a[2] * r[0] - a[0] * r[2], a[0] * r[1] - a[1] * r[0]};
+    double x[3] = { a[1] * r[2] - a[2] * r[1], a[2] * r[0] - a[0] * r[2],
+                    a[0] * r[1] - a[1] * r[0] };
     for (int k = 0; k < 3; k++) out[k] = r[k] * c + x[k] * s + a[k] * ad * (1 - c);
 }
 
@@ -42,36 +43,41 @@ static double sgn(double v) { return (v > 0) - (v < 0); }
  * pattern in force), which also hold on a sample exactly at an impact. */
 static void sample_pose(const rd_refscene *rs, const rd_ref_sample *sm, pose *ps)
 {
-    const double a[3] = {-rs->dir[1], rs->dir[0], 0};
+    const double a[3] = { -rs->dir[1], rs->dir[0], 0 };
     double s1 = sgn(sm->theta[0]), s2 = sgn(sm->theta[1] - sm->theta[0]);
-    double O[3] = {rs->origin[0] + s1 * rs->b[0] * rs->dir[0],
-                   rs->origin[1] + s1 * rs->b[0] * rs->dir[1], rs->base_z};
-    double c1[3] = {rs->origin[0], rs->origin[1], rs->base_z + rs->h[0]}, r[3], rr[3];
+    double O[3] = { rs->origin[0] + s1 * rs->b[0] * rs->dir[0],
+                    rs->origin[1] + s1 * rs->b[0] * rs->dir[1], rs->base_z };
+    double c1[3] = { rs->origin[0], rs->origin[1], rs->base_z + rs->h[0] }, r[3], rr[3];
     for (int k = 0; k < 3; k++) r[k] = c1[k] - O[k];
     rotate(a, sm->theta[0], r, rr);
     for (int k = 0; k < 3; k++) ps->x[0][k] = O[k] + rr[k];
     spin(a, sm->omega[0], rr, ps->v[0]);
     if (rs->nblock < 2) return;
-    double P[3] = {rs->origin[0] + s2 * rs->b[1] * rs->dir[0],
-                   rs->origin[1] + s2 * rs->b[1] * rs->dir[1], rs->base_z + 2 * rs->h[0]}, Pw[3], vP[3];
+    double P[3] = { rs->origin[0] + s2 * rs->b[1] * rs->dir[0],
+                    rs->origin[1] + s2 * rs->b[1] * rs->dir[1], rs->base_z + 2 * rs->h[0] },
+           Pw[3], vP[3];
     for (int k = 0; k < 3; k++) r[k] = P[k] - O[k];
     rotate(a, sm->theta[0], r, rr);
     spin(a, sm->omega[0], rr, vP);
     for (int k = 0; k < 3; k++) Pw[k] = O[k] + rr[k];
-    double c2[3] = {rs->origin[0], rs->origin[1], rs->base_z + 2 * rs->h[0] + rs->h[1]};
+    double c2[3] = { rs->origin[0], rs->origin[1], rs->base_z + 2 * rs->h[0] + rs->h[1] };
     for (int k = 0; k < 3; k++) r[k] = c2[k] - P[k];
     rotate(a, sm->theta[1], r, rr);
     spin(a, sm->omega[1], rr, ps->v[1]);
-    for (int k = 0; k < 3; k++) { ps->x[1][k] = Pw[k] + rr[k]; ps->v[1][k] += vP[k]; }
+    for (int k = 0; k < 3; k++) {
+        ps->x[1][k] = Pw[k] + rr[k];
+        ps->v[1][k] += vP[k];
+    }
 }
 
 /* Box vertices about its centre and its 12 triangles (outward). */
-static const int box_tri[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                                   {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+static const int box_tri[12][3] = { { 0, 2, 1 }, { 0, 3, 2 }, { 4, 5, 6 }, { 4, 6, 7 },
+                                    { 0, 1, 5 }, { 0, 5, 4 }, { 1, 2, 6 }, { 1, 6, 5 },
+                                    { 2, 3, 7 }, { 2, 7, 6 }, { 3, 0, 4 }, { 3, 4, 7 } };
 
 static void box_vertices(const double size[3], double v[8][3])
 {
-    static const int sx[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, sy[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
+    static const int sx[8] = { -1, 1, 1, -1, -1, 1, 1, -1 }, sy[8] = { -1, -1, 1, 1, -1, -1, 1, 1 };
     for (int i = 0; i < 8; i++) {
         v[i][0] = 0.5 * sx[i] * size[0];
         v[i][1] = 0.5 * sy[i] * size[1];
@@ -87,29 +93,41 @@ static rd_h5 *open_file(const rd_scenario *sc, const rd_refscene *rs, const char
         const double *s = rs->size[k];
         double m = rs->mass[k];
         box_vertices(s, verts[k]);
-        hb[rs->out[k]] = (rd_h5_body){
-            .name = sc->bodies[rs->body[k]].name, .mass = m,
-            .inertia = {m * (s[1] * s[1] + s[2] * s[2]) / 12, m * (s[0] * s[0] + s[2] * s[2]) / 12,
-                        m * (s[0] * s[0] + s[1] * s[1]) / 12},
-            .size = {s[0], s[1], s[2]}, .alpha = atan2(rs->b[k], rs->h[k]), .nvert = 8,
-            .vertices = &verts[k][0][0], .ntri = 12, .triangles = &box_tri[0][0]};
+        hb[rs->out[k]] = (rd_h5_body){ .name = sc->bodies[rs->body[k]].name,
+                                       .mass = m,
+                                       .inertia = { m * (s[1] * s[1] + s[2] * s[2]) / 12,
+                                                    m * (s[0] * s[0] + s[2] * s[2]) / 12,
+                                                    m * (s[0] * s[0] + s[1] * s[1]) / 12 },
+                                       .size = { s[0], s[1], s[2] },
+                                       .alpha = atan2(rs->b[k], rs->h[k]),
+                                       .nvert = 8,
+                                       .vertices = &verts[k][0][0],
+                                       .ntri = 12,
+                                       .triangles = &box_tri[0][0] };
     }
     char damping[160];
     if (rs->model == RD_REFMODEL_HOUSNER)
-        snprintf(damping, sizeof damping, "rigid reference (Housner), impact restitution e = %.4g%s",
+        snprintf(damping, sizeof damping,
+                 "rigid reference (Housner), impact restitution e = %.4g%s",
                  rs->housner.e >= 0 ? rs->housner.e : rd_housner_r(rs->alpha),
                  rs->housner.e >= 0 ? "" : " (Housner's r)");
     else if (rs->kounadis.r > 0.0)
-        snprintf(damping, sizeof damping, "rigid reference (Kounadis), impacts keep %.4g x the plastic "
-                                          "rates (lower block's e = %.4g)",
+        snprintf(damping, sizeof damping,
+                 "rigid reference (Kounadis), impacts keep %.4g x the plastic "
+                 "rates (lower block's e = %.4g)",
                  rs->kounadis.r / rd_housner_r(rs->alpha), rs->kounadis.r);
     else
-        snprintf(damping, sizeof damping, "rigid reference (Kounadis), plastic impacts "
-                                          "(angular momentum conserved)");
-    rd_h5_meta meta = {.scenario_text = sc->text ? sc->text : "", .scenario_file = sc->file,
-                       .title = sc->title, .damping = damping, .overturn_criterion =
-                       "rigid: certain fall (energy above the saddle moving outward)",
-                       .nbodies = rs->nblock, .bodies = hb};
+        snprintf(damping, sizeof damping,
+                 "rigid reference (Kounadis), plastic impacts "
+                 "(angular momentum conserved)");
+    rd_h5_meta meta = { .scenario_text = sc->text ? sc->text : "",
+                        .scenario_file = sc->file,
+                        .title = sc->title,
+                        .damping = damping,
+                        .overturn_criterion =
+                            "rigid: certain fall (energy above the saddle moving outward)",
+                        .nbodies = rs->nblock,
+                        .bodies = hb };
     char tmp[RD_PATH_MAX]; /* an earlier file at path is replaced once this one is whole */
     int staged = rd_output_staging(path, sc->force, tmp, sizeof tmp);
     meta.target = staged ? path : NULL;
@@ -119,14 +137,19 @@ static rd_h5 *open_file(const rd_scenario *sc, const rd_refscene *rs, const char
 static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_ref_result *res,
                          rd_h5 *h5, rd_body_summary *body, rd_error *err)
 {
-    const double a[3] = {-rs->dir[1], rs->dir[0], 0};
+    const double a[3] = { -rs->dir[1], rs->dir[0], 0 };
     for (size_t i = 0; i < res->nsamples; i++) {
         const rd_ref_sample *sm = &res->samples[i];
         pose ps;
         sample_pose(rs, sm, &ps);
-        double pos[6], quat[8], vel[6], ang[6], tilt[2], rot[6] = {0};
-        rd_h5_sample out = {.time = sm->t, .position = pos, .quaternion = quat, .velocity = vel,
-                            .angular_velocity = ang, .tilt = tilt, .rotation = rot};
+        double pos[6], quat[8], vel[6], ang[6], tilt[2], rot[6] = { 0 };
+        rd_h5_sample out = { .time = sm->t,
+                             .position = pos,
+                             .quaternion = quat,
+                             .velocity = vel,
+                             .angular_velocity = ang,
+                             .tilt = tilt,
+                             .rotation = rot };
         rd_motion_eval(&rs->motion, sm->t, out.ground_acc, out.ground_vel, out.ground_disp);
         for (int k = 0; k < rs->nblock; k++) {
             int o = rs->out[k];
@@ -155,7 +178,9 @@ static int write_samples(const rd_scenario *sc, const rd_refscene *rs, const rd_
 
 static int write_events(const rd_refscene *rs, const rd_ref_result *res, rd_h5 *h5, rd_error *err)
 {
-    static const char *names[] = {"uplift", "impact", NULL, "rest", "lock", "overturn", "liftoff"};
+    static const char *names[] = {
+        "uplift", "impact", NULL, "rest", "lock", "overturn", "liftoff"
+    };
     for (size_t i = 0; i < res->nevents; i++) {
         const rd_ref_event *e = &res->events[i];
         if (!names[e->kind]) continue; /* turning points are not DEM events */
@@ -199,8 +224,8 @@ int rd_refscene_write(const rd_scenario *sc, const rd_refscene *rs, const rd_ref
     const char *bad = rd_path_output_conflict(sc, path, NULL, RD_OUTPUT_RUN, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     double verts[2][8][3];
-    rd_summary s = {0};
-    rd_body_summary bs[RD_REF_BLOCKS] = {0};
+    rd_summary s = { 0 };
+    rd_body_summary bs[RD_REF_BLOCKS] = { 0 };
     rd_h5 *h5 = open_file(sc, rs, path, verts, err);
     if (!h5) return -1;
     fill_summary(sc, rs, res, &s, bs);

@@ -22,7 +22,7 @@ typedef enum set_kind {
     S_TIMESTEP,
     S_SETTLE,
     S_FILE,
-    S_RECORD  /* a record setting: the records are re-read and/or re-processed */
+    S_RECORD /* a record setting: the records are re-read and/or re-processed */
 } set_kind;
 
 typedef struct set_key {
@@ -35,53 +35,59 @@ typedef struct set_key {
 } set_key;
 
 static const set_key set_keys[] = {
-    {"contact.stiffness-normal", S_NUMBER, offsetof(rd_scenario, contact.kn), R_POS, U_PLAIN},
-    {"contact.stiffness-shear", S_NUMBER, offsetof(rd_scenario, contact.ks), R_POS, U_PLAIN},
-    {"contact.friction", S_NUMBER, offsetof(rd_scenario, contact.friction), R_ANGLE, U_DEG},
-    {"contact.friction-coefficient", S_NUMBER, offsetof(rd_scenario, contact.friction), R_NONNEG, U_MU},
-    {"contact.cohesion", S_NUMBER, offsetof(rd_scenario, contact.cohesion), R_NONNEG, U_PLAIN},
-    {"contact.tension", S_NUMBER, offsetof(rd_scenario, contact.tension), R_NONNEG, U_PLAIN},
-    {"contact.spacing", S_SPACING, 0, R_NONNEG, U_PLAIN},
-    {"contact.restitution", S_NUMBER, offsetof(rd_scenario, contact.restitution), R_UNIT, U_PLAIN},
-    {"contact.interface-seed", S_NUMBER, offsetof(rd_scenario, contact.perturb.seed), R_NONNEG, U_PLAIN},
-    {"contact.interface-remove", S_NUMBER, offsetof(rd_scenario, contact.perturb.remove), R_NONNEG, U_PLAIN},
-    {"contact.interface-raise", S_NUMBER, offsetof(rd_scenario, contact.perturb.raise), R_NONNEG, U_PLAIN},
-    {"contact.interface-scatter", S_NUMBER, offsetof(rd_scenario, contact.perturb.scatter), R_NONNEG, U_PLAIN},
-    {"model.gravity", S_NUMBER, offsetof(rd_scenario, gravity), R_NONNEG, U_ACCEL},
-    {"model.density", S_NUMBER, offsetof(rd_scenario, density), R_POS, U_PLAIN},
-    {"model.duration", S_NUMBER, offsetof(rd_scenario, duration), R_POS, U_PLAIN},
-    {"model.damping", S_DAMPING, 0, R_ANY, U_PLAIN},
-    {"model.timestep", S_TIMESTEP, 0, R_POS, U_PLAIN},
-    {"model.safety", S_NUMBER, offsetof(rd_scenario, timestep.safety), R_FRAC, U_PLAIN},
-    {"model.settle", S_SETTLE, 0, R_ANY, U_PLAIN},
-    {"motion.amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL},
-    {"motion.frequency", S_PULSE, offsetof(rd_pulse_def, frequency), R_POS, U_PLAIN},
-    {"motion.duration", S_PULSE, offsetof(rd_pulse_def, duration), R_POS, U_PLAIN},
-    {"motion.direction", S_RECORD, offsetof(rd_pulse_def, direction), R_ANY, U_DEG},
-    {"motion.cycles", S_PULSE, offsetof(rd_pulse_def, cycles), R_POS, U_PLAIN},
-    {"motion.start", S_PULSE, offsetof(rd_pulse_def, start), R_NONNEG, U_PLAIN},
-    {"motion.vertical-amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL},
-    {"motion.scale", S_RECORD, 0, R_POS, U_PLAIN},
-    {"motion.scale-pga", S_RECORD, 0, R_POS, U_ACCEL},
-    {"motion.scale-pgv", S_RECORD, 0, R_POS, U_PLAIN},
-    {"motion.baseline", S_RECORD, 0, R_ANY, U_PLAIN},
-    {"motion.file", S_RECORD, 0, R_ANY, U_PLAIN},
-    {"motion.record", S_RECORD, 0, R_ANY, U_PLAIN},
-    {"motion.seed", S_RECORD, 0, R_NONNEG, U_PLAIN},
-    {"model.tail", S_NUMBER, offsetof(rd_scenario, tail), R_NONNEG, U_PLAIN},
-    {"output.file", S_FILE, 0, R_ANY, U_PLAIN},
-    {"output.interval", S_NUMBER, offsetof(rd_scenario, output.interval), R_POS, U_PLAIN},
-    {"reference.restitution", S_NUMBER, offsetof(rd_scenario, ref_restitution), R_FRAC, U_PLAIN},
+    { "contact.stiffness-normal", S_NUMBER, offsetof(rd_scenario, contact.kn), R_POS, U_PLAIN },
+    { "contact.stiffness-shear", S_NUMBER, offsetof(rd_scenario, contact.ks), R_POS, U_PLAIN },
+    { "contact.friction", S_NUMBER, offsetof(rd_scenario, contact.friction), R_ANGLE, U_DEG },
+    { "contact.friction-coefficient", S_NUMBER, offsetof(rd_scenario, contact.friction), R_NONNEG,
+      U_MU },
+    { "contact.cohesion", S_NUMBER, offsetof(rd_scenario, contact.cohesion), R_NONNEG, U_PLAIN },
+    { "contact.tension", S_NUMBER, offsetof(rd_scenario, contact.tension), R_NONNEG, U_PLAIN },
+    { "contact.spacing", S_SPACING, 0, R_NONNEG, U_PLAIN },
+    { "contact.restitution", S_NUMBER, offsetof(rd_scenario, contact.restitution), R_UNIT,
+      U_PLAIN },
+    { "contact.interface-seed", S_NUMBER, offsetof(rd_scenario, contact.perturb.seed), R_NONNEG,
+      U_PLAIN },
+    { "contact.interface-remove", S_NUMBER, offsetof(rd_scenario, contact.perturb.remove), R_NONNEG,
+      U_PLAIN },
+    { "contact.interface-raise", S_NUMBER, offsetof(rd_scenario, contact.perturb.raise), R_NONNEG,
+      U_PLAIN },
+    { "contact.interface-scatter", S_NUMBER, offsetof(rd_scenario, contact.perturb.scatter),
+      R_NONNEG, U_PLAIN },
+    { "model.gravity", S_NUMBER, offsetof(rd_scenario, gravity), R_NONNEG, U_ACCEL },
+    { "model.density", S_NUMBER, offsetof(rd_scenario, density), R_POS, U_PLAIN },
+    { "model.duration", S_NUMBER, offsetof(rd_scenario, duration), R_POS, U_PLAIN },
+    { "model.damping", S_DAMPING, 0, R_ANY, U_PLAIN },
+    { "model.timestep", S_TIMESTEP, 0, R_POS, U_PLAIN },
+    { "model.safety", S_NUMBER, offsetof(rd_scenario, timestep.safety), R_FRAC, U_PLAIN },
+    { "model.settle", S_SETTLE, 0, R_ANY, U_PLAIN },
+    { "motion.amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL },
+    { "motion.frequency", S_PULSE, offsetof(rd_pulse_def, frequency), R_POS, U_PLAIN },
+    { "motion.duration", S_PULSE, offsetof(rd_pulse_def, duration), R_POS, U_PLAIN },
+    { "motion.direction", S_RECORD, offsetof(rd_pulse_def, direction), R_ANY, U_DEG },
+    { "motion.cycles", S_PULSE, offsetof(rd_pulse_def, cycles), R_POS, U_PLAIN },
+    { "motion.start", S_PULSE, offsetof(rd_pulse_def, start), R_NONNEG, U_PLAIN },
+    { "motion.vertical-amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL },
+    { "motion.scale", S_RECORD, 0, R_POS, U_PLAIN },
+    { "motion.scale-pga", S_RECORD, 0, R_POS, U_ACCEL },
+    { "motion.scale-pgv", S_RECORD, 0, R_POS, U_PLAIN },
+    { "motion.baseline", S_RECORD, 0, R_ANY, U_PLAIN },
+    { "motion.file", S_RECORD, 0, R_ANY, U_PLAIN },
+    { "motion.record", S_RECORD, 0, R_ANY, U_PLAIN },
+    { "motion.seed", S_RECORD, 0, R_NONNEG, U_PLAIN },
+    { "model.tail", S_NUMBER, offsetof(rd_scenario, tail), R_NONNEG, U_PLAIN },
+    { "output.file", S_FILE, 0, R_ANY, U_PLAIN },
+    { "output.interval", S_NUMBER, offsetof(rd_scenario, output.interval), R_POS, U_PLAIN },
+    { "reference.restitution", S_NUMBER, offsetof(rd_scenario, ref_restitution), R_FRAC, U_PLAIN },
 };
 
 static const set_key body_keys[] = {
-    {"density", S_NUMBER, offsetof(rd_body_def, density), R_POS, U_PLAIN},
-    {"mass", S_NUMBER, offsetof(rd_body_def, mass), R_POS, U_PLAIN},
-    {"tilt", S_NUMBER, offsetof(rd_body_def, tilt), R_ANGLE, U_DEG},
-    {"direction", S_NUMBER, offsetof(rd_body_def, tilt_direction), R_ANY, U_DEG},
+    { "density", S_NUMBER, offsetof(rd_body_def, density), R_POS, U_PLAIN },
+    { "mass", S_NUMBER, offsetof(rd_body_def, mass), R_POS, U_PLAIN },
+    { "tilt", S_NUMBER, offsetof(rd_body_def, tilt), R_ANGLE, U_DEG },
+    { "direction", S_NUMBER, offsetof(rd_body_def, tilt_direction), R_ANY, U_DEG },
 };
 
-#define NSET_KEYS (sizeof set_keys / sizeof set_keys[0])
+#define NSET_KEYS  (sizeof set_keys / sizeof set_keys[0])
 #define NBODY_KEYS (sizeof body_keys / sizeof body_keys[0])
 
 typedef struct setter {
@@ -114,9 +120,9 @@ static int set_parse(const setter *S, const char *text, range r, unit u, double 
     if (parse_number(text, strlen(text), u == U_ACCEL, v))
         return serr(S, "expected a number, got '%s'", text);
     const char *bad = range_error(*v, r);
-    if (bad)
-        return serr(S, "value %s", bad);
-    size_t n = strcspn(S->a, "="); /* the key's last part names the keyword: contact.stiffness-normal */
+    if (bad) return serr(S, "value %s", bad);
+    size_t n =
+        strcspn(S->a, "="); /* the key's last part names the keyword: contact.stiffness-normal */
     const char *kw = S->a;
     for (size_t i = 0; i < n; i++)
         if (S->a[i] == '.') kw = S->a + i + 1;
@@ -142,13 +148,11 @@ static int set_pulse(const setter *S, const set_key *k)
                        "(set motion.frequency)");
     if (k->off == offsetof(rd_pulse_def, cycles) && p->kind != RD_PULSE_HARMONIC)
         return serr(S, "motion.cycles applies only to harmonic pulses");
-    if (set_parse(S, S->value, k->range, k->unit, &v))
-        return -1;
+    if (set_parse(S, S->value, k->range, k->unit, &v)) return -1;
     *field(p, k->off) = v;
     if (k->off == offsetof(rd_pulse_def, amplitude)) /* as written, for check's echo and advice */
         p->amplitude_in_g = S->value[0] && S->value[strlen(S->value) - 1] == 'g';
-    if (k->off == offsetof(rd_pulse_def, duration))
-        p->frequency = 0.0;
+    if (k->off == offsetof(rd_pulse_def, duration)) p->frequency = 0.0;
     p->duration = pulse_duration(p);
     return 0;
 }
@@ -164,8 +168,7 @@ static int set_spacing(const setter *S)
         return serr(S, "expected a number, auto or vertices, got '%s'", S->value);
     char why[128];
     const char *bad = spacing_error(v, why, sizeof why);
-    if (bad)
-        return serr(S, "%s %s", S->value, bad);
+    if (bad) return serr(S, "%s %s", S->value, bad);
     S->sc->contact.spacing = v;
     return 0;
 }
@@ -203,8 +206,7 @@ static int set_timestep(const setter *S)
     }
     if (parse_number(S->value, strlen(S->value), 0, &dt))
         return serr(S, "expected auto or a time step in s, got '%s'", S->value);
-    if (!(dt > 0))
-        return serr(S, "value must be > 0");
+    if (!(dt > 0)) return serr(S, "value must be > 0");
     ts->kind = RD_TIMESTEP_FIXED;
     ts->dt = dt;
     return 0;
@@ -221,10 +223,8 @@ static int set_settle(const setter *S)
 static int set_file(const setter *S)
 {
     size_t len = strlen(S->value);
-    if (len == 0)
-        return serr(S, "empty file name");
-    if (len >= RD_PATH_MAX)
-        return serr(S, "file name longer than %d characters", RD_PATH_MAX - 1);
+    if (len == 0) return serr(S, "empty file name");
+    if (len >= RD_PATH_MAX) return serr(S, "file name longer than %d characters", RD_PATH_MAX - 1);
     memcpy(S->sc->output.path, S->value, len + 1);
     return 0;
 }
@@ -233,8 +233,7 @@ static int set_file(const setter *S)
 static int set_text(const setter *S, char *dst, size_t size)
 {
     size_t len = strlen(S->value);
-    if (len == 0 || len >= size)
-        return serr(S, "expected 1 to %zu characters", size - 1);
+    if (len == 0 || len >= size) return serr(S, "expected 1 to %zu characters", size - 1);
     memcpy(dst, S->value, len + 1);
     return 0;
 }
@@ -250,12 +249,9 @@ static int set_record_source(const setter *S, const char *key)
     int n = 0;
     if (strcmp(key, "motion.record") == 0) {
         for (int c = 0; c < RD_NCOMPONENTS; c++) {
-            if (m->record[c].source != RD_SOURCE_FEMA)
-                continue;
-            if (set_text(S, m->record[c].record, sizeof m->record[c].record))
-                return -1;
-            if (rd_motion_load(m, c, &e))
-                return serr(S, "%s", e.msg);
+            if (m->record[c].source != RD_SOURCE_FEMA) continue;
+            if (set_text(S, m->record[c].record, sizeof m->record[c].record)) return -1;
+            if (rd_motion_load(m, c, &e)) return serr(S, "%s", e.msg);
             n++;
         }
         return n ? 0 : serr(S, "no ground-motion record comes from a FEMA P695 set");
@@ -263,8 +259,7 @@ static int set_record_source(const setter *S, const char *key)
     if (strcmp(key, "motion.seed") == 0) {
         if (h1->source != RD_SOURCE_STOCHASTIC)
             return serr(S, "the h1 ground motion is not 'ground-motion stochastic'");
-        if (set_parse(S, S->value, R_NONNEG, U_PLAIN, &seed))
-            return -1;
+        if (set_parse(S, S->value, R_NONNEG, U_PLAIN, &seed)) return -1;
         if (seed != floor(seed) || seed > 4294967295.0)
             return serr(S, "expected a whole number in [0, 2^32)");
         h1->stochastic.seed = (unsigned long)seed;
@@ -297,29 +292,27 @@ static int set_baseline(const setter *S, int *degree)
 /* Record settings: re-read (file, record, seed) and re-process (every key) the records. */
 static int set_record(const setter *S, const set_key *k)
 {
-    static const char *const scales[] = {"motion.scale", "motion.scale-pga", "motion.scale-pgv", NULL};
-    static const rd_scale_kind kinds[] = {RD_SCALE_FACTOR, RD_SCALE_PGA, RD_SCALE_PGV};
+    static const char *const scales[] = { "motion.scale", "motion.scale-pga", "motion.scale-pgv",
+                                          NULL };
+    static const rd_scale_kind kinds[] = { RD_SCALE_FACTOR, RD_SCALE_PGA, RD_SCALE_PGV };
     rd_motion_def *m = &S->sc->motion;
     rd_error e;
     int rc = 0;
     if (!rd_motion_has_records(m)) {
-        if (strcmp(k->key, "motion.direction") == 0)
-            return set_pulse(S, k);
-        return serr(S, "the scenario has no ground-motion record (ground-motion import or stochastic)");
+        if (strcmp(k->key, "motion.direction") == 0) return set_pulse(S, k);
+        return serr(
+            S, "the scenario has no ground-motion record (ground-motion import or stochastic)");
     }
     if (strcmp(k->key, "motion.direction") == 0) {
         double v;
-        if (set_parse(S, S->value, k->range, k->unit, &v))
-            return -1;
+        if (set_parse(S, S->value, k->range, k->unit, &v)) return -1;
         m->direction = v;
         return 0;
     }
     for (int i = 0; scales[i]; i++) {
         double v;
-        if (strcmp(k->key, scales[i]) != 0)
-            continue;
-        if (set_parse(S, S->value, k->range, k->unit, &v))
-            return -1;
+        if (strcmp(k->key, scales[i]) != 0) continue;
+        if (set_parse(S, S->value, k->range, k->unit, &v)) return -1;
         m->scale = kinds[i];
         m->scale_value = v;
     }
@@ -327,8 +320,7 @@ static int set_record(const setter *S, const set_key *k)
         rc = set_baseline(S, &m->baseline);
     else if (strncmp(k->key, "motion.scale", 12) != 0)
         rc = set_record_source(S, k->key);
-    if (rc)
-        return -1;
+    if (rc) return -1;
     return rd_motion_prepare(m, &e) ? serr(S, "%s", e.msg) : 0;
 }
 
@@ -337,8 +329,7 @@ static int set_apply(const setter *S, const set_key *k)
     double v;
     switch (k->kind) {
     case S_NUMBER:
-        if (set_parse(S, S->value, k->range, k->unit, &v))
-            return -1;
+        if (set_parse(S, S->value, k->range, k->unit, &v)) return -1;
         *field(S->sc, k->off) = v;
         return 0;
     case S_PULSE: return set_pulse(S, k);
@@ -355,7 +346,7 @@ static int set_apply(const setter *S, const set_key *k)
 /* Unknown key: lists the keys of its section, or the sections. */
 static int unknown_key(const setter *S, const char *key, size_t len)
 {
-    char list[RD_ERROR_MAX - 96] = ""; /* room for the key and the words around the list */
+    char list[RD_ERROR_MAX - 96] = "";    /* room for the key and the words around the list */
     size_t sect = strcspn(key, ".=") + 1; /* section length with its dot */
     for (size_t i = 0; i < NSET_KEYS; i++)
         if (sect <= len && strncasecmp(set_keys[i].key, key, sect) == 0)
@@ -369,30 +360,23 @@ static int unknown_key(const setter *S, const char *key, size_t len)
 static int set_body(const setter *S, const char *key, size_t len)
 {
     size_t nlen = len;
-    while (nlen > 0 && key[nlen - 1] != '.')
-        nlen--;
-    if (nlen < 2)
-        return serr(S, "expected block.<name>.<field>");
+    while (nlen > 0 && key[nlen - 1] != '.') nlen--;
+    if (nlen < 2) return serr(S, "expected block.<name>.<field>");
     int i = find_body(S->sc, key, nlen - 1);
-    if (i < 0)
-        return serr(S, "unknown block '%.*s'", (int)(nlen - 1), key);
+    if (i < 0) return serr(S, "unknown block '%.*s'", (int)(nlen - 1), key);
     rd_body_def *b = &S->sc->bodies[i];
     const char *f = key + nlen;
     size_t flen = len - nlen;
     for (size_t j = 0; j < NBODY_KEYS; j++) {
         const set_key *k = &body_keys[j];
         double v;
-        if (!same_key(k->key, f, flen))
-            continue;
+        if (!same_key(k->key, f, flen)) continue;
         if (b->fixed && k->unit == U_DEG)
             return serr(S, "block '%s' is fixed; %s applies only to free blocks", b->name, k->key);
-        if (set_parse(S, S->value, k->range, k->unit, &v))
-            return -1;
+        if (set_parse(S, S->value, k->range, k->unit, &v)) return -1;
         *field(b, k->off) = v;
-        if (k->off == offsetof(rd_body_def, density))
-            b->mass = 0.0;
-        if (k->off == offsetof(rd_body_def, mass))
-            b->density = 0.0;
+        if (k->off == offsetof(rd_body_def, density)) b->mass = 0.0;
+        if (k->off == offsetof(rd_body_def, mass)) b->density = 0.0;
         return 0;
     }
     return serr(S, "unknown key '%.*s' (expected block.%s.density, mass, tilt or direction)",
@@ -405,8 +389,7 @@ static int append_override(rd_scenario *sc, const char *a, rd_error *err)
     size_t old = sc->text ? strlen(sc->text) : 0;
     int nl = old > 0 && sc->text[old - 1] != '\n';
     char *t = realloc(sc->text, old + (size_t)nl + strlen(a) + sizeof "; --set \n");
-    if (!t)
-        return rd_error_set(err, "--set %s: out of memory", a);
+    if (!t) return rd_error_set(err, "--set %s: out of memory", a);
     sprintf(t + old, "%s; --set %s\n", nl ? "\n" : "", a);
     sc->text = t;
     return 0;
@@ -415,34 +398,27 @@ static int append_override(rd_scenario *sc, const char *a, rd_error *err)
 /* Length of a "block." or "body." prefix of key, else 0. */
 static size_t body_prefix(const char *key, size_t len)
 {
-    if (len > 6 && strncasecmp(key, "block.", 6) == 0)
-        return 6;
-    if (len > 5 && strncasecmp(key, "body.", 5) == 0)
-        return 5;
+    if (len > 6 && strncasecmp(key, "block.", 6) == 0) return 6;
+    if (len > 5 && strncasecmp(key, "body.", 5) == 0) return 5;
     return 0;
 }
 
 static int set_key_value(const setter *S, const char *key, size_t len)
 {
     size_t pre = body_prefix(key, len);
-    if (pre)
-        return set_body(S, key + pre, len - pre);
+    if (pre) return set_body(S, key + pre, len - pre);
     for (size_t i = 0; i < NSET_KEYS; i++)
-        if (same_key(set_keys[i].key, key, len))
-            return set_apply(S, &set_keys[i]);
+        if (same_key(set_keys[i].key, key, len)) return set_apply(S, &set_keys[i]);
     return unknown_key(S, key, len);
 }
 
 int rd_scenario_set(rd_scenario *sc, const char *assignment, rd_error *err)
 {
-    setter S = {sc, err, assignment, NULL};
+    setter S = { sc, err, assignment, NULL };
     const char *eq = strchr(assignment, '=');
-    if (strchr(assignment, '\n'))
-        return serr(&S, "contains a line break");
-    if (!eq || eq == assignment)
-        return serr(&S, "expected section.key=value");
+    if (strchr(assignment, '\n')) return serr(&S, "contains a line break");
+    if (!eq || eq == assignment) return serr(&S, "expected section.key=value");
     S.value = eq + 1;
-    if (set_key_value(&S, assignment, (size_t)(eq - assignment)))
-        return -1;
+    if (set_key_value(&S, assignment, (size_t)(eq - assignment))) return -1;
     return append_override(sc, assignment, err);
 }

@@ -91,16 +91,16 @@ typedef struct setting {
 typedef struct parser {
     rd_scenario *sc;
     rd_error *err;
-    const char *name;       /* file name for messages */
-    const char *p;          /* next character */
-    const char *bol;        /* first character of the current line */
-    int line;               /* current line, 1-based */
-    token tok[MAX_TOKENS];  /* the current command */
-    int n;                  /* its tokens */
-    int cur;                /* next token to take */
-    char ctx[64];           /* "noun verb", for messages */
-    int motion_line[3];     /* lines that set the records' direction, scale, baseline (0: none) */
-    setting *settings;      /* single-valued settings given so far (malloc'ed; freed by the parse) */
+    const char *name;      /* file name for messages */
+    const char *p;         /* next character */
+    const char *bol;       /* first character of the current line */
+    int line;              /* current line, 1-based */
+    token tok[MAX_TOKENS]; /* the current command */
+    int n;                 /* its tokens */
+    int cur;               /* next token to take */
+    char ctx[64];          /* "noun verb", for messages */
+    int motion_line[3];    /* lines that set the records' direction, scale, baseline (0: none) */
+    setting *settings;     /* single-valued settings given so far (malloc'ed; freed by the parse) */
     int nsettings, settings_cap;
 } parser;
 
@@ -145,7 +145,7 @@ int read_text(parser *P, const char *what, char *dst, size_t size);
 
 /* ---- command handlers: P->cur at the first token after the verb; 0 or -1 ---- */
 
-int model_title(parser *P);     /* parse_model.c */
+int model_title(parser *P); /* parse_model.c */
 int model_gravity(parser *P);
 int model_density(parser *P);
 int model_damping(parser *P);
@@ -159,10 +159,10 @@ int contact_perturbation(parser *P);
 int contact_preset(parser *P);
 int contact_model(parser *P);
 int output_hdf5(parser *P);
-int block_create(parser *P);    /* parse_block.c */
+int block_create(parser *P); /* parse_block.c */
 int block_import(parser *P);
 int block_initial(parser *P);
-int motion_pulse(parser *P);    /* parse_motion.c */
+int motion_pulse(parser *P); /* parse_motion.c */
 int motion_import(parser *P);
 int motion_stochastic(parser *P);
 int contact_is_range(const parser *P); /* parse_scene.c: `contact property ... range ...` */

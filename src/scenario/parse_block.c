@@ -15,8 +15,8 @@
 /* ---- block ---- */
 
 /* Keywords every single-body command accepts, after its shape's own. */
-static const char *const body_common[] = {"position", "seat-on", "at",   "rotation",
-                                          "density",  "mass",    "name", "fixed", "group"};
+static const char *const body_common[] = { "position", "seat-on", "at",    "rotation", "density",
+                                           "mass",     "name",    "fixed", "group" };
 #define NCOMMON 9
 
 typedef struct body_cmd {
@@ -29,8 +29,7 @@ typedef struct body_cmd {
 static int read_seat(parser *P, const token *kw, rd_body_def *b)
 {
     const token *t;
-    if (read_name(P, kw, &t, b->seat_on))
-        return -1;
+    if (read_name(P, kw, &t, b->seat_on)) return -1;
     int j = find_body(P->sc, b->seat_on, strlen(b->seat_on));
     if (j < 0)
         return perr(P, t, "unknown block '%s' (seat-on needs a block created before this line)",
@@ -44,7 +43,8 @@ static int common_body_keyword(parser *P, int k, const token *kw, body_cmd *c)
 {
     rd_body_def *b = &c->b;
     switch (k) {
-    case 0: return exclusive(P, &c->place, kw) || read_values(P, kw, 3, R_ANY, U_PLAIN, b->position);
+    case 0:
+        return exclusive(P, &c->place, kw) || read_values(P, kw, 3, R_ANY, U_PLAIN, b->position);
     case 1: return exclusive(P, &c->place, kw) || read_seat(P, kw, b);
     case 2: return read_values(P, kw, 2, R_ANY, U_PLAIN, b->position);
     case 3: return read_values(P, kw, 3, R_ANY, U_DEG, b->rotation);
@@ -52,7 +52,7 @@ static int common_body_keyword(parser *P, int k, const token *kw, body_cmd *c)
     case 5: return exclusive(P, &c->dm, kw) || read_value(P, kw, R_POS, U_PLAIN, &b->mass);
     case 6: return read_name(P, kw, &c->name, b->name);
     case 7: b->fixed = 1; return 0;
-    default: return read_name(P, kw, &(const token *){NULL}, b->group); /* joint group */
+    default: return read_name(P, kw, &(const token *){ NULL }, b->group); /* joint group */
     }
 }
 
@@ -60,14 +60,14 @@ static int common_body_keyword(parser *P, int k, const token *kw, body_cmd *c)
 static int read_vertices(parser *P, const token *kw, rd_body_def *b)
 {
     int n = 0;
-    while (P->cur + n < P->n && parse_number(P->tok[P->cur + n].s, (size_t)P->tok[P->cur + n].len, 0,
-                                             &(double){0}) == 0)
+    while (P->cur + n < P->n && parse_number(P->tok[P->cur + n].s, (size_t)P->tok[P->cur + n].len,
+                                             0, &(double){ 0 }) == 0)
         n++;
     if (n < 12 || n % 3)
-        return perr(P, kw, "'vertices' needs x y z triples of at least 4 points, got %d numbers", n);
+        return perr(P, kw, "'vertices' needs x y z triples of at least 4 points, got %d numbers",
+                    n);
     double *v = malloc((size_t)n * sizeof *v);
-    if (!v)
-        return perr(P, kw, "out of memory");
+    if (!v) return perr(P, kw, "out of memory");
     if (read_values(P, kw, n, R_ANY, U_PLAIN, v)) {
         free(v);
         return -1;
@@ -81,14 +81,12 @@ static int read_vertices(parser *P, const token *kw, rd_body_def *b)
 /* `units mm|cm|m` of a mesh: metres per file unit (a scan exported in millimetres is common). */
 static int read_mesh_units(parser *P, const token *kw, rd_body_def *b)
 {
-    static const char *const names[] = {"mm", "cm", "m", NULL};
-    static const double metres[] = {1e-3, 1e-2, 1.0};
+    static const char *const names[] = { "mm", "cm", "m", NULL };
+    static const double metres[] = { 1e-3, 1e-2, 1.0 };
     const token *t = take(P);
     int k = t ? find_word(t, names) : -1;
-    if (!t)
-        return perr(P, kw, "expected mm, cm or m after 'units'");
-    if (k < 0)
-        return perr(P, t, "unknown mesh units '%.*s' (expected mm, cm or m)", t->len, t->s);
+    if (!t) return perr(P, kw, "expected mm, cm or m after 'units'");
+    if (k < 0) return perr(P, t, "unknown mesh units '%.*s' (expected mm, cm or m)", t->len, t->s);
     b->mesh_unit = metres[k];
     return 0;
 }
@@ -96,13 +94,11 @@ static int read_mesh_units(parser *P, const token *kw, rd_body_def *b)
 /* `up y|z` of a mesh: the file's vertical axis (many scanning and graphics tools write y up). */
 static int read_mesh_up(parser *P, const token *kw, rd_body_def *b)
 {
-    static const char *const names[] = {"y", "z", NULL};
+    static const char *const names[] = { "y", "z", NULL };
     const token *t = take(P);
     int k = t ? find_word(t, names) : -1;
-    if (!t)
-        return perr(P, kw, "expected y or z after 'up'");
-    if (k < 0)
-        return perr(P, t, "unknown up axis '%.*s' (expected y or z)", t->len, t->s);
+    if (!t) return perr(P, kw, "expected y or z after 'up'");
+    if (k < 0) return perr(P, t, "unknown up axis '%.*s' (expected y or z)", t->len, t->s);
     b->mesh_up = k == 0 ? 1 : 2;
     return 0;
 }
@@ -116,14 +112,16 @@ static int shape_keyword(parser *P, int k, const token *kw, rd_body_def *b)
     case RD_SHAPE_BRICK: return read_values(P, kw, 3, R_POS, U_PLAIN, b->size);
     case RD_SHAPE_PRISM:
         if (k == 0) {
-            if (read_value(P, kw, R_POS, U_PLAIN, &sides))
-                return -1;
+            if (read_value(P, kw, R_POS, U_PLAIN, &sides)) return -1;
             if (sides < 3 || sides > 128 || sides != (int)sides)
                 return perr(P, kw, "'sides' must be a whole number from 3 to 128");
             b->sides = (int)sides;
             return 0;
         }
-        return read_value(P, kw, R_POS, U_PLAIN, k == 1 ? &b->radius : k == 2 ? &b->radius_top : &b->size[2]);
+        return read_value(P, kw, R_POS, U_PLAIN,
+                          k == 1   ? &b->radius
+                          : k == 2 ? &b->radius_top
+                                   : &b->size[2]);
     case RD_SHAPE_HULL: return read_vertices(P, kw, b);
     case RD_SHAPE_MESH: return k == 0 ? read_mesh_units(P, kw, b) : read_mesh_up(P, kw, b);
     }
@@ -140,10 +138,10 @@ typedef struct shape_syntax {
 } shape_syntax;
 
 static const shape_syntax shapes[] = {
-    {"brick", RD_SHAPE_BRICK, {"size"}, 1, 1u},
-    {"prism", RD_SHAPE_PRISM, {"sides", "radius", "radius-top", "height"}, 4, 1u | 2u | 8u},
-    {"polyhedron", RD_SHAPE_HULL, {"vertices"}, 1, 1u},
-    {"mesh", RD_SHAPE_MESH, {"units", "up"}, 2, 0u},
+    { "brick", RD_SHAPE_BRICK, { "size" }, 1, 1u },
+    { "prism", RD_SHAPE_PRISM, { "sides", "radius", "radius-top", "height" }, 4, 1u | 2u | 8u },
+    { "polyhedron", RD_SHAPE_HULL, { "vertices" }, 1, 1u },
+    { "mesh", RD_SHAPE_MESH, { "units", "up" }, 2, 0u },
 };
 
 static int body_command(parser *P, const shape_syntax *sh, body_cmd *c)
@@ -158,8 +156,7 @@ static int body_command(parser *P, const shape_syntax *sh, body_cmd *c)
     while ((k = next_keyword(P, names, &c->seen, &kw)) >= 0)
         if (k < n ? shape_keyword(P, k, kw, &c->b) : common_body_keyword(P, k - n, kw, c))
             return -1;
-    if (k == KW_ERR)
-        return -1;
+    if (k == KW_ERR) return -1;
     for (int i = 0; i < sh->nown; i++)
         if ((sh->need >> i & 1u) && !(c->seen >> i & 1u))
             return perr(P, &P->tok[2], "missing '%s' for '%s %s'", names[i], P->ctx, sh->word);
@@ -167,8 +164,7 @@ static int body_command(parser *P, const shape_syntax *sh, body_cmd *c)
         return perr(P, &P->tok[2], "missing 'position' or 'seat-on' for '%s %s'", P->ctx, sh->word);
     if ((c->seen >> (n + 2) & 1u) && !c->b.seat_on[0])
         return perr(P, &P->tok[2], "'at' applies only with 'seat-on'");
-    if (c->b.shape == RD_SHAPE_PRISM && !(c->seen & 4u))
-        c->b.radius_top = c->b.radius;
+    if (c->b.shape == RD_SHAPE_PRISM && !(c->seen & 4u)) c->b.radius_top = c->b.radius;
     return 0;
 }
 
@@ -181,8 +177,7 @@ static int add_body(parser *P, const rd_body_def *b, const token *name, const to
         return perr(P, verb_token(P), "out of memory for block %d", sc->nbodies + 1);
     rd_body_def d = *b;
     d.line = P->tok[0].line;
-    if (!d.name[0])
-        snprintf(d.name, sizeof d.name, "block%d", sc->nbodies + 1);
+    if (!d.name[0]) snprintf(d.name, sizeof d.name, "block%d", sc->nbodies + 1);
     int dup = find_body(sc, d.name, strlen(d.name));
     if (dup >= 0 && name)
         return perr(P, name, "duplicate block name '%s' (first created on line %d)", d.name,
@@ -196,16 +191,14 @@ static int add_body(parser *P, const rd_body_def *b, const token *name, const to
 
 static int single_body(parser *P, const shape_syntax *sh, const token *at)
 {
-    body_cmd c = {.b = {.shape = sh->kind, .mesh_up = 2}};
+    body_cmd c = { .b = { .shape = sh->kind, .mesh_up = 2 } };
     if (sh->kind == RD_SHAPE_MESH) {
         char file[RD_PATH_MAX];
-        if (read_text(P, "a mesh file", file, sizeof file))
-            return -1;
+        if (read_text(P, "a mesh file", file, sizeof file)) return -1;
         if (resolve_path(P->name, file, c.b.mesh, sizeof c.b.mesh))
             return perr(P, at, "mesh path too long");
     }
-    if (body_command(P, sh, &c) == 0 && add_body(P, &c.b, c.name, at) == 0)
-        return 0;
+    if (body_command(P, sh, &c) == 0 && add_body(P, &c.b, c.name, at) == 0) return 0;
     free(c.b.verts);
     return -1;
 }
@@ -228,8 +221,7 @@ static int add_member(parser *P, const body_cmd *c, const char *prefix, const ch
 static int read_count(parser *P, const token *kw, int lo, int hi, int *n)
 {
     double v;
-    if (read_value(P, kw, R_POS, U_PLAIN, &v))
-        return -1;
+    if (read_value(P, kw, R_POS, U_PLAIN, &v)) return -1;
     if (v < lo || v > hi || v != (int)v)
         return perr(P, kw, "'%.*s' must be a whole number from %d to %d", kw->len, kw->s, lo, hi);
     *n = (int)v;
@@ -244,8 +236,7 @@ static int add_chain(parser *P, const body_cmd *c, const char *prefix, rd_body_d
     char below[RD_NAME_MAX];
     snprintf(below, sizeof below, "%s", c->b.seat_on);
     for (int k = 0; k < n; k++) {
-        if (add_member(P, c, prefix, suffix[k], below, &members[k], at))
-            return -1;
+        if (add_member(P, c, prefix, suffix[k], below, &members[k], at)) return -1;
         memcpy(below, P->sc->bodies[P->sc->nbodies - 1].name, sizeof below);
     }
     return 0;
@@ -257,12 +248,12 @@ static int add_chain(parser *P, const body_cmd *c, const char *prefix, rd_body_d
  * to T D/2 up the shaft), an echinus capital (frustum widening by 30 %), an abacus (brick). */
 static int block_column(parser *P, const token *at)
 {
-    static const char *const names[] = {"drums", "diameter", "height", "sides", "taper", "plinth",
-                                        "capital", "abacus", "seat-on", "at", "name", "density", "group",
-                                        NULL};
-    body_cmd c = {.b = {.shape = RD_SHAPE_PRISM}};
+    static const char *const names[] = { "drums",  "diameter", "height", "sides",   "taper",
+                                         "plinth", "capital",  "abacus", "seat-on", "at",
+                                         "name",   "density",  "group",  NULL };
+    body_cmd c = { .b = { .shape = RD_SHAPE_PRISM } };
     int ndrums = 0, sides = 20;
-    double d = 0, h = 0, taper = 1, plinth[2] = {0}, cap = 0, abacus[2] = {0};
+    double d = 0, h = 0, taper = 1, plinth[2] = { 0 }, cap = 0, abacus[2] = { 0 };
     const token *kw;
     int k;
     while ((k = next_keyword(P, names, &c.seen, &kw)) >= 0) {
@@ -276,23 +267,25 @@ static int block_column(parser *P, const token *at)
         case 5: rc = read_values(P, kw, 2, R_POS, U_PLAIN, plinth); break;
         case 6: rc = read_value(P, kw, R_POS, U_PLAIN, &cap); break;
         case 7: rc = read_values(P, kw, 2, R_POS, U_PLAIN, abacus); break;
-        case 8: rc = read_seat(P, kw, &c.b); c.place = kw; break;
+        case 8:
+            rc = read_seat(P, kw, &c.b);
+            c.place = kw;
+            break;
         case 9: rc = read_values(P, kw, 2, R_ANY, U_PLAIN, c.b.position); break;
         case 10: rc = read_name(P, kw, &c.name, c.b.name); break;
         case 11: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
-        default: rc = read_name(P, kw, &(const token *){NULL}, c.b.group); break;
+        default: rc = read_name(P, kw, &(const token *){ NULL }, c.b.group); break;
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
-    if (k == KW_ERR)
-        return -1;
+    if (k == KW_ERR) return -1;
     for (int i = 0; i < 3; i++)
         if (!(c.seen >> i & 1u))
             return perr(P, &P->tok[2], "missing '%s' for 'block create column'", names[i]);
-    if (!c.place)
-        return perr(P, &P->tok[2], "missing 'seat-on' for 'block create column'");
-    rd_column_spec spec = {ndrums, sides, d, h, taper, {plinth[0], plinth[1]}, cap, {abacus[0], abacus[1]}};
+    if (!c.place) return perr(P, &P->tok[2], "missing 'seat-on' for 'block create column'");
+    rd_column_spec spec = {
+        ndrums, sides, d, h, taper, { plinth[0], plinth[1] }, cap, { abacus[0], abacus[1] }
+    };
     rd_body_def members[RD_COLUMN_MAX_DRUMS + 3];
     char suffix[RD_COLUMN_MAX_DRUMS + 3][16];
     int n = rd_build_column(&spec, members, suffix);
@@ -303,8 +296,9 @@ static int block_column(parser *P, const token *at)
  * A two-block assembly (a statue on its pedestal): P-lower on NAME, P-upper on P-lower. */
 static int block_stack(parser *P, const token *at)
 {
-    static const char *const names[] = {"lower", "upper", "seat-on", "at", "name", "density", "group", NULL};
-    body_cmd c = {.b = {.shape = RD_SHAPE_BRICK}};
+    static const char *const names[] = { "lower", "upper",   "seat-on", "at",
+                                         "name",  "density", "group",   NULL };
+    body_cmd c = { .b = { .shape = RD_SHAPE_BRICK } };
     double lo[3], up[3];
     const token *kw;
     int k;
@@ -313,21 +307,22 @@ static int block_stack(parser *P, const token *at)
         switch (k) {
         case 0: rc = read_values(P, kw, 3, R_POS, U_PLAIN, lo); break;
         case 1: rc = read_values(P, kw, 3, R_POS, U_PLAIN, up); break;
-        case 2: rc = read_seat(P, kw, &c.b); c.place = kw; break;
+        case 2:
+            rc = read_seat(P, kw, &c.b);
+            c.place = kw;
+            break;
         case 3: rc = read_values(P, kw, 2, R_ANY, U_PLAIN, c.b.position); break;
         case 4: rc = read_name(P, kw, &c.name, c.b.name); break;
         case 5: rc = read_value(P, kw, R_POS, U_PLAIN, &c.b.density); break;
-        default: rc = read_name(P, kw, &(const token *){NULL}, c.b.group); break;
+        default: rc = read_name(P, kw, &(const token *){ NULL }, c.b.group); break;
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
-    if (k == KW_ERR)
-        return -1;
+    if (k == KW_ERR) return -1;
     if ((c.seen & 3u) != 3u)
-        return perr(P, &P->tok[2], "missing '%s' for 'block create stack'", c.seen & 1u ? "upper" : "lower");
-    if (!c.place)
-        return perr(P, &P->tok[2], "missing 'seat-on' for 'block create stack'");
+        return perr(P, &P->tok[2], "missing '%s' for 'block create stack'",
+                    c.seen & 1u ? "upper" : "lower");
+    if (!c.place) return perr(P, &P->tok[2], "missing 'seat-on' for 'block create stack'");
     rd_body_def members[2];
     char suffix[2][16];
     rd_build_stack(lo, up, members, suffix);
@@ -339,14 +334,12 @@ int block_create(parser *P)
     const token *shape = take(P);
     static const char *expected = "brick, prism, polyhedron, column or stack";
     if (!shape)
-        return perr(P, verb_token(P), "expected a shape after 'block create' (expected %s)", expected);
-    if (tok_is(shape, "column"))
-        return block_column(P, shape);
-    if (tok_is(shape, "stack"))
-        return block_stack(P, shape);
+        return perr(P, verb_token(P), "expected a shape after 'block create' (expected %s)",
+                    expected);
+    if (tok_is(shape, "column")) return block_column(P, shape);
+    if (tok_is(shape, "stack")) return block_stack(P, shape);
     for (size_t i = 0; i + 1 < sizeof shapes / sizeof shapes[0]; i++)
-        if (tok_is(shape, shapes[i].word))
-            return single_body(P, &shapes[i], shape);
+        if (tok_is(shape, shapes[i].word)) return single_body(P, &shapes[i], shape);
     return perr(P, shape, "unknown shape '%.*s' for 'block create' (expected %s)", shape->len,
                 shape->s, expected);
 }
@@ -362,11 +355,12 @@ int block_import(parser *P)
 
 int block_initial(parser *P)
 {
-    static const char *const names[] = {"name", "tilt", "direction", "velocity",
-                                        "angular-velocity", NULL};
-    const token *kw, *name = NULL, *given[sizeof names / sizeof names[0]] = {NULL};
+    static const char *const names[] = {
+        "name", "tilt", "direction", "velocity", "angular-velocity", NULL
+    };
+    const token *kw, *name = NULL, *given[sizeof names / sizeof names[0]] = { NULL };
     char id[RD_NAME_MAX];
-    double tilt = 0, dir = 0, v[3] = {0}, w[3] = {0};
+    double tilt = 0, dir = 0, v[3] = { 0 }, w[3] = { 0 };
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
@@ -379,13 +373,10 @@ int block_initial(parser *P)
         case 3: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, v); break;
         default: rc = read_values(P, kw, 3, R_ANY, U_PLAIN, w); break;
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
-    if (k == KW_ERR)
-        return -1;
-    if (!name)
-        return perr(P, verb_token(P), "missing 'name' for 'block initial'");
+    if (k == KW_ERR) return -1;
+    if (!name) return perr(P, verb_token(P), "missing 'name' for 'block initial'");
     int i = find_body(P->sc, id, strlen(id));
     if (i < 0)
         return perr(P, name, "unknown block '%s' (no 'block create ... name %s' before this line)",
@@ -395,19 +386,14 @@ int block_initial(parser *P)
         return perr(P, name, "block '%s' is fixed; 'block initial' applies only to free blocks",
                     id);
     for (k = 1; names[k]; k++) { /* each value once per block */
-        char what[sizeof ((setting *)0)->what];
+        char what[sizeof((setting *)0)->what];
         snprintf(what, sizeof what, "'%s' of 'block initial name %s'", names[k], id);
-        if (given[k] && setting_once(P, given[k], what))
-            return -1;
+        if (given[k] && setting_once(P, given[k], what)) return -1;
     }
-    if (seen & 2u)
-        b->tilt = tilt;
-    if (seen & 4u)
-        b->tilt_direction = dir;
-    if (seen & 8u)
-        memcpy(b->velocity, v, sizeof v);
-    if (seen & 16u)
-        memcpy(b->angular_velocity, w, sizeof w);
+    if (seen & 2u) b->tilt = tilt;
+    if (seen & 4u) b->tilt_direction = dir;
+    if (seen & 8u) memcpy(b->velocity, v, sizeof v);
+    if (seen & 16u) memcpy(b->angular_velocity, w, sizeof w);
     b->initial_line = verb_token(P)->line;
     return 0;
 }

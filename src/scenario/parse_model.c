@@ -13,8 +13,7 @@
 
 int model_title(parser *P)
 {
-    if (command_once(P) || read_text(P, "a title", P->sc->title, sizeof P->sc->title))
-        return -1;
+    if (command_once(P) || read_text(P, "a title", P->sc->title, sizeof P->sc->title)) return -1;
     return expect_end(P);
 }
 
@@ -27,58 +26,48 @@ int model_gravity(parser *P)
 
 int model_density(parser *P)
 {
-    if (command_once(P) || read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->density))
-        return -1;
+    if (command_once(P) || read_value(P, verb_token(P), R_POS, U_PLAIN, &P->sc->density)) return -1;
     return expect_end(P);
 }
 
 int model_damping(parser *P)
 {
-    static const char *const names[] = {"none", "viscous", "local", NULL};
-    static const range ranges[] = {R_ANY, R_DAMP, R_OPEN01};
+    static const char *const names[] = { "none", "viscous", "local", NULL };
+    static const range ranges[] = { R_ANY, R_DAMP, R_OPEN01 };
     rd_damping_def *d = &P->sc->damping;
     const token *kw, *prev = NULL;
     unsigned seen = 0;
     int k;
-    if (command_once(P))
-        return -1;
+    if (command_once(P)) return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
-        if (exclusive(P, &prev, kw))
-            return -1;
+        if (exclusive(P, &prev, kw)) return -1;
         d->kind = (rd_damping_kind)k;
         d->value = 0;
-        if (k > 0 && read_value(P, kw, ranges[k], U_PLAIN, &d->value))
-            return -1;
+        if (k > 0 && read_value(P, kw, ranges[k], U_PLAIN, &d->value)) return -1;
     }
     return keywords_end(P, k, prev != NULL, names);
 }
 
 int model_timestep(parser *P)
 {
-    static const char *const names[] = {"auto", "fixed", "safety", NULL};
+    static const char *const names[] = { "auto", "fixed", "safety", NULL };
     rd_timestep_def *ts = &P->sc->timestep;
     const token *kw, *prev = NULL, *safety = NULL;
     unsigned seen = 0;
     int k;
-    if (command_once(P))
-        return -1;
+    if (command_once(P)) return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         if (k == 2) {
             safety = kw;
-            if (read_value(P, kw, R_FRAC, U_PLAIN, &ts->safety))
-                return -1;
+            if (read_value(P, kw, R_FRAC, U_PLAIN, &ts->safety)) return -1;
             continue;
         }
-        if (exclusive(P, &prev, kw))
-            return -1;
+        if (exclusive(P, &prev, kw)) return -1;
         ts->kind = k == 0 ? RD_TIMESTEP_AUTO : RD_TIMESTEP_FIXED;
-        if (k == 1 && read_value(P, kw, R_POS, U_PLAIN, &ts->dt))
-            return -1;
+        if (k == 1 && read_value(P, kw, R_POS, U_PLAIN, &ts->dt)) return -1;
     }
-    if (k == KW_ERR)
-        return -1;
-    if (!prev)
-        return perr(P, verb_token(P), "expected auto or fixed after 'model timestep'");
+    if (k == KW_ERR) return -1;
+    if (!prev) return perr(P, verb_token(P), "expected auto or fixed after 'model timestep'");
     if (safety && ts->kind == RD_TIMESTEP_FIXED)
         return perr(P, safety, "'safety' applies only to 'model timestep auto'");
     return 0;
@@ -86,7 +75,7 @@ int model_timestep(parser *P)
 
 int model_settle(parser *P)
 {
-    static const char *const names[] = {"on", "off", "ratio", "time-limit", NULL};
+    static const char *const names[] = { "on", "off", "ratio", "time-limit", NULL };
     rd_settle_def *st = &P->sc->settle;
     const token *kw, *prev = NULL;
     unsigned seen = 0;
@@ -100,15 +89,14 @@ int model_settle(parser *P)
             rc = keyword_once(P, kw, names[k]) ||
                  read_value(P, kw, R_POS, U_PLAIN, k == 2 ? &st->ratio : &st->max_time);
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
     return keywords_end(P, k, seen != 0, names);
 }
 
 int model_solve(parser *P)
 {
-    static const char *const names[] = {"time", "tail", "force", NULL};
+    static const char *const names[] = { "time", "tail", "force", NULL };
     const token *kw;
     unsigned seen = 0;
     int k;
@@ -123,20 +111,21 @@ int model_solve(parser *P)
 
 int model_overturn(parser *P)
 {
-    static const char *const names[] = {"tilt-ratio", "angle", "height", "off-pedestal", "stop", NULL};
-    static const range ranges[] = {R_POS, R_TURN, R_OPEN01, R_NONNEG};
-    static const unit units[] = {U_PLAIN, U_DEG, U_PLAIN, U_PLAIN};
+    static const char *const names[] = { "tilt-ratio",   "angle", "height",
+                                         "off-pedestal", "stop",  NULL };
+    static const range ranges[] = { R_POS, R_TURN, R_OPEN01, R_NONNEG };
+    static const unit units[] = { U_PLAIN, U_DEG, U_PLAIN, U_PLAIN };
     rd_overturn_def *ov = &P->sc->overturn;
     const token *kw, *prev = NULL;
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         if (k == 4) {
-            if (keyword_once(P, kw, names[k]) || read_switch(P, kw, &ov->stop))
-                return -1;
+            if (keyword_once(P, kw, names[k]) || read_switch(P, kw, &ov->stop)) return -1;
             continue;
         }
-        if (exclusive(P, &prev, kw) || keyword_once(P, kw, "tilt-ratio|angle|height|off-pedestal") ||
+        if (exclusive(P, &prev, kw) ||
+            keyword_once(P, kw, "tilt-ratio|angle|height|off-pedestal") ||
             read_value(P, kw, ranges[k], units[k], &ov->value))
             return -1;
         ov->kind = (rd_overturn_kind)k;
@@ -147,12 +136,13 @@ int model_overturn(parser *P)
 /* `model reference restitution e`: the rigid reference solvers' impact restitution. */
 int model_reference(parser *P)
 {
-    static const char *const names[] = {"restitution", NULL};
+    static const char *const names[] = { "restitution", NULL };
     const token *kw;
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (keyword_once(P, kw, names[k]) || read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
+        if (keyword_once(P, kw, names[k]) ||
+            read_value(P, kw, R_FRAC, U_PLAIN, &P->sc->ref_restitution))
             return -1;
     return keywords_end(P, k, seen != 0, names);
 }
@@ -162,30 +152,30 @@ int model_reference(parser *P)
 static int read_spacing(parser *P, const token *kw, double *v)
 {
     const token *t = take(P);
-    if (!t)
-        return perr(P, kw, "expected a number, auto or vertices after 'spacing'");
+    if (!t) return perr(P, kw, "expected a number, auto or vertices after 'spacing'");
     if (tok_is(t, "auto") || tok_is(t, "vertices")) {
         *v = tok_is(t, "auto") ? -1.0 : 0.0;
         return 0;
     }
     if (parse_number(t->s, (size_t)t->len, 0, v))
-        return perr(P, t, "expected a number, auto or vertices after 'spacing', got '%.*s'",
-                    t->len, t->s);
+        return perr(P, t, "expected a number, auto or vertices after 'spacing', got '%.*s'", t->len,
+                    t->s);
     char why[128];
     const char *bad = spacing_error(*v, why, sizeof why);
     return bad ? perr(P, t, "'spacing' %.*s %s", t->len, t->s, bad) : 0;
 }
 
 /* The keywords of the default `contact property` (no range). */
-static const char *const contact_names[] = {"stiffness-normal", "stiffness-shear", "friction",
-                                            "cohesion",         "tension",         "spacing",
-                                            "restitution",      "friction-coefficient", NULL};
-#define CK_MU 7 /* friction-coefficient: the friction as mu = tan(phi), the same setting as friction */
+static const char *const contact_names[] = {
+    "stiffness-normal", "stiffness-shear",      "friction", "cohesion", "tension", "spacing",
+    "restitution",      "friction-coefficient", NULL
+};
+#define CK_MU                                                                                      \
+    7 /* friction-coefficient: the friction as mu = tan(phi), the same setting as friction */
 
 int contact_property(parser *P)
 {
-    if (contact_is_range(P))
-        return contact_joint(P); /* a per-range joint (parse_scene.c) */
+    if (contact_is_range(P)) return contact_joint(P); /* a per-range joint (parse_scene.c) */
     const char *const *names = contact_names;
     rd_contact_def *c = &P->sc->contact;
     const token *kw;
@@ -193,8 +183,7 @@ int contact_property(parser *P)
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         int rc = keyword_once(P, kw, names[k == CK_MU ? 2 : k]); /* friction once, either way */
-        if (rc)
-            return -1;
+        if (rc) return -1;
         switch (k) {
         case 0: rc = read_value(P, kw, R_POS, U_PLAIN, &c->kn); break;
         case 1: rc = read_value(P, kw, R_POS, U_PLAIN, &c->ks); break;
@@ -205,8 +194,7 @@ int contact_property(parser *P)
         case CK_MU: rc = read_value(P, kw, R_NONNEG, U_MU, &c->friction); break;
         default: rc = read_value(P, kw, R_UNIT, U_PLAIN, &c->restitution); break;
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
     return k == KW_ERR ? -1 : 0;
 }
@@ -217,8 +205,7 @@ static int replaced_by_preset(const parser *P, char *what, size_t size)
     for (int i = 0; contact_names[i]; i++) {
         snprintf(what, size, "'%s' of 'contact property'", contact_names[i]);
         int line = setting_line(P, what);
-        if (line)
-            return line;
+        if (line) return line;
     }
     snprintf(what, size, "'model damping'");
     return setting_line(P, what);
@@ -229,13 +216,15 @@ static int replaced_by_preset(const parser *P, char *what, size_t size)
  * it is refused (the preset would replace it). */
 int contact_preset(parser *P)
 {
-    static const char *const names[] = {"rigid", "3dec", "default", NULL};
-    char what[sizeof ((setting *)0)->what];
+    static const char *const names[] = { "rigid", "3dec", "default", NULL };
+    char what[sizeof((setting *)0)->what];
     int k = one_keyword(P, names), line;
     if (k < 0 || command_once(P)) return -1;
     if ((line = replaced_by_preset(P, what, sizeof what)))
-        return perr(P, &P->tok[0], "'contact preset' would replace %s given on line %d; give the "
-                                   "preset first", what, line);
+        return perr(P, &P->tok[0],
+                    "'contact preset' would replace %s given on line %d; give the "
+                    "preset first",
+                    what, line);
     rd_contact_preset(&P->sc->contact, &P->sc->damping, names[k]);
     return 0;
 }
@@ -247,22 +236,24 @@ int contact_preset(parser *P)
  * keep-corners on|off (src/perturb.c) */
 int contact_perturbation(parser *P)
 {
-    static const char *const names[] = {"seed", "remove", "raise", "raise-fraction", "scatter",
-                                        "keep-corners", NULL};
+    static const char *const names[] = { "seed",    "remove",       "raise", "raise-fraction",
+                                         "scatter", "keep-corners", NULL };
     rd_perturb_def *d = &P->sc->contact.perturb;
     const token *kw;
     unsigned seen = 0;
     int k;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
-        double *v[] = {&d->seed, &d->remove, &d->raise, &d->raise_fraction, &d->scatter};
-        if (keyword_once(P, kw, names[k]))
+        double *v[] = { &d->seed, &d->remove, &d->raise, &d->raise_fraction, &d->scatter };
+        if (keyword_once(P, kw, names[k])) return -1;
+        if (k == 5 ? read_switch(P, kw, &d->keep_corners)
+                   : read_value(P, kw, R_NONNEG, U_PLAIN, v[k]))
             return -1;
-        if (k == 5 ? read_switch(P, kw, &d->keep_corners) : read_value(P, kw, R_NONNEG, U_PLAIN, v[k]))
-            return -1;
-        if ((k == 0 && (d->seed != floor(d->seed) || d->seed > RD_SEED_MAX)) || (k == 1 && d->remove >= 1) ||
-            (k == 3 && d->raise_fraction > 1))
+        if ((k == 0 && (d->seed != floor(d->seed) || d->seed > RD_SEED_MAX)) ||
+            (k == 1 && d->remove >= 1) || (k == 3 && d->raise_fraction > 1))
             return perr(P, kw, "'%s' must be %s", names[k],
-                        k == 0 ? "a whole number in [0, 2^32)" : k == 1 ? "below 1" : "at most 1");
+                        k == 0   ? "a whole number in [0, 2^32)"
+                        : k == 1 ? "below 1"
+                                 : "at most 1");
     }
     return k == KW_ERR ? -1 : 0;
 }
@@ -271,16 +262,14 @@ int contact_perturbation(parser *P)
 
 int output_hdf5(parser *P)
 {
-    static const char *const names[] = {"interval", NULL};
+    static const char *const names[] = { "interval", NULL };
     rd_output_def *o = &P->sc->output;
     const token *kw;
     unsigned seen = 0;
     int k;
-    if (command_once(P) || read_text(P, "a file name", o->path, sizeof o->path))
-        return -1;
+    if (command_once(P) || read_text(P, "a file name", o->path, sizeof o->path)) return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (read_value(P, kw, R_POS, U_PLAIN, &o->interval))
-            return -1;
+        if (read_value(P, kw, R_POS, U_PLAIN, &o->interval)) return -1;
     return k == KW_ERR ? -1 : 0;
 }
 
@@ -288,7 +277,7 @@ int output_hdf5(parser *P)
  * faces (engine/surface.c). */
 int contact_model(parser *P)
 {
-    static const char *const names[] = {"vertex", "surface", NULL};
+    static const char *const names[] = { "vertex", "surface", NULL };
     int k = one_keyword(P, names);
     if (k < 0 || command_once(P)) return -1;
     P->sc->contact.model = k == 1 ? RD_CONTACT_SURFACE : RD_CONTACT_VERTEX;

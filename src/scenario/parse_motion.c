@@ -14,23 +14,30 @@
 
 /* ---- ground motion ---- */
 
-enum { PK_AMPLITUDE, PK_FREQUENCY, PK_DURATION, PK_CYCLES, PK_START, PK_DIRECTION, PK_VERTICAL,
-       PK_COUNT };
+enum {
+    PK_AMPLITUDE,
+    PK_FREQUENCY,
+    PK_DURATION,
+    PK_CYCLES,
+    PK_START,
+    PK_DIRECTION,
+    PK_VERTICAL,
+    PK_COUNT
+};
 
 /* Which keywords each pulse shape takes; tk holds the keyword tokens given (NULL if absent). */
 static int pulse_check(parser *P, const token *shape, rd_pulse_kind kind, const token *const *tk)
 {
     int periodic = is_periodic(kind);
-    if (!tk[PK_AMPLITUDE])
-        return perr(P, shape, "missing 'amplitude' for 'ground-motion pulse'");
+    if (!tk[PK_AMPLITUDE]) return perr(P, shape, "missing 'amplitude' for 'ground-motion pulse'");
     if (tk[PK_CYCLES] && kind != RD_PULSE_HARMONIC)
         return perr(P, tk[PK_CYCLES], "'cycles' applies only to harmonic pulses");
     if (tk[PK_DIRECTION] && tk[PK_VERTICAL])
         return perr(P, tk[PK_DIRECTION], "'direction' does not apply to a vertical pulse");
     if (periodic && tk[PK_DURATION])
         return perr(P, tk[PK_DURATION],
-                    "'duration' does not apply to a %.*s pulse (set 'frequency')",
-                    shape->len, shape->s);
+                    "'duration' does not apply to a %.*s pulse (set 'frequency')", shape->len,
+                    shape->s);
     if (periodic && !tk[PK_FREQUENCY])
         return perr(P, shape, "a %.*s pulse needs 'frequency'", shape->len, shape->s);
     if (!periodic && tk[PK_FREQUENCY] && tk[PK_DURATION])
@@ -43,8 +50,8 @@ static int pulse_check(parser *P, const token *shape, rd_pulse_kind kind, const 
 
 static int pulse_keywords(parser *P, rd_pulse_def *p, const token **tk)
 {
-    static const char *const names[] = {"amplitude", "frequency", "duration", "cycles",
-                                        "start",     "direction", "vertical", NULL};
+    static const char *const names[] = { "amplitude", "frequency", "duration", "cycles",
+                                         "start",     "direction", "vertical", NULL };
     const token *kw;
     unsigned seen = 0;
     int k;
@@ -63,18 +70,17 @@ static int pulse_keywords(parser *P, rd_pulse_def *p, const token **tk)
         case PK_DIRECTION: rc = read_value(P, kw, R_ANY, U_DEG, &p->direction); break;
         default: break;
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
     return k == KW_ERR ? -1 : 0;
 }
 
 int motion_pulse(parser *P)
 {
-    static const char *const shapes[] = {"one-sine", "one-cosine", "rectangular", "triangle",
-                                         "harmonic", NULL};
+    static const char *const shapes[] = { "one-sine", "one-cosine", "rectangular",
+                                          "triangle", "harmonic",   NULL };
     char list[128];
-    const token *shape = take(P), *tk[PK_COUNT] = {0};
+    const token *shape = take(P), *tk[PK_COUNT] = { 0 };
     join(list, sizeof list, shapes);
     if (!shape)
         return perr(P, verb_token(P), "expected a shape after 'ground-motion pulse' (expected %s)",
@@ -83,16 +89,17 @@ int motion_pulse(parser *P)
     if (s < 0)
         return perr(P, shape, "unknown pulse shape '%.*s' (expected %s)", shape->len, shape->s,
                     list);
-    rd_pulse_def p = {.kind = (rd_pulse_kind)(s + 1), .cycles = 1, .line = P->tok[0].line};
-    if (pulse_keywords(P, &p, tk) || pulse_check(P, shape, p.kind, tk))
-        return -1;
+    rd_pulse_def p = { .kind = (rd_pulse_kind)(s + 1), .cycles = 1, .line = P->tok[0].line };
+    if (pulse_keywords(P, &p, tk) || pulse_check(P, shape, p.kind, tk)) return -1;
     const char *which = tk[PK_VERTICAL] ? "vertical" : "horizontal";
     rd_pulse_def *slot = tk[PK_VERTICAL] ? &P->sc->motion.vertical : &P->sc->motion.horizontal;
     if (slot->kind != RD_PULSE_NONE)
         return perr(P, &P->tok[0], "a %s pulse is already defined (line %d)", which, slot->line);
-    for (int c = tk[PK_VERTICAL] ? RD_VERTICAL : RD_H1; c <= (tk[PK_VERTICAL] ? RD_VERTICAL : RD_H2); c++)
+    for (int c = tk[PK_VERTICAL] ? RD_VERTICAL : RD_H1;
+         c <= (tk[PK_VERTICAL] ? RD_VERTICAL : RD_H2); c++)
         if (P->sc->motion.record[c].source != RD_SOURCE_NONE)
-            return perr(P, &P->tok[0], "a %s record is already defined (line %d); use a pulse or a record",
+            return perr(P, &P->tok[0],
+                        "a %s record is already defined (line %d); use a pulse or a record",
                         rd_motion_component_name(c), P->sc->motion.record[c].line);
     p.duration = pulse_duration(&p);
     *slot = p;
@@ -119,8 +126,7 @@ static int read_baseline(parser *P, const token *kw, int *degree)
 {
     const token *t = take(P);
     double v;
-    if (!t)
-        return perr(P, kw, "expected a degree (2 to 8) or off after 'baseline'");
+    if (!t) return perr(P, kw, "expected a degree (2 to 8) or off after 'baseline'");
     if (tok_is(t, "off")) {
         *degree = 0;
         return 0;
@@ -138,15 +144,13 @@ static int common_keyword(parser *P, int k, const token *kw, motion_cmd *mc)
     mc->tk[k] = kw;
     switch (k) {
     case MK_COMPONENT:
-        if (!(mc->comp = take(P)))
-            return perr(P, kw, "expected a component after 'component'");
+        if (!(mc->comp = take(P))) return perr(P, kw, "expected a component after 'component'");
         return 0;
     case MK_DIRECTION: return read_value(P, kw, R_ANY, U_DEG, &mc->direction);
     case MK_BASELINE: return read_baseline(P, kw, &mc->baseline);
     default: break;
     }
-    if (exclusive(P, &mc->scale, kw))
-        return -1;
+    if (exclusive(P, &mc->scale, kw)) return -1;
     return read_value(P, kw, R_POS, k == MK_SCALE_PGA ? U_ACCEL : U_PLAIN, &mc->scale_value);
 }
 
@@ -154,7 +158,8 @@ static int common_keyword(parser *P, int k, const token *kw, motion_cmd *mc)
 static int once(parser *P, const token *kw, int *line)
 {
     if (*line)
-        return perr(P, kw, "'%.*s' already given on line %d (it applies to the whole ground motion)",
+        return perr(P, kw,
+                    "'%.*s' already given on line %d (it applies to the whole ground motion)",
                     kw->len, kw->s, *line);
     *line = kw->line;
     return 0;
@@ -162,22 +167,18 @@ static int once(parser *P, const token *kw, int *line)
 
 static int apply_common(parser *P, const motion_cmd *mc)
 {
-    static const rd_scale_kind kinds[] = {RD_SCALE_FACTOR, RD_SCALE_PGA, RD_SCALE_PGV};
+    static const rd_scale_kind kinds[] = { RD_SCALE_FACTOR, RD_SCALE_PGA, RD_SCALE_PGV };
     rd_motion_def *m = &P->sc->motion;
-    if (mc->tk[MK_DIRECTION] && once(P, mc->tk[MK_DIRECTION], &P->motion_line[0]))
-        return -1;
-    if (mc->scale && once(P, mc->scale, &P->motion_line[1]))
-        return -1;
-    if (mc->tk[MK_BASELINE] && once(P, mc->tk[MK_BASELINE], &P->motion_line[2]))
-        return -1;
-    if (mc->tk[MK_DIRECTION])
-        m->direction = mc->direction;
+    if (mc->tk[MK_DIRECTION] && once(P, mc->tk[MK_DIRECTION], &P->motion_line[0])) return -1;
+    if (mc->scale && once(P, mc->scale, &P->motion_line[1])) return -1;
+    if (mc->tk[MK_BASELINE] && once(P, mc->tk[MK_BASELINE], &P->motion_line[2])) return -1;
+    if (mc->tk[MK_DIRECTION]) m->direction = mc->direction;
     if (mc->scale) {
-        m->scale = kinds[find_word(mc->scale, (const char *const[]){"scale", "scale-pga", "scale-pgv", NULL})];
+        m->scale = kinds[find_word(
+            mc->scale, (const char *const[]){ "scale", "scale-pga", "scale-pgv", NULL })];
         m->scale_value = mc->scale_value;
     }
-    if (mc->tk[MK_BASELINE])
-        m->baseline = mc->baseline;
+    if (mc->tk[MK_BASELINE]) m->baseline = mc->baseline;
     return 0;
 }
 
@@ -185,15 +186,14 @@ static int apply_common(parser *P, const motion_cmd *mc)
  * horizontal components a (into h1) and b (into h2), and a vertical one v. */
 static int component_slot(parser *P, const motion_cmd *mc, int fema, int *slot)
 {
-    static const char *const plain[] = {"h1", "h2", "vertical", NULL};
-    static const char *const ab[] = {"a", "b", "v", NULL};
+    static const char *const plain[] = { "h1", "h2", "vertical", NULL };
+    static const char *const ab[] = { "a", "b", "v", NULL };
     *slot = RD_H1;
-    if (!mc->comp)
-        return 0;
+    if (!mc->comp) return 0;
     *slot = find_word(mc->comp, fema ? ab : plain);
     if (*slot < 0)
-        return perr(P, mc->comp, "unknown component '%.*s' (expected %s)", mc->comp->len, mc->comp->s,
-                    fema ? "a, b or v for a FEMA P695 set" : "h1, h2 or vertical");
+        return perr(P, mc->comp, "unknown component '%.*s' (expected %s)", mc->comp->len,
+                    mc->comp->s, fema ? "a, b or v for a FEMA P695 set" : "h1, h2 or vertical");
     return 0;
 }
 
@@ -205,9 +205,11 @@ static int define_component(parser *P, int slot, const rd_component_def *d, cons
     if (m->record[slot].source != RD_SOURCE_NONE)
         return perr(P, &P->tok[0], "a %s record is already defined (line %d)%s",
                     rd_motion_component_name(slot), m->record[slot].line,
-                    slot == RD_H1 ? "; add 'component h2' for the second horizontal component" : "");
+                    slot == RD_H1 ? "; add 'component h2' for the second horizontal component"
+                                  : "");
     if ((slot == RD_VERTICAL ? m->vertical.kind : m->horizontal.kind) != RD_PULSE_NONE)
-        return perr(P, &P->tok[0], "a %s pulse is already defined (line %d); use a pulse or a record",
+        return perr(P, &P->tok[0],
+                    "a %s pulse is already defined (line %d); use a pulse or a record",
                     slot == RD_VERTICAL ? "vertical" : "horizontal",
                     slot == RD_VERTICAL ? m->vertical.line : m->horizontal.line);
     m->record[slot] = *d;
@@ -221,9 +223,9 @@ static int define_component(parser *P, int slot, const rd_component_def *d, cons
 /* Format from the `format` token, else from the file's extension. */
 static int record_format(parser *P, const token *fmt, const char *file, rd_record_source *src)
 {
-    static const char *const names[] = {"at2", "csv", "text", "fema", NULL};
-    static const rd_record_source kinds[] = {RD_SOURCE_AT2, RD_SOURCE_TEXT, RD_SOURCE_TEXT,
-                                             RD_SOURCE_FEMA};
+    static const char *const names[] = { "at2", "csv", "text", "fema", NULL };
+    static const rd_record_source kinds[] = { RD_SOURCE_AT2, RD_SOURCE_TEXT, RD_SOURCE_TEXT,
+                                              RD_SOURCE_FEMA };
     int k = fmt ? find_word(fmt, names) : -1;
     if (fmt && k < 0)
         return perr(P, fmt, "unknown format '%.*s' (expected at2, csv, text or fema)", fmt->len,
@@ -234,14 +236,12 @@ static int record_format(parser *P, const token *fmt, const char *file, rd_recor
 
 static int read_units(parser *P, const token *kw, double *unit)
 {
-    static const char *const names[] = {"g", "m/s2", "cm/s2", NULL};
-    static const double factor[] = {RD_G_STANDARD, 1.0, 0.01}; /* m/s^2 per unit */
+    static const char *const names[] = { "g", "m/s2", "cm/s2", NULL };
+    static const double factor[] = { RD_G_STANDARD, 1.0, 0.01 }; /* m/s^2 per unit */
     const token *t = take(P);
     int k = t ? find_word(t, names) : -1;
-    if (!t)
-        return perr(P, kw, "expected g, m/s2 or cm/s2 after 'units'");
-    if (k < 0)
-        return perr(P, t, "unknown units '%.*s' (expected g, m/s2 or cm/s2)", t->len, t->s);
+    if (!t) return perr(P, kw, "expected g, m/s2 or cm/s2 after 'units'");
+    if (k < 0) return perr(P, t, "unknown units '%.*s' (expected g, m/s2 or cm/s2)", t->len, t->s);
     *unit = factor[k];
     return 0;
 }
@@ -256,7 +256,9 @@ static int import_check(parser *P, rd_record_source src, const token *const *tk)
     if (src != RD_SOURCE_FEMA && tk[IK_RECORD])
         return perr(P, tk[IK_RECORD], "'record' applies only to FEMA P695 sets (format fema)");
     if (src != RD_SOURCE_TEXT && tk[IK_UNITS])
-        return perr(P, tk[IK_UNITS], "'units' applies only to text/CSV records (an AT2 header states its units; FEMA sets are in g)");
+        return perr(
+            P, tk[IK_UNITS],
+            "'units' applies only to text/CSV records (an AT2 header states its units; FEMA sets are in g)");
     if (src != RD_SOURCE_TEXT && tk[IK_DT])
         return perr(P, tk[IK_DT], "'dt' applies only to text/CSV records");
     return 0;
@@ -264,24 +266,29 @@ static int import_check(parser *P, rd_record_source src, const token *const *tk)
 
 int motion_import(parser *P)
 {
-    static const char *const names[] = {"component", "direction", "scale", "scale-pga", "scale-pgv",
-                                        "baseline", "format", "units", "dt", "record", NULL};
-    rd_component_def d = {.unit = RD_G_STANDARD};
-    motion_cmd mc = {0};
-    const token *kw, *tk[IK_RECORD + 1] = {0}, *file = P->cur < P->n ? &P->tok[P->cur] : NULL, *id = NULL;
+    static const char *const names[] = { "component", "direction", "scale",  "scale-pga",
+                                         "scale-pgv", "baseline",  "format", "units",
+                                         "dt",        "record",    NULL };
+    rd_component_def d = { .unit = RD_G_STANDARD };
+    motion_cmd mc = { 0 };
+    const token *kw, *tk[IK_RECORD + 1] = { 0 }, *file = P->cur < P->n ? &P->tok[P->cur] : NULL,
+                                     *id = NULL;
     char name[RD_PATH_MAX];
     unsigned seen = 0;
     int k, slot;
-    if (read_text(P, "a file name", name, sizeof name))
-        return -1;
+    if (read_text(P, "a file name", name, sizeof name)) return -1;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         int rc = 0;
         tk[k] = kw;
         switch (k) {
         case IK_FORMAT:
-            rc = (tk[k] = take(P)) ? 0 : perr(P, kw, "expected at2, csv, text or fema after 'format'");
+            rc = (tk[k] = take(P)) ? 0
+                                   : perr(P, kw, "expected at2, csv, text or fema after 'format'");
             break;
-        case IK_UNITS: rc = read_units(P, kw, &d.unit); d.unit_given = 1; break;
+        case IK_UNITS:
+            rc = read_units(P, kw, &d.unit);
+            d.unit_given = 1;
+            break;
         case IK_DT: rc = read_value(P, kw, R_POS, U_PLAIN, &d.dt); break;
         case IK_RECORD:
             id = P->cur < P->n ? &P->tok[P->cur] : NULL;
@@ -289,27 +296,34 @@ int motion_import(parser *P)
             break;
         default: rc = common_keyword(P, k, kw, &mc); break;
         }
-        if (rc)
-            return -1;
+        if (rc) return -1;
     }
     if (k == KW_ERR || record_format(P, tk[IK_FORMAT], name, &d.source) ||
         import_check(P, d.source, tk) || component_slot(P, &mc, d.source == RD_SOURCE_FEMA, &slot))
         return -1;
     if (resolve_path(P->name, name, d.path, sizeof d.path))
         return perr(P, file, "file name too long with the scenario's directory");
-    if (rd_path_special(d.path))
-        return perr(P, file, "%s: %s", d.path, RD_PATH_INPUT_NOT_FILE);
+    if (rd_path_special(d.path)) return perr(P, file, "%s: %s", d.path, RD_PATH_INPUT_NOT_FILE);
     FILE *f = fopen(d.path, "rb");
-    if (!f)
-        return perr(P, file, "%s: cannot open: %s", d.path, strerror(errno));
+    if (!f) return perr(P, file, "%s: cannot open: %s", d.path, strerror(errno));
     fclose(f);
     d.fema_b = d.source == RD_SOURCE_FEMA ? slot : 0; /* a -> h1, b -> h2, v -> vertical */
     /* the file opens: a FEMA reader error is about the record id, any other about the file */
     return apply_common(P, &mc) || define_component(P, slot, &d, id ? id : file);
 }
 
-enum { SK_SEED = MK_COMMON, SK_PGA, SK_DURATION, SK_DT, SK_FREQUENCY, SK_DAMPING, SK_HIGHPASS,
-       SK_HIGHPASS_DAMPING, SK_PEAK_TIME, SK_END_LEVEL };
+enum {
+    SK_SEED = MK_COMMON,
+    SK_PGA,
+    SK_DURATION,
+    SK_DT,
+    SK_FREQUENCY,
+    SK_DAMPING,
+    SK_HIGHPASS,
+    SK_HIGHPASS_DAMPING,
+    SK_PEAK_TIME,
+    SK_END_LEVEL
+};
 
 /* Reads one Kanai-Tajimi parameter (keyword k) into def. */
 static int stochastic_value(parser *P, int k, const token *kw, rd_stochastic_def *def)
@@ -317,8 +331,7 @@ static int stochastic_value(parser *P, int k, const token *kw, rd_stochastic_def
     double seed;
     switch (k) {
     case SK_SEED:
-        if (read_value(P, kw, R_NONNEG, U_PLAIN, &seed))
-            return -1;
+        if (read_value(P, kw, R_NONNEG, U_PLAIN, &seed)) return -1;
         if (seed != floor(seed) || seed > 4294967295.0)
             return perr(P, &P->tok[P->cur - 1], "'seed' must be a whole number in [0, 2^32)");
         def->seed = (unsigned long)seed;
@@ -338,27 +351,28 @@ static int stochastic_value(parser *P, int k, const token *kw, rd_stochastic_def
 int motion_stochastic(parser *P)
 {
     static const char *const names[] = {
-        "component", "direction", "scale",    "scale-pga", "scale-pgv",        "baseline",
-        "seed",      "pga",       "duration", "dt",        "frequency",        "damping",
-        "highpass",  "highpass-damping",      "peak-time", "end-level",        NULL};
-    rd_component_def d = {.source = RD_SOURCE_STOCHASTIC};
-    motion_cmd mc = {0};
+        "component", "direction", "scale", "scale-pga", "scale-pgv", "baseline", "seed",
+        "pga",       "duration",  "dt",    "frequency", "damping",   "highpass", "highpass-damping",
+        "peak-time", "end-level", NULL
+    };
+    rd_component_def d = { .source = RD_SOURCE_STOCHASTIC };
+    motion_cmd mc = { 0 };
     const token *kw;
     unsigned seen = 0;
     int k, slot;
     rd_stochastic_defaults(&d.stochastic);
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (k < MK_COMMON ? common_keyword(P, k, kw, &mc) : stochastic_value(P, k, kw, &d.stochastic))
+        if (k < MK_COMMON ? common_keyword(P, k, kw, &mc)
+                          : stochastic_value(P, k, kw, &d.stochastic))
             return -1;
-    if (k == KW_ERR)
-        return -1;
-    static const int needed[] = {SK_SEED, SK_PGA, SK_DURATION};
+    if (k == KW_ERR) return -1;
+    static const int needed[] = { SK_SEED, SK_PGA, SK_DURATION };
     for (int i = 0; i < 3; i++)
         if (!(seen & (1u << needed[i])))
-            return perr(P, verb_token(P), "missing '%s' for 'ground-motion stochastic'", names[needed[i]]);
+            return perr(P, verb_token(P), "missing '%s' for 'ground-motion stochastic'",
+                        names[needed[i]]);
     if (d.stochastic.dt >= d.stochastic.duration)
         return perr(P, verb_token(P), "'dt' must be shorter than 'duration'");
-    if (component_slot(P, &mc, 0, &slot))
-        return -1;
+    if (component_slot(P, &mc, 0, &slot)) return -1;
     return apply_common(P, &mc) || define_component(P, slot, &d, verb_token(P));
 }

@@ -26,32 +26,32 @@ static const struct command {
     const char *noun, *verb;
     command_fn fn;
 } commands[] = {
-    {"model", "title", model_title},
-    {"model", "gravity", model_gravity},
-    {"model", "density", model_density},
-    {"model", "damping", model_damping},
-    {"model", "timestep", model_timestep},
-    {"model", "settle", model_settle},
-    {"model", "solve", model_solve},
-    {"model", "overturn", model_overturn},
-    {"model", "reference", model_reference},
-    {"model", "save", model_save},
-    {"model", "restore", model_restore},
-    {"block", "create", block_create},
-    {"block", "import", block_import},
-    {"block", "initial", block_initial},
-    {"contact", "property", contact_property},
-    {"contact", "interface-perturbation", contact_perturbation},
-    {"contact", "preset", contact_preset},
-    {"contact", "model", contact_model},
-    {"ground-motion", "pulse", motion_pulse},
-    {"ground-motion", "import", motion_import},
-    {"ground-motion", "stochastic", motion_stochastic},
-    {"history", "interval", history_interval},
-    {"history", "body", history_body},
-    {"history", "joint", history_joint},
-    {"history", "energy", history_energy},
-    {"output", "hdf5", output_hdf5},
+    { "model", "title", model_title },
+    { "model", "gravity", model_gravity },
+    { "model", "density", model_density },
+    { "model", "damping", model_damping },
+    { "model", "timestep", model_timestep },
+    { "model", "settle", model_settle },
+    { "model", "solve", model_solve },
+    { "model", "overturn", model_overturn },
+    { "model", "reference", model_reference },
+    { "model", "save", model_save },
+    { "model", "restore", model_restore },
+    { "block", "create", block_create },
+    { "block", "import", block_import },
+    { "block", "initial", block_initial },
+    { "contact", "property", contact_property },
+    { "contact", "interface-perturbation", contact_perturbation },
+    { "contact", "preset", contact_preset },
+    { "contact", "model", contact_model },
+    { "ground-motion", "pulse", motion_pulse },
+    { "ground-motion", "import", motion_import },
+    { "ground-motion", "stochastic", motion_stochastic },
+    { "history", "interval", history_interval },
+    { "history", "body", history_body },
+    { "history", "joint", history_joint },
+    { "history", "energy", history_energy },
+    { "output", "hdf5", output_hdf5 },
 };
 
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
@@ -63,8 +63,7 @@ static void command_list(char *buf, size_t size, const token *noun)
     for (size_t i = 0; i < NCOMMANDS; i++) {
         if (!noun && (i == 0 || strcmp(commands[i].noun, commands[i - 1].noun) != 0))
             append(buf, size, commands[i].noun);
-        if (noun && tok_is(noun, commands[i].noun))
-            append(buf, size, commands[i].verb);
+        if (noun && tok_is(noun, commands[i].noun)) append(buf, size, commands[i].verb);
     }
 }
 
@@ -74,8 +73,7 @@ static int run_command(parser *P)
     char list[256];
     int known = 0;
     for (size_t i = 0; i < NCOMMANDS; i++) {
-        if (!tok_is(noun, commands[i].noun))
-            continue;
+        if (!tok_is(noun, commands[i].noun)) continue;
         known = 1;
         if (verb && tok_is(verb, commands[i].verb)) {
             snprintf(P->ctx, sizeof P->ctx, "%s %s", commands[i].noun, commands[i].verb);
@@ -97,7 +95,7 @@ static int run_command(parser *P)
 int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
 {
     rd_contact_def keep = *c;
-    *c = (rd_contact_def){.perturb = keep.perturb, .model = keep.model};
+    *c = (rd_contact_def){ .perturb = keep.perturb, .model = keep.model };
     if (!strcmp(name, "rigid")) {
         /* rigid rocking theory (Housner, Kounadis): corner subcontacts, perfectly plastic point
            impacts, and a shear spring stiff enough (KS = 10 KN) to give the impacting edge
@@ -105,11 +103,19 @@ int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
            angular momentum about the new pivot; friction high enough not to slide. KN 1e11:
            the amplitude after a free-rocking impact is 2.3 % above Housner's at 1e10 and
            0.7 % at 1e11 (0.5 x 1.0 m block), converging as the contact stiffens */
-        c->kn = 1e11; c->ks = 1e12; c->friction = 80.0 * RD_DEG; c->spacing = 0; c->restitution = 0;
+        c->kn = 1e11;
+        c->ks = 1e12;
+        c->friction = 80.0 * RD_DEG;
+        c->spacing = 0;
+        c->restitution = 0;
     } else if (!strcmp(name, "3dec")) {
         /* the 3DEC practice of seed 002: KN 10 GPa/m, KS 1 GPa/m, 40 deg, fewest-triangle
            (corner) subcontacts, elastic joint, no damping */
-        c->kn = 1e10; c->ks = 1e9; c->friction = 40.0 * RD_DEG; c->spacing = 0; c->restitution = 1;
+        c->kn = 1e10;
+        c->ks = 1e9;
+        c->friction = 40.0 * RD_DEG;
+        c->spacing = 0;
+        c->restitution = 1;
     } else if (!strcmp(name, "default")) {
         /* docs/GUIDE.md, `contact preset`: seed 002's KN and friction on corner subcontacts with
            plastic point impacts and KS = 10 KN (the rigid preset's layout and ratio), so the
@@ -117,12 +123,16 @@ int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
            0.99 Housner's r on the 0.5 x 1.0 m block (docs/CONTACT.md section 4; adopted range
            0.95-1.00 r_H, docs/REFERENCES.md), no hop, 0.012 mm slide. A point bed (spacing
            auto) rolls the pivot and loses too little (r = 0.86 = 1.22 r_H) */
-        c->kn = 1e10; c->ks = 1e11; c->friction = 40.0 * RD_DEG; c->spacing = 0; c->restitution = 0;
+        c->kn = 1e10;
+        c->ks = 1e11;
+        c->friction = 40.0 * RD_DEG;
+        c->spacing = 0;
+        c->restitution = 0;
     } else {
         *c = keep;
         return -1;
     }
-    *d = (rd_damping_def){RD_DAMPING_NONE, 0.0};
+    *d = (rd_damping_def){ RD_DAMPING_NONE, 0.0 };
     return 0;
 }
 
@@ -136,9 +146,9 @@ void rd_scenario_defaults(rd_scenario *sc)
     sc->motion.vertical.cycles = 1.0;
     sc->motion.baseline = 4;
     sc->motion.factor = 1.0;
-    sc->timestep = (rd_timestep_def){RD_TIMESTEP_AUTO, 0.2, 0.0};
-    sc->settle = (rd_settle_def){1, 1e-6, 5.0};
-    sc->overturn = (rd_overturn_def){RD_OVERTURN_TILT_RATIO, 1.5, 1};
+    sc->timestep = (rd_timestep_def){ RD_TIMESTEP_AUTO, 0.2, 0.0 };
+    sc->settle = (rd_settle_def){ 1, 1e-6, 5.0 };
+    sc->overturn = (rd_overturn_def){ RD_OVERTURN_TILT_RATIO, 1.5, 1 };
     sc->ref_restitution = -1.0;
     snprintf(sc->output.path, sizeof sc->output.path, "%s", "rockdem.h5");
     sc->output.interval = 0.005;
@@ -149,8 +159,7 @@ void rd_scenario_defaults(rd_scenario *sc)
 static int prepare_records(rd_scenario *sc, const char *name, rd_error *err)
 {
     rd_error e;
-    if (!rd_motion_has_records(&sc->motion) || rd_motion_prepare(&sc->motion, &e) == 0)
-        return 0;
+    if (!rd_motion_has_records(&sc->motion) || rd_motion_prepare(&sc->motion, &e) == 0) return 0;
     return rd_error_set(err, "%s: %s", name, e.msg);
 }
 
@@ -161,18 +170,16 @@ int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_er
     rd_scenario_defaults(sc);
     snprintf(sc->file, sizeof sc->file, "%s", name);
     sc->text = malloc(len + 1);
-    if (!sc->text)
-        return rd_error_set(err, "%s: out of memory", name);
+    if (!sc->text) return rd_error_set(err, "%s: out of memory", name);
     memcpy(sc->text, text, len + 1);
-    parser P = {.sc = sc, .err = err, .name = name, .p = sc->text, .bol = sc->text, .line = 1};
+    parser P = { .sc = sc, .err = err, .name = name, .p = sc->text, .bol = sc->text, .line = 1 };
     while ((rc = lex_command(&P)) > 0)
         if (run_command(&P)) {
             rc = -1;
             break;
         }
     free(P.settings);
-    if (rc >= 0 && prepare_records(sc, name, err))
-        rc = -1;
+    if (rc >= 0 && prepare_records(sc, name, err)) rc = -1;
     if (rc < 0) {
         rd_scenario_free(sc);
         return -1;
@@ -199,16 +206,14 @@ static char *slurp(FILE *f, size_t *len)
         }
         if (n + 1 == cap) {
             char *grown = realloc(buf, cap * 2);
-            if (!grown)
-                free(buf);
+            if (!grown) free(buf);
             buf = grown;
             cap *= 2;
             continue;
         }
         n += fread(buf + n, 1, cap - n - 1, f);
     }
-    if (buf)
-        buf[n] = '\0';
+    if (buf) buf[n] = '\0';
     *len = n;
     return buf;
 }
@@ -216,8 +221,7 @@ static char *slurp(FILE *f, size_t *len)
 static int read_file(const char *path, char **out, size_t *len, rd_error *err)
 {
     FILE *f = fopen(path, "rb");
-    if (!f)
-        return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    if (!f) return rd_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     errno = 0;
     *len = 0;
     *out = slurp(f, len);
@@ -229,13 +233,14 @@ static int read_file(const char *path, char **out, size_t *len, rd_error *err)
         return rd_error_set(err, "%s: cannot read: %s", path, strerror(e));
     }
     if (!*out && *len == RD_SCENARIO_MAX_BYTES)
-        return rd_error_set(err, "%s: more than %zu MiB: not a scenario text", path, RD_SCENARIO_MAX_BYTES >> 20);
-    if (!*out)
-        return rd_error_set(err, "%s: out of memory", path);
+        return rd_error_set(err, "%s: more than %zu MiB: not a scenario text", path,
+                            RD_SCENARIO_MAX_BYTES >> 20);
+    if (!*out) return rd_error_set(err, "%s: out of memory", path);
     return 0;
 }
 
-int rd_scenario_parse_n(rd_scenario *sc, const char *name, const char *text, size_t len, rd_error *err)
+int rd_scenario_parse_n(rd_scenario *sc, const char *name, const char *text, size_t len,
+                        rd_error *err)
 {
     const char *nul = memchr(text, '\0', len);
     if (nul) {
@@ -257,8 +262,7 @@ int rd_scenario_load(rd_scenario *sc, const char *path, rd_error *err)
     char *text = NULL;
     size_t len = 0;
     rd_scenario_defaults(sc);
-    if (read_file(path, &text, &len, err))
-        return -1;
+    if (read_file(path, &text, &len, err)) return -1;
     if (strlen(text) != len) {
         free(text);
         return rd_error_set(err, "%s: contains a NUL byte (not a text file?)", path);

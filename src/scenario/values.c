@@ -16,20 +16,17 @@
 int parse_number(const char *s, size_t len, int accel, double *v)
 {
     char buf[64], *end;
-    if (len == 0 || len >= sizeof buf || isspace((unsigned char)s[0]))
-        return -1;
+    if (len == 0 || len >= sizeof buf || isspace((unsigned char)s[0])) return -1;
     memcpy(buf, s, len);
     buf[len] = '\0';
     if (strpbrk(buf, RD_NOT_DECIMAL)) return -1; /* strtod also reads hexadecimal: 0x10 is not 10 */
     double x = strtod(buf, &end);
-    if (end == buf)
-        return -1;
+    if (end == buf) return -1;
     if (accel && end[0] == 'g' && end[1] == '\0') {
         x *= RD_G_STANDARD;
         end++;
     }
-    if (*end != '\0' || !isfinite(x))
-        return -1;
+    if (*end != '\0' || !isfinite(x)) return -1;
     *v = x;
     return 0;
 }
@@ -45,52 +42,53 @@ typedef struct keyword_limit {
 } keyword_limit;
 
 static const keyword_limit keyword_limits[] = {
-    {"stiffness-normal", 1e4, 1e15, "Pa/m"}, /* below: cm-scale sinking of a 1 m block; above: dt < 1e-9 s */
-    {"stiffness-shear", 1e4, 1e15, "Pa/m"},
-    {"friction-coefficient", 0, 100, ""},    /* mu = tan(phi): 100 is phi = 89.4 deg */
-    {"cohesion", 0, 1e10, "Pa"},             /* stronger than any rock (granite: ~1e7 Pa) */
-    {"tension", 0, 1e10, "Pa"},
-    {"density", 1, 1e5, "kg/m^3"},           /* osmium: 22600 */
-    {"mass", 1e-6, 1e12, "kg"},
-    {"gravity", 0, 1e3, "m/s^2"},
-    {"time", 1e-6, 1e5, "s"},                /* model solve: a day of shaking at most */
-    {"tail", 1e-6, 1e5, "s"},
-    {"time-limit", 1e-6, 1e5, "s"},
-    {"duration", 1e-6, 1e5, "s"},
-    {"start", 0, 1e4, "s"},
-    {"interval", 1e-7, 1e3, "s"},
-    {"fixed", 1e-12, 1, "s"},                /* model timestep fixed DT */
-    {"dt", 1e-6, 1, "s"},                    /* record sample steps */
-    {"frequency", 1e-4, 1e3, "Hz"},
-    {"cycles", 1e-3, 1e4, ""},
-    {"amplitude", -1e6, 1e6, "m/s^2"},       /* earthquakes stay below 10 g; shocks (and the health
+    { "stiffness-normal", 1e4, 1e15,
+      "Pa/m" }, /* below: cm-scale sinking of a 1 m block; above: dt < 1e-9 s */
+    { "stiffness-shear", 1e4, 1e15, "Pa/m" },
+    { "friction-coefficient", 0, 100, "" }, /* mu = tan(phi): 100 is phi = 89.4 deg */
+    { "cohesion", 0, 1e10, "Pa" },          /* stronger than any rock (granite: ~1e7 Pa) */
+    { "tension", 0, 1e10, "Pa" },
+    { "density", 1, 1e5, "kg/m^3" }, /* osmium: 22600 */
+    { "mass", 1e-6, 1e12, "kg" },
+    { "gravity", 0, 1e3, "m/s^2" },
+    { "time", 1e-6, 1e5, "s" }, /* model solve: a day of shaking at most */
+    { "tail", 1e-6, 1e5, "s" },
+    { "time-limit", 1e-6, 1e5, "s" },
+    { "duration", 1e-6, 1e5, "s" },
+    { "start", 0, 1e4, "s" },
+    { "interval", 1e-7, 1e3, "s" },
+    { "fixed", 1e-12, 1, "s" }, /* model timestep fixed DT */
+    { "dt", 1e-6, 1, "s" },     /* record sample steps */
+    { "frequency", 1e-4, 1e3, "Hz" },
+    { "cycles", 1e-3, 1e4, "" },
+    { "amplitude", -1e6, 1e6, "m/s^2" }, /* earthquakes stay below 10 g; shocks (and the health
                                                 check's test, 2e5 m/s^2) need more */
-    {"pga", 0, 1e3, "m/s^2"},
-    {"scale-pga", 0, 1e3, "m/s^2"},
-    {"scale-pgv", 0, 1e2, "m/s"},
-    {"scale", 0, 1e6, ""},
-    {"size", 1e-6, 1e4, "m"},
-    {"diameter", 1e-6, 1e4, "m"},
-    {"radius", 1e-6, 1e4, "m"},
-    {"radius-top", 1e-6, 1e4, "m"},
-    {"height", 0, 1e4, "m"},
-    {"plinth", 1e-6, 1e4, "m"},
-    {"abacus", 1e-6, 1e4, "m"},
-    {"cap", 1e-6, 1e4, "m"},
-    {"lower", 1e-6, 1e4, "m"},
-    {"upper", 1e-6, 1e4, "m"},
-    {"position", -1e7, 1e7, "m"},            /* map coordinates */
-    {"at", -1e7, 1e7, "m"},
-    {"spacing", 1e-6, 1e4, "m"},             /* 0 is refused (spacing_error), not taken as vertices */
-    {"raise", 0, 1e3, "m"},
-    {"scatter", 0, 1e3, "m"},
-    {"velocity", -1e3, 1e3, "m/s"},
-    {"angular-velocity", -1e4, 1e4, "rad/s"},
-    {"direction", -3600, 3600, "deg"},
-    {"rotation", -3600, 3600, "deg"},
-    {"sides", 3, 1e4, ""},
-    {"drums", 1, 1e3, ""},
-    {"seed", 0, 4294967295.0, ""},           /* generators take 32-bit seeds */
+    { "pga", 0, 1e3, "m/s^2" },
+    { "scale-pga", 0, 1e3, "m/s^2" },
+    { "scale-pgv", 0, 1e2, "m/s" },
+    { "scale", 0, 1e6, "" },
+    { "size", 1e-6, 1e4, "m" },
+    { "diameter", 1e-6, 1e4, "m" },
+    { "radius", 1e-6, 1e4, "m" },
+    { "radius-top", 1e-6, 1e4, "m" },
+    { "height", 0, 1e4, "m" },
+    { "plinth", 1e-6, 1e4, "m" },
+    { "abacus", 1e-6, 1e4, "m" },
+    { "cap", 1e-6, 1e4, "m" },
+    { "lower", 1e-6, 1e4, "m" },
+    { "upper", 1e-6, 1e4, "m" },
+    { "position", -1e7, 1e7, "m" }, /* map coordinates */
+    { "at", -1e7, 1e7, "m" },
+    { "spacing", 1e-6, 1e4, "m" }, /* 0 is refused (spacing_error), not taken as vertices */
+    { "raise", 0, 1e3, "m" },
+    { "scatter", 0, 1e3, "m" },
+    { "velocity", -1e3, 1e3, "m/s" },
+    { "angular-velocity", -1e4, 1e4, "rad/s" },
+    { "direction", -3600, 3600, "deg" },
+    { "rotation", -3600, 3600, "deg" },
+    { "sides", 3, 1e4, "" },
+    { "drums", 1, 1e3, "" },
+    { "seed", 0, 4294967295.0, "" }, /* generators take 32-bit seeds */
 };
 
 #define KEYWORD_DEFAULT_MAX 1e9 /* |v| of a keyword without its own row */
@@ -110,12 +108,13 @@ const char *limit_error(const char *kw, size_t len, double v, char *buf, size_t 
     const keyword_limit *l = find_limit(kw, len);
     if (l) {
         if (v >= l->lo && v <= l->hi) return NULL;
-        snprintf(buf, size, "is outside its valid range [%g, %g]%s%s (docs/LIMITS.md)", l->lo, l->hi,
-                 l->unit[0] ? " " : "", l->unit);
+        snprintf(buf, size, "is outside its valid range [%g, %g]%s%s (docs/LIMITS.md)", l->lo,
+                 l->hi, l->unit[0] ? " " : "", l->unit);
         return buf;
     }
     if (fabs(v) <= KEYWORD_DEFAULT_MAX) return NULL;
-    snprintf(buf, size, "is outside the range of any scenario number, |v| <= %g (docs/LIMITS.md)", KEYWORD_DEFAULT_MAX);
+    snprintf(buf, size, "is outside the range of any scenario number, |v| <= %g (docs/LIMITS.md)",
+             KEYWORD_DEFAULT_MAX);
     return buf;
 }
 
@@ -133,7 +132,8 @@ int rd_scenario_limit(const char *keyword, double *lo, double *hi)
 const char *spacing_error(double v, char *buf, size_t size)
 {
     if (v == 0) {
-        snprintf(buf, size, "is no edge length: give one in m, or 'vertices' for the faces' corners");
+        snprintf(buf, size,
+                 "is no edge length: give one in m, or 'vertices' for the faces' corners");
         return buf;
     }
     return limit_error("spacing", strlen("spacing"), v, buf, size);
@@ -171,21 +171,17 @@ int is_periodic(rd_pulse_kind k)
  * 1/frequency or the given duration for rectangular and triangle. */
 double pulse_duration(const rd_pulse_def *p)
 {
-    if (p->kind == RD_PULSE_HARMONIC)
-        return p->cycles / p->frequency;
-    if (is_periodic(p->kind) || p->frequency > 0)
-        return 1.0 / p->frequency;
+    if (p->kind == RD_PULSE_HARMONIC) return p->cycles / p->frequency;
+    if (is_periodic(p->kind) || p->frequency > 0) return 1.0 / p->frequency;
     return p->duration;
 }
 
 /* Block names double as override keys (block.<name>.density): letters, digits, '_' and '-'. */
 int valid_name(const char *s, size_t len)
 {
-    if (len == 0 || len >= RD_NAME_MAX)
-        return 0;
+    if (len == 0 || len >= RD_NAME_MAX) return 0;
     for (size_t i = 0; i < len; i++)
-        if (!isalnum((unsigned char)s[i]) && s[i] != '_' && s[i] != '-')
-            return 0;
+        if (!isalnum((unsigned char)s[i]) && s[i] != '_' && s[i] != '-') return 0;
     return 1;
 }
 
@@ -201,8 +197,7 @@ int find_body(const rd_scenario *sc, const char *name, size_t len)
 void append(char *buf, size_t size, const char *word)
 {
     size_t n = strlen(buf);
-    if (n + 1 < size)
-        snprintf(buf + n, size - n, "%s%s", n ? ", " : "", word);
+    if (n + 1 < size) snprintf(buf + n, size - n, "%s%s", n ? ", " : "", word);
 }
 
 /* Resolves a file name relative to the directory of the scenario file `base` into dst. */
@@ -218,8 +213,7 @@ int resolve_path(const char *base, const char *file, char *dst, size_t size)
 rd_record_source source_of(const char *file)
 {
     const char *dot = strrchr(file, '.');
-    if (dot && strcasecmp(dot, ".at2") == 0)
-        return RD_SOURCE_AT2;
+    if (dot && strcasecmp(dot, ".at2") == 0) return RD_SOURCE_AT2;
     if (dot && (strcasecmp(dot, ".h5") == 0 || strcasecmp(dot, ".hdf5") == 0))
         return RD_SOURCE_FEMA;
     return RD_SOURCE_TEXT;

@@ -19,8 +19,10 @@
 #include <unistd.h>
 
 /* Target names, each with the file extension its reader is chosen by ("" : in memory). */
-static const struct { const char *name, *ext; } rd_fuzz_targets[] = {
-    {"scenario", ""}, {"obj", ".obj"}, {"ply", ".ply"}, {"stl", ".stl"}, {"at2", ".AT2"}, {"csv", ".csv"}};
+static const struct {
+    const char *name, *ext;
+} rd_fuzz_targets[] = { { "scenario", "" }, { "obj", ".obj" }, { "ply", ".ply" },
+                        { "stl", ".stl" },  { "at2", ".AT2" }, { "csv", ".csv" } };
 enum { RD_FUZZ_NTARGETS = sizeof rd_fuzz_targets / sizeof rd_fuzz_targets[0] };
 
 /* The input as a file named *ext; returns its path (static storage) or NULL. */
@@ -43,7 +45,7 @@ static void rd_fuzz_scenario(const uint8_t *data, size_t size)
     memcpy(text, data, size);
     text[size] = '\0';
     static rd_scenario sc; /* large: keep it off the stack */
-    rd_error err = {{0}};
+    rd_error err = { { 0 } };
     if (rd_scenario_parse(&sc, "fuzz.dat", text, &err) == 0) rd_scenario_validate(&sc, &err);
     rd_scenario_free(&sc);
     free(text);
@@ -52,16 +54,22 @@ static void rd_fuzz_scenario(const uint8_t *data, size_t size)
 /* Feed one input to reader `target` (an index into rd_fuzz_targets). */
 static void rd_fuzz_run(int target, const uint8_t *data, size_t size)
 {
-    if (target == 0) { rd_fuzz_scenario(data, size); return; }
+    if (target == 0) {
+        rd_fuzz_scenario(data, size);
+        return;
+    }
     const char *path = rd_fuzz_file(data, size, rd_fuzz_targets[target].ext);
     if (!path) return;
-    rd_error err = {{0}};
-    rd_record r = {0};
-    rd_poly p = {0};
+    rd_error err = { { 0 } };
+    rd_record r = { 0 };
+    rd_poly p = { 0 };
     double offset[3];
-    if (target == 4) rd_record_read_at2(&r, path, &err);
-    else if (target == 5) rd_record_read_text(&r, path, RD_UNIT_G, 0.01, &err);
-    else if (rd_mesh_read(&p, path, offset, &err) == 0) rd_poly_free(&p);
+    if (target == 4)
+        rd_record_read_at2(&r, path, &err);
+    else if (target == 5)
+        rd_record_read_text(&r, path, RD_UNIT_G, 0.01, &err);
+    else if (rd_mesh_read(&p, path, offset, &err) == 0)
+        rd_poly_free(&p);
     rd_record_free(&r);
     unlink(path);
 }
