@@ -120,7 +120,8 @@ test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed
 # docs/validation.md, a generated report (never edit it by hand). About 10-15 min on 2 cores.
 .PHONY: validate
 validate: $(BIN)/rockdem
-	/usr/bin/python3 tools/validate/ladder.py --depth full --bin $(BIN)/rockdem --md docs/validation.md
+	/usr/bin/python3 tools/validate/ladder.py --depth full --bin $(BIN)/rockdem --md docs/validation.md \
+	    --json $(BUILD)/validate/results.json
 
 # AddressSanitizer and UBSan, with the internal invariants checked (RD_DEBUG: base/assert.h).
 # `make asan` runs every test so built; `make asan-unit` the CMocka unit tests only (.ci/run).
@@ -190,11 +191,22 @@ check-yade: $(BIN)/rockdem
 	/usr/bin/python3 tools/yade/regen.py
 	/usr/bin/python3 tools/validate/ladder.py --depth full --only yade,column --bin $(BIN)/rockdem
 
-# the figures of docs/ and the README's gallery, redrawn from real runs and the stored tables
-# (tools/doc_figures.sh); tests/cli/readme.sh checks the README's sample output
-.PHONY: docs
-docs: $(BIN)/rockdem scenarios/pbr.obj
-	@bash tools/doc_figures.sh $(BIN)/rockdem
+# every generated block of the docs (sample outputs, the worked example's table and timings,
+# the contact tables, CPU times; tools/docgen.py, about 5 min on 2 cores), docs/validation.md
+# from the last `make validate` results file, the performance tables from the last
+# `make docs-bench` outputs, and the figures (tools/doc_figures.sh). `make test` checks them
+# (tests/cli/docs_current.sh).
+.PHONY: docs docs-bench docs-validation
+docs: $(BIN)/rockdem $(BUILD)/librockdem.so scenarios/pbr.obj
+	@/usr/bin/python3 tools/docgen.py write --bin $(BIN)/rockdem
+# rerun `make bench` and `make bench-study` (about 15 min) into $(BUILD)/bench/out, then write
+# docs/PERFORMANCE.md's tables from them
+docs-bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenarios/pbr.obj
+	@bash bench/docs_bench.sh $(BIN) $(BUILD)
+	@/usr/bin/python3 tools/docgen.py write perf-kernel perf-yade perf-impact perf-columns perf-study --bin $(BIN)/rockdem
+# rerun `make validate` (10-15 min), then write docs/validation.md from its results file
+docs-validation: validate
+	@/usr/bin/python3 tools/docgen.py write validation --bin $(BIN)/rockdem
 
 # error against run time of the DEM vs the rigid references: docs/study.md, docs/study.png
 study: $(BIN)/rockdem

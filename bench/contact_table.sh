@@ -4,7 +4,8 @@
 # Pa/m, friction 40 deg. For each setting: the block restitution r by amplitude decay (rockdem
 # restitution), the largest hop of the whole base (lowest vertex above the ground) and the slide
 # of its footprint from its upright place once at rest (tools/rocking_hop.py).
-# Usage: bash bench/contact_table.sh [bin/rockdem]   (about a minute)
+# Usage: bash bench/contact_table.sh [bin/rockdem]   (about a minute; docs/CONTACT.md's table is
+# this output, written by tools/docgen.py). LAYOUTS, RATIOS, ES: the rows to run (default all).
 set -eu
 BIN=$(realpath "${1:-bin/rockdem}")
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
@@ -18,9 +19,9 @@ output hdf5 'free.h5' interval 0.001
 DAT
 echo "| layout | KS/KN | restitution e | r (Housner 0.700) | hop (mm) | slide (mm) |"
 echo "|---|---|---|---|---|---|"
-for layout in vertices auto; do
-  for ratio in 0.1 1 10; do
-    for e in 0 1; do
+for layout in ${LAYOUTS:-vertices auto}; do
+  for ratio in ${RATIOS:-0.1 1 10}; do
+    for e in ${ES:-0 1}; do
       ks=$(/usr/bin/python3 -c "print(1e10 * $ratio)")
       set=(--set contact.spacing=$layout --set contact.stiffness-shear=$ks --set contact.restitution=$e)
       r=$("$BIN" restitution "$T/free.dat" "${set[@]}" --target 0.7 2>/dev/null | awk '/^1e\+10/ {print $'$([ "$e" = 0 ] && echo 2 || echo 10)'}')

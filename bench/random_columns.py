@@ -3,11 +3,11 @@
 
     /usr/bin/python3 bench/random_columns.py [BIN [N]]   (default bin/rockdem, 24; about 1 minute)
 
-N columns drawn with a fixed seed (docs/CONTACT.md section 1, "Offset by a few mm"): 3 to 5
-drums (12, 16, 20 or 24 sides, circumradius 0.25-0.45 m, height 0.4-0.8 m) on a fixed plinth,
-each turned by up to 3 degrees and set up to 5 mm off the drum below, as real drums are laid;
-a 2 Hz one-sine of 0.05, 0.1, 0.2 or 0.35 g in a random direction, 2 s. Prints each run's exit
-status and energy residual (summary energy_residual_max), then how many runs were untrusted
+N columns drawn with a fixed seed (docs/CONTACT.md section 1, "Crossings that no vertex holds"):
+3 to 5 drums (12, 16, 20 or 24 sides, circumradius 0.25-0.45 m, height 0.4-0.8 m) on a fixed
+plinth, each turned by up to 3 degrees and set up to 5 mm off the drum below, as real drums are
+laid; a 2 Hz one-sine of 0.05, 0.1, 0.2 or 0.35 g in a random direction, 2 s. Prints each run's
+exit status and energy residual (summary energy_residual_max), then how many runs were untrusted
 (exit 3) or above 1e-3, and the largest residual.
 """
 import os

@@ -1,8 +1,8 @@
-/* Interface perturbation (src/perturb.c): removal of all but the corners gives the corner-only
- * static tipping threshold; a random removal lowers it to the remaining points' value; the same
- * seed gives identical points; a scatter of 0 changes nothing; points at one place, perturbed or
- * not, share one kinematics slot (setup.c: share_points); a mesh's co-located points are merged
- * into one that carries their summed area (merge.c). */
+/* Interface perturbation (src/engine/perturb.c): removal of all but the corners gives the
+ * corner-only static tipping threshold; a random removal lowers it to the remaining points'
+ * value; the same seed gives identical points; a scatter of 0 changes nothing; points at one
+ * place, perturbed or not, share one kinematics slot (setup.c: share_points); a mesh's co-located
+ * points are merged into one that carries their summed area (merge.c). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>

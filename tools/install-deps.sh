@@ -6,7 +6,7 @@ pkgs="build-essential pkg-config libhdf5-dev libgsl-dev libsundials-dev libcmock
       python3-xarray python3-h5netcdf python3-venv python3-pip python3-setuptools
       python3-wheel python3-build python3-pytest python3-pandas
       hdf5-filter-plugin-blosc-serial
-      libopenmpi-dev openmpi-bin clang-format"  # BLOSC: FEMA P695 sets (src/record_fema.c); MPI: make mpi; pytest: tests/cli/pytest.sh;
+      libopenmpi-dev openmpi-bin clang-format"  # BLOSC: FEMA P695 sets (src/records/record_fema.c); MPI: make mpi; pytest: tests/cli/pytest.sh;
                    # build, wheel: pip install ./tools and its sdist (docs/PYTHON.md); clang-format: tests/cli/format.sh
 missing=""
 for p in $pkgs; do

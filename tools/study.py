@@ -5,7 +5,7 @@ DEM at several KN, time-step safety factors and subcontact spacings, and with it
 over the run, relative to the reference's peak tilt (DEM tilts interpolated to the reference's
 sample times); wall time = the DEM's shaking stage (its `perf:` line).
 Usage: tools/study.py ROCKDEM OUTDIR   (writes OUTDIR/study.md and OUTDIR/study.png)
-       tools/study.py --replot OUTDIR/study.md   (redraws study.png from the table)"""
+       tools/study.py --replot OUTDIR/study.md [--png PATH]   (redraws study.png from the table)"""
 import os, re, subprocess, sys, tempfile
 import h5py, numpy as np
 import matplotlib
@@ -98,10 +98,11 @@ def read_table(md):
 
 
 def main():
-    if len(sys.argv) == 3 and sys.argv[1] == "--replot":
+    if len(sys.argv) in (3, 5) and sys.argv[1] == "--replot" and sys.argv[3:4] in ([], ["--png"]):
         md = sys.argv[2]
-        figure(read_table(md), os.path.join(os.path.dirname(md), "study.png"))
-        print("redrew %s" % os.path.join(os.path.dirname(md), "study.png"))
+        png = sys.argv[4] if len(sys.argv) == 5 else os.path.join(os.path.dirname(md), "study.png")
+        figure(read_table(md), png)
+        print("redrew %s" % png)
         return
     exe, outdir = sys.argv[1], sys.argv[2]
     tmp = tempfile.mkdtemp(prefix="rockdem_study_")

@@ -54,7 +54,7 @@ typedef struct rd_body_def {
     int initial_line;           /* scenario line of its last 'block initial' (0: none) */
 } rd_body_def;
 
-/* Seeded perturbation of the subcontact points when they are built (src/perturb.c;
+/* Seeded perturbation of the subcontact points when they are built (src/engine/perturb.c;
  * `contact interface-perturbation seed S remove F raise H raise-fraction P scatter C
  * keep-corners on|off`): an uncertain interface, swept with `rockdem sweep --axis interface=K`. */
 typedef struct rd_perturb_def {

@@ -1,4 +1,4 @@
-/* rockdem (private) — subcommands of the command-line program beyond run/check (src/main.c
+/* rockdem (private) — subcommands of the command-line program beyond run/check (src/cli/main.c
  * dispatches to these). Each returns the process exit status: 0 ok, 2 bad input, 3 failure.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.

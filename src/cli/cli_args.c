@@ -1,4 +1,4 @@
-/* rockdem — shared argument handling of the validation subcommands (src/cli.h).
+/* rockdem — shared argument handling of the validation subcommands (src/cli/cli.h).
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */

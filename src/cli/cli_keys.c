@@ -1,6 +1,6 @@
 /* rockdem — `rockdem keys` (and `--set help`): every key --set accepts (src/scenario/
- * overrides.c), with its units, its default and what it sets. tests/cli/keys.sh checks this
- * list against the keys the parser accepts, both ways.
+ * overrides.c), with its units, its default and what it sets. tests/cli/help_keys_progress.sh
+ * checks this list against the keys the parser accepts, both ways.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */

@@ -1,6 +1,6 @@
 /* rockdem — `rockdem reference SCENARIO [--set k=v]... [-o out.h5]`: run the scene through the
- * rigid reference solver it maps to (Housner or Kounadis, src/ref_scene.c) and write the DEM's
- * HDF5 layout, so one tool reads both. Other scenes are refused with the reason.
+ * rigid reference solver it maps to (Housner or Kounadis, src/reference/ref_scene.c) and write
+ * the DEM's HDF5 layout, so one tool reads both. Other scenes are refused with the reason.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */

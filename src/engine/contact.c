@@ -52,7 +52,7 @@
  * rigid theory resolves all the impulses of an impact at once, each contact plastic (Housner;
  * Kounadis: the ground corner and the interface of a stack together); without this, a bearing
  * point pressed by the impulse of another contact gives its compression back elastically, and a
- * stack hops at its impacts and walks (docs/CONTACT.md section 7). Found from the last contact
+ * stack hops at its impacts and walks (docs/CONTACT.md section 2). Found from the last contact
  * step (rd_sim.impacting), so the order of the pairs does not matter. A touch counts as an impact
  * when the point approaches faster than g sqrt(m_eff / K_active), the speed the pair's weight
  * reaches settling onto its bearing springs from rest: slower, it is a quasi-static touchdown,

@@ -1,4 +1,4 @@
-/* rockdem — sweep plans and single cases (src/sweep.h).
+/* rockdem — sweep plans and single cases (include/rockdem/sweep.h).
  * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
  * public API (engine, scenario, reference) and io/.
  */

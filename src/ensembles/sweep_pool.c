@@ -1,10 +1,10 @@
-/* rockdem — the fork pool of `rockdem sweep` (src/sweep.h): n worker processes, each with a
- * task pipe (case indices in, -1 = stop) and a result pipe (one rd_sweep_result per case out).
- * Workers are forked before the coordinator opens the HDF5 table and leave with _exit, so they
- * share no HDF5 state with it. A worker that dies closes its result pipe: the coordinator sees
- * end-of-file, loses that worker's case (a resume runs it again) and goes on with the rest.
- * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the
- * public API (engine, scenario, reference) and io/.
+/* rockdem — the fork pool of `rockdem sweep` (include/rockdem/sweep.h): n worker processes, each
+ * with a task pipe (case indices in, -1 = stop) and a result pipe (one rd_sweep_result per case
+ * out). Workers are forked before the coordinator opens the HDF5 table and leave with _exit, so
+ * they share no HDF5 state with it. A worker that dies closes its result pipe: the coordinator
+ * sees end-of-file, loses that worker's case (a resume runs it again) and goes on with the rest.
+ * Folder ensembles/ owns many-run studies (threshold, restitution, sweeps); it may call the public
+ * API (engine, scenario, reference) and io/.
  */
 #define _GNU_SOURCE
 #include "rockdem/sweep.h"

@@ -1,5 +1,5 @@
-/* rockdem — the sweep table (src/sweep.h, layout in docs/FRAGILITY.md): group /sweep of
- * equal-length 1-D datasets, one row per finished case (the form tools/rdtools/fraginput.py
+/* rockdem — the sweep table (include/rockdem/sweep.h, layout in docs/FRAGILITY.md): group /sweep
+ * of equal-length 1-D datasets, one row per finished case (the form tools/rdtools/fraginput.py
  * reads), plus 2-D per-body datasets body_* [rows][free bodies]. A row is appended column by
  * column and committed by the `case` column, written last, then the file is flushed: a file
  * left by a killed sweep is trimmed back to its committed rows when it is opened again.

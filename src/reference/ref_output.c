@@ -1,4 +1,4 @@
-/* rockdem — a reference solution written in the DEM's HDF5 layout (src/io_hdf5.h), so one tool
+/* rockdem — a reference solution written in the DEM's HDF5 layout (src/io/io_hdf5.h), so one tool
  * reads both. Each block is a rigid body rotating in the vertical plane of the rocking direction
  * d about its active pivot: the ground pivot O = (s1 b1 d, base) for block 1, the corner
  * P = (s2 b2 d, top of block 1) of block 1 for block 2. The rotation axis is a = (-d_y, d_x, 0)

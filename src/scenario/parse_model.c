@@ -233,7 +233,7 @@ int contact_preset(parser *P)
 #define RD_SEED_MAX 4294967295.0
 
 /* contact interface-perturbation seed S remove F raise H raise-fraction P scatter C
- * keep-corners on|off (src/perturb.c) */
+ * keep-corners on|off (src/engine/perturb.c) */
 int contact_perturbation(parser *P)
 {
     static const char *const names[] = { "seed",    "remove",       "raise", "raise-fraction",

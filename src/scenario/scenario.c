@@ -119,10 +119,11 @@ int rd_contact_preset(rd_contact_def *c, rd_damping_def *d, const char *name)
     } else if (!strcmp(name, "default")) {
         /* docs/GUIDE.md, `contact preset`: seed 002's KN and friction on corner subcontacts with
            plastic point impacts and KS = 10 KN (the rigid preset's layout and ratio), so the
-           impact loses what free-rocking tests on stone and concrete bases lose: r = 0.692 =
-           0.99 Housner's r on the 0.5 x 1.0 m block (docs/CONTACT.md section 4; adopted range
-           0.95-1.00 r_H, docs/REFERENCES.md), no hop, 0.012 mm slide. A point bed (spacing
-           auto) rolls the pivot and loses too little (r = 0.86 = 1.22 r_H) */
+           impact loses what free-rocking tests on stone and concrete bases lose: r = 0.698 =
+           1.00 Housner's r on the 0.5 x 1.0 m block, no hop, 0.02 mm slide (docs/CONTACT.md
+           sections 3-5, tables written by `make docs`; adopted range 0.95-1.00 r_H,
+           docs/REFERENCES.md). A point bed (spacing auto) rolls the pivot and loses too little
+           (r = 0.86 = 1.22 r_H) */
         c->kn = 1e10;
         c->ks = 1e11;
         c->friction = 40.0 * RD_DEG;

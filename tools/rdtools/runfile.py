@@ -1,4 +1,4 @@
-"""Open a rockdem run file (layout: top of src/io_hdf5.h) and read it with clear errors.
+"""Open a rockdem run file (layout: docs/HDF5-LAYOUT.md) and read it with clear errors.
 
 Run(path) validates that the file exists, is HDF5, carries the root attribute program='rockdem',
 and gives accessors that raise RDError('FILE: missing dataset /x') instead of KeyError."""

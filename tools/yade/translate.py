@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Translate a rockdem scenario into a YADE (2023.02a) script, run it, and store the result in
-rockdem's HDF5 layout (src/io_hdf5.h) so tools/yade/compare.py reads both codes' files.
+rockdem's HDF5 layout (docs/HDF5-LAYOUT.md) so tools/yade/compare.py reads both codes' files.
 
     /usr/bin/python3 tools/yade/translate.py SCENARIO.dat [-o OUT.h5] [--script OUT.py]
         [--dt DT] [--set key=value]... [--no-hook] [--lift M] [--no-run] [-q]
