@@ -152,8 +152,8 @@ class Checker:
     def ok(self, what):
         print("CHECK docs %s" % what)
 
-    def fail(self, what, why):
-        print("FAIL docs %s: %s (make docs rewrites it; tools/docgen.py)" % (what, why))
+    def fail(self, what, why, hint="make docs rewrites it; tools/docgen.py"):
+        print("FAIL docs %s: %s (%s)" % (what, why, hint))
         self.fails += 1
 
     def same(self, what, committed, now):
@@ -559,7 +559,8 @@ def check_constants(a, c):
         if abs(doc - got) <= 1e-9 * max(1.0, abs(got)):
             c.ok("contact constant %s = %s (%s)" % (name, v, where.strip()))
         else:
-            c.fail("contact constant %s" % name, "docs/CONTACT.md says %s, %s defines %s" % (v, where.strip(), code))
+            c.fail("contact constant %s" % name, "docs/CONTACT.md says %s, %s defines %s" % (v, where.strip(), code),
+                   "correct the table by hand")
 
 
 # ---- the list ----------------------------------------------------------------------------------
