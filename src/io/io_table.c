@@ -248,8 +248,9 @@ int rd_h5t_string(long long loc, const char *name, int k, char *out, int size, r
 
 /* ---- scales linked into the groups that use them ---- */
 
-enum { LINK_MAX = 32, MEMBER_MAX = 64 }; /* distinct outside scales one group may use; members
-                                           whose addresses are kept for the in-group test */
+/* LINK_MAX: distinct outside scales one group may use; MEMBER_MAX: members of a group whose
+ * addresses are kept for the in-group test (more: the test falls back on names). */
+enum { LINK_MAX = 32, MEMBER_MAX = 64 };
 
 /* Paths of the outside scales resolved so far, by object address, shared by the whole visit:
  * H5Iget_name of a scale opened through a reference searches the file for it (O(file)), so
@@ -263,9 +264,9 @@ typedef struct scale_names {
 } scale_names;
 
 typedef struct link_ctx {
-    hid_t group;                  /* the group whose datasets are visited */
-    scale_names *names;           /* shared cache of resolved outside scales */
-    int nmember;                  /* addresses of the group's own members (-1: too many) */
+    hid_t group;        /* the group whose datasets are visited */
+    scale_names *names; /* shared cache of resolved outside scales */
+    int nmember;        /* addresses of the group's own members (-1: too many) */
     haddr_t member[MEMBER_MAX];
     int n, failed;
     char path[LINK_MAX][256]; /* the outside scales found, linked once the visit is over */
@@ -328,8 +329,10 @@ static herr_t list_member(hid_t g, const char *name, const H5L_info_t *info, voi
     if (info->type != H5L_TYPE_HARD || c->nmember < 0 ||
         H5Oget_info_by_name2(g, name, &oi, H5O_INFO_BASIC, H5P_DEFAULT) < 0)
         return 0;
-    if (c->nmember == MEMBER_MAX) c->nmember = -1; /* too many: fall back on names */
-    else c->member[c->nmember++] = oi.addr;
+    if (c->nmember == MEMBER_MAX)
+        c->nmember = -1; /* too many: fall back on names */
+    else
+        c->member[c->nmember++] = oi.addr;
     return 0;
 }
 
@@ -369,8 +372,7 @@ static int link_group(hid_t g, scale_names *names)
     hsize_t idx = 0;
     int rc = H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, list_member, c) < 0;
     idx = 0;
-    rc = rc || H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, visit_member, c) < 0 ||
-         c->failed;
+    rc = rc || H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, visit_member, c) < 0 || c->failed;
     for (int k = 0; k < c->n && !rc; k++) {
         const char *base = strrchr(c->path[k], '/') + 1;
         rc = H5Lcreate_hard(g, c->path[k], g, base, H5P_DEFAULT, H5P_DEFAULT) < 0;
