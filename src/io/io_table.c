@@ -248,13 +248,49 @@ int rd_h5t_string(long long loc, const char *name, int k, char *out, int size, r
 
 /* ---- scales linked into the groups that use them ---- */
 
-enum { LINK_MAX = 32 }; /* distinct outside scales one group may use */
+/* LINK_MAX: distinct outside scales one group may use; MEMBER_MAX: members of a group whose
+ * addresses are kept for the in-group test (more: the test falls back on names). */
+enum { LINK_MAX = 32, MEMBER_MAX = 64 };
+
+/* Paths of the outside scales resolved so far, by object address, shared by the whole visit:
+ * H5Iget_name of a scale opened through a reference searches the file for it (O(file)), so
+ * each distinct scale is named once, not once per dataset using it (a 10,000-body file has
+ * 20,000 such uses of /xyz and /corner). */
+typedef struct scale_names {
+    int n;
+    haddr_t addr[LINK_MAX];
+    char path[LINK_MAX][256];
+    char spare[256]; /* the path of a scale looked up when the cache is full */
+} scale_names;
 
 typedef struct link_ctx {
-    hid_t group; /* the group whose datasets are visited */
+    hid_t group;        /* the group whose datasets are visited */
+    scale_names *names; /* shared cache of resolved outside scales */
+    int nmember;        /* addresses of the group's own members (-1: too many) */
+    haddr_t member[MEMBER_MAX];
     int n, failed;
     char path[LINK_MAX][256]; /* the outside scales found, linked once the visit is over */
 } link_ctx;
+
+/* 1 when the object at address a is one of the group's own members (unknown: 0). */
+static int is_member(const link_ctx *c, haddr_t a)
+{
+    for (int k = 0; k < c->nmember; k++)
+        if (c->member[k] == a) return 1;
+    return 0;
+}
+
+/* The path of scale sc (address a), from the cache or else looked up once. NULL when none. */
+static const char *scale_path(scale_names *s, hid_t sc, haddr_t a)
+{
+    for (int k = 0; k < s->n; k++)
+        if (s->addr[k] == a) return s->path[k];
+    char *path = s->n < LINK_MAX ? s->path[s->n] : s->spare;
+    if (H5Iget_name(sc, path, sizeof s->spare) <= 0) return NULL;
+    if (s->n == LINK_MAX) return path;
+    s->addr[s->n] = a;
+    return s->path[s->n++];
+}
 
 /* H5DSiterate_scales callback: note scale `sc` unless it is already a member of ctx->group. */
 static herr_t note_scale(hid_t did, unsigned dim, hid_t sc, void *op)
@@ -262,8 +298,14 @@ static herr_t note_scale(hid_t did, unsigned dim, hid_t sc, void *op)
     (void)did;
     (void)dim;
     link_ctx *c = op;
-    char path[256];
-    if (H5Iget_name(sc, path, sizeof path) <= 0) return 0;
+    H5O_info_t oi;
+    if (H5Oget_info2(sc, &oi, H5O_INFO_BASIC) < 0) return 0;
+    if (c->nmember >= 0 && is_member(c, oi.addr)) return 0;
+    const char *path = scale_path(c->names, sc, oi.addr);
+    if (!path) {
+        c->failed = 1;
+        return 0;
+    }
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
     if (!base[0] || exists(c->group, base)) return 0;
@@ -277,7 +319,22 @@ static herr_t note_scale(hid_t did, unsigned dim, hid_t sc, void *op)
     return 0;
 }
 
-static int link_group(hid_t g);
+static int link_group(hid_t g, scale_names *names);
+
+/* H5Literate callback: the group's members' addresses (the in-group test of note_scale). */
+static herr_t list_member(hid_t g, const char *name, const H5L_info_t *info, void *op)
+{
+    link_ctx *c = op;
+    H5O_info_t oi;
+    if (info->type != H5L_TYPE_HARD || c->nmember < 0 ||
+        H5Oget_info_by_name2(g, name, &oi, H5O_INFO_BASIC, H5P_DEFAULT) < 0)
+        return 0;
+    if (c->nmember == MEMBER_MAX)
+        c->nmember = -1; /* too many: fall back on names */
+    else
+        c->member[c->nmember++] = oi.addr;
+    return 0;
+}
 
 /* H5Literate callback over a group's members: a dataset's outside scales are noted, a
  * subgroup is linked in turn. */
@@ -290,7 +347,7 @@ static herr_t visit_member(hid_t g, const char *name, const H5L_info_t *info, vo
         return 0;
     if (oi.type == H5O_TYPE_GROUP) {
         hid_t sub = H5Gopen2(g, name, H5P_DEFAULT);
-        if (sub < 0 || link_group(sub)) c->failed = 1;
+        if (sub < 0 || link_group(sub, c->names)) c->failed = 1;
         if (sub >= 0) H5Gclose(sub);
     } else if (oi.type == H5O_TYPE_DATASET) {
         hid_t d = H5Dopen2(g, name, H5P_DEFAULT), sp = d < 0 ? -1 : H5Dget_space(d);
@@ -306,13 +363,16 @@ static herr_t visit_member(hid_t g, const char *name, const H5L_info_t *info, vo
 
 /* Link into group g the outside scales its datasets use, and do the same in its subgroups
  * (the links are made after the visit: a group is not changed while it is listed). */
-static int link_group(hid_t g)
+static int link_group(hid_t g, scale_names *names)
 {
     link_ctx *c = calloc(1, sizeof *c);
     if (!c) return -1;
     c->group = g;
+    c->names = names;
     hsize_t idx = 0;
-    int rc = H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, visit_member, c) < 0 || c->failed;
+    int rc = H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, list_member, c) < 0;
+    idx = 0;
+    rc = rc || H5Literate(g, H5_INDEX_NAME, H5_ITER_NATIVE, &idx, visit_member, c) < 0 || c->failed;
     for (int k = 0; k < c->n && !rc; k++) {
         const char *base = strrchr(c->path[k], '/') + 1;
         rc = H5Lcreate_hard(g, c->path[k], g, base, H5P_DEFAULT, H5P_DEFAULT) < 0;
@@ -325,7 +385,9 @@ int rd_h5t_link_scales(long long loc, const char *name, rd_error *err)
 {
     hid_t g = H5Gopen2((hid_t)loc, name, H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "cannot open group '%s'", name);
-    int rc = link_group(g);
+    scale_names *names = calloc(1, sizeof *names);
+    int rc = !names || link_group(g, names);
+    free(names);
     H5Gclose(g);
     return rc ? rd_error_set(err, "cannot link the dimension scales of group '%s'", name) : 0;
 }
