@@ -64,10 +64,37 @@ static void test_mesh_closure(void **state)
     }
 }
 
+/* Nothing passes silently (issue 39, item 3): at KN 1e5 Pa/m the L block's static closure would
+ * be m g / (KN A) = 0.106 m, far past the contact band (1e-3 of the smaller radius, 0.39 mm):
+ * the run must end `penetrated`, naming the pair, not go on with the block inside its base. */
+static void test_mesh_penetrated(void **state)
+{
+    (void)state;
+    const char *text =
+        "block import mesh 'L_base.obj' position 0.44 0.44 -0.25 density 2700 fixed name base\n"
+        "block import mesh 'L_block.obj' position 0.27 0.27 0.2 density 2700 name block\n"
+        "contact model surface\n"
+        "contact property stiffness-normal 1e5 stiffness-shear 1e6 friction 40 restitution 1\n"
+        "model settle off\nmodel solve time 1\n";
+    rd_scenario sc;
+    rd_error err;
+    if (rd_scenario_parse(&sc, "tests/data/mesh/sink.dat", text, &err)) fail_msg("%s", err.msg);
+    rd_sim *sim = rd_sim_create(&sc, &err);
+    if (!sim) fail_msg("%s", err.msg);
+    rd_status st = rd_sim_run(sim);
+    const char *msg = rd_sim_error(sim);
+    print_message("status %d: %s\n", (int)st, msg ? msg : "");
+    assert_int_equal(st, RD_STATUS_PENETRATED);
+    assert_non_null(strstr(msg, "body 'block' passed into body 'base'"));
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mesh_closure),
+        cmocka_unit_test(test_mesh_penetrated),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -159,6 +159,15 @@ static surf_state *state_of(struct rd_surface *S, uint64_t k)
     return st;
 }
 
+/* Did the patch of key k bear at the last surface step? */
+static int was_loaded(const struct rd_surface *S, uint64_t k)
+{
+    unsigned m = (unsigned)S->hcap - 1, q = key_hash(k) & m;
+    for (; S->hash[q] >= 0; q = (q + 1) & m)
+        if (S->st[S->hash[q]].key == k) return S->st[S->hash[q]].stamp == S->stamp - 1;
+    return 0;
+}
+
 /* Body i's faces grouped by plane, each plane's frame, the faces' polygons in it. */
 static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char *name)
 {
@@ -788,8 +797,8 @@ static int mesh_penetrated(rd_sim *s, int i, int r, int fi, int fr, double depth
 
 /* The pieces of face c->fi of i (the candidates cand[0 .. nc), all of that face) into the pieces
  * store. Returns 0, 1 when the bodies passed into each other, -1 when out of memory. */
-static int face_pieces(rd_sim *s, int i, int r, const mesh_cand *cand, int nc, const double rot[9],
-                       const double tr[3], double band, int *npc)
+static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand, int nc,
+                       const double rot[9], const double tr[3], double band, int *npc)
 {
     struct rd_surface *S = s->surf;
     const surf_body *B = &S->body[i], *Br = &S->body[r];
@@ -818,7 +827,10 @@ static int face_pieces(rd_sim *s, int i, int r, const mesh_cand *cand, int nc, c
             crosses |= d <= 0;
             deepest = rd_max(deepest, d);
         }
-        if (crosses && deepest > band) return mesh_penetrated(s, i, r, fi, fr_, deepest, band);
+        /* S passes through R deeper than the band, or a plane that bore on Q has gone deeper:
+           the bodies are inside each other */
+        if (deepest > band && (crosses || was_loaded(S, state_key(pair, P, Q))))
+            return mesh_penetrated(s, i, r, fi, fr_, deepest, band);
         if (!rd_patch_clip_half(&patch, dep[1], dep[2], dep[0], &cut)) continue;
         if (!rd_patch_clip_half(&cut, -dep[1], -dep[2], band - dep[0], &patch)) continue;
         /* the nearest of the candidate planes H != Q of this face: split where 0 < d_H < d_Q */
@@ -901,7 +913,10 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
             dlo = rd_min(dlo, d);
             dhi = rd_max(dhi, d);
         }
-        if (dhi <= 0 || dlo >= band) continue;
+        /* a face wholly deeper than the band is a far side (not touching), unless its plane
+           bore on Q at the last step: then it has sunk (face_pieces stops the run) */
+        if (dhi <= 0 || (dlo >= band && !was_loaded(S, state_key(pair, B->plane_of[fi], Q))))
+            continue;
         mc[nc++] = (mesh_cand){ fi, Q, fr_ };
     }
     qsort(mc, (size_t)nc, sizeof *mc, cmp_cand);
@@ -909,7 +924,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     for (int k = 0; k < nc;) {
         int e = k;
         while (e < nc && mc[e].fi == mc[k].fi) e++;
-        int rc = face_pieces(s, i, r, mc + k, e - k, rot, tr, band, &npc);
+        int rc = face_pieces(s, pair, i, r, mc + k, e - k, rot, tr, band, &npc);
         if (rc) return rc;
         k = e;
     }
