@@ -634,14 +634,8 @@ static void pair_finish(rd_sim *s, rd_pair *pr, int i, int r, const surf_sums *s
     if (!s->settling) s->active_point_steps += sum->nact;
 }
 
-static int cmp_int(const void *a, const void *b)
-{
-    int x = *(const int *)a, y = *(const int *)b;
-    return (x > y) - (x < y);
-}
-
 /* The planes of body i (its tree) that may reach into body r: those with a face whose box meets
- * r's box carried into i's frame, grown by margin (m); ascending, into S->ord. Returns the
+ * r's box carried into i's frame, grown by margin (m); into S->ord. Returns the
  * count, -1 when out of memory. */
 static int near_planes(rd_sim *s, int i, int r, double margin)
 {
@@ -676,8 +670,7 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
         B->seen[P] = S->seen_stamp;
         S->ord[n++] = P;
     }
-    qsort(S->ord, (size_t)n, sizeof *S->ord, cmp_int);
-    return n;
+    return n; /* in the tree's order: the same every step for the same overlap */
 }
 
 /* Every patch of live pair number pair whose body r is convex (section 8.1): the planes of i
@@ -729,7 +722,9 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
             const double c[2] = { ld.cx, ld.cy };
-            double tors = rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
+            double tors = n == 1
+                              ? rd_patch_torsion(S->comp, c, dg[0], dg[1], dg[2])
+                              : rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
             if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, tors, fr, dg, c_a, &sum)) return -1;
         }
     }
