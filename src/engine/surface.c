@@ -96,6 +96,9 @@ struct rd_surface {
     int *pkey, cap_pkey;  /* scratch (mesh pairs): each piece's group, plane P and plane Q */
     int *ord, cap_ord;    /* scratch: an ordering */
     int seen_stamp;       /* stamp of surf_body.seen */
+    uint64_t *fkey;       /* mesh pairs: face pairs (pair, face of i, plane of r) that bore */
+    long *fstamp;         /* the surface step each last bore */
+    int nfk, fcap;        /* entries, capacity (a power of 2, 0 before the first) */
     long stamp;           /* surface steps taken */
 };
 
@@ -157,15 +160,6 @@ static surf_state *state_of(struct rd_surface *S, uint64_t k)
     st->stamp = -1;
     S->hash[q] = S->nst++;
     return st;
-}
-
-/* Did the patch of key k bear at the last surface step? */
-static int was_loaded(const struct rd_surface *S, uint64_t k)
-{
-    unsigned m = (unsigned)S->hcap - 1, q = key_hash(k) & m;
-    for (; S->hash[q] >= 0; q = (q + 1) & m)
-        if (S->st[S->hash[q]].key == k) return S->st[S->hash[q]].stamp == S->stamp - 1;
-    return 0;
 }
 
 /* Body i's faces grouped by plane, each plane's frame, the faces' polygons in it. */
@@ -397,6 +391,8 @@ void rd_surface_free(rd_sim *s)
     free(S->cand.ab);
     free(S->pkey);
     free(S->ord);
+    free(S->fkey);
+    free(S->fstamp);
     free(S);
     s->surf = NULL;
 }
@@ -748,10 +744,15 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
  * section 8.5 stopped at 0.47 mm with the band). */
 #define RD_SURF_MESH_DEPTH 0.02
 #define RD_SURF_FACING     1e-3 /* faces facing each other: n_S . u_R below minus this (89.94 deg) */
+/* A piece of less than this fraction of its face's area, left by the subtraction along an edge
+ * two faces of r share, is round-off (a sliver of 1e-16 m width), not a piece */
+#define RD_SURF_SLIVER     1e-12
+#define RD_SURF_PIECES     32 /* most convex pieces of one face pair after the nearest-face rule */
 
 /* A candidate face pair of a mesh pair, after the facing and depth tests. */
 typedef struct mesh_cand {
     int fi, Q, fr;
+    int facing; /* 1: the faces face each other (a patch); 0: R only rules points out */
 } mesh_cand;
 
 static int cmp_cand(const void *a, const void *b)
@@ -798,6 +799,95 @@ static int mesh_penetrated(rd_sim *s, int i, int r, int fi, int fr, double depth
     return 1;
 }
 
+/* The area of a counter-clockwise polygon, m^2 (shoelace). */
+static double poly_area(const rd_poly2 *p)
+{
+    double a = 0;
+    for (int k = 0; k < p->n; k++) {
+        const double *u = p->p[k], *v = p->p[(k + 1) % p->n];
+        a += u[0] * v[1] - v[0] * u[1];
+    }
+    return 0.5 * a;
+}
+
+/* Face fh of r projected along u (i's frame) onto the plane of frame fr, as the half-planes of
+ * its edges (a x + b y + c >= 0 inside) appended to hp from index *nh. 0 when it cannot be. */
+static int project_face(const double fr[4][3], const rd_poly *Pr, int fh, const double rot[9],
+                        const double tr[3], const double u[3], double (*hp)[3], int *nh)
+{
+    const int nr = Pr->flen[fh];
+    const double nu = rd_dot(fr[3], u);
+    if (!(nu < 0) || nr > RD_PATCH_FACE_MAX) return 0;
+    double p2[RD_PATCH_FACE_MAX][2];
+    for (int k = 0; k < nr; k++) { /* reversed: counter-clockwise about the plane's normal */
+        double q[3];
+        rd_mat_vec(rot, Pr->v[Pr->fidx[Pr->fstart[fh] + nr - 1 - k]], q);
+        rd_axpy(1.0, tr, q);
+        double dq[3] = { q[0] - fr[0][0], q[1] - fr[0][1], q[2] - fr[0][2] };
+        rd_axpy(-rd_dot(fr[3], dq) / nu, u, dq);
+        p2[k][0] = rd_dot(dq, fr[1]);
+        p2[k][1] = rd_dot(dq, fr[2]);
+    }
+    int n = 0;
+    for (int k = 0; k < nr; k++) {
+        const double *p = p2[k], *q = p2[(k + 1) % nr];
+        double ex = q[0] - p[0], ey = q[1] - p[1];
+        hp[n][0] = -ey;
+        hp[n][1] = ex;
+        hp[n][2] = ey * p[0] - ex * p[1];
+        n++;
+    }
+    *nh += n;
+    return 1;
+}
+
+/* The face-pair table of mesh pairs: the slot of key k (its key 0 when empty; keys are never 0:
+ * they carry pair + 1). */
+static int face_slot(const struct rd_surface *S, uint64_t k)
+{
+    unsigned m = (unsigned)S->fcap - 1, q = key_hash(k) & m;
+    while (S->fkey[q] != 0 && S->fkey[q] != k) q = (q + 1) & m;
+    return (int)q;
+}
+
+/* Face pair k bore this step. 0, or -1 when out of memory. */
+static int face_bore(struct rd_surface *S, uint64_t k)
+{
+    if (2 * (S->nfk + 1) > S->fcap) {
+        int cap = S->fcap ? 2 * S->fcap : 256;
+        uint64_t *ok = S->fkey;
+        long *os = S->fstamp;
+        const int ocap = S->fcap;
+        S->fkey = calloc((size_t)cap, sizeof *S->fkey);
+        S->fstamp = calloc((size_t)cap, sizeof *S->fstamp);
+        if (!S->fkey || !S->fstamp) return -1;
+        S->fcap = cap;
+        for (int j = 0; j < ocap; j++)
+            if (ok[j]) {
+                int q = face_slot(S, ok[j]);
+                S->fkey[q] = ok[j];
+                S->fstamp[q] = os[j];
+            }
+        free(ok);
+        free(os);
+    }
+    int q = face_slot(S, k);
+    if (S->fkey[q] == 0) {
+        S->fkey[q] = k;
+        S->nfk++;
+    }
+    S->fstamp[q] = S->stamp;
+    return 0;
+}
+
+/* Did face pair k bear at the last step? */
+static int face_bore_last(const struct rd_surface *S, uint64_t k)
+{
+    if (S->fcap == 0) return 0;
+    int q = face_slot(S, k);
+    return S->fkey[q] == k && S->fstamp[q] == S->stamp - 1;
+}
+
 /* The pieces of face c->fi of i (the candidates cand[0 .. nc), all of that face) into the pieces
  * store. Returns 0, 1 when the bodies passed into each other, -1 when out of memory. */
 static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand, int nc,
@@ -808,11 +898,13 @@ static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand,
     const rd_poly *Pi = &s->poly[i], *Pr = &s->poly[r];
     const int fi = cand[0].fi, P = B->plane_of[fi];
     const double(*fr)[3] = B->frame[P];
-    rd_poly2 sp, pieces[2][8], patch, cut;
+    rd_poly2 sp, pieces[2][RD_SURF_PIECES], patch, cut;
     sp.n = Pi->flen[fi];
     memcpy(sp.p, B->f2 + B->f2_0[fi], (size_t)sp.n * sizeof sp.p[0]);
+    const double sliver = RD_SURF_SLIVER * poly_area(&sp);
     double rv[RD_PATCH_FACE_MAX][3];
     for (int k = 0; k < nc; k++) {
+        if (!cand[k].facing) continue;
         const int fr_ = cand[k].fr, Q = cand[k].Q, nr = Pr->flen[fr_];
         double u[3], dR, dep[3];
         plane_in(Br, Q, rot, tr, u, &dR);
@@ -823,52 +915,76 @@ static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand,
         if (!rd_patch_faces(fr[0], fr[1], fr[2], fr[3], &sp, (const double(*)[3])rv, nr, u, dR,
                             &patch, dep))
             continue;
-        int crosses = 0; /* does S pass through R's plane inside R's prism? */
-        double deepest = 0;
-        for (int v = 0; v < patch.n; v++) {
-            double d = dep[0] + dep[1] * patch.p[v][0] + dep[2] * patch.p[v][1];
-            crosses |= d <= 0;
-            deepest = rd_max(deepest, d);
-        }
-        /* S passes through R deeper than the band, or a plane that bore on Q has gone deeper:
-           the bodies are inside each other */
-        if (deepest > band && (crosses || was_loaded(S, state_key(pair, P, Q))))
-            return mesh_penetrated(s, i, r, fi, fr_, deepest, band);
         if (!rd_patch_clip_half(&patch, dep[1], dep[2], dep[0], &cut)) continue;
-        if (!rd_patch_clip_half(&cut, -dep[1], -dep[2], band - dep[0], &patch)) continue;
-        /* the nearest of the candidate planes H != Q of this face: split where 0 < d_H < d_Q */
+        poly_copy(&patch, &cut);
+        /* the nearest face over each point: the part of the piece that lies in the prism of
+           another candidate face H (of another plane) with d_H < d_R (nearer, or in front of
+           H: outside r there) is taken out, piece minus a convex region, in convex parts */
         int cur = 0, np = 1;
         poly_copy(&pieces[0][0], &patch);
-        for (int k2 = 0; k2 < nc; k2++) {
-            const int H = cand[k2].Q;
-            if (H == Q || (k2 > 0 && cand[k2 - 1].Q == H)) continue;
+        for (int k2 = 0; k2 < nc && np > 0; k2++) {
+            const int H = cand[k2].Q, fh = cand[k2].fr;
+            if (H == Q) continue;
             double uh[3], dh, e[3];
             plane_in(Br, H, rot, tr, uh, &dh);
             e[0] = dh - rd_dot(uh, fr[0]);
             e[1] = -rd_dot(uh, fr[1]);
             e[2] = -rd_dot(uh, fr[2]);
-            const double c0 = e[0] - dep[0], cx = e[1] - dep[1], cy = e[2] - dep[2];
+            /* the region's sides, inside >= 0: d_R - d_H > 0, then H's projected edges */
+            double hp[RD_PATCH_FACE_MAX + 1][3];
+            int nh = 0;
+            hp[nh][0] = dep[1] - e[1];
+            hp[nh][1] = dep[2] - e[2];
+            hp[nh++][2] = dep[0] - e[0];
+            if (!cand[k2].facing) { /* only where S is behind H: 0 < d_H < d_R */
+                hp[nh][0] = e[1];
+                hp[nh][1] = e[2];
+                hp[nh++][2] = e[0];
+            } else if (!project_face(fr, Pr, fh, rot, tr, uh, hp + 1, &nh))
+                continue;
             int nn = 0;
             for (int q = 0; q < np; q++) {
                 const rd_poly2 *pc = &pieces[cur][q];
-                int any_in = 0, all_far = 1;
-                for (int v = 0; v < pc->n; v++) {
-                    const double x = pc->p[v][0], y = pc->p[v][1];
-                    any_in |= e[0] + e[1] * x + e[2] * y > 0;
-                    all_far &= c0 + cx * x + cy * y >= 0;
-                }
-                if (!any_in || all_far) { /* nothing of it where H is nearer */
-                    if (nn < 8) poly_copy(&pieces[!cur][nn++], pc);
+                int touches = 0;
+                for (int v = 0; v < pc->n && !touches; v++)
+                    touches = hp[0][0] * pc->p[v][0] + hp[0][1] * pc->p[v][1] + hp[0][2] > 0;
+                if (!touches) {
+                    if (nn < RD_SURF_PIECES) poly_copy(&pieces[!cur][nn++], pc);
                     continue;
                 }
-                if (nn < 8 && rd_patch_clip_half(pc, -e[1], -e[2], -e[0], &pieces[!cur][nn])) nn++;
-                if (nn < 8 && rd_patch_clip_half(pc, cx, cy, c0, &pieces[!cur][nn])) nn++;
+                rd_poly2 rest, nxt;
+                poly_copy(&rest, pc);
+                for (int h = 0; h < nh && rest.n; h++) {
+                    /* a sliver of round-off along an edge two faces of r share is no piece */
+                    if (nn < RD_SURF_PIECES &&
+                        rd_patch_clip_half(&rest, -hp[h][0], -hp[h][1], -hp[h][2],
+                                           &pieces[!cur][nn]) &&
+                        poly_area(&pieces[!cur][nn]) > sliver)
+                        nn++;
+                    if (!rd_patch_clip_half(&rest, hp[h][0], hp[h][1], hp[h][2], &nxt)) break;
+                    poly_copy(&rest, &nxt);
+                }
             }
             cur = !cur;
             np = nn;
         }
+        /* where R is the nearest, a plane that bore on Q at the last step has gone deeper than
+           the window: the bodies are inside each other (a face merely behind R's plane, in its
+           prism, beyond a notch of r, is no evidence: it never bore) */
+        double deepest = 0;
         for (int q = 0; q < np; q++)
-            if (keep_piece(S, npc, &pieces[cur][q], P, Q)) return -1;
+            for (int v = 0; v < pieces[cur][q].n; v++)
+                deepest = rd_max(deepest, dep[0] + dep[1] * pieces[cur][q].p[v][0] +
+                                              dep[2] * pieces[cur][q].p[v][1]);
+        if (deepest > band && face_bore_last(S, state_key(pair + 1, fi, Q)))
+            return mesh_penetrated(s, i, r, fi, fr_, deepest, band);
+        int bore = 0;
+        for (int q = 0; q < np; q++)
+            if (rd_patch_clip_half(&pieces[cur][q], -dep[1], -dep[2], band - dep[0], &cut)) {
+                if (keep_piece(S, npc, &cut, P, Q)) return -1;
+                bore = 1;
+            }
+        if (bore && face_bore(S, state_key(pair + 1, fi, Q))) return -1;
     }
     return 0;
 }
@@ -902,14 +1018,16 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     if (rd_bvh_overlaps(&B->tree, &Br->tree, rot, tr, band, &S->cand)) return -1;
     /* the facing and depth tests; the survivors in place, as mesh_cand */
     mesh_cand *mc = (mesh_cand *)S->ord;
-    if (grow((void **)&S->ord, &S->cap_ord, 3 * S->cand.n + 3, sizeof *S->ord)) return -1;
+    if (grow((void **)&S->ord, &S->cap_ord,
+             (int)(sizeof(mesh_cand) / sizeof(int)) * (S->cand.n + 1), sizeof *S->ord))
+        return -1;
     mc = (mesh_cand *)S->ord;
     int nc = 0;
     for (int k = 0; k < S->cand.n; k++) {
         const int fi = S->cand.ab[k][0], fr_ = S->cand.ab[k][1], Q = Br->plane_of[fr_];
         double u[3], dR;
         plane_in(Br, Q, rot, tr, u, &dR);
-        if (!(rd_dot(Pi->fn[fi], u) < -RD_SURF_FACING)) continue;
+        const int facing = rd_dot(Pi->fn[fi], u) < -RD_SURF_FACING;
         double dlo = DBL_MAX, dhi = -DBL_MAX;
         for (int q = Pi->fstart[fi]; q < Pi->fstart[fi] + Pi->flen[fi]; q++) {
             double d = dR - rd_dot(u, Pi->v[Pi->fidx[q]]);
@@ -918,9 +1036,11 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
         }
         /* a face wholly deeper than the band is a far side (not touching), unless its plane
            bore on Q at the last step: then it has sunk (face_pieces stops the run) */
-        if (dhi <= 0 || (dlo >= band && !was_loaded(S, state_key(pair, B->plane_of[fi], Q))))
-            continue;
-        mc[nc++] = (mesh_cand){ fi, Q, fr_ };
+        if (dlo >= band && !face_bore_last(S, state_key(pair + 1, fi, Q))) continue;
+        /* a facing R wholly in front still rules its prism out for the others; a face that
+           does not face S counts only where S is behind it */
+        if (!facing && !(dhi > 0 && dlo < band)) continue;
+        mc[nc++] = (mesh_cand){ fi, Q, fr_, facing };
     }
     qsort(mc, (size_t)nc, sizeof *mc, cmp_cand);
     int npc = 0;
