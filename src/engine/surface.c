@@ -799,6 +799,18 @@ static int mesh_penetrated(rd_sim *s, int i, int r, int fi, int fr, double depth
     return 1;
 }
 
+/* A face pair split into more pieces than the scratch holds: the run stops (never a piece
+ * dropped silently). */
+static int too_many_pieces(rd_sim *s, int i, int r, int fi)
+{
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "contact model surface: face %d of body '%s' splits into more than %d pieces against "
+             "body '%s' at t = %.6g s (the nearest-face rule over many faces of it): not modelled",
+             fi, s->sc.bodies[i].name, RD_SURF_PIECES, s->sc.bodies[r].name, s->t);
+    s->status = RD_STATUS_ERROR;
+    return 1;
+}
+
 /* The area of a counter-clockwise polygon, m^2 (shoelace). */
 static double poly_area(const rd_poly2 *p)
 {
@@ -949,18 +961,19 @@ static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand,
                 for (int v = 0; v < pc->n && !touches; v++)
                     touches = hp[0][0] * pc->p[v][0] + hp[0][1] * pc->p[v][1] + hp[0][2] > 0;
                 if (!touches) {
-                    if (nn < RD_SURF_PIECES) poly_copy(&pieces[!cur][nn++], pc);
+                    if (nn == RD_SURF_PIECES) return too_many_pieces(s, i, r, fi);
+                    poly_copy(&pieces[!cur][nn++], pc);
                     continue;
                 }
                 rd_poly2 rest, nxt;
                 poly_copy(&rest, pc);
                 for (int h = 0; h < nh && rest.n; h++) {
                     /* a sliver of round-off along an edge two faces of r share is no piece */
-                    if (nn < RD_SURF_PIECES &&
-                        rd_patch_clip_half(&rest, -hp[h][0], -hp[h][1], -hp[h][2],
-                                           &pieces[!cur][nn]) &&
-                        poly_area(&pieces[!cur][nn]) > sliver)
-                        nn++;
+                    if (rd_patch_clip_half(&rest, -hp[h][0], -hp[h][1], -hp[h][2], &cut) &&
+                        poly_area(&cut) > sliver) {
+                        if (nn == RD_SURF_PIECES) return too_many_pieces(s, i, r, fi);
+                        poly_copy(&pieces[!cur][nn++], &cut);
+                    }
                     if (!rd_patch_clip_half(&rest, hp[h][0], hp[h][1], hp[h][2], &nxt)) break;
                     poly_copy(&rest, &nxt);
                 }

@@ -25,4 +25,17 @@ for f in L_on_L L_on_L_free; do
         echo "XFAIL: energy residual of two free meshes gap=$res tol=1e-3"
     else echo "FAIL $f-energy: residual '$res' (tol 1e-3)"; fails=$((fails + 1)); fi
 done
+# a toppling L column strikes its free neighbour (both meshes): the run ends done, the neighbour
+# is struck (its tilt above 1e-3 rad), and the energy residual is the known gap (section 8.5)
+cp "$D/topple.dat" "$D/L_column.obj" "$T/"
+rc=0; "$BIN" run "$T/topple.dat" > "$T/topple.txt" 2>&1 || rc=$?
+st=$(sed -n 's/^run: status \([a-z]*\),.*/\1/p' "$T/topple.txt")
+res=$(sed -n 's/^run: .*energy residual \([0-9.e+-]*\).*/\1/p' "$T/topple.txt")
+tb=$(sed -n 's/^b: .*max tilt \([0-9.e+-]*\) rad.*/\1/p' "$T/topple.txt")
+if [ "$rc" -eq 0 ] && [ "$st" = done ]; then echo "CHECK topple-done"
+else echo "FAIL topple-done: rc=$rc status '$st': $(grep -m1 -E 'passed|left|refus|error' "$T/topple.txt")"; fails=$((fails + 1)); fi
+if awk -v t="${tb:-0}" 'BEGIN { exit !(t > 1e-3) }'; then echo "CHECK topple-strikes-neighbour (its max tilt $tb rad)"
+else echo "FAIL topple-strikes-neighbour: max tilt '$tb' rad"; fails=$((fails + 1)); fi
+if awk -v r="${res:-1}" 'BEGIN { exit !(r < 1e-3) }'; then echo "CHECK topple-energy (residual $res, tol 1e-3)"
+else echo "XFAIL: energy residual of a toppling mesh column striking a mesh gap=$res tol=1e-3"; fi
 [ "$fails" -eq 0 ]
