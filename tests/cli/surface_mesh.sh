@@ -11,7 +11,7 @@ D=$(cd "$(dirname "$0")/../data/mesh" && pwd)
 fails=0
 for f in L_on_L L_on_L_free; do
     cp "$D/$f.dat" "$D/L_base.obj" "$D/L_block.obj" "$T/"
-    rc=0; "$BIN" run "$T/$f.dat" > "$T/$f.txt" 2>&1 || rc=$?
+    rc=0; "$BIN" run "$T/$f.dat" -o "$T/$f.h5" > "$T/$f.txt" 2>&1 || rc=$?
     st=$(sed -n 's/^run: status \([a-z]*\),.*/\1/p' "$T/$f.txt")
     res=$(sed -n 's/^run: .*energy residual \([0-9.e+-]*\).*/\1/p' "$T/$f.txt")
     tilt=$(sed -n 's/^block: .*max tilt \([0-9.e+-]*\) rad.*/\1/p' "$T/$f.txt")
@@ -28,7 +28,7 @@ done
 # a toppling L column strikes its free neighbour (both meshes): the run ends done, the neighbour
 # is struck (its tilt above 1e-3 rad), and the energy residual is the known gap (section 8.5)
 cp "$D/topple.dat" "$D/L_column.obj" "$T/"
-rc=0; "$BIN" run "$T/topple.dat" > "$T/topple.txt" 2>&1 || rc=$?
+rc=0; "$BIN" run "$T/topple.dat" -o "$T/topple.h5" > "$T/topple.txt" 2>&1 || rc=$?
 st=$(sed -n 's/^run: status \([a-z]*\),.*/\1/p' "$T/topple.txt")
 res=$(sed -n 's/^run: .*energy residual \([0-9.e+-]*\).*/\1/p' "$T/topple.txt")
 tb=$(sed -n 's/^b: .*max tilt \([0-9.e+-]*\) rad.*/\1/p' "$T/topple.txt")
