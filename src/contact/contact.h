@@ -185,4 +185,40 @@ static inline int rd_patch_spring_cap(rd_patch_spring *sp, const double f0[3], d
     return 1;
 }
 
+/* ---- Bounding-volume hierarchy of a body's faces, in the body's frame (src/contact/bvh.c) ----
+ * An axis-aligned box tree over items (a body's faces), built once: each node's box holds its
+ * items' boxes; a leaf holds at most RD_BVH_LEAF items. Two bodies' trees are traversed
+ * together under their relative pose, so a step's cost follows the boxes that overlap (the
+ * touching patches), not the bodies' face counts. */
+#define RD_BVH_LEAF 4
+
+typedef struct rd_bvh {
+    int nnode;
+    double (*lo)[3], (*hi)[3]; /* node boxes, body frame, m */
+    int *child;                /* first child (the second is child + 1), -1 for a leaf */
+    int *first, *count;        /* a leaf's items: item[first .. first + count) */
+    int *item;                 /* item indices, ordered by leaf */
+} rd_bvh;
+
+/* Builds the tree of n items of boxes lo[k] .. hi[k] (median split along the longest axis of
+ * the items' centres). 0, or -1 when out of memory. */
+int rd_bvh_build(rd_bvh *t, int n, const double (*lo)[3], const double (*hi)[3]);
+void rd_bvh_free(rd_bvh *t);
+
+/* A growable list of item pairs (a of the first tree, b of the second). */
+typedef struct rd_bvh_pairs {
+    int n, cap;
+    int (*ab)[2];
+} rd_bvh_pairs;
+
+/* Every pair of leaf items of trees a and b whose boxes, grown by margin (m), overlap, b's
+ * boxes carried into a's frame by x_a = rot x_b + tr (rot row-major). Appended to out. 0, or -1
+ * when out of memory. */
+int rd_bvh_overlaps(const rd_bvh *a, const rd_bvh *b, const double rot[9], const double tr[3],
+                    double margin, rd_bvh_pairs *out);
+
+/* The items of tree a whose boxes meet the box lo .. hi (a's frame), appended to out as (item,
+ * 0). 0, or -1 when out of memory. */
+int rd_bvh_query(const rd_bvh *a, const double lo[3], const double hi[3], rd_bvh_pairs *out);
+
 #endif

@@ -349,7 +349,8 @@ static int touch(rd_sim *s, int i, int j)
     if (p < 0) {
         int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b],
             pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
-        if (!pa && !pb) return 0; /* cannot touch (e.g. two meshes: not modelled) */
+        /* two meshes touch only in the surface model (surface.c); the vertex model cannot */
+        if (!pa && !pb && s->sc.contact.model != RD_CONTACT_SURFACE) return 0;
         if ((p = pair_create(s, a, b)) < 0) return -1;
     }
     s->pair[p].seen = s->stamp;

@@ -61,6 +61,9 @@ typedef struct surf_body {
     double (*box)[4];      /* per plane: the bounding box of its faces in its coordinates, m (x
                                min, y min, x max, y max): an affine depth's bounds over the plane
                                are at its corners */
+    int *plane_of;         /* [nf] the plane of each face */
+    rd_bvh tree;           /* the faces' boxes, body frame (contact/bvh.c) */
+    int *seen;             /* [nplane] stamp: plane taken this step (the convex path) */
 } surf_body;
 
 /* The state of one patch, keyed by (pair, plane of the integration body, face of r). */
@@ -89,6 +92,13 @@ struct rd_surface {
     double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
     int cap_pl;
     rd_patch_scratch tsc; /* scratch of rd_patch_torsion_set */
+    rd_bvh_pairs cand;    /* scratch: candidate faces, or face pairs, from the trees */
+    int *pkey, cap_pkey;  /* scratch (mesh pairs): each piece's group, plane P and plane Q */
+    int *ord, cap_ord;    /* scratch: an ordering */
+    int seen_stamp;       /* stamp of surf_body.seen */
+    uint64_t *fkey;       /* mesh pairs: face pairs (pair, face of i, plane of r) that bore */
+    long *fstamp;         /* the surface step each last bore */
+    int nfk, fcap;        /* entries, capacity (a power of 2, 0 before the first) */
     long stamp;           /* surface steps taken */
 };
 
@@ -245,8 +255,30 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
                 }
     }
     free(fill);
-    free(plane_of);
     free(pd);
+    B->plane_of = plane_of;
+    B->seen = calloc((size_t)(B->nplane ? B->nplane : 1), sizeof *B->seen);
+    double(*lo)[3] = malloc((size_t)(nf ? nf : 1) * sizeof *lo);
+    double(*hi)[3] = malloc((size_t)(nf ? nf : 1) * sizeof *hi);
+    int bad = !B->seen || !lo || !hi;
+    for (int f = 0; f < nf && !bad; f++) { /* each face's box, body frame */
+        for (int c = 0; c < 3; c++) {
+            lo[f][c] = DBL_MAX;
+            hi[f][c] = -DBL_MAX;
+        }
+        for (int q = P->fstart[f]; q < P->fstart[f] + P->flen[f]; q++)
+            for (int c = 0; c < 3; c++) {
+                lo[f][c] = rd_min(lo[f][c], P->v[P->fidx[q]][c]);
+                hi[f][c] = rd_max(hi[f][c], P->v[P->fidx[q]][c]);
+            }
+    }
+    if (!bad) bad = rd_bvh_build(&B->tree, nf, (const double(*)[3])lo, (const double(*)[3])hi);
+    free(lo);
+    free(hi);
+    if (bad) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     return 0;
 }
 
@@ -271,16 +303,6 @@ int rd_surface_init(rd_sim *s, rd_error *err)
             return -1;
         }
     }
-    for (int a = 0; a < s->nb; a++)
-        for (int b = a + 1; b < s->nb; b++)
-            if (!s->convex[a] && !s->convex[b] && !(s->fixed[a] && s->fixed[b])) {
-                rd_error_set(
-                    err,
-                    "contact model surface: bodies '%s' and '%s' are both non-convex: a patch needs "
-                    "a convex body on one side",
-                    s->sc.bodies[a].name, s->sc.bodies[b].name);
-                return -1;
-            }
     struct rd_surface *S = calloc(1, sizeof *S);
     if (!S) {
         rd_error_set(err, "out of memory");
@@ -349,6 +371,9 @@ void rd_surface_free(rd_sim *s)
         free(B->f2_0);
         free(B->f2);
         free(B->box);
+        free(B->plane_of);
+        free(B->seen);
+        rd_bvh_free(&B->tree);
     }
     free(S->body);
     free(S->st);
@@ -363,6 +388,11 @@ void rd_surface_free(rd_sim *s)
     free(S->tsc.slot);
     free(S->tsc.count);
     free(S->tsc.ends);
+    free(S->cand.ab);
+    free(S->pkey);
+    free(S->ord);
+    free(S->fkey);
+    free(S->fstamp);
     free(S);
     s->surf = NULL;
 }
@@ -561,19 +591,100 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
     return n;
 }
 
-/* Every patch of live pair number pair. */
-static int pair_step(rd_sim *s, int pair)
+/* The pose of body r in body i's frame: x_i-frame = rot x_r-frame + tr (rot row-major). */
+static void rel_pose(const rd_sim *s, int i, int r, double rot[9], double tr[3])
+{
+    const double *Ri = s->R[i], *Rr = s->R[r];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            rot[3 * a + b] = Ri[a] * Rr[b] + Ri[3 + a] * Rr[3 + b] + Ri[6 + a] * Rr[6 + b];
+    const double d[3] = { s->x[r][0] - s->x[i][0], s->x[r][1] - s->x[i][1],
+                          s->x[r][2] - s->x[i][2] };
+    rd_mat_tvec(Ri, d, tr);
+}
+
+/* The sums of a pair's patches onto its bodies, and the pair's and monitor's records: i takes
+ * them; r (when free) -F at each point: -(sum tq) - (x_i - x_r) x sum F. */
+static void pair_finish(rd_sim *s, rd_pair *pr, int i, int r, const surf_sums *sum)
+{
+    rd_axpy(1.0, sum->f, s->f[i]);
+    rd_axpy(1.0, sum->tq, s->tq[i]);
+    if (!s->fixed[r]) {
+        double d[3] = { s->x[i][0] - s->x[r][0], s->x[i][1] - s->x[r][1], s->x[i][2] - s->x[r][2] },
+               t[3];
+        rd_cross(d, sum->f, t);
+        rd_axpy(-1.0, sum->f, s->f[r]);
+        for (int k = 0; k < 3; k++) s->tq[r][k] -= sum->tq[k] + t[k];
+    }
+    pr->k_active = sum->k_active;
+    double nn = rd_norm(sum->nsum);
+    if (nn > 0)
+        for (int k = 0; k < 3; k++) pr->n[k] = sum->nsum[k] / nn;
+    rd_watch *w = rd_monitor_contact_watch(s, i, r);
+    if (w) {
+        w->area += sum->area;
+        w->nactive += sum->nact;
+        w->nslip += sum->nslip;
+        if (sum->area > 0 && !s->settling) w->touched = 1;
+    }
+    if (!s->settling) s->active_point_steps += sum->nact;
+}
+
+/* The planes of body i (its tree) that may reach into body r: those with a face whose box meets
+ * r's box carried into i's frame, grown by margin (m); into S->ord. Returns the
+ * count, -1 when out of memory. */
+static int near_planes(rd_sim *s, int i, int r, double margin)
+{
+    struct rd_surface *S = s->surf;
+    surf_body *B = &S->body[i];
+    const rd_bvh *tr_r = &S->body[r].tree;
+    if (tr_r->nnode == 0) return 0;
+    double rot[9], tr[3], c[3], h[3], lo[3], hi[3];
+    rel_pose(s, i, r, rot, tr);
+    for (int a = 0; a < 3; a++) {
+        c[a] = tr[a];
+        h[a] = margin;
+        for (int k = 0; k < 3; k++) {
+            c[a] += rot[3 * a + k] * 0.5 * (tr_r->lo[0][k] + tr_r->hi[0][k]);
+            h[a] += fabs(rot[3 * a + k]) * 0.5 * (tr_r->hi[0][k] - tr_r->lo[0][k]);
+        }
+        lo[a] = c[a] - h[a];
+        hi[a] = c[a] + h[a];
+    }
+    S->cand.n = 0;
+    if (rd_bvh_query(&B->tree, lo, hi, &S->cand)) return -1;
+    if (++S->seen_stamp == 0) { /* the stamp wrapped: start the marks again */
+        for (int b = 0; b < s->nb; b++)
+            memset(S->body[b].seen, 0, (size_t)S->body[b].nplane * sizeof(int));
+        S->seen_stamp = 1;
+    }
+    int n = 0;
+    if (grow((void **)&S->ord, &S->cap_ord, S->cand.n, sizeof *S->ord)) return -1;
+    for (int k = 0; k < S->cand.n; k++) {
+        const int P = B->plane_of[S->cand.ab[k][0]];
+        if (B->seen[P] == S->seen_stamp) continue;
+        B->seen[P] = S->seen_stamp;
+        S->ord[n++] = P;
+    }
+    return n; /* in the tree's order: the same every step for the same overlap */
+}
+
+/* Every patch of live pair number pair whose body r is convex (section 8.1): the planes of i
+ * near r (near_planes) against every face of r by the nearest-plane clip. */
+static int pair_convex(rd_sim *s, int pair, int i, int r)
 {
     struct rd_surface *S = s->surf;
     rd_pair *pr = &s->pair[pair];
-    const int a = pr->a, b = pr->b;
-    if (s->fixed[a] && s->fixed[b]) return 0;
-    int r = (s->convex[a] && s->convex[b]) ? (s->fixed[b] ? b : a) : s->convex[a] ? a : b;
-    int i = r == a ? b : a;
     const rd_poly *Pr = &s->poly[r];
     const surf_body *B = &S->body[i];
     const rd_joint *j = &s->joint[pr->joint];
     const int nr = Pr->nf;
+    const double band = RD_CONTACT_BAND * rd_min(Pr->radius, s->poly[i].radius);
+    const int np = near_planes(s, i, r, band);
+    if (np <= 0) {
+        pr->k_active = 0;
+        return np;
+    }
     for (int g = 0; g < nr; g++) { /* r's planes, ground frame and i's frame */
         double *uw = S->uw[g], *pl = S->pl[g];
         rd_mat_vec(s->R[r], Pr->fn[g], uw);
@@ -586,7 +697,8 @@ static int pair_step(rd_sim *s, int pair)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
                            : 0.0;
     surf_sums sum = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0, 0, 0, 0 };
-    for (int P = 0; P < B->nplane; P++) {
+    for (int kp = 0; kp < np; kp++) {
+        const int P = S->ord[kp];
         const double(*fr)[3] = B->frame[P];
         for (int h = 0; h < nr; h++) { /* depth below plane h of r, in P's coordinates */
             const double *pl = S->pl[h];
@@ -606,33 +718,414 @@ static int pair_step(rd_sim *s, int pair)
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
             const double c[2] = { ld.cx, ld.cy };
-            double tors = rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
+            double tors = n == 1
+                              ? rd_patch_torsion(S->comp, c, dg[0], dg[1], dg[2])
+                              : rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
             if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, tors, fr, dg, c_a, &sum)) return -1;
         }
     }
-    /* i takes the sums; r (when free) -F at each point: -(sum tq) - (x_i - x_r) x sum F */
-    rd_axpy(1.0, sum.f, s->f[i]);
-    rd_axpy(1.0, sum.tq, s->tq[i]);
-    if (!s->fixed[r]) {
-        double d[3] = { s->x[i][0] - s->x[r][0], s->x[i][1] - s->x[r][1], s->x[i][2] - s->x[r][2] },
-               t[3];
-        rd_cross(d, sum.f, t);
-        rd_axpy(-1.0, sum.f, s->f[r]);
-        for (int k = 0; k < 3; k++) s->tq[r][k] -= sum.tq[k] + t[k];
-    }
-    pr->k_active = sum.k_active;
-    double nn = rd_norm(sum.nsum);
-    if (nn > 0)
-        for (int k = 0; k < 3; k++) pr->n[k] = sum.nsum[k] / nn;
-    rd_watch *w = rd_monitor_contact_watch(s, i, r);
-    if (w) {
-        w->area += sum.area;
-        w->nactive += sum.nact;
-        w->nslip += sum.nslip;
-        if (sum.area > 0 && !s->settling) w->touched = 1;
-    }
-    if (!s->settling) s->active_point_steps += sum.nact;
+    pair_finish(s, pr, i, r, &sum);
     return 0;
+}
+
+/* ---- Mesh against mesh (neither body convex; section 8.5) ----
+ * For a face S of i (plane P) and a face R of r (plane Q) facing each other (n_S . u_R <
+ * -RD_SURF_FACING) the patch is the part of S whose projection along u_R falls in R, behind R's
+ * plane by a depth 0 < d_R(p) < band (rd_patch_faces, then the two depth clips): the depth is
+ * local, from R's plane. A point of S behind several facing faces of r within the band (near a
+ * convex edge of r) takes the nearest one: S's piece for R is split where another candidate
+ * face H is nearer, 0 < d_H < d_R, into its parts d_H <= 0 and d_H >= d_R (two convex pieces),
+ * so no point is counted twice; for convex r this is the nearest-plane rule of section 8.1. */
+/* The depth window of a mesh pair, as a fraction of the smaller bounding radius: deeper, a face
+ * is a far side, or (when it passes through the face or bore on it) has sunk, and the run ends
+ * penetrated. Not the contact band (1e-3): a rough scan's spike bears on a face through a
+ * cone of slope about 0.3, whose Winkler load KN pi d^3 / (3 0.09) holds a 350 kg rock at KN
+ * 1e10 Pa/m only at d = 3 mm (the scanned rock on a scanned pedestal of docs/CONTACT.md
+ * section 8.5 stopped at 0.47 mm with the band). */
+#define RD_SURF_MESH_DEPTH 0.02
+#define RD_SURF_FACING     1e-3 /* faces facing each other: n_S . u_R below minus this (89.94 deg) */
+/* A piece of less than this fraction of its face's area, left by the subtraction along an edge
+ * two faces of r share, is round-off (a sliver of 1e-16 m width), not a piece */
+#define RD_SURF_SLIVER     1e-12
+#define RD_SURF_PIECES     32 /* most convex pieces of one face pair after the nearest-face rule */
+
+/* A candidate face pair of a mesh pair, after the facing and depth tests. */
+typedef struct mesh_cand {
+    int fi, Q, fr;
+    int facing; /* 1: the faces face each other (a patch); 0: R only rules points out */
+} mesh_cand;
+
+static int cmp_cand(const void *a, const void *b)
+{
+    const mesh_cand *x = a, *y = b;
+    if (x->fi != y->fi) return (x->fi > y->fi) - (x->fi < y->fi);
+    if (x->Q != y->Q) return (x->Q > y->Q) - (x->Q < y->Q);
+    return (x->fr > y->fr) - (x->fr < y->fr);
+}
+
+/* Plane Q of r in i's frame: outward normal u and offset dR (u . x = dR). */
+static void plane_in(const surf_body *Br, int Q, const double rot[9], const double tr[3],
+                     double u[3], double *dR)
+{
+    const double(*fq)[3] = Br->frame[Q];
+    rd_mat_vec(rot, fq[3], u);
+    *dR = rd_dot(fq[3], fq[0]) + rd_dot(u, tr);
+}
+
+/* One piece (a convex polygon of plane P's coordinates) into the pieces store, group (P, Q). */
+static int keep_piece(struct rd_surface *S, int *n, const rd_poly2 *p, int P, int Q)
+{
+    if (grow((void **)&S->comp, &S->cap_comp, *n + 2, sizeof *S->comp) ||
+        grow((void **)&S->pkey, &S->cap_pkey, 2 * (*n + 1), sizeof *S->pkey))
+        return -1;
+    poly_copy(&S->comp[*n], p);
+    S->pkey[2 * *n] = P;
+    S->pkey[2 * *n + 1] = Q;
+    (*n)++;
+    return 0;
+}
+
+/* Body i passed into body r (a face through a face deeper than the depth window): the run ends. */
+static int mesh_penetrated(rd_sim *s, int i, int r, int fi, int fr, double depth, double band)
+{
+    snprintf(
+        s->errmsg, sizeof s->errmsg,
+        "body '%s' passed into body '%s' at t = %.6g s (step %ld): its face %d is %.3g m "
+        "deep behind face %d, more than a mesh pair's depth window (%.3g m): the contact stiffness "
+        "(stiffness-normal %g Pa/m) is far too soft for the load",
+        s->sc.bodies[i].name, s->sc.bodies[r].name, s->t, s->nsteps_all, fi, depth, fr, band,
+        s->sc.contact.kn);
+    s->status = RD_STATUS_PENETRATED;
+    return 1;
+}
+
+/* A face pair split into more pieces than the scratch holds: the run stops (never a piece
+ * dropped silently). */
+static int too_many_pieces(rd_sim *s, int i, int r, int fi)
+{
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "contact model surface: face %d of body '%s' splits into more than %d pieces against "
+             "body '%s' at t = %.6g s (the nearest-face rule over many faces of it): not modelled",
+             fi, s->sc.bodies[i].name, RD_SURF_PIECES, s->sc.bodies[r].name, s->t);
+    s->status = RD_STATUS_ERROR;
+    return 1;
+}
+
+/* The area of a counter-clockwise polygon, m^2 (shoelace). */
+static double poly_area(const rd_poly2 *p)
+{
+    double a = 0;
+    for (int k = 0; k < p->n; k++) {
+        const double *u = p->p[k], *v = p->p[(k + 1) % p->n];
+        a += u[0] * v[1] - v[0] * u[1];
+    }
+    return 0.5 * a;
+}
+
+/* Face fh of r projected along u (i's frame) onto the plane of frame fr, as the half-planes of
+ * its edges (a x + b y + c >= 0 inside) appended to hp from index *nh. 0 when it cannot be. */
+static int project_face(const double fr[4][3], const rd_poly *Pr, int fh, const double rot[9],
+                        const double tr[3], const double u[3], double (*hp)[3], int *nh)
+{
+    const int nr = Pr->flen[fh];
+    const double nu = rd_dot(fr[3], u);
+    if (!(nu < 0) || nr > RD_PATCH_FACE_MAX) return 0;
+    double p2[RD_PATCH_FACE_MAX][2];
+    for (int k = 0; k < nr; k++) { /* reversed: counter-clockwise about the plane's normal */
+        double q[3];
+        rd_mat_vec(rot, Pr->v[Pr->fidx[Pr->fstart[fh] + nr - 1 - k]], q);
+        rd_axpy(1.0, tr, q);
+        double dq[3] = { q[0] - fr[0][0], q[1] - fr[0][1], q[2] - fr[0][2] };
+        rd_axpy(-rd_dot(fr[3], dq) / nu, u, dq);
+        p2[k][0] = rd_dot(dq, fr[1]);
+        p2[k][1] = rd_dot(dq, fr[2]);
+    }
+    int n = 0;
+    for (int k = 0; k < nr; k++) {
+        const double *p = p2[k], *q = p2[(k + 1) % nr];
+        double ex = q[0] - p[0], ey = q[1] - p[1];
+        hp[n][0] = -ey;
+        hp[n][1] = ex;
+        hp[n][2] = ey * p[0] - ex * p[1];
+        n++;
+    }
+    *nh += n;
+    return 1;
+}
+
+/* The face-pair table of mesh pairs: the slot of key k (its key 0 when empty; keys are never 0:
+ * they carry pair + 1). */
+static int face_slot(const struct rd_surface *S, uint64_t k)
+{
+    unsigned m = (unsigned)S->fcap - 1, q = key_hash(k) & m;
+    while (S->fkey[q] != 0 && S->fkey[q] != k) q = (q + 1) & m;
+    return (int)q;
+}
+
+/* Face pair k bore this step. 0, or -1 when out of memory. */
+static int face_bore(struct rd_surface *S, uint64_t k)
+{
+    if (2 * (S->nfk + 1) > S->fcap) {
+        int cap = S->fcap ? 2 * S->fcap : 256;
+        uint64_t *ok = S->fkey;
+        long *os = S->fstamp;
+        const int ocap = S->fcap;
+        S->fkey = calloc((size_t)cap, sizeof *S->fkey);
+        S->fstamp = calloc((size_t)cap, sizeof *S->fstamp);
+        if (!S->fkey || !S->fstamp) return -1;
+        S->fcap = cap;
+        for (int j = 0; j < ocap; j++)
+            if (ok[j]) {
+                int q = face_slot(S, ok[j]);
+                S->fkey[q] = ok[j];
+                S->fstamp[q] = os[j];
+            }
+        free(ok);
+        free(os);
+    }
+    int q = face_slot(S, k);
+    if (S->fkey[q] == 0) {
+        S->fkey[q] = k;
+        S->nfk++;
+    }
+    S->fstamp[q] = S->stamp;
+    return 0;
+}
+
+/* Did face pair k bear at the last step? */
+static int face_bore_last(const struct rd_surface *S, uint64_t k)
+{
+    if (S->fcap == 0) return 0;
+    int q = face_slot(S, k);
+    return S->fkey[q] == k && S->fstamp[q] == S->stamp - 1;
+}
+
+/* The pieces of face c->fi of i (the candidates cand[0 .. nc), all of that face) into the pieces
+ * store. Returns 0, 1 when the bodies passed into each other, -1 when out of memory. */
+static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand, int nc,
+                       const double rot[9], const double tr[3], double band, int *npc)
+{
+    struct rd_surface *S = s->surf;
+    const surf_body *B = &S->body[i], *Br = &S->body[r];
+    const rd_poly *Pi = &s->poly[i], *Pr = &s->poly[r];
+    const int fi = cand[0].fi, P = B->plane_of[fi];
+    const double(*fr)[3] = B->frame[P];
+    rd_poly2 sp, pieces[2][RD_SURF_PIECES], patch, cut;
+    sp.n = Pi->flen[fi];
+    memcpy(sp.p, B->f2 + B->f2_0[fi], (size_t)sp.n * sizeof sp.p[0]);
+    const double sliver = RD_SURF_SLIVER * poly_area(&sp);
+    double rv[RD_PATCH_FACE_MAX][3];
+    for (int k = 0; k < nc; k++) {
+        if (!cand[k].facing) continue;
+        const int fr_ = cand[k].fr, Q = cand[k].Q, nr = Pr->flen[fr_];
+        double u[3], dR, dep[3];
+        plane_in(Br, Q, rot, tr, u, &dR);
+        for (int v = 0; v < nr; v++) {
+            rd_mat_vec(rot, Pr->v[Pr->fidx[Pr->fstart[fr_] + v]], rv[v]);
+            rd_axpy(1.0, tr, rv[v]);
+        }
+        if (!rd_patch_faces(fr[0], fr[1], fr[2], fr[3], &sp, (const double(*)[3])rv, nr, u, dR,
+                            &patch, dep))
+            continue;
+        if (!rd_patch_clip_half(&patch, dep[1], dep[2], dep[0], &cut)) continue;
+        poly_copy(&patch, &cut);
+        /* the nearest face over each point: the part of the piece that lies in the prism of
+           another candidate face H (of another plane) with d_H < d_R (nearer, or in front of
+           H: outside r there) is taken out, piece minus a convex region, in convex parts */
+        int cur = 0, np = 1;
+        poly_copy(&pieces[0][0], &patch);
+        for (int k2 = 0; k2 < nc && np > 0; k2++) {
+            const int H = cand[k2].Q, fh = cand[k2].fr;
+            if (H == Q) continue;
+            double uh[3], dh, e[3];
+            plane_in(Br, H, rot, tr, uh, &dh);
+            e[0] = dh - rd_dot(uh, fr[0]);
+            e[1] = -rd_dot(uh, fr[1]);
+            e[2] = -rd_dot(uh, fr[2]);
+            /* the region's sides, inside >= 0: d_R - d_H > 0, then H's projected edges */
+            double hp[RD_PATCH_FACE_MAX + 1][3];
+            int nh = 0;
+            hp[nh][0] = dep[1] - e[1];
+            hp[nh][1] = dep[2] - e[2];
+            hp[nh++][2] = dep[0] - e[0];
+            if (!cand[k2].facing) { /* only where S is behind H: 0 < d_H < d_R */
+                hp[nh][0] = e[1];
+                hp[nh][1] = e[2];
+                hp[nh++][2] = e[0];
+            } else if (!project_face(fr, Pr, fh, rot, tr, uh, hp + 1, &nh))
+                continue;
+            int nn = 0;
+            for (int q = 0; q < np; q++) {
+                const rd_poly2 *pc = &pieces[cur][q];
+                int touches = 0;
+                for (int v = 0; v < pc->n && !touches; v++)
+                    touches = hp[0][0] * pc->p[v][0] + hp[0][1] * pc->p[v][1] + hp[0][2] > 0;
+                if (!touches) {
+                    if (nn == RD_SURF_PIECES) return too_many_pieces(s, i, r, fi);
+                    poly_copy(&pieces[!cur][nn++], pc);
+                    continue;
+                }
+                rd_poly2 rest, nxt;
+                poly_copy(&rest, pc);
+                for (int h = 0; h < nh && rest.n; h++) {
+                    /* a sliver of round-off along an edge two faces of r share is no piece */
+                    if (rd_patch_clip_half(&rest, -hp[h][0], -hp[h][1], -hp[h][2], &cut) &&
+                        poly_area(&cut) > sliver) {
+                        if (nn == RD_SURF_PIECES) return too_many_pieces(s, i, r, fi);
+                        poly_copy(&pieces[!cur][nn++], &cut);
+                    }
+                    if (!rd_patch_clip_half(&rest, hp[h][0], hp[h][1], hp[h][2], &nxt)) break;
+                    poly_copy(&rest, &nxt);
+                }
+            }
+            cur = !cur;
+            np = nn;
+        }
+        /* where R is the nearest, a plane that bore on Q at the last step has gone deeper than
+           the window: the bodies are inside each other (a face merely behind R's plane, in its
+           prism, beyond a notch of r, is no evidence: it never bore) */
+        double deepest = 0;
+        for (int q = 0; q < np; q++)
+            for (int v = 0; v < pieces[cur][q].n; v++)
+                deepest = rd_max(deepest, dep[0] + dep[1] * pieces[cur][q].p[v][0] +
+                                              dep[2] * pieces[cur][q].p[v][1]);
+        if (deepest > band && face_bore_last(S, state_key(pair + 1, fi, Q)))
+            return mesh_penetrated(s, i, r, fi, fr_, deepest, band);
+        int bore = 0;
+        for (int q = 0; q < np; q++)
+            if (rd_patch_clip_half(&pieces[cur][q], -dep[1], -dep[2], band - dep[0], &cut)) {
+                if (keep_piece(S, npc, &cut, P, Q)) return -1;
+                bore = 1;
+            }
+        if (bore && face_bore(S, state_key(pair + 1, fi, Q))) return -1;
+    }
+    return 0;
+}
+
+static const int *g_pkey; /* the pieces' keys, for cmp_piece (qsort has no user pointer) */
+
+static int cmp_piece(const void *a, const void *b)
+{
+    const int x = *(const int *)a, y = *(const int *)b;
+    for (int k = 0; k < 2; k++)
+        if (g_pkey[2 * x + k] != g_pkey[2 * y + k])
+            return (g_pkey[2 * x + k] > g_pkey[2 * y + k]) -
+                   (g_pkey[2 * x + k] < g_pkey[2 * y + k]);
+    return (x > y) - (x < y);
+}
+
+/* Every patch of live pair number pair when neither body is convex: the face pairs that the two
+ * trees give, their pieces (face_pieces), summed per (plane P of i, plane Q of r): one patch,
+ * one state, per pair of planes. 0, 1 when the run must stop, -1 when out of memory. */
+static int pair_mesh(rd_sim *s, int pair, int i, int r)
+{
+    struct rd_surface *S = s->surf;
+    rd_pair *pr = &s->pair[pair];
+    const rd_poly *Pi = &s->poly[i], *Pr = &s->poly[r];
+    const surf_body *B = &S->body[i], *Br = &S->body[r];
+    const rd_joint *j = &s->joint[pr->joint];
+    const double band = RD_SURF_MESH_DEPTH * rd_min(Pr->radius, Pi->radius);
+    double rot[9], tr[3];
+    rel_pose(s, i, r, rot, tr);
+    S->cand.n = 0;
+    if (rd_bvh_overlaps(&B->tree, &Br->tree, rot, tr, band, &S->cand)) return -1;
+    /* the facing and depth tests; the survivors in place, as mesh_cand */
+    mesh_cand *mc = (mesh_cand *)S->ord;
+    if (grow((void **)&S->ord, &S->cap_ord,
+             (int)(sizeof(mesh_cand) / sizeof(int)) * (S->cand.n + 1), sizeof *S->ord))
+        return -1;
+    mc = (mesh_cand *)S->ord;
+    int nc = 0;
+    for (int k = 0; k < S->cand.n; k++) {
+        const int fi = S->cand.ab[k][0], fr_ = S->cand.ab[k][1], Q = Br->plane_of[fr_];
+        double u[3], dR;
+        plane_in(Br, Q, rot, tr, u, &dR);
+        const int facing = rd_dot(Pi->fn[fi], u) < -RD_SURF_FACING;
+        double dlo = DBL_MAX, dhi = -DBL_MAX;
+        for (int q = Pi->fstart[fi]; q < Pi->fstart[fi] + Pi->flen[fi]; q++) {
+            double d = dR - rd_dot(u, Pi->v[Pi->fidx[q]]);
+            dlo = rd_min(dlo, d);
+            dhi = rd_max(dhi, d);
+        }
+        /* a face wholly deeper than the band is a far side (not touching), unless its plane
+           bore on Q at the last step: then it has sunk (face_pieces stops the run) */
+        if (dlo >= band && !face_bore_last(S, state_key(pair + 1, fi, Q))) continue;
+        /* a facing R wholly in front still rules its prism out for the others; a face that
+           does not face S counts only where S is behind it */
+        if (!facing && !(dhi > 0 && dlo < band)) continue;
+        mc[nc++] = (mesh_cand){ fi, Q, fr_, facing };
+    }
+    qsort(mc, (size_t)nc, sizeof *mc, cmp_cand);
+    int npc = 0;
+    for (int k = 0; k < nc;) {
+        int e = k;
+        while (e < nc && mc[e].fi == mc[k].fi) e++;
+        int rc = face_pieces(s, pair, i, r, mc + k, e - k, rot, tr, band, &npc);
+        if (rc) return rc;
+        k = e;
+    }
+    /* the pieces by (P, Q): each group one patch */
+    int *ix = malloc((size_t)(npc ? npc : 1) * sizeof *ix);
+    if (!ix) return -1;
+    for (int k = 0; k < npc; k++) ix[k] = k;
+    g_pkey = S->pkey;
+    qsort(ix, (size_t)npc, sizeof *ix, cmp_piece);
+    const double c_a = (j->damping > 0 && pr->k_active > 0)
+                           ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
+                           : 0.0;
+    surf_sums sum = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0, 0, 0, 0 };
+    int rc = 0;
+    for (int k = 0; k < npc && !rc;) {
+        const int P = S->pkey[2 * ix[k]], Q = S->pkey[2 * ix[k] + 1];
+        int e = k;
+        rd_moments m = { 0, 0, 0, 0, 0, 0 };
+        for (; e < npc && S->pkey[2 * ix[e]] == P && S->pkey[2 * ix[e] + 1] == Q; e++) {
+            rd_moments pm;
+            rd_patch_moments(&S->comp[ix[e]], &pm);
+            m.a += pm.a;
+            m.sx += pm.sx;
+            m.sy += pm.sy;
+            m.sxx += pm.sxx;
+            m.sxy += pm.sxy;
+            m.syy += pm.syy;
+        }
+        const double(*fr)[3] = B->frame[P];
+        double u[3], dR, dep[3];
+        plane_in(Br, Q, rot, tr, u, &dR);
+        dep[0] = dR - rd_dot(u, fr[0]);
+        dep[1] = -rd_dot(u, fr[1]);
+        dep[2] = -rd_dot(u, fr[2]);
+        rd_patch_load ld;
+        rd_patch_load_from(&m, dep[0], dep[1], dep[2], &ld);
+        if (ld.area > 0) {
+            const double c[2] = { ld.cx, ld.cy };
+            double tors = 0;
+            for (int q = k; q < e; q++)
+                tors += rd_patch_torsion(&S->comp[ix[q]], c, dep[0], dep[1], dep[2]);
+            rd_mat_vec(s->R[r], Br->frame[Q][3], S->uw[Q]);
+            rc = patch_apply(s, pr, pair, i, r, P, Q, &m, &ld, tors, fr, dep, c_a, &sum);
+        }
+        k = e;
+    }
+    free(ix);
+    if (rc) return rc;
+    pair_finish(s, pr, i, r, &sum);
+    return 0;
+}
+
+/* Every patch of live pair number pair: r is the convex body (the fixed one when both are), or,
+ * when neither is convex, the fixed one (the larger when both are free). */
+static int pair_step(rd_sim *s, int pair)
+{
+    const rd_pair *pr = &s->pair[pair];
+    const int a = pr->a, b = pr->b;
+    if (s->fixed[a] && s->fixed[b]) return 0;
+    if (s->convex[a] || s->convex[b]) {
+        int r = (s->convex[a] && s->convex[b]) ? (s->fixed[b] ? b : a) : s->convex[a] ? a : b;
+        return pair_convex(s, pair, r == a ? b : a, r);
+    }
+    int r = s->fixed[a] ? a : s->fixed[b] ? b : s->poly[a].radius >= s->poly[b].radius ? a : b;
+    return pair_mesh(s, pair, r == a ? b : a, r);
 }
 
 /* The stored energy of a patch, J. */
@@ -650,12 +1143,15 @@ void rd_surface_step(rd_sim *s)
     struct rd_surface *S = s->surf;
     S->stamp++;
     S->non_next = 0;
-    for (int k = 0; k < s->nlive; k++)
-        if (pair_step(s, s->live[k])) {
+    for (int k = 0; k < s->nlive; k++) {
+        int rc = pair_step(s, s->live[k]);
+        if (rc > 0) return; /* the run stops (s->status and s->errmsg set) */
+        if (rc < 0) {
             s->status = RD_STATUS_ERROR;
             snprintf(s->errmsg, sizeof s->errmsg, "out of memory (contact patches)");
             return;
         }
+    }
     /* patches loaded last step and not now open: their springs let go (booked as friction) */
     for (int k = 0; k < S->non; k++) {
         surf_state *st = &S->st[S->on[k]];
