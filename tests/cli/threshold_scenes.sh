@@ -38,4 +38,12 @@ else bad "hull-restitution: rc=$rc: $(tail -3 "$T/res.txt")"; fi
 rc=0; "$BIN" restitution -q "$T/col.dat" > "$T/res2.txt" 2>&1 || rc=$?
 [ "$rc" -eq 2 ] && grep -q "restitution: needs exactly one free body (found 2)" "$T/res2.txt" && ok assembly-restitution-says-why ||
     bad "assembly-restitution-says-why: rc=$rc: $(cat "$T/res2.txt")"
+grep -q "give --body NAME to calibrate the joint under NAME" "$T/res2.txt" && ok assembly-restitution-offers-body ||
+    bad "assembly-restitution-offers-body: $(cat "$T/res2.txt")"
+rc=0; "$BIN" restitution -q "$T/col.dat" --body nope > "$T/res3.txt" 2>&1 || rc=$?
+[ "$rc" -eq 2 ] && grep -q "restitution: --body: no body named 'nope'" "$T/res3.txt" && ok body-unknown ||
+    bad "body-unknown: rc=$rc: $(cat "$T/res3.txt")"
+rc=0; "$BIN" restitution -q "$T/col.dat" --body base > "$T/res4.txt" 2>&1 || rc=$?
+[ "$rc" -eq 2 ] && grep -q "restitution: --body 'base' is fixed: it does not rock" "$T/res4.txt" && ok body-fixed ||
+    bad "body-fixed: rc=$rc: $(cat "$T/res4.txt")"
 [ "$fails" -eq 0 ]
