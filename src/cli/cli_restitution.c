@@ -143,6 +143,12 @@ int rd_cli_restitution(int argc, char **argv)
             "= %.4f (exact for a body symmetric about its rocking plane's vertical, approximate for an "
             "irregular one)%s\n",
             rs.alpha, rs.R, rs.p, rs.lean * 180 / M_PI, rigid, a.target > 0 ? "" : ": the target");
+    if (tan(rs.alpha) > tan(sc.contact.friction)) /* Shenton: rocking alone needs mu > tan alpha */
+        printf("note: tan alpha = %.3g exceeds the joint's friction coefficient %.3g (%.4g deg): "
+               "the body slides as it rocks, so rigid theory's impact (no slip at the new pivot) "
+               "and its r do not apply; a calibration to it is not meaningful\n",
+               tan(rs.alpha), tan(sc.contact.friction), sc.contact.friction * 180 / M_PI);
+    fflush(stdout); /* before the runs (minutes on a column's drum) */
     /* 4 x 5 table runs, then up to RD_CAL_ITER calibration runs (restitution.c; its scan is
        the table's row at the scenario's KN when there is one, else 5 more runs); the check is
        the calibration's last run */
