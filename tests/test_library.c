@@ -342,6 +342,55 @@ static void test_threshold_progress_jobs(void **state)
     assert_int_equal(seen.backwards, 0);
 }
 
+/* A slender block that overturns beside a squat one that never does: a run stops when every
+ * free body lies down (stop 1: this one runs its whole 3 s), or, with RD_OVERTURN_STOP_ANY (the
+ * threshold's runs, whose question is only whether anything overturns), once the slender block
+ * lies down, its verdict overturned and the squat one's not. Before, a threshold run went on
+ * through the rest of a collapse and its energy balance was judged there (the six-drum column
+ * at 0.574 g: untrusted at 3.4 s, after col-d6 had overturned at 2.28 s; exit 3). */
+static const char *two_blocks =
+    "block create brick size 4 4 1 position 0 0 -0.5 fixed name base\n"
+    "block create brick size 0.2 0.2 1.2 position -1 0 0.6 name slender\n"
+    "block create brick size 1 1 0.3 position 1 0 0.15 name squat\n"
+    "contact property stiffness-normal 1e9 stiffness-shear 1e10 friction 60 spacing vertices\n"
+    "ground-motion pulse one-sine amplitude 1g frequency 2\n"
+    "model overturn tilt-ratio 1.0\n"
+    "model solve time 3\n";
+
+static void run_two_blocks(int stop, rd_summary *sum, double *dt)
+{
+    rd_scenario sc;
+    rd_error err;
+    assert_int_equal(rd_scenario_parse(&sc, "two.dat", two_blocks, &err), 0);
+    sc.overturn.stop = stop;
+    rd_sim *sim = rd_sim_create(&sc, &err);
+    if (!sim) fail_msg("%s", err.msg);
+    rd_sim_run(sim);
+    rd_sim_summary(sim, sum);
+    *dt = rd_sim_dt(sim);
+    rd_body_summary b[2] = { sum->body[0], sum->body[1] };
+    print_message("stop %d: status %s at t = %.4g s; slender overturned %d at %.4g s, squat %d\n",
+                  stop, rd_status_name(sum->status), sum->end_time, b[0].overturned,
+                  b[0].overturn_time, b[1].overturned);
+    assert_true(b[0].overturned && !b[1].overturned);
+    rd_sim_free(sim);
+    rd_scenario_free(&sc);
+}
+
+static void test_stop_at_first_fall(void **state)
+{
+    (void)state;
+    rd_summary every, any;
+    double dt;
+    run_two_blocks(1, &every, &dt);
+    assert_int_equal(every.status, RD_STATUS_DONE);
+    assert_true(every.end_time >= 3 - dt); /* the squat block never lies down */
+    run_two_blocks(RD_OVERTURN_STOP_ANY, &any, &dt);
+    assert_int_equal(any.status, RD_STATUS_OVERTURNED);
+    assert_true(any.end_time < 3 - dt);
+    assert_true(any.end_time >= any.body[0].overturn_time); /* stopped once it lay down */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -351,6 +400,7 @@ int main(void)
         cmocka_unit_test(test_observers_no_file),
         cmocka_unit_test(test_free_scenario_before_run),
         cmocka_unit_test(test_threshold_progress_jobs),
+        cmocka_unit_test(test_stop_at_first_fall),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

@@ -283,8 +283,18 @@ typedef enum rd_overturn_kind {
 typedef struct rd_overturn_def {
     rd_overturn_kind kind;
     double value;
-    int stop; /* 1: end the run when every free body has overturned (default 1) */
+    int stop; /* 1: end the run when every free body has overturned (default 1);
+                 RD_OVERTURN_STOP_ANY: as soon as any one has, for good (rd_overturns) */
 } rd_overturn_def;
+
+/* rd_overturn_def.stop: end the run once any free body has overturned and lies down (tilted
+ * past 85 degrees, or fallen out of the scene; for the height and off-pedestal criteria, once
+ * it meets them), the verdict that no later motion undoes. A threshold run asks only whether
+ * anything overturns: the rest of a collapse (drums tumbling over each other, edge to edge
+ * between subcontact points, a documented limit of the vertex contact) is not its answer, and
+ * its energy balance is not the answer's (the six-drum column at 0.574 g: col-d6 met the
+ * criterion at 2.28 s, the residual passed 1e-2 at 3.4 s as the drums fell off the stylobate). */
+#define RD_OVERTURN_STOP_ANY 2
 
 typedef struct rd_output_def {
     char path[RD_PATH_MAX]; /* HDF5 file; default "rockdem.h5" */

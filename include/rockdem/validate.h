@@ -180,6 +180,14 @@ typedef struct rd_rocking_scales {
 } rd_rocking_scales;
 RD_API int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error *err);
 
+/* The scene reduced to one free body, `name`, for its free rocking (a stack's, a column's or a
+ * statue's joint calibrated on the body above it): the bodies it rests on as placed, down to the
+ * fixed base, become fixed, every other free body (those above it) is removed, histories are
+ * dropped, and no joint override sets a restitution (the calibrated one is the joint's). out is
+ * a copy the caller frees with rd_scenario_free. 0, or -1 with err (no such body, or fixed). */
+RD_API int rd_restitution_isolate(const rd_scenario *sc, const char *name, rd_scenario *out,
+                                  rd_error *err);
+
 /* Rigid theory's restitution of an impact onto the opposite pivot edge, angular momentum
  * about the new pivot conserved: r = 1 - 2 m R^2 sin^2(alpha) / I_O = 1 - 2 p^2 R sin^2(alpha)
  * / g (a uniform rectangular block, I_O = 4/3 m R^2: Housner's 1 - 1.5 sin^2 alpha). Exact for

@@ -117,7 +117,8 @@ static const sub_help pages[] = {
       "  --set KEY=VALUE   override a setting (rockdem keys)\n"
       "  -q                no progress line\n" },
     { "restitution",
-      "usage: rockdem restitution FILE [--target R] [--theta0 RAD] [--set KEY=VALUE]... [-q]\n"
+      "usage: rockdem restitution FILE [--target R] [--theta0 RAD] [--body NAME]\n"
+      "       [--set KEY=VALUE]... [-q]\n"
       "Free rocking of the scene's single block: the DEM's effective restitution\n"
       "r = w_after / w_before (mean of the first 3 impacts) for KN 1e8..1e11 Pa/m and\n"
       "contact restitution 0..1, then the contact restitution that reaches the target\n"
@@ -129,6 +130,9 @@ static const sub_help pages[] = {
       "larger bracket means the block still bounces on its new pivot after impact.\n"
       "  --target R        restitution to reach, in (0, 1] (default Housner's r = 1 - 1.5 sin^2 alpha)\n"
       "  --theta0 RAD      initial tilt, rad, in (0, alpha) (default alpha / 2)\n"
+      "  --body NAME       in a scene of several free bodies (a stack, a column, a statue\n"
+      "                    on a pedestal): NAME's free rocking on what holds it up, held\n"
+      "                    fixed, the bodies above it removed: calibrates the joint under it\n"
       "  --set KEY=VALUE   override a setting (rockdem keys)\n"
       "  -q                no progress line\n"
       "Exit status 4 when the target cannot be reached (the closest r is printed).\n" },

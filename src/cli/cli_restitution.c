@@ -13,17 +13,23 @@
 #include <string.h>
 
 typedef struct restitution_args {
-    double target; /* 0: Housner's r */
-    double theta0; /* rad; 0: half of alpha */
+    double target;    /* 0: Housner's r */
+    double theta0;    /* rad; 0: half of alpha */
+    const char *body; /* --body NAME: that body alone on what holds it up; NULL: the scene */
 } restitution_args;
 
 static int restitution_option(void *ctx, int argc, char **argv, int *i)
 {
-    static const char *const names[] = { "--target", "--theta0", NULL };
+    static const char *const names[] = { "--target", "--theta0", "--body", NULL };
     restitution_args *a = ctx;
     const char *o = argv[*i], *v;
     int rc = rd_cli_option(argc, argv, *i, names, &v);
     if (rc) return rc;
+    if (!strcmp(o, "--body")) {
+        a->body = v;
+        (*i)++;
+        return 0;
+    }
     int target = !strcmp(o, "--target");
     double x;
     if (rd_cli_number(o, v, 0, &x)) return -1;
@@ -94,13 +100,26 @@ static void print_check(const rd_restitution *m)
 int rd_cli_restitution(int argc, char **argv)
 {
     rd_scenario sc;
-    restitution_args a = { 0, 0 };
+    restitution_args a = { 0, 0, NULL };
     if (rd_cli_scenario(&sc, argc, argv, restitution_option, &a, NULL)) {
         rd_scenario_free(&sc);
         return 2;
     }
     rd_error err;
     rd_rocking_scales rs;
+    if (a.body) { /* that body's free rocking on what holds it up */
+        rd_scenario one;
+        int bad = rd_restitution_isolate(&sc, a.body, &one, &err);
+        rd_scenario_free(&sc);
+        if (bad) {
+            fprintf(stderr, "%s\n", err.msg);
+            return 2;
+        }
+        sc = one;
+        printf("body '%s': its free rocking on what holds it up (held fixed), the bodies above it "
+               "removed: the joint under it is calibrated\n",
+               a.body);
+    }
     if (rd_rocking_scales_of(&sc, &rs, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         rd_scenario_free(&sc);
@@ -124,6 +143,12 @@ int rd_cli_restitution(int argc, char **argv)
             "= %.4f (exact for a body symmetric about its rocking plane's vertical, approximate for an "
             "irregular one)%s\n",
             rs.alpha, rs.R, rs.p, rs.lean * 180 / M_PI, rigid, a.target > 0 ? "" : ": the target");
+    if (tan(rs.alpha) > tan(sc.contact.friction)) /* Shenton: rocking alone needs mu > tan alpha */
+        printf("note: tan alpha = %.3g exceeds the joint's friction coefficient %.3g (%.4g deg): "
+               "the body slides as it rocks, so rigid theory's impact (no slip at the new pivot) "
+               "and its r do not apply; a calibration to it is not meaningful\n",
+               tan(rs.alpha), tan(sc.contact.friction), sc.contact.friction * 180 / M_PI);
+    fflush(stdout); /* before the runs (minutes on a column's drum) */
     /* 4 x 5 table runs, then up to RD_CAL_ITER calibration runs (restitution.c; its scan is
        the table's row at the scenario's KN when there is one, else 5 more runs); the check is
        the calibration's last run */

@@ -81,6 +81,10 @@ static void sample(rd_sim *s, double back)
     for (int j = 0; j < 6; j++) s->e_scale = fmax(s->e_scale, fabs(e[j]));
     s->e_scale = fmax(s->e_scale, fabs(s->e0));
     if (s->e_scale > 0) s->resid_max = fmax(s->resid_max, fabs(e[6]) / s->e_scale);
+    if (!s->untrusted && s->resid_max > RD_ENERGY_TRUST) {
+        s->untrusted = 1;
+        s->t_untrusted = s->t;
+    }
 }
 
 /* A sample inside a step (output samples, histories): positions and velocities at t(n). */

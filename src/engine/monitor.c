@@ -797,15 +797,27 @@ void rd_monitor_step(rd_sim *s)
     for (int k = 0; k < s->nfree; k++) watch_step(s, k);
 }
 
+/* Body k lies down: tilted past RD_FALLEN_TILT or fallen out of the scene, or, for the height
+ * and off-pedestal criteria, meeting them. */
+static int fallen(const rd_sim *s, int k)
+{
+    rd_overturn_kind kind = s->sc.overturn.kind;
+    return s->watch[k].down ||
+           ((kind == RD_OVERTURN_HEIGHT || kind == RD_OVERTURN_OFF) && s->watch[k].over);
+}
+
 int rd_monitor_all_fallen(const rd_sim *s)
 {
-    for (int k = 0; k < s->nfree; k++) {
-        rd_overturn_kind kind = s->sc.overturn.kind;
-        int down = s->watch[k].down ||
-                   ((kind == RD_OVERTURN_HEIGHT || kind == RD_OVERTURN_OFF) && s->watch[k].over);
-        if (!down) return 0;
-    }
+    for (int k = 0; k < s->nfree; k++)
+        if (!fallen(s, k)) return 0;
     return s->nfree > 0;
+}
+
+int rd_monitor_any_fallen(const rd_sim *s)
+{
+    for (int k = 0; k < s->nfree; k++)
+        if (s->watch[k].over && fallen(s, k)) return 1;
+    return 0;
 }
 
 void rd_monitor_finish(rd_sim *s)

@@ -435,17 +435,31 @@ fail:
     return NULL;
 }
 
-/* A run that ended normally but whose energy balance drifted past RD_ENERGY_TRUST. */
+/* The first "overturn" event (its index; -1: none). */
+static int first_overturn(const rd_sim *s)
+{
+    for (int k = 0; k < s->nevent; k++)
+        if (!strcmp(s->event[k].type, "overturn")) return k;
+    return -1;
+}
+
+/* A run that ended normally but whose energy balance drifted past RD_ENERGY_TRUST: the message
+ * says when it first did, and when the first body met the overturn criterion, before or after. */
 static void judge_energy(rd_sim *s)
 {
     if ((s->status != RD_STATUS_DONE && s->status != RD_STATUS_OVERTURNED) ||
         !(s->resid_max > RD_ENERGY_TRUST))
         return;
+    char when[RD_NAME_MAX + 96] = "";
+    int o = first_overturn(s);
+    if (o >= 0)
+        snprintf(when, sizeof when, "; body '%s' first met the overturn criterion at t = %.4g s",
+                 s->sc.bodies[s->free_body[s->event[o].body]].name, s->event[o].time);
     snprintf(s->errmsg, sizeof s->errmsg,
-             "energy balance residual %.3g of the energy scale exceeds %g: the answer is not to be "
-             "trusted (reduce the time step with 'model timestep auto safety ...', or check the "
-             "contact stiffness and discretisation)",
-             s->resid_max, RD_ENERGY_TRUST);
+             "energy balance residual %.3g of the energy scale exceeds %g (first at t = %.4g s%s): "
+             "the answer is not to be trusted (reduce the time step with 'model timestep auto "
+             "safety ...', or check the contact stiffness and discretisation)",
+             s->resid_max, RD_ENERGY_TRUST, s->t_untrusted, when);
     s->status = RD_STATUS_UNTRUSTED;
 }
 
@@ -490,7 +504,8 @@ static int shake_once(rd_sim *s)
     s->step++;
     if (s->step % RD_PROGRESS_STEPS == 0) rd_progress_report(s->t, s->end);
     if (s->status != RD_STATUS_DONE || !healthy(s)) return 0;
-    if (s->sc.overturn.stop && rd_monitor_all_fallen(s)) {
+    if ((s->sc.overturn.stop == RD_OVERTURN_STOP_ANY && rd_monitor_any_fallen(s)) ||
+        (s->sc.overturn.stop && rd_monitor_all_fallen(s))) {
         s->status = RD_STATUS_OVERTURNED;
         return 0;
     }

@@ -336,6 +336,9 @@ struct rd_sim {
     double e0;                     /* total mechanical energy at the start of shaking */
     double e_scale;                /* largest energy term seen (to normalise the residual) */
     double resid_max;              /* max |residual| / e_scale */
+    double t_untrusted;            /* s: first sample whose residual passed RD_ENERGY_TRUST
+                                      (its time only where untrusted is 1) */
+    int untrusted;                 /* 1: a sample's residual has passed RD_ENERGY_TRUST */
     double energy[RD_NENERGY];     /* last sample */
 
     /* monitoring and output */
@@ -484,6 +487,8 @@ void rd_monitor_step(rd_sim *s);
 rd_watch *rd_monitor_contact_watch(rd_sim *s, int owner, int other);
 
 int rd_monitor_all_fallen(const rd_sim *s);
+/* 1 once any free body has overturned and lies down (RD_OVERTURN_STOP_ANY). */
+int rd_monitor_any_fallen(const rd_sim *s);
 void rd_monitor_finish(rd_sim *s);
 void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);

@@ -138,9 +138,10 @@ int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error
     if (nfree != 1)
         return rd_error_set(
             err,
-            "%s: restitution: needs exactly one free body (found %d): the free rocking of "
-            "an assembly has no single sequence of impacts to measure; give one of its "
-            "bodies alone on a fixed base",
+            "%s: restitution: needs exactly one free body (found %d): an assembly's free "
+            "rocking opens its joints each at its own time, no single sequence of impacts to "
+            "measure; give --body NAME to calibrate the joint under NAME on NAME's own free "
+            "rocking (what holds it up fixed, the bodies above it removed)",
             sc->file, nfree);
     rd_refscene *rs = malloc(sizeof *rs);
     if (!rs) return rd_error_set(err, "out of memory");
@@ -169,6 +170,54 @@ int rd_rocking_scales_of(const rd_scenario *sc, rd_rocking_scales *out, rd_error
             "%s: restitution: the free body does not stand on a base it can rock on "
             "(tipping angle %.3g deg)",
             sc->file, out->alpha * 180 / M_PI);
+    return 0;
+}
+
+/* keep[i] = 1 for body b, the chain of bodies it rests on as placed (rd_check_scene), and every
+ * fixed body; 0 for every other body (those standing on b or beside its chain). */
+static int support_chain(const rd_scenario *sc, int b, int *keep, rd_error *err)
+{
+    rd_check_report rep;
+    if (rd_check_scene(sc, &rep, err)) return -1;
+    for (int i = 0; i < sc->nbodies; i++) keep[i] = sc->bodies[i].fixed;
+    for (int j = b; j >= 0 && !keep[j]; j = rep.body[j].rests_on) keep[j] = 1;
+    keep[b] = 1;
+    rd_check_free(&rep);
+    return 0;
+}
+
+int rd_restitution_isolate(const rd_scenario *sc, const char *name, rd_scenario *out, rd_error *err)
+{
+    int b = -1;
+    for (int i = 0; i < sc->nbodies && b < 0; i++)
+        if (!strcmp(sc->bodies[i].name, name)) b = i;
+    if (b < 0)
+        return rd_error_set(err, "%s: restitution: --body: no body named '%s'", sc->file, name);
+    if (sc->bodies[b].fixed)
+        return rd_error_set(err, "%s: restitution: --body '%s' is fixed: it does not rock",
+                            sc->file, name);
+    int *keep = malloc((size_t)sc->nbodies * sizeof *keep);
+    if (!keep) return rd_error_set(err, "out of memory");
+    int rc = support_chain(sc, b, keep, err) || rd_scenario_copy(out, sc, err) ? -1 : 0;
+    if (rc) {
+        free(keep);
+        return -1;
+    }
+    int n = 0;
+    for (int i = 0; i < out->nbodies; i++) {
+        if (!keep[i]) {
+            free(out->bodies[i].verts);
+            continue;
+        }
+        out->bodies[n] = out->bodies[i];
+        out->bodies[n].fixed |= i != b; /* what holds b up does not move */
+        n++;
+    }
+    out->nbodies = n;
+    out->nhistories = 0; /* they may name removed bodies; the measurement keeps none */
+    for (int j = 0; j < out->njoints; j++) /* the calibrated e acts on b's joint, whatever set it */
+        out->joint[j].set &= ~(unsigned)RD_JOINT_RESTITUTION;
+    free(keep);
     return 0;
 }
 

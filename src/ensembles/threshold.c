@@ -27,7 +27,9 @@ rd_threshold_opts rd_threshold_opts_default(void)
     return (rd_threshold_opts){ .lo = 0, .hi = 0, .nscan = 24, .jobs = 0, .rtol = 0.005 };
 }
 
-/* DEM run (no file: only the summary is needed); *over = any free body overturned. */
+/* DEM run (no file: only the summary is needed); *over = any free body overturned. The run
+ * stops once one has for good (RD_OVERTURN_STOP_ANY): the answer is then known, and the energy
+ * balance is judged over the run that gave it. */
 static int dem_overturns(const rd_scenario *base, double amplitude, int *over, rd_error *err)
 {
     rd_scenario *sc = malloc(sizeof *sc);
@@ -35,6 +37,7 @@ static int dem_overturns(const rd_scenario *base, double amplitude, int *over, r
     *sc = *base;
     sc->motion.horizontal.amplitude = amplitude;
     sc->output.interval = fmax(sc->output.interval, 0.05); /* a coarse sampling: no history kept */
+    sc->overturn.stop = RD_OVERTURN_STOP_ANY;
     rd_sim *sim = rd_sim_create(sc, err);
     int rc = -1;
     if (sim) {

@@ -38,4 +38,18 @@ else bad "hull-restitution: rc=$rc: $(tail -3 "$T/res.txt")"; fi
 rc=0; "$BIN" restitution -q "$T/col.dat" > "$T/res2.txt" 2>&1 || rc=$?
 [ "$rc" -eq 2 ] && grep -q "restitution: needs exactly one free body (found 2)" "$T/res2.txt" && ok assembly-restitution-says-why ||
     bad "assembly-restitution-says-why: rc=$rc: $(cat "$T/res2.txt")"
+grep -q "give --body NAME to calibrate the joint under NAME" "$T/res2.txt" && ok assembly-restitution-offers-body ||
+    bad "assembly-restitution-offers-body: $(cat "$T/res2.txt")"
+rc=0; "$BIN" restitution -q "$T/col.dat" --body nope > "$T/res3.txt" 2>&1 || rc=$?
+[ "$rc" -eq 2 ] && grep -q "restitution: --body: no body named 'nope'" "$T/res3.txt" && ok body-unknown ||
+    bad "body-unknown: rc=$rc: $(cat "$T/res3.txt")"
+rc=0; "$BIN" restitution -q "$T/col.dat" --body base > "$T/res4.txt" 2>&1 || rc=$?
+[ "$rc" -eq 2 ] && grep -q "restitution: --body 'base' is fixed: it does not rock" "$T/res4.txt" && ok body-fixed ||
+    bad "body-fixed: rc=$rc: $(cat "$T/res4.txt")"
+# a squat drum (tan alpha = 0.8 / 0.7 = 1.14 over the 40 deg default's mu 0.84) slides as it
+# rocks: the rigid impact's r does not apply, and the output says so before any run
+printf '%s\nblock create column drums 2 diameter 0.8 height 0.7 sides 8 seat-on base name c\n%s\n' "$base" "$tail" > "$T/squat.dat"
+timeout 5 "$BIN" restitution -q "$T/squat.dat" --body c-d1 > "$T/res5.txt" 2>&1
+grep -q "^note: tan alpha = .* exceeds the joint's friction coefficient 0.839 .*: the body slides as it rocks" "$T/res5.txt" &&
+    ok squat-slides-note || bad "squat-slides-note: $(head -3 "$T/res5.txt")"
 [ "$fails" -eq 0 ]
