@@ -157,11 +157,11 @@ typedef struct face_frame {
  * body with the most faces, so a convex body may have any number), in one block
  * (rd_contact_scratch); a side step uses the first np. */
 struct rd_plane_scratch {
-    face_frame *ff;              /* side_ctx.ff */
-    double (*pl)[4];             /* side_ctx.pl */
-    double *n0, *n1, *n2, *dq;   /* distances_from's plane coefficients, one array each */
-    double *dmax;                /* distances_from's largest distance to each plane, m */
-    uint64_t *cross, *ff_used;   /* [(np_max + 63) / 64] side_ctx.cross, ff_used */
+    face_frame *ff;            /* side_ctx.ff */
+    double (*pl)[4];           /* side_ctx.pl */
+    double *n0, *n1, *n2, *dq; /* distances_from's plane coefficients, one array each */
+    double *dmax;              /* distances_from's largest distance to each plane, m */
+    uint64_t *cross, *ff_used; /* [(np_max + 63) / 64] side_ctx.cross, ff_used */
 };
 
 /* The other body's face planes expressed in the owner's body frame, so a point's signed
@@ -186,27 +186,27 @@ typedef struct side_ctx {
     int np;                /* planes of the other body */
     const double (*wn)[3]; /* the other body's outward face normals, ground frame (rd_sim.wn) */
     double (*pl)[4];       /* [np] n (3), d: plane k, owner frame (rd_plane_scratch) */
-    const double *dist;          /* the owner's candidate-face vertices' signed distances to the
+    const double *dist;    /* the owner's candidate-face vertices' signed distances to the
                                    planes (rd_sim.cv_dist, [cv slot][plane], m) */
-    const uint64_t *mask;        /* per vertex (rd_sim.cv_mask, [cv slot][2][nw]): bit q
+    const uint64_t *mask;  /* per vertex (rd_sim.cv_mask, [cv slot][2][nw]): bit q
                                    of word set 0 when the vertex lies beyond plane q by more than
                                    out_band (or its distance is NaN), of set 1 when it lies above
                                    reach */
-    int nw;                      /* mask words in use, (np + 63) / 64 */
-    double out_band;             /* tol + bond slack + raise: a face wholly this far beyond one
+    int nw;                /* mask words in use, (np + 63) / 64 */
+    double out_band;       /* tol + bond slack + raise: a face wholly this far beyond one
                                    plane cannot touch, m */
-    double reach;                /* tol / 2 - raise, m: when every vertex of a face lies below this
+    double reach;          /* tol / 2 - raise, m: when every vertex of a face lies below this
                                    distance from plane q, none of its points lies beyond q by more
                                    than the band tol (points lie in the hull of their face's
                                    vertices, raised inward by at most raise; tol / 2 is left for
                                    round-off), so their exit test skips q */
-    double raise;                /* a raised point lies up to this far inside its face, m */
-    uint64_t *cross;             /* [nw] bit q: some point of the current face may lie beyond
+    double raise;          /* a raised point lies up to this far inside its face, m */
+    uint64_t *cross;       /* [nw] bit q: some point of the current face may lie beyond
                                     plane q (rd_plane_scratch) */
-    const double *m;               /* outward normal of the current owner face, ground frame, once
+    const double *m;       /* outward normal of the current owner face, ground frame, once
                                    found (owner_normal), else NULL; set, with mf, for late faces
                                    only (no other face's points ask for it) */
-    int mf;                        /* the current owner face (a late one) */
+    int mf;                /* the current owner face (a late one) */
     double mbuf[3];
     int facing;               /* 1: the face's points act only while it faces the entrance face */
     int t_free;               /* the other body is free (a fixed one takes no force) */
@@ -728,12 +728,12 @@ typedef struct steady_ctx {
     unsigned char *pstate;
     const double (*plane)[4]; /* side_ctx.pl, wn */
     const double (*wn)[3];
-    uint64_t cross0;       /* word 0 of the current face's side_ctx.cross, in the context: the
+    uint64_t cross0;           /* word 0 of the current face's side_ctx.cross, in the context: the
                               state bytes the path stores may alias side_ctx.cross itself */
-    const uint64_t *cross; /* side_ctx.cross, read from word 1 on */
-    int facing;                    /* the current face is a late one (side_ctx.facing) */
-    double tol, wa, damp_coef;     /* side_ctx's */
-    double kn, ks, tan_phi;        /* the joint's */
+    const uint64_t *cross;     /* side_ctx.cross, read from word 1 on */
+    int facing;                /* the current face is a late one (side_ctx.facing) */
+    double tol, wa, damp_coef; /* side_ctx's */
+    double kn, ks, tan_phi;    /* the joint's */
     double dt;
     int mean_switch, struck, damped, settling;
     int face_law; /* side_ctx's */
@@ -1093,8 +1093,8 @@ plane_pass(const cv_coords *v, const int soa, int ncv, const double n[4], const 
  * by plane, whose read-modify-writes of the masks and gathered vertices do not vectorise. */
 static inline __attribute__((always_inline)) void
 vertex_rows(const cv_coords *v, const int soa, int ncv, const double *n0, const double *n1,
-            const double *n2, const double *dq, int np, int nw, double out_band,
-            double reach, double *restrict d, uint64_t *restrict mk)
+            const double *n2, const double *dq, int np, int nw, double out_band, double reach,
+            double *restrict d, uint64_t *restrict mk)
 {
     uint64_t bit[64]; /* bit q of a mask word, as a value a vector lane can select */
     for (int q = 0; q < 64 && q < np; q++) bit[q] = (uint64_t)1 << q;
@@ -1137,15 +1137,22 @@ distances_from(const rd_sim *s, side_ctx *c, rd_side *sd, const cv_coords *v, co
     c->dist = s->cv_dist;
     c->mask = s->cv_mask;
     if (!fixed) {
-        double *restrict n0 = ps->n0, *restrict n1 = ps->n1, *restrict n2 = ps->n2,
-                         *restrict dq = ps->dq;
+        /* the coefficients of up to one mask word of planes on the stack, of more in scratch */
+        double local[4][64];
+        double *restrict n0 = nw == 1 ? local[0] : ps->n0,
+                         *restrict n1 = nw == 1 ? local[1] : ps->n1,
+                         *restrict n2 = nw == 1 ? local[2] : ps->n2,
+                         *restrict dq = nw == 1 ? local[3] : ps->dq;
         for (int q = 0; q < np; q++) {
             n0[q] = wn[q][0];
             n1[q] = wn[q][1];
             n2[q] = wn[q][2];
             dq[q] = wd[q];
         }
-        vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
+        if (nw == 1) /* the usual one word, as a constant (the masks' stride) */
+            vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, 1, out_band, reach, d, mk);
+        else
+            vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
         return;
     }
     /* with one mask word in use (face_planes and edge.c read no others), the first plane measured
@@ -1170,8 +1177,7 @@ distances_from(const rd_sim *s, side_ctx *c, rd_side *sd, const cv_coords *v, co
         set = 0;
     }
     if (set) /* no plane measured: no bits */
-        for (int k = 0; k < ncv; k++)
-            mk[k * 2 * nw] = mk[k * 2 * nw + nw] = 0;
+        for (int k = 0; k < ncv; k++) mk[k * 2 * nw] = mk[k * 2 * nw + nw] = 0;
     if (track) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
         for (int w = 0; w < RD_FAR_WORDS; w++) sd->far[w] = 0;
@@ -1443,9 +1449,9 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
 int rd_contact_scratch(rd_sim *s)
 {
     const size_t np = s->np_max > 0 ? (size_t)s->np_max : 1, mw = (np + 63) / 64;
-    struct rd_plane_scratch *ps = calloc(1, sizeof *ps + np * sizeof *ps->ff +
-                                                np * (4 + 5) * sizeof(double) +
-                                                2 * mw * sizeof(uint64_t));
+    struct rd_plane_scratch *ps =
+        calloc(1, sizeof *ps + np * sizeof *ps->ff + np * (4 + 5) * sizeof(double) +
+                      2 * mw * sizeof(uint64_t));
     if (!ps) return -1;
     /* the struct, then its arrays: each a whole number of 8-byte words */
     ps->ff = (face_frame *)(ps + 1);

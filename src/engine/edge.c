@@ -132,13 +132,13 @@ int rd_edge_count(const rd_poly *p)
 /* edge.c's scratch (rd_edge_init), in one block: a side's edge lines and envelope over the other
  * body's planes (np_max), vinfo's arrays over the edges' body's vertices, the candidate edges. */
 struct rd_edge_scratch {
-    double *c, *sl, *u0;       /* [np_max] edge_lines, envelope */
-    int *k;                    /* [np_max] envelope */
-    uint64_t *word;            /* [nv] vinfo */
-    double *d;                 /* [nv] */
-    int *out, *vk;             /* [nv] */
+    double *c, *sl, *u0;               /* [np_max] edge_lines, envelope */
+    int *k;                            /* [np_max] envelope */
+    uint64_t *word;                    /* [nv] vinfo */
+    double *d;                         /* [nv] */
+    int *out, *vk;                     /* [nv] */
     unsigned char *code, *sure, *done; /* [nv] */
-    int *cand;                 /* [ne] rd_edge_side's candidate edges */
+    int *cand;                         /* [ne] rd_edge_side's candidate edges */
 };
 
 /* rd_sim.edge_scratch, for the most planes (rd_sim.np_max) and the most vertices and edges of a
@@ -486,7 +486,6 @@ typedef struct vinfo {
     int *k;
     double *d;
 } vinfo;
-
 
 /* The plane of o that the vertex with distances row and mask words mk (nw of them) lies
  * farthest beyond, among those it lies beyond by more than the contact band (contact.c's masks);

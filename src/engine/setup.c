@@ -552,8 +552,7 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     s->np_max = np_max;
     size_t ndist = 0, nmask = 0;
     if (!rc) side_sizes(s, &ndist, &nmask);
-    rc = rc || !ALLOC(s->cv_dist, ndist) || !ALLOC(s->cv_mask, nmask) ||
-         rd_contact_scratch(s) ||
+    rc = rc || !ALLOC(s->cv_dist, ndist) || !ALLOC(s->cv_mask, nmask) || rd_contact_scratch(s) ||
          !ALLOC(s->cv_body, 3 * (size_t)ncv) || !ALLOC(s->cv_world, 3 * (size_t)ncv);
     for (int i = 0; i < s->nb && !rc; i++)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++)

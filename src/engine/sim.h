@@ -35,12 +35,12 @@
 #endif
 
 #define RD_EDGE_SLOTS                                                                              \
-    2                     /* spring slots per edge subcontact: its deepest point, or the two ends of
+    2 /* spring slots per edge subcontact: its deepest point, or the two ends of
                            its part inside the other body (edge.c) */
 #define RD_FAR_WORDS                                                                               \
     3 /* 64-bit words of rd_side.far: a fixed body's planes past the first 64 RD_FAR_WORDS are
          measured at every step (contact.c) */
-#define RD_NPREC      72 /* directions of the precariousness table (every 5 degrees) */
+#define RD_NPREC 72 /* directions of the precariousness table (every 5 degrees) */
 #define RD_SUPPORT_BAND                                                                            \
     1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
 /* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
@@ -103,9 +103,9 @@ typedef struct rd_side {
     double edge_area; /* tributary area of an edge subcontact: the owner's mean point area, m^2 */
     uint64_t far[RD_FAR_WORDS]; /* planes of a fixed other body that the owner's candidate
                                     vertices clear (contact.c: vertex_distances skips them) */
-    double far_clear;            /* their least clearance below reach when measured, m (0: none) */
-    double far_pose[7];          /* the owner's position and quaternion then */
-    uint64_t edges_clear;        /* the owner's box build (rd_sim.box_builds) + 1 at which every
+    double far_clear;           /* their least clearance below reach when measured, m (0: none) */
+    double far_pose[7];         /* the owner's position and quaternion then */
+    uint64_t edges_clear;       /* the owner's box build (rd_sim.box_builds) + 1 at which every
                                     edge of a fixed other body lay beyond one side of the owner's
                                     loose box (edge.c skips the side while it stands); 0: none */
 } rd_side;
@@ -243,7 +243,7 @@ struct rd_sim {
     int np_max;         /* the most faces of a convex body: the most planes a contact target has */
     struct rd_plane_scratch *plane_scratch; /* contact.c's per-side arrays over the other body's
                                                planes, np_max of each (rd_contact_scratch) */
-    struct rd_edge_scratch *edge_scratch; /* edge.c's arrays over a side's planes, vertices and
+    struct rd_edge_scratch *edge_scratch;   /* edge.c's arrays over a side's planes, vertices and
                                              edges (rd_edge_init) */
 
     /* subcontact points, grouped by body, then by candidate face */

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_COLUMN_MAX_DRUMS 100 /* drums of one `block create column` */
+#define RD_COLUMN_MAX_DRUMS 100   /* drums of one `block create column` */
 #define RD_PRISM_MAX_SIDES  10000 /* sides of a drum (values.c's bound on 'sides') */
 
 /* ---- block ---- */
