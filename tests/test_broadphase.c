@@ -262,13 +262,13 @@ static void test_far_planes_exact(void **state)
         memcpy(pose_before, sd->far_pose, sizeof pose_before);
         const int ncv = s->cv0[s->nb];
         for (int k = s->cv0[o], m = 0; k < s->cv0[o + 1]; k++, m++) {
-            const uint64_t *mk = s->cv_mask + (size_t)m * 2 * RD_MASK_WORDS;
+            const uint64_t *mk = s->cv_mask + (size_t)m * 2 * (size_t)((np + 63) / 64);
             /* the mesh's step keeps its candidate vertices in cv_world (integrate.c) */
             const double x[3] = { s->cv_world[k], s->cv_world[ncv + k], s->cv_world[2 * ncv + k] };
             for (int qp = 0; qp < np; qp++) {
                 double dd = rd_dot(s->wn[s->face0[t] + qp], x) - s->wd[s->face0[t] + qp];
                 int out_bit = (int)((mk[qp >> 6] >> (qp & 63)) & 1),
-                    up_bit = (int)((mk[RD_MASK_WORDS + (qp >> 6)] >> (qp & 63)) & 1);
+                    up_bit = (int)((mk[(np + 63) / 64 + (qp >> 6)] >> (qp & 63)) & 1);
                 if (out_bit != !(dd <= out_band) || up_bit != (dd > reach))
                     fail_msg(
                         "step %d vertex %d plane %d: bits %d %d, distance %g (band %g, reach %g)",

@@ -35,6 +35,15 @@ typedef struct rd_check_body {
     double
         overlap; /* deepest overlap with another body as placed (a vertex of one inside the other), m */
     int overlaps; /* index of the body it penetrates most, -1: none */
+    /* the static sink at rest into the body it rests on (free, rests_on >= 0; check does not
+       settle): its joint closes by W / (KN A) under the weight W of the body and every free body
+       standing on it, on the area A of its support polygon as placed */
+    double sink;      /* W / (KN A), m (0: no estimate: no support area) */
+    double sink_load; /* W, N */
+    double sink_area; /* A, m^2 */
+    double sink_kn;   /* KN of the joint, Pa/m */
+    int sink_above;   /* free bodies standing on it, whose weight W includes */
+    double band;      /* the joint's contact band, RD_CONTACT_BAND of the smaller radius, m */
 } rd_check_body;
 
 typedef struct rd_check_report {

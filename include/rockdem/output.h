@@ -19,8 +19,9 @@
 RD_API int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err);
 
 /* The temporary a run writes while path holds an earlier file: "<path>.tmp-<process id>", into
- * buf (n bytes). 1 when path holds a non-empty file and `force` is 0 (the run will write the
- * temporary), else 0 (it writes path itself). Ask before rd_sim_write_hdf5 creates the file. */
-RD_API int rd_output_staging(const char *path, int force, char *buf, size_t n);
+ * buf (n bytes). 1 when path holds a non-empty file and `overwrite` (rd_scenario.overwrite) is 0
+ * (the run will write the temporary), else 0 (it writes path itself). Ask before
+ * rd_sim_write_hdf5 creates the file. */
+RD_API int rd_output_staging(const char *path, int overwrite, char *buf, size_t n);
 
 #endif

@@ -323,6 +323,8 @@ typedef struct rd_scenario {
                         rest, for at most this long */
     int force;       /* `model solve ... force on` (or rockdem run --force): run even when the
                         estimated step count exceeds RD_STEP_BUDGET (include/rockdem/rockdem.h) */
+    int overwrite;   /* rockdem run --overwrite: write over an earlier run file at the output in
+                        place, rather than beside it and renamed over it once the run succeeds */
     int solve_line;  /* scenario line of `model solve` (0: none), for messages */
     rd_overturn_def overturn;
     rd_output_def output;

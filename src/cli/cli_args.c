@@ -130,7 +130,9 @@ static int common_option(rd_scenario *sc, int argc, char **argv, int *i, const c
  * next one). */
 static int is_flag(const char *a)
 {
-    static const char *const flags[] = { "-q", "--force", "--strict", "--tsv", NULL };
+    static const char *const flags[] = {
+        "-q", "--force", "--overwrite", "--strict", "--tsv", NULL
+    };
     for (const char *const *f = flags; *f; f++)
         if (!strcmp(a, *f)) return 1;
     return 0;

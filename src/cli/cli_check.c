@@ -7,6 +7,7 @@
  *   - bodies that overlap as placed (the contact springs would throw them apart)
  *   - a time step far below the output interval (many steps per sample: a slow run)
  *   - a ground-motion record that ends before the requested duration
+ *   - a joint whose static sink at rest, W / (KN A), exceeds the contact band
  * It first does everything a run would refuse (rd_sim_check: meshes, the step budget, the
  * output file; the checkpoint it restores, read and compared as run does). Exit status: 2 when a
  * run would be refused (bad input), 1 with --strict when it warned, else 0; the last line
@@ -48,6 +49,25 @@ static void print_body(const rd_check_report *r, const rd_check_body *b)
  * its size for the tolerances. */
 static double size_of(const rd_check_body *b) { return cbrt(b->volume); }
 
+/* Body b's joint with what it rests on closes at rest by more than the contact band: its
+ * subcontacts then bear from deeper than the band the contact is built for, and the run, which
+ * settles first, stops as penetrated past ten bands (overlap.c). One warning, 1; else 0. */
+static int sink_warning(const rd_check_report *r, const rd_check_body *b)
+{
+    if (b->fixed || b->rests_on < 0 || !(b->sink > b->band)) return 0;
+    char above[64] = "";
+    if (b->sink_above)
+        snprintf(above, sizeof above, " and the %d free bod%s above it", b->sink_above,
+                 b->sink_above == 1 ? "y" : "ies");
+    printf("warning: block '%s' on '%s' sinks about %.3g mm at rest, W / (KN A) = %.3g N (its "
+           "weight%s) / (%.3g Pa/m x %.3g m^2), more than the contact band %.3g mm: "
+           "stiffness-normal about %.2g times higher keeps it within the band%s\n",
+           b->name, r->body[b->rests_on].name, 1e3 * b->sink, b->sink_load, above, b->sink_kn,
+           b->sink_area, 1e3 * b->band, b->sink / b->band,
+           b->sink > 10 * b->band ? " (past ten bands a run stops as penetrated)" : "");
+    return 1;
+}
+
 static int warnings(const rd_scenario *sc, const rd_check_report *r)
 {
     int n = 0;
@@ -76,6 +96,7 @@ static int warnings(const rd_scenario *sc, const rd_check_report *r)
             n++;
         }
     }
+    for (int i = 0; i < r->nbodies; i++) n += sink_warning(r, &r->body[i]);
     n += rd_cli_unit_warnings(sc);
     for (int i = 0; i < r->nbodies; i++)
         n += rd_cli_body_warnings(&sc->bodies[i], r->body[i].mass, r->body[i].extent,

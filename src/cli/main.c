@@ -121,10 +121,10 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
 }
 
-/* --force (run past the step budget) of run and check, --strict (warnings fail) of check;
- * -q is common (rd_cli_quiet). */
+/* --force (run past the step budget) of run and check, --overwrite (write over an earlier run
+ * file in place) of run, --strict (warnings fail) of check; -q is common (rd_cli_quiet). */
 typedef struct run_flags {
-    int check_only, force, strict;
+    int check_only, force, overwrite, strict;
 } run_flags;
 
 static int run_option(void *ctx, int argc, char **argv, int *i)
@@ -133,6 +133,8 @@ static int run_option(void *ctx, int argc, char **argv, int *i)
     (void)argc;
     if (!strcmp(argv[*i], "--force"))
         f->force = 1;
+    else if (!f->check_only && !strcmp(argv[*i], "--overwrite"))
+        f->overwrite = 1;
     else if (f->check_only && !strcmp(argv[*i], "--strict"))
         f->strict = 1;
     else
@@ -169,6 +171,7 @@ static int cmd_run(int argc, char **argv, int check_only)
     }
     int quiet = rd_cli_quiet;
     if (f.force) sc.force = 1;
+    sc.overwrite = f.overwrite;
     if (check_only) {
         int rc = rd_cli_check(&sc, quiet, f.strict);
         rd_scenario_free(&sc);
@@ -181,7 +184,7 @@ static int cmd_run(int argc, char **argv, int check_only)
     }
     rd_sim *sim = rd_sim_create(&sc, &err);
     char staged[RD_PATH_MAX]; /* where this run writes while an earlier file is at the output */
-    int replacing = rd_output_staging(sc.output.path, sc.force, staged, sizeof staged);
+    int replacing = rd_output_staging(sc.output.path, sc.overwrite, staged, sizeof staged);
     if (!sim || rd_sim_write_hdf5(sim, sc.output.path, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         rd_sim_free(sim);

@@ -168,6 +168,48 @@ static void touching(const rd_sim *s, int i, rd_check_body *cb)
     }
 }
 
+/* Area of body i's support polygon as placed (rd_watch.support, ground plan), m^2. */
+static double support_area(const rd_sim *s, int i)
+{
+    const rd_watch *w = &s->watch[s->free_of[i]];
+    double a = 0;
+    for (int k = 0, l = w->nsupport - 1; k < w->nsupport; l = k++)
+        a += w->support[l][0] * w->support[k][1] - w->support[k][0] * w->support[l][1];
+    return 0.5 * fabs(a);
+}
+
+/* Each free body's static sink into the body it rests on (rd_check_body.sink): the weight of it
+ * and every free body whose chain of rests_on reaches it, on its support area, over the joint's
+ * KN. A run settles first and stops as penetrated past ten bands (overlap.c); check does not
+ * settle, so it estimates the sink of a uniformly pressed joint, exact for a block on a flat
+ * seat (tests/cli/joint_stiffness.sh). */
+static void static_sinks(rd_sim *s, rd_check_report *rep)
+{
+    for (int i = 0; i < s->nb; i++) {
+        rd_check_body *cb = &rep->body[i];
+        cb->sink_load = s->fixed[i] ? 0 : s->mass[i] * s->sc.gravity;
+    }
+    for (int k = 0; k < s->nb; k++) { /* k's weight on each body below it in its chain */
+        if (s->fixed[k]) continue;
+        int j = rep->body[k].rests_on;
+        for (int n = 0; n < s->nb && j >= 0 && !s->fixed[j]; n++, j = rep->body[j].rests_on) {
+            rep->body[j].sink_load += s->mass[k] * s->sc.gravity;
+            rep->body[j].sink_above++;
+        }
+    }
+    for (int i = 0; i < s->nb; i++) {
+        rd_check_body *cb = &rep->body[i];
+        const int j = cb->rests_on;
+        if (s->fixed[i] || j < 0) continue;
+        const int jt = rd_joint_resolve(s, i, j);
+        if (jt < 0) continue;
+        cb->sink_kn = s->joint[jt].kn;
+        cb->sink_area = support_area(s, i);
+        cb->band = RD_CONTACT_BAND * fmin(s->poly[i].radius, s->poly[j].radius);
+        cb->sink = cb->sink_area > 0 ? cb->sink_load / (cb->sink_kn * cb->sink_area) : 0;
+    }
+}
+
 /* The scene as placed, its contacts found once (NULL with err). */
 static rd_sim *placed(const rd_scenario *sc, rd_error *err)
 {
@@ -251,6 +293,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
     }
     if (probe != s) rd_sim_free(probe);
     free(box);
+    static_sinks(s, rep);
     rep->npoints = s->npts;
     rep->njoints = s->njoint;
     rep->dt = s->dt;

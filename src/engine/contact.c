@@ -86,6 +86,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* A subcontact acts only while its face and the entrance face are within 45 deg of facing each
@@ -152,6 +153,17 @@ typedef struct face_frame {
     double fn;            /* their normal forces summed, N */
 } face_frame;
 
+/* A side's arrays over the other body's planes, np_max of each (rd_sim.np_max: sized by the
+ * body with the most faces, so a convex body may have any number), in one block
+ * (rd_contact_scratch); a side step uses the first np. */
+struct rd_plane_scratch {
+    face_frame *ff;            /* side_ctx.ff */
+    double (*pl)[4];           /* side_ctx.pl */
+    double *n0, *n1, *n2, *dq; /* distances_from's plane coefficients, one array each */
+    double *dmax;              /* distances_from's largest distance to each plane, m */
+    uint64_t *cross, *ff_used; /* [(np_max + 63) / 64] side_ctx.cross, ff_used */
+};
+
 /* The other body's face planes expressed in the owner's body frame, so a point's signed
  * distances need no transform: s_k(p) = n_k . p - d_k (> 0: outside plane k). */
 typedef struct side_ctx {
@@ -173,28 +185,28 @@ typedef struct side_ctx {
                                    inside, m */
     int np;                /* planes of the other body */
     const double (*wn)[3]; /* the other body's outward face normals, ground frame (rd_sim.wn) */
-    double pl[RD_MAX_PLANES][4]; /* n (3), d: plane k, owner frame */
-    const double *dist;          /* the owner's candidate-face vertices' signed distances to the
+    double (*pl)[4];       /* [np] n (3), d: plane k, owner frame (rd_plane_scratch) */
+    const double *dist;    /* the owner's candidate-face vertices' signed distances to the
                                    planes (rd_sim.cv_dist, [cv slot][plane], m) */
-    const uint64_t *mask;        /* per vertex (rd_sim.cv_mask, [cv slot][2][RD_MASK_WORDS]): bit q
+    const uint64_t *mask;  /* per vertex (rd_sim.cv_mask, [cv slot][2][nw]): bit q
                                    of word set 0 when the vertex lies beyond plane q by more than
                                    out_band (or its distance is NaN), of set 1 when it lies above
                                    reach */
-    int nw;                      /* mask words in use, (np + 63) / 64 */
-    double out_band;             /* tol + bond slack + raise: a face wholly this far beyond one
+    int nw;                /* mask words in use, (np + 63) / 64 */
+    double out_band;       /* tol + bond slack + raise: a face wholly this far beyond one
                                    plane cannot touch, m */
-    double reach;                /* tol / 2 - raise, m: when every vertex of a face lies below this
+    double reach;          /* tol / 2 - raise, m: when every vertex of a face lies below this
                                    distance from plane q, none of its points lies beyond q by more
                                    than the band tol (points lie in the hull of their face's
                                    vertices, raised inward by at most raise; tol / 2 is left for
                                    round-off), so their exit test skips q */
-    double raise;                /* a raised point lies up to this far inside its face, m */
-    uint64_t cross[RD_MASK_WORDS]; /* bit q: some point of the current face may lie beyond plane
-                                      q (words in use: nw) */
-    const double *m;               /* outward normal of the current owner face, ground frame, once
+    double raise;          /* a raised point lies up to this far inside its face, m */
+    uint64_t *cross;       /* [nw] bit q: some point of the current face may lie beyond
+                                    plane q (rd_plane_scratch) */
+    const double *m;       /* outward normal of the current owner face, ground frame, once
                                    found (owner_normal), else NULL; set, with mf, for late faces
                                    only (no other face's points ask for it) */
-    int mf;                        /* the current owner face (a late one) */
+    int mf;                /* the current owner face (a late one) */
     double mbuf[3];
     int facing;               /* 1: the face's points act only while it faces the entrance face */
     int t_free;               /* the other body is free (a fixed one takes no force) */
@@ -203,7 +215,7 @@ typedef struct side_ctx {
                                    (face_frame), in the frame of their entrance face */
     const double (*wt)[2][3]; /* the other body's face tangents (rd_sim.wt), when it is fixed */
     face_frame *ff;           /* [np] the other body's faces as frames, valid where ff_used */
-    uint64_t ff_used[RD_MASK_WORDS]; /* bit e: ff[e] found this side step */
+    uint64_t *ff_used;        /* [nw] bit e: ff[e] found this side step (rd_plane_scratch) */
 } side_ctx;
 
 static inline double plane_dist(const double *pl, const double p[3])
@@ -525,7 +537,7 @@ static inline __attribute__((always_inline)) void bear_face(double (*fsa)[3], do
  * added to the side's: force, torque and fn u. */
 static void fold_face_sums(side_ctx *c, side_sums *a)
 {
-    for (int w = 0; w < RD_MASK_WORDS; w++)
+    for (int w = 0; w < c->nw; w++)
         for (uint64_t m = c->ff_used[w]; m; m &= m - 1) {
             const int e = 64 * w + __builtin_ctzll(m);
             const face_frame *ff = &c->ff[e];
@@ -709,17 +721,19 @@ typedef struct steady_ctx {
     const double (*pl)[3]; /* rd_sim.pl, pn, pa, pface, pset, fs, pj, pstate */
     const double (*pn)[3];
     const double *pa;
-    const short *pface;
+    const int *pface;
     double *pset;
     double (*fs)[3];
     double (*pj)[2];
     unsigned char *pstate;
     const double (*plane)[4]; /* side_ctx.pl, wn */
     const double (*wn)[3];
-    uint64_t cross[RD_MASK_WORDS]; /* the current face's (side_ctx.cross) */
-    int facing;                    /* the current face is a late one (side_ctx.facing) */
-    double tol, wa, damp_coef;     /* side_ctx's */
-    double kn, ks, tan_phi;        /* the joint's */
+    uint64_t cross0;           /* word 0 of the current face's side_ctx.cross, in the context: the
+                              state bytes the path stores may alias side_ctx.cross itself */
+    const uint64_t *cross;     /* side_ctx.cross, read from word 1 on */
+    int facing;                /* the current face is a late one (side_ctx.facing) */
+    double tol, wa, damp_coef; /* side_ctx's */
+    double kn, ks, tan_phi;    /* the joint's */
     double dt;
     int mean_switch, struck, damped, settling;
     int face_law; /* side_ctx's */
@@ -735,6 +749,8 @@ static inline __attribute__((always_inline)) void steady_of(const rd_sim *s, con
     k->mask = c->mask;
     k->dist = c->dist;
     k->np = c->np;
+    k->cross = c->cross;
+    k->cross0 = 0;
     k->pl = (const double(*)[3])s->pl;
     k->pn = (const double(*)[3])s->pn;
     k->pa = s->pa;
@@ -814,7 +830,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     const double *p = k->pl[pt];
     if (fl & RD_PT_BONDED) return STEADY_NONE;
     for (int w = 0; w < nw; w++)
-        for (uint64_t m = k->cross[w]; m; m &= m - 1) {
+        for (uint64_t m = w ? k->cross[w] : k->cross0; m; m &= m - 1) {
             double out = plane_dist(k->plane[64 * w + __builtin_ctzll(m)], p);
             if (out > k->tol + 0.0) return steady_out(k, st, fl, out);
         }
@@ -1044,11 +1060,13 @@ static inline __attribute__((always_inline)) void cv_vertex(const cv_coords *v, 
  * -INFINITY. */
 static inline __attribute__((always_inline)) double
 plane_pass(const cv_coords *v, const int soa, int ncv, const double n[4], const double band[2],
-           int np, int q, double *restrict d, uint64_t *restrict mk, int track, const int set)
+           int np, int nw, int q, double *restrict d, uint64_t *restrict mk, int track,
+           const int set)
 {
     const double n0 = n[0], n1 = n[1], n2 = n[2], dq = n[3], out_band = band[0], reach = band[1];
     const uint64_t bit = (uint64_t)1 << (q & 63);
-    uint64_t *mo = mk + (q >> 6), *mc = mk + RD_MASK_WORDS + (q >> 6);
+    uint64_t *mo = mk + (q >> 6), *mc = mk + nw + (q >> 6);
+    const size_t stride = 2 * (size_t)nw;
     double hi = -INFINITY;
     for (int k = 0; k < ncv; k++) {
         double x[3];
@@ -1056,11 +1074,11 @@ plane_pass(const cv_coords *v, const int soa, int ncv, const double n[4], const 
         const double dl = n0 * x[0] + n1 * x[1] + n2 * x[2] - dq;
         d[k * np + q] = dl;
         if (set) { /* the word's first plane: its bits alone */
-            mo[k * 2 * RD_MASK_WORDS] = !(dl <= out_band) ? bit : 0;
-            mc[k * 2 * RD_MASK_WORDS] = dl > reach ? bit : 0;
+            mo[k * stride] = !(dl <= out_band) ? bit : 0;
+            mc[k * stride] = dl > reach ? bit : 0;
         } else {
-            if (!(dl <= out_band)) mo[k * 2 * RD_MASK_WORDS] |= bit; /* NaN too: min skips it */
-            if (dl > reach) mc[k * 2 * RD_MASK_WORDS] |= bit;        /* NaN not: max skips it */
+            if (!(dl <= out_band)) mo[k * stride] |= bit; /* NaN too: min skips it */
+            if (dl > reach) mc[k * stride] |= bit;        /* NaN not: max skips it */
         }
         if (track && !(dl <= hi)) hi = dl; /* NaN sticks: never far */
     }
@@ -1085,7 +1103,7 @@ vertex_rows(const cv_coords *v, const int soa, int ncv, const double *n0, const 
         cv_vertex(v, k, soa, x);
         const double x0 = x[0], x1 = x[1], x2 = x[2];
         double *restrict row = d + (size_t)k * np;
-        uint64_t *m = mk + (size_t)k * 2 * RD_MASK_WORDS;
+        uint64_t *m = mk + (size_t)k * 2 * (size_t)nw;
         for (int w = 0; w < nw; w++) {
             const int q0 = 64 * w, nq = np - q0 < 64 ? np - q0 : 64;
             uint64_t mo = 0, mc = 0;
@@ -1096,7 +1114,7 @@ vertex_rows(const cv_coords *v, const int soa, int ncv, const double *n0, const 
                 mc |= dl > reach ? bit[q] : 0;        /* NaN not: max skips it */
             }
             m[w] = mo;
-            m[RD_MASK_WORDS + w] = mc;
+            m[nw + w] = mc;
         }
     }
 }
@@ -1112,50 +1130,58 @@ distances_from(const rd_sim *s, side_ctx *c, rd_side *sd, const cv_coords *v, co
     const int reuse = fixed && sd->far_clear > 0 &&
                       rd_pairs_drift(s, c->o, sd->far_pose) <= sd->far_clear - 0.5 * c->tol;
     const int nw = (np + 63) / 64, ncv = s->cv0[c->o + 1] - s->cv0[c->o];
+    struct rd_plane_scratch *ps = s->plane_scratch;
     double *restrict d = s->cv_dist;
     uint64_t *restrict mk = s->cv_mask;
     c->nw = nw;
     c->dist = s->cv_dist;
     c->mask = s->cv_mask;
     if (!fixed) {
-        double n0[RD_MAX_PLANES], n1[RD_MAX_PLANES], n2[RD_MAX_PLANES], dq[RD_MAX_PLANES];
+        /* the coefficients of up to one mask word of planes on the stack, of more in scratch */
+        double local[4][64];
+        double *restrict n0 = nw == 1 ? local[0] : ps->n0,
+                         *restrict n1 = nw == 1 ? local[1] : ps->n1,
+                         *restrict n2 = nw == 1 ? local[2] : ps->n2,
+                         *restrict dq = nw == 1 ? local[3] : ps->dq;
         for (int q = 0; q < np; q++) {
             n0[q] = wn[q][0];
             n1[q] = wn[q][1];
             n2[q] = wn[q][2];
             dq[q] = wd[q];
         }
-        vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
+        if (nw == 1) /* the usual one word, as a constant (the masks' stride) */
+            vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, 1, out_band, reach, d, mk);
+        else
+            vertex_rows(v, soa, ncv, n0, n1, n2, dq, np, nw, out_band, reach, d, mk);
         return;
     }
     /* with one mask word in use (face_planes and edge.c read no others), the first plane measured
        sets each vertex's two words; with more, they are cleared first */
     int set = nw == 1;
-    if (!set) memset(mk, 0, (size_t)ncv * 2 * RD_MASK_WORDS * sizeof *mk);
-    double dmax[RD_MAX_PLANES]; /* the largest distance to each plane, wanted only to find the far
-                                   planes (a fixed other body, every plane measured) */
+    if (!set) memset(mk, 0, (size_t)ncv * 2 * (size_t)nw * sizeof *mk);
+    double *dmax = ps->dmax; /* the largest distance to each plane, wanted only to find the far
+                                planes (a fixed other body, every plane measured) */
     const int track = fixed && !reuse;
     /* plane by plane (all, or the near ones), each a pass over the vertices: with few planes
        (a pedestal's one near plane) the loop is all vertices, none of its overhead per plane */
     for (int q = 0; q < np; q++) {
         dmax[q] = -INFINITY;
-        if (reuse && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
+        if (reuse && q < 64 * RD_FAR_WORDS && ((sd->far[q >> 6] >> (q & 63)) & 1)) continue;
         const double n[4] = { wn[q][0], wn[q][1], wn[q][2], wd[q] }, band[2] = { out_band, reach };
         if (set)
-            dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1, 1)
-                            : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0, 1);
+            dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, nw, q, d, mk, 1, 1)
+                            : plane_pass(v, soa, ncv, n, band, np, nw, q, d, mk, 0, 1);
         else
-            dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, q, d, mk, 1, 0)
-                            : plane_pass(v, soa, ncv, n, band, np, q, d, mk, 0, 0);
+            dmax[q] = track ? plane_pass(v, soa, ncv, n, band, np, nw, q, d, mk, 1, 0)
+                            : plane_pass(v, soa, ncv, n, band, np, nw, q, d, mk, 0, 0);
         set = 0;
     }
     if (set) /* no plane measured: no bits */
-        for (int k = 0; k < ncv; k++)
-            mk[k * 2 * RD_MASK_WORDS] = mk[k * 2 * RD_MASK_WORDS + RD_MASK_WORDS] = 0;
+        for (int k = 0; k < ncv; k++) mk[k * 2 * nw] = mk[k * 2 * nw + nw] = 0;
     if (track) { /* every plane measured: the far ones, from this pose */
         sd->far_clear = INFINITY;
-        for (int w = 0; w < RD_MASK_WORDS; w++) sd->far[w] = 0;
-        for (int q = 0; q < np; q++) {
+        for (int w = 0; w < RD_FAR_WORDS; w++) sd->far[w] = 0;
+        for (int q = 0; q < np && q < 64 * RD_FAR_WORDS; q++) {
             double clear = reach - dmax[q];
             if (!(clear > RD_FAR_BANDS * c->tol)) continue;
             sd->far[q >> 6] |= (uint64_t)1 << (q & 63);
@@ -1186,13 +1212,13 @@ RD_HOT static void vertex_distances(const rd_sim *s, side_ctx *c, rd_side *sd)
  * every vertex lies beyond by more than out_band (*out), the planes some vertex lies above reach
  * (*cross). Out of line: the common triangle and quadrilateral are face_planes' own. */
 static __attribute__((noinline)) void face_masks(const uint64_t *mask, const int *mo, int nv, int w,
-                                                 uint64_t *out, uint64_t *cross)
+                                                 int nw, uint64_t *out, uint64_t *cross)
 {
     uint64_t o = ~(uint64_t)0, x = 0;
     for (int v = 0; v < nv; v++) {
-        const uint64_t *mk = mask + mo[v];
+        const uint64_t *mk = mask + (size_t)mo[v] * (size_t)nw;
         o &= mk[w];
-        x |= mk[RD_MASK_WORDS + w];
+        x |= mk[nw + w];
     }
     *out = o;
     *cross = x;
@@ -1217,30 +1243,31 @@ static inline int face_planes(const rd_sim *s, side_ctx *c, steady_ctx *k, int c
     for (int w = 0; w < nw; w++) {
         uint64_t out, cross;
         if (nv == 3) { /* a mesh's triangle */
-            const uint64_t *m0 = k->mask + mo[0] + w;
-            const uint64_t *m1 = k->mask + mo[1] + w;
-            const uint64_t *m2 = k->mask + mo[2] + w;
+            const uint64_t *m0 = k->mask + (size_t)mo[0] * (size_t)nw + w;
+            const uint64_t *m1 = k->mask + (size_t)mo[1] * (size_t)nw + w;
+            const uint64_t *m2 = k->mask + (size_t)mo[2] * (size_t)nw + w;
             out = m0[0] & m1[0] & m2[0];
-            cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS];
+            cross = m0[nw] | m1[nw] | m2[nw];
         } else if (nv == 4) { /* a brick's face */
-            const uint64_t *m0 = k->mask + mo[0] + w;
-            const uint64_t *m1 = k->mask + mo[1] + w;
-            const uint64_t *m2 = k->mask + mo[2] + w;
-            const uint64_t *m3 = k->mask + mo[3] + w;
+            const uint64_t *m0 = k->mask + (size_t)mo[0] * (size_t)nw + w;
+            const uint64_t *m1 = k->mask + (size_t)mo[1] * (size_t)nw + w;
+            const uint64_t *m2 = k->mask + (size_t)mo[2] * (size_t)nw + w;
+            const uint64_t *m3 = k->mask + (size_t)mo[3] * (size_t)nw + w;
             out = m0[0] & m1[0] & m2[0] & m3[0];
-            cross = m0[RD_MASK_WORDS] | m1[RD_MASK_WORDS] | m2[RD_MASK_WORDS] | m3[RD_MASK_WORDS];
+            cross = m0[nw] | m1[nw] | m2[nw] | m3[nw];
         } else {
-            face_masks(k->mask, mo, nv, w, &out, &cross);
+            face_masks(k->mask, mo, nv, w, nw, &out, &cross);
         }
         if (out) { /* every vertex beyond plane q */
             int q = 64 * w + __builtin_ctzll(out);
             double emin = DBL_MAX;
             for (int v = 0; v < nv; v++)
-                emin = rd_min(k->dist[mo[v] / (2 * RD_MASK_WORDS) * k->np + q], emin);
+                emin = rd_min(k->dist[(size_t)(mo[v] / 2) * (size_t)k->np + q], emin);
             *gap = emin - c->raise;
             return 1;
         }
-        k->cross[w] = c->cross[w] = cross;
+        c->cross[w] = cross;
+        if (!w) k->cross0 = cross;
     }
     return 0;
 }
@@ -1360,10 +1387,14 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     c.out_band = c.tol + slack + c.raise;
     c.reach = 0.5 * c.tol - c.raise;
     c.t_free = !s->fixed[c.t];
-    face_frame ffs[RD_MAX_PLANES]; /* found as used (face_frame_at) */
+    struct rd_plane_scratch *ps = s->plane_scratch;
     c.face_law = !c.t_free;
-    c.ff = ffs;
-    memset(c.ff_used, 0, sizeof c.ff_used);
+    c.ff = ps->ff; /* found as used (face_frame_at) */
+    c.pl = ps->pl;
+    c.cross = ps->cross;
+    c.ff_used = ps->ff_used;
+    c.nw = (s->poly[c.t].nf + 63) / 64;
+    memset(c.ff_used, 0, (size_t)c.nw * sizeof *c.ff_used);
     /* against a fixed body the owner's sums run on from its force and torque so far; a free
        other body's share needs the side's own sums, which then start at 0 */
     side_sums sums = {
@@ -1413,6 +1444,27 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     }
     *k_active += sums.k_active;
     rd_axpy(c.to_b, sums.nsum, nsum); /* to_b = +-1: +-(fn u) summed, exactly */
+}
+
+int rd_contact_scratch(rd_sim *s)
+{
+    const size_t np = s->np_max > 0 ? (size_t)s->np_max : 1, mw = (np + 63) / 64;
+    struct rd_plane_scratch *ps =
+        calloc(1, sizeof *ps + np * sizeof *ps->ff + np * (4 + 5) * sizeof(double) +
+                      2 * mw * sizeof(uint64_t));
+    if (!ps) return -1;
+    /* the struct, then its arrays: each a whole number of 8-byte words */
+    ps->ff = (face_frame *)(ps + 1);
+    ps->pl = (double(*)[4])(ps->ff + np);
+    ps->n0 = (double *)(ps->pl + np);
+    ps->n1 = ps->n0 + np;
+    ps->n2 = ps->n1 + np;
+    ps->dq = ps->n2 + np;
+    ps->dmax = ps->dq + np;
+    ps->cross = (uint64_t *)(ps->dmax + np);
+    ps->ff_used = ps->cross + mw;
+    s->plane_scratch = ps;
+    return 0;
 }
 
 /* Broad phase, then every live pair's subcontact forces. 0, or -1 when the broad phase ran out

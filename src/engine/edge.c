@@ -83,6 +83,7 @@
 #include "engine/law.h"
 #include "base/vec.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -102,9 +103,13 @@
 /* an end spring whose last stretch exceeds this many steps of its point's normal speed when its
  * end leaves o has left by a jump of the point, not by the bodies' motion (end_jumped) */
 #define RD_EDGE_JUMP       2.0
-/* most vertices and edges of a body whose edges are tested (a 128-sided drum has 256 and 384) */
+/* most vertices and edges of a non-convex body (a mesh) whose edges are tested: each side step
+ * touches every vertex of the edges' body (a 128-sided drum has 256 and 384); a convex body's are
+ * tested whatever its size */
 #define RD_EDGE_MAX_VERTS  512
 #define RD_EDGE_MAX_EDGES  1024
+/* farthest_out's answer when no plane: the vertex lies within the band of o */
+#define RD_PLANE_NONE      INT_MAX
 /* rd_sim.eon's bits: the slot bears (or holds its set, below); it has not unloaded since its
    onset (its first unloading takes the joint's impact loss); it is an end of the edge's part
    inside the other body (plateau; area A'/2), not its deepest point */
@@ -124,6 +129,51 @@ int rd_edge_count(const rd_poly *p)
 
 /* Every body's edges, each once (face f's side from vertex a to b, taken where a < b), in the
  * order of the edge subcontact slots. */
+/* edge.c's scratch (rd_edge_init), in one block: a side's edge lines and envelope over the other
+ * body's planes (np_max), vinfo's arrays over the edges' body's vertices, the candidate edges. */
+struct rd_edge_scratch {
+    double *c, *sl, *u0;               /* [np_max] edge_lines, envelope */
+    int *k;                            /* [np_max] envelope */
+    uint64_t *word;                    /* [nv] vinfo */
+    double *d;                         /* [nv] */
+    int *out, *vk;                     /* [nv] */
+    unsigned char *code, *sure, *done; /* [nv] */
+    int *cand;                         /* [ne] rd_edge_side's candidate edges */
+};
+
+/* rd_sim.edge_scratch, for the most planes (rd_sim.np_max) and the most vertices and edges of a
+ * body whose edges are tested (any convex body; a mesh within RD_EDGE_MAX_VERTS and
+ * RD_EDGE_MAX_EDGES). 0, or -1 (memory). */
+static int edge_scratch(rd_sim *s)
+{
+    size_t np = s->np_max > 0 ? (size_t)s->np_max : 1, nv = 1, ne = 1;
+    for (int i = 0; i < s->nb; i++) {
+        const size_t v = (size_t)s->poly[i].nv, e = (size_t)(s->edge_v0[i + 1] - s->edge_v0[i]);
+        const int tested = s->convex[i] || (v <= RD_EDGE_MAX_VERTS && e <= RD_EDGE_MAX_EDGES);
+        if (tested && v > nv) nv = v;
+        if (tested && e > ne) ne = e;
+    }
+    const size_t words = 3 * np + (np + 1) / 2 + 2 * nv + nv + (3 * nv + 7) / 8 + (ne + 1) / 2;
+    struct rd_edge_scratch *es = calloc(1, sizeof *es + words * sizeof(double));
+    if (!es) return -1;
+    /* the struct, then its arrays, each a whole number of 8-byte words */
+    double *w = (double *)(es + 1);
+    es->c = w;
+    es->sl = es->c + np;
+    es->u0 = es->sl + np;
+    es->word = (uint64_t *)(es->u0 + np);
+    es->d = (double *)(es->word + nv);
+    es->out = (int *)(es->d + nv);
+    es->vk = es->out + nv;
+    es->k = es->vk + nv;
+    es->cand = es->k + np;
+    es->code = (unsigned char *)(es->cand + ne);
+    es->sure = es->code + nv;
+    es->done = es->sure + nv;
+    s->edge_scratch = es;
+    return 0;
+}
+
 int rd_edge_init(rd_sim *s, rd_error *err)
 {
     int n = 0;
@@ -146,7 +196,7 @@ int rd_edge_init(rd_sim *s, rd_error *err)
         }
     }
     s->edge_v0[s->nb] = n;
-    return 0;
+    return edge_scratch(s) ? rd_error_set(err, "out of memory") : 0;
 }
 
 /* Signed distance of world point x to plane k of body o (> 0 outside), m. */
@@ -217,7 +267,7 @@ static void edge_release(rd_sim *s, const rd_side *sd, const rd_joint *j, int e,
 
 /* One edge of t against o: plane k's depth along it is c[k] + sl[k] u, m (< 0: beyond k). */
 typedef struct edge_lines {
-    double c[RD_MAX_PLANES], sl[RD_MAX_PLANES];
+    double *c, *sl; /* [np] (rd_edge_scratch) */
     int np;
 } edge_lines;
 
@@ -315,8 +365,8 @@ static void deepest(const rd_sim *s, int o, const edge_lines *L, double flat, de
  * comes at most once. */
 typedef struct envelope {
     int n;
-    int k[RD_MAX_PLANES];
-    double u0[RD_MAX_PLANES];
+    int *k;     /* [np] (rd_edge_scratch) */
+    double *u0; /* [np] */
 } envelope;
 
 static void walk(const edge_lines *L, envelope *E)
@@ -329,7 +379,7 @@ static void walk(const edge_lines *L, envelope *E)
         E->u0[E->n++] = u;
         double un;
         int next = next_plane(L, act, &un);
-        if (next < 0 || un >= 1 || E->n == RD_MAX_PLANES) return;
+        if (next < 0 || un >= 1 || E->n == L->np) return;
         act = next;
         u = fmax(u, un);
     }
@@ -357,7 +407,7 @@ static int plateau(const rd_sim *s, int o, const edge_lines *L, double tol, deep
 {
     int crossing = 0;
     const double(*n)[3] = s->wn + s->face0[o];
-    envelope E;
+    envelope E = { .k = s->edge_scratch->k, .u0 = s->edge_scratch->u0 };
     walk(L, &E);
     int top = 0; /* the first falling piece: the deepest point is its start */
     while (top < E.n && !(L->sl[E.k[top]] < 0)) top++;
@@ -426,27 +476,27 @@ typedef struct vinfo {
     int o;         /* the owner, whose box the outcodes test */
     int box_found; /* box holds o's box (found when the first outcode needs it) */
     double box[6]; /* o's box, grown by the broad phase's margin */
-    unsigned char code[RD_EDGE_MAX_VERTS]; /* against box (outcode), once found (RD_EDGE_NO_CODE
-                                              before) */
-    unsigned char sure[RD_EDGE_MAX_VERTS]; /* against o's loose box (rd_pairs_box_loose): its bits
-                                              are a subset of code's */
-    unsigned char done[RD_EDGE_MAX_VERTS];
-    short out[RD_EDGE_MAX_VERTS];     /* vertex_out's answer, once found (-2 before) */
-    uint64_t word[RD_EDGE_MAX_VERTS]; /* its mask word, where o's planes fit one (vertex_word) */
-    short k[RD_EDGE_MAX_VERTS];
-    double d[RD_EDGE_MAX_VERTS];
+    /* per vertex of t (rd_edge_scratch) */
+    unsigned char *code; /* against box (outcode), once found (RD_EDGE_NO_CODE before) */
+    unsigned char *sure; /* against o's loose box (rd_pairs_box_loose): its bits are a subset of
+                            code's */
+    unsigned char *done;
+    int *out;       /* vertex_out's answer, once found (-2 before) */
+    uint64_t *word; /* its mask word, where o's planes fit one (vertex_word) */
+    int *k;
+    double *d;
 } vinfo;
 
 /* The plane of o that the vertex with distances row and mask words mk (nw of them) lies
  * farthest beyond, among those it lies beyond by more than the contact band (contact.c's masks);
- * RD_MAX_PLANES when none (it lies within the band of o: a vertex subcontact holds it). */
+ * RD_PLANE_NONE when none (it lies within the band of o: a vertex subcontact holds it). */
 static inline int farthest_out(const double *row, const uint64_t *mk, int nw)
 {
-    int q = RD_MAX_PLANES;
+    int q = RD_PLANE_NONE;
     for (int w = 0; w < nw; w++)
         for (uint64_t m = mk[w]; m; m &= m - 1) {
             int k = 64 * w + __builtin_ctzll(m);
-            if (q == RD_MAX_PLANES || row[k] > row[q]) q = k;
+            if (q == RD_PLANE_NONE || row[k] > row[q]) q = k;
         }
     return q;
 }
@@ -459,8 +509,8 @@ static int vertex_out(vinfo *vi, int v)
     if (!vi->mask) return -1;
     int slot = vi->slot[v];
     if (slot < 0) return -1;
-    vi->out[v] = (short)farthest_out(vi->dist + (size_t)slot * (size_t)vi->np,
-                                     vi->mask + (size_t)slot * 2 * RD_MASK_WORDS, vi->nw);
+    vi->out[v] = farthest_out(vi->dist + (size_t)slot * (size_t)vi->np,
+                              vi->mask + (size_t)slot * 2 * (size_t)vi->nw, vi->nw);
     return vi->out[v];
 }
 
@@ -472,8 +522,8 @@ static int vertex_word(vinfo *vi, int v)
 {
     int slot = vi->slot[v];
     if (slot < 0) return 0;
-    vi->word[v] = vi->mask[(size_t)slot * 2 * RD_MASK_WORDS];
-    vi->out[v] = (short)farthest_out(vi->dist + (size_t)slot * (size_t)vi->np, &vi->word[v], 1);
+    vi->word[v] = vi->mask[(size_t)slot * 2 * (size_t)vi->nw];
+    vi->out[v] = farthest_out(vi->dist + (size_t)slot * (size_t)vi->np, &vi->word[v], 1);
     return 1;
 }
 
@@ -504,8 +554,8 @@ static void sure_codes(vinfo *vi, int nv)
  * band: the whole edge does. */
 static int beyond_one(const vinfo *vi, int va, int vb)
 {
-    const uint64_t *ma = vi->mask + (size_t)vi->slot[va] * 2 * RD_MASK_WORDS;
-    const uint64_t *mb = vi->mask + (size_t)vi->slot[vb] * 2 * RD_MASK_WORDS;
+    const uint64_t *ma = vi->mask + (size_t)vi->slot[va] * 2 * (size_t)vi->nw;
+    const uint64_t *mb = vi->mask + (size_t)vi->slot[vb] * 2 * (size_t)vi->nw;
     for (int w = 0; w < vi->nw; w++)
         if (ma[w] & mb[w]) return 1;
     return 0;
@@ -547,7 +597,7 @@ static void vertex_depth(const rd_sim *s, int o, int t, vinfo *vi, int v)
         }
     }
     vi->d[v] = -dmax;
-    vi->k[v] = (short)kmax;
+    vi->k[v] = kmax;
     vi->done[v] = 1;
 }
 
@@ -566,11 +616,11 @@ static int may_bear(const rd_sim *s, int o, int t, vinfo *vi, int va, int vb, in
            its held end (it leaves o through plane q, which its other end lies beyond), or whose
            depth falls from its held end along q's line (q is that end's nearest plane) */
         int qa = vertex_out(vi, va), qb = vertex_out(vi, vb);
-        if (qa == RD_MAX_PLANES && qb == RD_MAX_PLANES) return 0;
-        if (qa >= 0 && qb >= 0 && qa < RD_MAX_PLANES && qb < RD_MAX_PLANES &&
+        if (qa == RD_PLANE_NONE && qb == RD_PLANE_NONE) return 0;
+        if (qa >= 0 && qb >= 0 && qa < RD_PLANE_NONE && qb < RD_PLANE_NONE &&
             beyond_one(vi, va, vb))
             return 0;
-        int in = qa == RD_MAX_PLANES ? va : qb == RD_MAX_PLANES ? vb : -1;
+        int in = qa == RD_PLANE_NONE ? va : qb == RD_PLANE_NONE ? vb : -1;
         int q = in == va ? qb : qa;
         if (in >= 0 && q >= 0) {
             const double *ri = vertex_row(vi, in), *ro = vertex_row(vi, in == va ? vb : va);
@@ -732,7 +782,8 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
        that all lay beyond one of its sides (none bearing) still do, and nothing is to be done */
     if (s->fixed[t] && sd->edges_clear == s->box_builds[o] + 1) return;
     const rd_poly *pt = &s->poly[t];
-    if (pt->nv > RD_EDGE_MAX_VERTS || sd->nedge > RD_EDGE_MAX_EDGES) return;
+    if (!s->convex[t] && (pt->nv > RD_EDGE_MAX_VERTS || sd->nedge > RD_EDGE_MAX_EDGES)) return;
+    struct rd_edge_scratch *es = s->edge_scratch;
     const rd_joint *j = &s->joint[pr->joint];
     const int ends = RD_EDGE_SLOTS;
     const double A = sd->weight * sd->edge_area; /* an edge's spring area A', m^2 */
@@ -742,6 +793,13 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
     vi.dist = dist;
     vi.mask = mask;
     vi.slot = s->cv_slot + s->vert0[t];
+    vi.code = es->code;
+    vi.sure = es->sure;
+    vi.done = es->done;
+    vi.out = es->out;
+    vi.word = es->word;
+    vi.k = es->vk;
+    vi.d = es->d;
     vi.tol = RD_CONTACT_BAND * fmin(s->poly[o].radius, pt->radius);
     vi.np = s->poly[o].nf;
     vi.nw = (vi.np + 63) / 64;
@@ -757,11 +815,11 @@ void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
         if (held) held = vertex_word(&vi, v);
     }
     if (!held) sure_codes(&vi, pt->nv);
-    edge_lines L;
+    edge_lines L = { .c = es->c, .sl = es->sl };
     rd_watch *w = rd_monitor_contact_watch(s, o, t);
     const int(*ev)[2] = s->edge_v + s->edge_v0[t];
     const unsigned char *on = s->eon + sd->edge0;
-    int cand[RD_EDGE_MAX_EDGES], nc = 0, clear = !held;
+    int *cand = es->cand, nc = 0, clear = !held;
     for (int i = 0; i < sd->nedge; i++) { /* bearing, or not settled by may_bear's mask tests (with
                                              masks; else not wholly beyond one side of o's box) */
         const int a = ev[i][0], b = ev[i][1];

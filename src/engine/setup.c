@@ -69,6 +69,9 @@ static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
  * targets (a point's gap is measured against their face planes); round-off of the face planes
  * is ~1e-16 r. */
 #define RD_CONVEX_TOL(r) (1e-9 * (1.0 + (r)))
+#define RD_SURFACE_CONVEX_FACES                                                                    \
+    130 /* the surface model (surface.c) takes a convex body of more faces as a mesh: the
+           integration side of its pairs, against a convex partner */
 
 static int build_body(rd_sim *s, int i, rd_error *err)
 {
@@ -94,12 +97,9 @@ static int build_body(rd_sim *s, int i, rd_error *err)
     }
     /* the surface model takes a convex body of many faces as a mesh (surface.c: it is then the
        integration side of its pairs, against a convex partner) */
-    if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES && s->sc.contact.model == RD_CONTACT_SURFACE)
+    if (s->convex[i] && s->poly[i].nf > RD_SURFACE_CONVEX_FACES &&
+        s->sc.contact.model == RD_CONTACT_SURFACE)
         s->convex[i] = 0;
-    if (s->convex[i] && s->poly[i].nf > RD_MAX_PLANES)
-        return rd_error_set(err,
-                            "%s:%d: block '%s' has %d faces; a convex body may have at most %d",
-                            s->sc.file, d->line, d->name, s->poly[i].nf, RD_MAX_PLANES);
     return 0;
 }
 
@@ -495,13 +495,40 @@ static int list_vertices(const rd_sim *s, const char *use, int **first, int **li
     return 0;
 }
 
+/* The sizes of a side's scratch (rd_sim.cv_dist, cv_mask) over every pair of bodies: the owner's
+ * candidate vertices times the other body's planes, doubles (*ndist), and times two sets of
+ * (planes + 63) / 64 words, uint64 (*nmask). The other body is convex (only a convex body is a
+ * contact target) and never the owner itself: a body's partner with the most planes is the convex
+ * body with the most, or, for that body, the one with the next most. */
+static void side_sizes(const rd_sim *s, size_t *ndist, size_t *nmask)
+{
+    int top = -1, np1 = 0, np2 = 0; /* the most planes (body top) and the next most */
+    for (int i = 0; i < s->nb; i++) {
+        if (!s->convex[i]) continue;
+        const int np = s->poly[i].nf;
+        if (np > np1) {
+            np2 = np1;
+            np1 = np;
+            top = i;
+        } else if (np > np2) {
+            np2 = np;
+        }
+    }
+    *ndist = *nmask = 0;
+    for (int i = 0; i < s->nb; i++) {
+        const size_t ncv = (size_t)(s->cv0[i + 1] - s->cv0[i]), np = (size_t)(i == top ? np2 : np1);
+        if (ncv * np > *ndist) *ndist = ncv * np;
+        if (ncv * 2 * ((np + 63) / 64) > *nmask) *nmask = ncv * 2 * ((np + 63) / 64);
+    }
+}
+
 /* Hull vertices of every body (rd_sim.hv: its bounding box in any pose; a hull that qhull
  * cannot make keeps every vertex), then every body's candidate-face vertices (rd_sim.cv: what a
  * non-convex body's step transforms, their body-frame coordinates in rd_sim.cv_body) and the
  * scratch of their world coordinates, plane distances and masks. */
 static int build_step_vertices(rd_sim *s, rd_error *err)
 {
-    int nv = s->vert0[s->nb], ncv_max = 0, np_max = 0;
+    int nv = s->vert0[s->nb], np_max = 0;
     char *use = calloc((size_t)nv + 1, 1);
     int rc = !use;
     for (int i = 0; i < s->nb && !rc; i++) {
@@ -520,11 +547,12 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     for (int i = 0; i < s->nb && !rc; i++) {
         for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) s->cv_slot[v] = -1;
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++) s->cv_slot[s->cv[k]] = k - s->cv0[i];
-        ncv_max = s->cv0[i + 1] - s->cv0[i] > ncv_max ? s->cv0[i + 1] - s->cv0[i] : ncv_max;
     }
     int ncv = rc ? 0 : s->cv0[s->nb];
-    rc = rc || !ALLOC(s->cv_dist, (size_t)ncv_max * (size_t)np_max) ||
-         !ALLOC(s->cv_mask, (size_t)ncv_max * 2 * RD_MASK_WORDS) ||
+    s->np_max = np_max;
+    size_t ndist = 0, nmask = 0;
+    if (!rc) side_sizes(s, &ndist, &nmask);
+    rc = rc || !ALLOC(s->cv_dist, ndist) || !ALLOC(s->cv_mask, nmask) || rd_contact_scratch(s) ||
          !ALLOC(s->cv_body, 3 * (size_t)ncv) || !ALLOC(s->cv_world, 3 * (size_t)ncv);
     for (int i = 0; i < s->nb && !rc; i++)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++)
@@ -593,8 +621,7 @@ static int face_vertices(rd_sim *s, rd_error *err)
             int f = s->cf_face[cf];
             s->cf_v0[cf] = n;
             for (int k = 0; k < p->flen[f]; k++)
-                s->cf_v[n++] =
-                    2 * RD_MASK_WORDS * s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
+                s->cf_v[n++] = 2 * s->cv_slot[s->vert0[i] + p->fidx[p->fstart[f] + k]];
         }
     }
     s->cf_v0[s->ncf] = n;

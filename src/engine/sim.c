@@ -672,6 +672,8 @@ void rd_sim_free(rd_sim *s)
                        s->edge_v,
                        s->cv_dist,
                        s->cv_mask,
+                       s->plane_scratch,
+                       s->edge_scratch,
                        s->cv_body,
                        s->cv_world,
                        s->pl,

@@ -35,11 +35,12 @@
 #endif
 
 #define RD_EDGE_SLOTS                                                                              \
-    2                     /* spring slots per edge subcontact: its deepest point, or the two ends of
+    2 /* spring slots per edge subcontact: its deepest point, or the two ends of
                            its part inside the other body (edge.c) */
-#define RD_MAX_PLANES 130 /* most faces a convex body may have (a 128-sided drum) (contact.c) */
-#define RD_MASK_WORDS ((RD_MAX_PLANES + 63) / 64) /* 64-bit words of a one-bit-per-plane mask */
-#define RD_NPREC      72 /* directions of the precariousness table (every 5 degrees) */
+#define RD_FAR_WORDS                                                                               \
+    3 /* 64-bit words of rd_side.far: a fixed body's planes past the first 64 RD_FAR_WORDS are
+         measured at every step (contact.c) */
+#define RD_NPREC 72 /* directions of the precariousness table (every 5 degrees) */
 #define RD_SUPPORT_BAND                                                                            \
     1e-3 /* m: vertices this close to a body's lowest point form its base (support polygon) */
 /* Contact band as a fraction of the smaller body's bounding radius (3DEC keeps a contact while
@@ -100,11 +101,11 @@ typedef struct rd_side {
     int edge0, nedge; /* the other body's edges as edge subcontacts (edge.c): first slot in
                          rd_sim.efs / edepth / eon, count (0: none) */
     double edge_area; /* tributary area of an edge subcontact: the owner's mean point area, m^2 */
-    uint64_t far[RD_MASK_WORDS]; /* planes of a fixed other body that the owner's candidate
+    uint64_t far[RD_FAR_WORDS]; /* planes of a fixed other body that the owner's candidate
                                     vertices clear (contact.c: vertex_distances skips them) */
-    double far_clear;            /* their least clearance below reach when measured, m (0: none) */
-    double far_pose[7];          /* the owner's position and quaternion then */
-    uint64_t edges_clear;        /* the owner's box build (rd_sim.box_builds) + 1 at which every
+    double far_clear;           /* their least clearance below reach when measured, m (0: none) */
+    double far_pose[7];         /* the owner's position and quaternion then */
+    uint64_t edges_clear;       /* the owner's box build (rd_sim.box_builds) + 1 at which every
                                     edge of a fixed other body lay beyond one side of the owner's
                                     loose box (edge.c skips the side while it stands); 0: none */
 } rd_side;
@@ -237,9 +238,13 @@ struct rd_sim {
                               vertex_distances); a convex body's are read from wv */
     double *cv_dist;    /* scratch: [cv entries of one body][planes of the other body] signed
                               distances, m */
-    uint64_t *cv_mask;  /* scratch: [cv entries of one body][2][RD_MASK_WORDS] plane bits
-                              (contact.c: vertex_distances; only the words the other body's
-                              planes use are set) */
+    uint64_t *cv_mask;  /* scratch: [cv entries of one body][2][nw] plane bits, nw = (planes of
+                              the other body + 63) / 64 words a set (contact.c: vertex_distances) */
+    int np_max;         /* the most faces of a convex body: the most planes a contact target has */
+    struct rd_plane_scratch *plane_scratch; /* contact.c's per-side arrays over the other body's
+                                               planes, np_max of each (rd_contact_scratch) */
+    struct rd_edge_scratch *edge_scratch;   /* edge.c's arrays over a side's planes, vertices and
+                                             edges (rd_edge_init) */
 
     /* subcontact points, grouped by body, then by candidate face */
     int npts;
@@ -266,7 +271,7 @@ struct rd_sim {
     int *cf_v0;       /* [ncf+1] first entry of each candidate face's vertices in cf_v */
     int *cf_v;        /* the candidate faces' vertices, in face order, as the offsets of
                               their plane masks in cv_mask (their positions in their body's cv
-                              list, cv_slot, times 2 RD_MASK_WORDS): contact.c's face test reads
+                              list, cv_slot, times 2: times the side's words a set, nw): contact.c's face test reads
                               each mask word with one load */
 
     /* broad phase (pairs.c) */
@@ -293,7 +298,7 @@ struct rd_sim {
     int nstate, cap_state, cap_state_flags;
     double (*fs)[3];       /* shear force on the owner, ground frame, N */
     unsigned char *pstate; /* RD_PT_* bits */
-    short *pface;          /* entrance face (index on the other body) while RD_PT_INSIDE */
+    int *pface;            /* entrance face (index on the other body) while RD_PT_INSIDE */
     double *pset;          /* permanent set of the normal spring after the impact loss, m */
     double *pstrike;       /* a struck point's stretch (depth - set) when it was struck, m */
     int cap_pface, cap_pset, cap_pstrike;
@@ -421,6 +426,7 @@ double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
 
 /* contact.c */
 int rd_contact_step(rd_sim *s);
+int rd_contact_scratch(rd_sim *s); /* plane_scratch for np_max planes: 0, or -1 (memory) */
 void rd_contact_reset_body(rd_sim *s, int body);
 void rd_contact_seat(rd_sim *s);
 void rd_contact_find_impacts(rd_sim *s);

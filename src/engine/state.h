@@ -13,7 +13,7 @@
 #include <stddef.h>
 
 #define RD_STATE_VERSION                                                                           \
-    6 /* bump when the image's arrays or their meaning change (6: the blocks' build) */
+    7 /* bump when the image's arrays or their meaning change (7: entrance faces as int) */
 #define RD_STATE_ARRAYS 32 /* room for the arrays of an image */
 #define RD_STATE_BUILD_RTOL                                                                        \
     1e-9 /* a restored block's shape, mass and fixed pose must be the saved

@@ -155,7 +155,7 @@ int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err)
         rd_path_output_conflict(sc, path, sc->save_path, RD_OUTPUT_RUN, why, sizeof why);
     if (bad) return rd_error_set(err, "%s: cannot write the output there: %s", path, bad);
     char tmp[RD_PATH_MAX];
-    int staged = rd_output_staging(path, sc->force, tmp, sizeof tmp);
+    int staged = rd_output_staging(path, sc->overwrite, tmp, sizeof tmp);
     rd_h5 *h = open_file(sim, path, staged ? tmp : NULL, err);
     if (!h) return -1;
     rd_observer o = { .user = h,
@@ -172,9 +172,9 @@ int rd_sim_write_hdf5(rd_sim *sim, const char *path, rd_error *err)
     return 0;
 }
 
-int rd_output_staging(const char *path, int force, char *buf, size_t n)
+int rd_output_staging(const char *path, int overwrite, char *buf, size_t n)
 {
     struct stat st;
     snprintf(buf, n, "%s.tmp-%ld", path, (long)getpid());
-    return !force && stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
+    return !overwrite && stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
 }

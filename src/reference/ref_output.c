@@ -129,7 +129,7 @@ static rd_h5 *open_file(const rd_scenario *sc, const rd_refscene *rs, const char
                         .nbodies = rs->nblock,
                         .bodies = hb };
     char tmp[RD_PATH_MAX]; /* an earlier file at path is replaced once this one is whole */
-    int staged = rd_output_staging(path, sc->force, tmp, sizeof tmp);
+    int staged = rd_output_staging(path, sc->overwrite, tmp, sizeof tmp);
     meta.target = staged ? path : NULL;
     return rd_h5_open(staged ? tmp : path, &meta, err);
 }

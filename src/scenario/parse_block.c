@@ -10,7 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_COLUMN_MAX_DRUMS 100 /* drums of one `block create column` */
+#define RD_COLUMN_MAX_DRUMS 100   /* drums of one `block create column` */
+#define RD_PRISM_MAX_SIDES  10000 /* sides of a drum (values.c's bound on 'sides') */
 
 /* ---- block ---- */
 
@@ -113,8 +114,9 @@ static int shape_keyword(parser *P, int k, const token *kw, rd_body_def *b)
     case RD_SHAPE_PRISM:
         if (k == 0) {
             if (read_value(P, kw, R_POS, U_PLAIN, &sides)) return -1;
-            if (sides < 3 || sides > 128 || sides != (int)sides)
-                return perr(P, kw, "'sides' must be a whole number from 3 to 128");
+            if (sides < 3 || sides > RD_PRISM_MAX_SIDES || sides != (int)sides)
+                return perr(P, kw, "'sides' must be a whole number from 3 to %d",
+                            RD_PRISM_MAX_SIDES);
             b->sides = (int)sides;
             return 0;
         }
@@ -262,7 +264,7 @@ static int block_column(parser *P, const token *at)
         case 0: rc = read_count(P, kw, 1, RD_COLUMN_MAX_DRUMS, &ndrums); break;
         case 1: rc = read_value(P, kw, R_POS, U_PLAIN, &d); break;
         case 2: rc = read_value(P, kw, R_POS, U_PLAIN, &h); break;
-        case 3: rc = read_count(P, kw, 3, 128, &sides); break;
+        case 3: rc = read_count(P, kw, 3, RD_PRISM_MAX_SIDES, &sides); break;
         case 4: rc = read_value(P, kw, R_FRAC, U_PLAIN, &taper); break;
         case 5: rc = read_values(P, kw, 2, R_POS, U_PLAIN, plinth); break;
         case 6: rc = read_value(P, kw, R_POS, U_PLAIN, &cap); break;

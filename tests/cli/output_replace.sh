@@ -7,7 +7,8 @@
 #      (SIGKILL at the fault points of src/base/fault.h) after any flush, or just before its
 #      rename, or interrupted (SIGINT), leaves the earlier file as it was, and the new output,
 #      a valid HDF5 file with what it had, in <file>.tmp-<pid>; a run that ends replaces it;
-#   3. --force writes over the earlier file in place (a kill leaves the new run's part);
+#   3. --overwrite writes over the earlier file in place (a kill leaves the new run's part);
+#      --force (the step budget's) does not: a kill leaves the earlier file;
 #   4. a new file is written in place: a kill after any flush leaves a valid file with every
 #      flushed sample and the root status "running".
 set -eu
@@ -67,12 +68,20 @@ cp "$T/earlier.h5" "$T/ok.h5"
     { echo "FAIL a successful run did not replace the earlier file"; exit 1; }
 echo "CHECK a successful run replaces the earlier file, no temporary left"
 
-# 3. --force: in place
+# 3. --overwrite: in place; --force lifts the step budget only
 cp "$T/earlier.h5" "$T/f.h5"
-rc=$(killed run-flush@2 "$BIN" run "$SCN" -q --force -o "$T/f.h5")
+rc=$(killed run-flush@2 "$BIN" run "$SCN" -q --overwrite -o "$T/f.h5")
 [ "$rc" -eq 137 ] && [ "$(ntime "$T/f.h5")" -eq 256 ] && ! ls "$T"/f.h5.tmp-* 2> /dev/null ||
-    { echo "FAIL --force: exit $rc"; exit 1; }
-echo "CHECK --force writes over the earlier file in place"
+    { echo "FAIL --overwrite: exit $rc"; exit 1; }
+echo "CHECK --overwrite writes over the earlier file in place"
+cp "$T/earlier.h5" "$T/g.h5"; rm -f "$T"/g.h5.tmp-*; before=$(sum "$T/g.h5")
+rc=$(killed run-flush@2 "$BIN" run "$SCN" -q --force -o "$T/g.h5")
+[ "$rc" -eq 137 ] && [ "$(sum "$T/g.h5")" = "$before" ] && ls "$T"/g.h5.tmp-* > /dev/null 2>&1 ||
+    { echo "FAIL --force wrote over the earlier file: exit $rc"; exit 1; }
+echo "CHECK --force alone leaves the earlier file to a killed run (it lifts the step budget only)"
+rc=0; "$BIN" check "$SCN" -q --overwrite > /dev/null 2> "$T/ow.err" || rc=$?
+[ "$rc" -eq 2 ] || { echo "FAIL check --overwrite: exit $rc (check writes nothing)"; exit 1; }
+echo "CHECK check refuses --overwrite (it writes nothing): $(head -1 "$T/ow.err")"
 
 # 4. a new file, killed after each of its first flushes: valid, status running
 for k in 1 2 3 4; do
