@@ -113,8 +113,9 @@ static void body_values(rd_sim *s, const rd_history_def *d, int i, double *row)
         double v[3] = { 0, 0, 0 };
         if (bit == RD_HB_POSITION)
             rd_copy3(s->x[i], v);
-        else if (bit == RD_HB_ROTATION && k >= 0)
-            rd_monitor_rotation(s, k, v);
+        else if (bit == RD_HB_ROTATION && k >= 0) /* twist unwrapped against the last row's */
+            rd_monitor_rotation_peek(
+                s, k, s->nhist_rows > 1 ? row[2 - s->nhist_col] : s->watch[k].twist_prev, v);
         else if (bit == RD_HB_VELOCITY)
             for (int j = 0; j < 3; j++) v[j] = 0.5 * (s->v[i][j] + s->v_old[i][j]);
         else if (bit == RD_HB_ANGULAR_VELOCITY)
@@ -177,7 +178,7 @@ void rd_history_step(rd_sim *s)
         else if (d->kind == RD_HISTORY_JOINT)
             joint_values(s, h, d, row);
         else {
-            rd_energy_sample(s);
+            rd_energy_peek(s);
             memcpy(row, s->energy, RD_NENERGY * sizeof(double));
         }
         row += history_columns(d);

@@ -16,7 +16,9 @@
  *   opening        the largest gap among the subcontacts evaluated this step on the faces
  *                  turned towards the other body and lying over the other body's face (within
  *                  its side walls, to the contact band: a brick's overhang beside the brick
- *                  below is not an opening of their joint), m
+ *                  below is not an opening of their joint), m; NaN with the surface model
+ *                  (its patches hold only the compressed region), whose force, area, centre
+ *                  of pressure and shear come from its patches (surface.c)
  *   slip           tangential displacement of the second body against the first, summed
  *                  measure to measure while the joint carries load, of the material points
  *                  at the centre of pressure of the previous measure, minus the elastic shear
@@ -277,7 +279,12 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
        answer: the largest gap of the points that pass). */
     double best_gap = 0;
     int best_q = -1, best_j = -1;
-    for (int q = 0; q < pr->nside && live; q++) {
+    if (s->surf && live) { /* the surface model's patches (surface.c); no opening measured */
+        rd_surface_joint_measure(s, pr, m, &fsum);
+        rd_copy3(m->fs, fs_b);
+        open = NAN;
+    }
+    for (int q = 0; q < pr->nside && live && !s->surf; q++) {
         const rd_side *sd = &pr->side[q];
         int o, t;
         double tol, nb[3];

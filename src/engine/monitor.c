@@ -838,11 +838,12 @@ void rd_monitor_finish(rd_sim *s)
     }
 }
 
-/* Rotation of body k from rest: in-plane rocking, out-of-plane rocking, twist (rad). Called at
- * output samples (twist unwrapping assumes less than half a turn between samples). */
-void rd_monitor_rotation(rd_sim *s, int k, double out[3])
+/* Rotation of body k from rest: in-plane rocking, out-of-plane rocking, twist (rad), the twist
+ * unwrapped against prev (rad: the caller's last twist), without touching the monitor
+ * (histories read it this way, so that measuring changes no result). */
+void rd_monitor_rotation_peek(const rd_sim *s, int k, double prev, double out[3])
 {
-    rd_watch *w = &s->watch[k];
+    const rd_watch *w = &s->watch[k];
     int i = s->free_body[k];
     double qc[4] = { w->q_ref[0], -w->q_ref[1], -w->q_ref[2], -w->q_ref[3] }, dq[4];
     rd_quat_mul(s->q[i], qc, dq); /* rotation since rest, ground frame */
@@ -859,11 +860,19 @@ void rd_monitor_rotation(rd_sim *s, int k, double out[3])
     out[0] = -phi[0] * d[1] + phi[1] * d[0];   /* about z x d */
     out[1] = -(phi[0] * d[0] + phi[1] * d[1]); /* about -d */
     double tw = 2 * atan2(qt[3], qt[0]);       /* in (-2 pi, 2 pi] */
-    double prev = w->twist_prev;
     while (tw - prev > M_PI) tw -= 2 * M_PI;
     while (tw - prev < -M_PI) tw += 2 * M_PI;
-    w->twist_prev = tw;
     out[2] = tw;
+}
+
+/* rd_monitor_rotation_peek, then the unwrapping's reference and the summary's maxima follow it.
+ * Called at output samples (twist unwrapping assumes less than half a turn between samples). */
+void rd_monitor_rotation(rd_sim *s, int k, double out[3])
+{
+    rd_watch *w = &s->watch[k];
+    rd_monitor_rotation_peek(s, k, w->twist_prev, out);
+    const double tw = out[2];
+    w->twist_prev = tw;
     rd_body_summary *sum = w->sum;
     sum->max_rocking_in = rd_max(sum->max_rocking_in, fabs(out[0]));
     sum->max_rocking_out = rd_max(sum->max_rocking_out, fabs(out[1]));

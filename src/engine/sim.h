@@ -438,6 +438,9 @@ void rd_surface_step(rd_sim *s);
 double rd_surface_elastic_energy(const rd_sim *s);
 double rd_surface_contact_area(const rd_sim *s, int i);
 void rd_surface_reset(rd_sim *s, int body);
+/* Pair pr's joint measures from its patches at the last step (fn, fs, area; cop left as the
+ * |fn|-weighted sum, its weight into *wsum); left alone when it never touched. */
+void rd_surface_joint_measure(const rd_sim *s, const rd_pair *pr, rd_joint_state *m, double *wsum);
 void rd_surface_free(rd_sim *s);
 
 /* edge.c */
@@ -497,6 +500,8 @@ int rd_monitor_all_fallen(const rd_sim *s);
 int rd_monitor_any_fallen(const rd_sim *s);
 void rd_monitor_finish(rd_sim *s);
 void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
+void rd_monitor_rotation_peek(const rd_sim *s, int k, double prev, double out[3]);
+void rd_energy_peek(rd_sim *s); /* energy.c: s->energy at t(n), the run's residual untouched */
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
 
 /* observe.c: samples, events and the summary handed to the observers */

@@ -23,15 +23,17 @@
  * conservative but for the edges of the integration faces that pass inside r with depth (a
  * base sliding over a pedestal's edge), where the energy KN d^2 / 2 of the material that
  * crosses is released, a fraction d / L of the stored energy.
- * Impact loss: the joint's normal dashpot only (`model damping viscous` or a joint's damping),
- * a pressure c_a dd/dt with c_a = 2 zeta KN sqrt(m_eff / K_active); the permanent set of the
- * vertex model (`restitution` < 1) has no patch form yet and is refused, as are cohesion and
- * tension, and two non-convex bodies that may touch.
+ * Impact loss: the joint's normal dashpot (`model damping viscous` or a joint's damping), a
+ * pressure c_a dd/dt with c_a = 2 zeta KN sqrt(m_eff / K_active), integrated implicitly
+ * (engine/dashpot.c: it does not shorten the step); the permanent set of the vertex model
+ * (`restitution` < 1) has no patch form and is refused, as are cohesion and tension, and two
+ * non-convex bodies that may touch.
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * contact/, geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
 #include "engine/law.h"
+#include "engine/dashpot.h"
 #include "contact/contact.h"
 #include "base/vec.h"
 
@@ -76,6 +78,11 @@ typedef struct surf_state {
     long stamp; /* the surface step that last loaded it */
 } surf_state;
 
+/* A pair's joint measures from its patches at one step (rd_surface_joint_measure). */
+typedef struct surf_meas {
+    double fn, fs_b[3], cop[3], wsum, area;
+} surf_meas;
+
 struct rd_surface {
     surf_body *body; /* [nb] */
     surf_state *st;  /* patches met so far */
@@ -99,6 +106,9 @@ struct rd_surface {
     uint64_t *fkey;       /* mesh pairs: face pairs (pair, face of i, plane of r) that bore */
     long *fstamp;         /* the surface step each last bore */
     int nfk, fcap;        /* entries, capacity (a power of 2, 0 before the first) */
+    rd_dashpots dp;       /* this step's patch dashpots, solved implicitly (dashpot.c) */
+    surf_meas *meas;      /* per pair, its joint's measures at the last step it was live */
+    int cap_meas;
     long stamp;           /* surface steps taken */
 };
 
@@ -303,6 +313,13 @@ int rd_surface_init(rd_sim *s, rd_error *err)
             return -1;
         }
     }
+    if (s->sc.save_path[0] || s->sc.restore_path[0]) {
+        rd_error_set(err,
+                     "contact model surface: 'model %s' is not supported yet (a checkpoint "
+                     "holds the vertex subcontacts' state, not the patches')",
+                     s->sc.save_path[0] ? "save" : "restore");
+        return -1;
+    }
     struct rd_surface *S = calloc(1, sizeof *S);
     if (!S) {
         rd_error_set(err, "out of memory");
@@ -393,6 +410,8 @@ void rd_surface_free(rd_sim *s)
     free(S->ord);
     free(S->fkey);
     free(S->fstamp);
+    rd_dashpots_free(&S->dp);
+    free(S->meas);
     free(S);
     s->surf = NULL;
 }
@@ -403,7 +422,43 @@ typedef struct surf_sums {
     double f[3], tq[3], nsum[3];
     double k_active, area;
     int nact, nslip;
+    double fn, fs_b[3], cop[3], wsum; /* the joint's measures (rd_surface_joint_measure): normal
+                                         force (N), shear force on the pair's second body (N),
+                                         |fn|-weighted sum of the patches' centres of pressure
+                                         (N m) and its weight (N) */
 } surf_sums;
+
+/* The dashpot of one patch (c_a, Pa s/m; region moments m; the plane's origin O from i's centre
+ * and axes E1, E2, r's outward normal u, ground frame) into the step's implicit solve
+ * (dashpot.c): u . vrel at (x, y) of the plane is (g0 + x g1 + y g2) . xi over the two bodies,
+ * g0 = (u, O x u) and gk = (0, Ek x u) for i, their negatives for r with O + x_i - x_r. */
+static int patch_dashpot(rd_sim *s, int i, int r, double c_a, const rd_moments *m,
+                         const double O[3], const double E1[3], const double E2[3],
+                         const double u[3])
+{
+    rd_dashpot *e = rd_dashpot_new(&s->surf->dp);
+    if (!e) return -1;
+    e->a = s->fixed[i] ? -1 : i;
+    e->b = s->fixed[r] ? -1 : r;
+    e->c = c_a;
+    const double mm[6] = { m->a, m->sx, m->sy, m->sxx, m->sxy, m->syy };
+    memcpy(e->m, mm, sizeof mm);
+    double Or[3];
+    for (int k = 0; k < 3; k++) Or[k] = O[k] + s->x[i][k] - s->x[r][k];
+    const double *lever[2][3] = { { O, E1, E2 }, { Or, E1, E2 } };
+    for (int sd = 0; sd < 2; sd++) {
+        const double sg = sd ? -1.0 : 1.0;
+        for (int k = 0; k < 3; k++) {
+            double t[3];
+            rd_cross(lever[sd][k], u, t);
+            for (int p = 0; p < 3; p++) {
+                e->g[sd][k][p] = k == 0 ? sg * u[p] : 0.0;
+                e->g[sd][k][3 + p] = sg * t[p];
+            }
+        }
+    }
+    return 0;
+}
 
 /* One patch (plane P of body i against face g of r) with the compressed region's moments m,
  * its load ld (depth coefficients dep, plane frame fr) and twisting lever tors: the law, its
@@ -424,25 +479,14 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     rd_mat_vec(Ri, fr[2], E2);
     double wrel[3] = { s->w[i][0], s->w[i][1], s->w[i][2] };
     if (r_free) rd_axpy(-1.0, s->w[r], wrel);
-    /* the depth's rate, affine in the plane's coordinates: -u . vrel(p) */
-    double ro[3], rt[3], v0[3], t1[3], t2[3];
-    rd_copy3(O, ro);
-    for (int k = 0; k < 3; k++) rt[k] = xi[k] + O[k] - xr[k];
-    rd_law_relative_velocity_of(s->v[i], s->w[i], s->v[r], s->w[r], r_free, ro, rt, v0);
-    rd_cross(wrel, E1, t1);
-    rd_cross(wrel, E2, t2);
-    const double rd[3] = { -rd_dot(uw, v0), -rd_dot(uw, t1), -rd_dot(uw, t2) };
-    /* the normal pressure KN d + c_a dd/dt, affine, integrated over the region */
+    double rt[3];
+    if (c_a > 0 && patch_dashpot(s, i, r, c_a, m, O, E1, E2, uw)) return -1;
+    /* the normal pressure KN d, affine, integrated over the region */
     double q[3];
-    for (int k = 0; k < 3; k++) q[k] = j->kn * dep[k] + c_a * rd[k];
+    for (int k = 0; k < 3; k++) q[k] = j->kn * dep[k];
     double fn = q[0] * m->a + q[1] * m->sx + q[2] * m->sy;
     double mx = q[0] * m->sx + q[1] * m->sxx + q[2] * m->sxy;
     double my = q[0] * m->sy + q[1] * m->sxy + q[2] * m->syy;
-    if (c_a > 0) { /* the dashpot's power, c_a times the integral of (dd/dt)^2 */
-        double i2 = rd[0] * rd[0] * m->a + 2 * rd[0] * (rd[1] * m->sx + rd[2] * m->sy) +
-                    rd[1] * rd[1] * m->sxx + 2 * rd[1] * rd[2] * m->sxy + rd[2] * rd[2] * m->syy;
-        s->e_damp += c_a * i2 * s->dt;
-    }
     double F[3], tq[3], tmp[3];
     for (int k = 0; k < 3; k++) F[k] = fn * uw[k];
     rd_cross(O, uw, tq);
@@ -474,6 +518,15 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     rd_axpy(1.0, F, sum->f);
     rd_axpy(1.0, tq, sum->tq);
     rd_axpy(r == pr->a ? fn : -fn, uw, sum->nsum);
+    /* the joint's measures: the spring's normal force, its centre of pressure (mx, my) / fn in
+       the plane, the shear springs on the pair's second body */
+    const double sg = fn < 0 ? -1.0 : 1.0;
+    for (int k = 0; k < 3; k++) {
+        sum->cop[k] += sg * (fn * (xi[k] + O[k]) + mx * E1[k] + my * E2[k]);
+        sum->fs_b[k] += (i == pr->b ? 1.0 : -1.0) * sp->fs[k];
+    }
+    sum->fn += fn;
+    sum->wsum += fabs(fn);
     sum->k_active += j->kn * ld->area;
     sum->area += ld->area;
     sum->nact++;
@@ -591,6 +644,28 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
     return n;
 }
 
+/* Pair number pair's joint measures from this step's sums. 0, -1 when out of memory. */
+static int measure_store(rd_sim *s, int pair, const surf_sums *sum)
+{
+    struct rd_surface *S = s->surf;
+    if (pair >= S->cap_meas) {
+        int c = S->cap_meas ? S->cap_meas : 16;
+        while (c <= pair) c *= 2;
+        surf_meas *m = realloc(S->meas, (size_t)c * sizeof *m);
+        if (!m) return -1;
+        memset(m + S->cap_meas, 0, (size_t)(c - S->cap_meas) * sizeof *m);
+        S->meas = m;
+        S->cap_meas = c;
+    }
+    surf_meas *m = &S->meas[pair];
+    m->fn = sum->fn;
+    m->wsum = sum->wsum;
+    m->area = sum->area;
+    rd_copy3(sum->fs_b, m->fs_b);
+    rd_copy3(sum->cop, m->cop);
+    return 0;
+}
+
 /* The pose of body r in body i's frame: x_i-frame = rot x_r-frame + tr (rot row-major). */
 static void rel_pose(const rd_sim *s, int i, int r, double rot[9], double tr[3])
 {
@@ -605,7 +680,7 @@ static void rel_pose(const rd_sim *s, int i, int r, double rot[9], double tr[3])
 
 /* The sums of a pair's patches onto its bodies, and the pair's and monitor's records: i takes
  * them; r (when free) -F at each point: -(sum tq) - (x_i - x_r) x sum F. */
-static void pair_finish(rd_sim *s, rd_pair *pr, int i, int r, const surf_sums *sum)
+static int pair_finish(rd_sim *s, int pair, rd_pair *pr, int i, int r, const surf_sums *sum)
 {
     rd_axpy(1.0, sum->f, s->f[i]);
     rd_axpy(1.0, sum->tq, s->tq[i]);
@@ -628,6 +703,7 @@ static void pair_finish(rd_sim *s, rd_pair *pr, int i, int r, const surf_sums *s
         if (sum->area > 0 && !s->settling) w->touched = 1;
     }
     if (!s->settling) s->active_point_steps += sum->nact;
+    return measure_store(s, pair, sum);
 }
 
 /* The planes of body i (its tree) that may reach into body r: those with a face whose box meets
@@ -696,7 +772,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
     const double c_a = (j->damping > 0 && pr->k_active > 0)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
                            : 0.0;
-    surf_sums sum = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0, 0, 0, 0 };
+    surf_sums sum = { .nact = 0 }; /* all zero */
     for (int kp = 0; kp < np; kp++) {
         const int P = S->ord[kp];
         const double(*fr)[3] = B->frame[P];
@@ -724,8 +800,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, tors, fr, dg, c_a, &sum)) return -1;
         }
     }
-    pair_finish(s, pr, i, r, &sum);
-    return 0;
+    return pair_finish(s, pair, pr, i, r, &sum);
 }
 
 /* ---- Mesh against mesh (neither body convex; section 8.5) ----
@@ -1073,7 +1148,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     const double c_a = (j->damping > 0 && pr->k_active > 0)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
                            : 0.0;
-    surf_sums sum = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0, 0, 0, 0 };
+    surf_sums sum = { .nact = 0 }; /* all zero */
     int rc = 0;
     for (int k = 0; k < npc && !rc;) {
         const int P = S->pkey[2 * ix[k]], Q = S->pkey[2 * ix[k] + 1];
@@ -1109,8 +1184,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     }
     free(ix);
     if (rc) return rc;
-    pair_finish(s, pr, i, r, &sum);
-    return 0;
+    return pair_finish(s, pair, pr, i, r, &sum);
 }
 
 /* Every patch of live pair number pair: r is the convex body (the fixed one when both are), or,
@@ -1152,6 +1226,11 @@ void rd_surface_step(rd_sim *s)
             return;
         }
     }
+    if (rd_dashpot_solve(s, &S->dp)) {
+        s->status = RD_STATUS_ERROR;
+        snprintf(s->errmsg, sizeof s->errmsg, "out of memory (contact patches)");
+        return;
+    }
     /* patches loaded last step and not now open: their springs let go (booked as friction) */
     for (int k = 0; k < S->non; k++) {
         surf_state *st = &S->st[S->on[k]];
@@ -1186,4 +1265,17 @@ void rd_surface_reset(rd_sim *s, int body)
         S->st[k].e2 = 0;
         S->st[k].sp = (rd_patch_spring){ { 0, 0, 0 }, 0, 0, 0 };
     }
+}
+
+void rd_surface_joint_measure(const rd_sim *s, const rd_pair *pr, rd_joint_state *m, double *wsum)
+{
+    const struct rd_surface *S = s->surf;
+    const int pair = (int)(pr - s->pair);
+    if (pair >= S->cap_meas) return;
+    const surf_meas *q = &S->meas[pair];
+    m->fn = q->fn;
+    m->area = q->area;
+    rd_copy3(q->fs_b, m->fs);
+    rd_copy3(q->cop, m->cop);
+    *wsum = q->wsum;
 }

@@ -179,7 +179,7 @@ double rd_timestep_critical(const rd_sim *s, int pair[2])
             pair[1] = partner;
         }
         double l = zeta * sqrt(s->mass[i] * g[i]);
-        if (l > lmax) lmax = l;
+        if (l > lmax && !s->surf) lmax = l; /* the surface model's dashpot is implicit */
     }
     partners_free(&p);
     free(g);
