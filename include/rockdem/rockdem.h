@@ -76,6 +76,7 @@ typedef struct rd_body_summary {
     double runout_direction;    /* direction of the travel (the runout), rad from +x (0: none) */
     double path_length;         /* length of the centre's path, m */
     double max_speed;           /* largest speed of the centre relative to the ground, m/s */
+    double max_energy;          /* largest kinetic energy, translation and rotation, J */
     double max_bounce;          /* largest gap between the body and the fixed surface below
                                    it (its lowest hull vertex's clearance), m */
     double final_quaternion[4]; /* orientation at the end, body to ground frame (w, x, y, z) */

@@ -120,6 +120,7 @@ typedef struct rd_sweep_result {
     int at_rest;         /* `until rest`: 1 if the run ended at rest, 0 at its time limit */
     double b_runout[RD_SWEEP_BODIES], b_runout_direction[RD_SWEEP_BODIES];
     double b_max_speed[RD_SWEEP_BODIES], b_max_bounce[RD_SWEEP_BODIES];
+    double b_max_energy[RD_SWEEP_BODIES];
     double b_fence_time[RD_SWEEP_BODIES], b_fence_energy[RD_SWEEP_BODIES];
     double b_fence_height[RD_SWEEP_BODIES];
 } rd_sweep_result;

@@ -1,6 +1,6 @@
 /* rockdem — the runout after the topple (docs/RUNOUT.md): where each free body's centre of mass
  * goes once the shaking has set it moving, every step in the ground frame:
- *   - its path length, largest speed and largest bounce (the gap between its lowest hull
+ *   - its path length, largest speed and kinetic energy, and largest bounce (the gap between its lowest hull
  *     vertex and the fixed surface below it: 0 while it touches, > 0 in flight);
  *   - the first crossing of its plan path with the fence polyline (`model fence points`):
  *     time, kinetic energy (translation and rotation), speed, the centre's height above the
@@ -241,6 +241,7 @@ void rd_runout_step(rd_sim *s)
         if (run->left) continue;
         b->path_length += sqrt(rd_dist2(run->x_prev, s->x[i]));
         b->max_speed = fmax(b->max_speed, rd_norm(s->v[i]));
+        b->max_energy = fmax(b->max_energy, kinetic(s, i));
         if (bounce) b->max_bounce = fmax(b->max_bounce, clearance(s, i));
         if (r->nfence >= 2) fence_step(s, k);
         rd_copy3(s->x[i], run->x_prev);

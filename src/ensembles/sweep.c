@@ -428,6 +428,7 @@ static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result
         r->b_runout_direction[k] = b->runout_direction;
         r->b_max_speed[k] = b->max_speed;
         r->b_max_bounce[k] = b->max_bounce;
+        r->b_max_energy[k] = b->max_energy;
         r->b_fence_time[k] = b->fence_time;
         r->b_fence_energy[k] = b->fence_crossings > 0 ? b->fence_energy : 0;
         r->b_fence_height[k] = b->fence_height;

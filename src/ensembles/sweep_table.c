@@ -104,6 +104,8 @@ static const col_spec outcome_cols[] = {
     { "body_runout_direction", C_F64, R(b_runout_direction), 1, "rad",
       "direction of the body's runout from +x" },
     { "body_max_speed", C_F64, R(b_max_speed), 1, "m/s", "largest speed of the body's centre" },
+    { "body_max_energy", C_F64, R(b_max_energy), 1, "J",
+      "largest kinetic energy of the body (translation and rotation)" },
     { "body_max_bounce", C_F64, R(b_max_bounce), 1, "m",
       "largest gap between the body and the fixed surface below it" },
     { "body_fence_time", C_F64, R(b_fence_time), 1, "s",

@@ -55,7 +55,7 @@ static int history(long long f, const rd_sim *sim, rd_error *err)
     return rc ? -1 : 0;
 }
 
-enum { NPROP = 6, NOUT = 4, NBODY = 6, NRUN = 18 };
+enum { NPROP = 6, NOUT = 4, NBODY = 6, NRUN = 19 };
 
 static int joints(long long f, const rd_sim *sim, rd_error *err)
 {
@@ -142,9 +142,9 @@ static int outcomes(long long f, const rd_summary *s, rd_error *err)
 }
 
 static const char run_labels[] =
-    "runout,direction,path_length,max_speed,max_bounce,qw,qx,qy,qz,left_time,fence_crossings,"
+    "runout,direction,path_length,max_speed,max_energy,max_bounce,qw,qx,qy,qz,left_time,fence_crossings,"
     "fence_time,fence_energy,fence_speed,fence_height,fence_x,fence_y,fence_z";
-static const char run_units[] = "m,rad,m,m/s,m,1,1,1,1,s,1,s,J,m/s,m,m,m,m";
+static const char run_units[] = "m,rad,m,m/s,J,m,1,1,1,1,s,1,s,J,m/s,m,m,m,m";
 
 static int fence(long long g, const rd_scenario *sc, rd_error *err)
 {
@@ -166,6 +166,7 @@ static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error 
                              b->runout_direction,
                              b->path_length,
                              b->max_speed,
+                             b->max_energy,
                              b->max_bounce,
                              b->final_quaternion[0],
                              b->final_quaternion[1],
@@ -188,7 +189,7 @@ static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error 
              rd_h5t_write(g, "bodies", RD_H5T_DOUBLE, v, nf, NRUN, run_units,
                           "the runout of each free body's centre of mass (docs/RUNOUT.md): "
                           "horizontal distance and direction from rest, path length, largest "
-                          "speed and bounce, final orientation, time it left the domain (-1: "
+                          "speed, kinetic energy and bounce, final orientation, time it left the domain (-1: "
                           "never), fence crossings and, at the first, its time (-1: none), "
                           "kinetic energy, speed, height above the surface and place",
                           &ax, err) ||
