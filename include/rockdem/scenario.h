@@ -293,15 +293,15 @@ typedef struct rd_overturn_def {
 /* Runout after the topple (docs/RUNOUT.md): `model solve until rest time-limit T`, `model domain
  * box X0 X1 Y0 Y1 Z0 Z1`, `model fence points X1 Y1 X2 Y2 ...`. */
 typedef struct rd_runout_def {
-    int until_rest;     /* 1: run on (through overturning) until every free body is at rest or
+    int until_rest;      /* 1: run on (through overturning) until every free body is at rest or
                            has left the domain, after the motion ends; rd_scenario.duration is
                            then the time limit, s */
-    int domain;         /* 1: a domain box is given */
+    int domain;          /* 1: a domain box is given */
     double lo[3], hi[3]; /* the domain box, ground frame, m: a body whose centre of mass leaves
                             it is out of the run (event "left") */
-    int nfence;         /* points of the fence polyline in plan (0: none, else >= 2) */
+    int nfence;          /* points of the fence polyline in plan (0: none, else >= 2) */
     double fence[RD_MAX_FENCE_POINTS][2]; /* x, y, m: a vertical fence standing on this line */
-    int domain_line, fence_line; /* scenario lines (0: none), for messages */
+    int domain_line, fence_line;          /* scenario lines (0: none), for messages */
 } rd_runout_def;
 
 typedef struct rd_output_def {

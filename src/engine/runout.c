@@ -123,7 +123,8 @@ static int ground_build(rd_sim *s)
 /* Height of triangle t at (x, y) if (x, y) lies over it (barycentric, edges included). */
 static int tri_height(const double t[3][3], double x, double y, double *z)
 {
-    double d = (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[1][1] - t[0][1]) * (t[2][0] - t[0][0]);
+    double d =
+        (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[1][1] - t[0][1]) * (t[2][0] - t[0][0]);
     double u = ((x - t[0][0]) * (t[2][1] - t[0][1]) - (y - t[0][1]) * (t[2][0] - t[0][0])) / d;
     double v = ((t[1][0] - t[0][0]) * (y - t[0][1]) - (t[1][1] - t[0][1]) * (x - t[0][0])) / d;
     const double eps = 1e-12;

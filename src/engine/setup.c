@@ -88,7 +88,7 @@ static int build_body(rd_sim *s, int i, rd_error *err)
     for (int k = 0; k < 3; k++) s->inertia[i][k] = density * m.principal[k];
     initial_orientation(d->rotation, m.axes, s->q[i]);
     rd_copy3(d->position, s->x[i]); /* the centre of mass */
-    if (d->terrain) /* a terrain stays at its file's coordinates */
+    if (d->terrain)                 /* a terrain stays at its file's coordinates */
         for (int k = 0; k < 3; k++) s->x[i][k] = offset[k] + m.centroid[k];
     s->fixed[i] = d->fixed;
     if (rd_poly_convex(&s->poly[i], RD_CONVEX_TOL(s->poly[i].radius), &s->convex[i], err)) {

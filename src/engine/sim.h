@@ -509,8 +509,8 @@ void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
 
 /* runout.c: trajectories, fence and domain (docs/RUNOUT.md) */
-int rd_runout_begin(rd_sim *s);  /* at the start of shaking; -1 out of memory */
-void rd_runout_step(rd_sim *s);  /* every shaking step, after the monitor */
+int rd_runout_begin(rd_sim *s);   /* at the start of shaking; -1 out of memory */
+void rd_runout_step(rd_sim *s);   /* every shaking step, after the monitor */
 void rd_runout_finish(rd_sim *s); /* at the end: direction, orientation */
 void rd_runout_free(rd_sim *s);
 /* Height of the fixed surface below (x, y), at most z_top, m (-INFINITY: none). */

@@ -743,11 +743,11 @@ int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
 {
     const char *dot = strrchr(path, '.');
     const char *ext = dot && !strchr(dot, '/') ? dot + 1 : "";
-    int kind = !strcasecmp(ext, "obj")   ? 1
-               : !strcasecmp(ext, "ply") ? 2
-               : !strcasecmp(ext, "stl") ? 3
+    int kind = !strcasecmp(ext, "obj")                              ? 1
+               : !strcasecmp(ext, "ply")                            ? 2
+               : !strcasecmp(ext, "stl")                            ? 3
                : !strcasecmp(ext, "asc") || !strcasecmp(ext, "xyz") ? 4
-                                         : 0;
+                                                                    : 0;
     if (!kind)
         return rd_error_set(err,
                             "%s: unknown mesh format '%s' (expected .obj, .ply or .stl; a "

@@ -26,7 +26,8 @@ void rd_grid_free(rd_grid *g)
 static int grid_alloc(rd_grid *g, int nx, int ny, const char *path, rd_error *err)
 {
     if (nx < 2 || ny < 2 || (double)nx * ny > RD_GRID_MAX_NODES)
-        return rd_error_set(err, "%s: a %d x %d grid (need 2 to %d nodes a side, at most %d in all)",
+        return rd_error_set(err,
+                            "%s: a %d x %d grid (need 2 to %d nodes a side, at most %d in all)",
                             path, nx, ny, RD_GRID_MAX_NODES, RD_GRID_MAX_NODES);
     g->nx = nx;
     g->ny = ny;
@@ -71,15 +72,23 @@ static int blank(const char *s, const char *e)
 
 /* ---- ESRI ASCII grid ---- */
 
-enum { H_NCOLS, H_NROWS, H_XLLCORNER, H_YLLCORNER, H_XLLCENTER, H_YLLCENTER, H_CELLSIZE,
-       H_NODATA, H_N };
+enum {
+    H_NCOLS,
+    H_NROWS,
+    H_XLLCORNER,
+    H_YLLCORNER,
+    H_XLLCENTER,
+    H_YLLCENTER,
+    H_CELLSIZE,
+    H_NODATA,
+    H_N
+};
 
 static int asc_header(const char *path, const char **p, int *line, double h[H_N], int seen[H_N],
                       rd_error *err)
 {
-    static const char *const names[H_N] = { "ncols",     "nrows",     "xllcorner",
-                                            "yllcorner", "xllcenter", "yllcenter",
-                                            "cellsize",  "nodata_value" };
+    static const char *const names[H_N] = { "ncols",     "nrows",     "xllcorner", "yllcorner",
+                                            "xllcenter", "yllcenter", "cellsize",  "nodata_value" };
     for (;;) {
         const char *q = *p, *s, *e;
         int l = *line;
@@ -89,11 +98,13 @@ static int asc_header(const char *path, const char **p, int *line, double h[H_N]
         const char *w = s;
         while (s < e && !isspace((unsigned char)*s)) s++;
         int k = 0;
-        while (k < H_N && ((size_t)(s - w) != strlen(names[k]) || strncasecmp(w, names[k], (size_t)(s - w))))
+        while (k < H_N &&
+               ((size_t)(s - w) != strlen(names[k]) || strncasecmp(w, names[k], (size_t)(s - w))))
             k++;
         double v;
         if (k == H_N)
-            return rd_error_set(err, "%s:%d: unknown ESRI grid header '%.*s' (expected ncols, nrows, "
+            return rd_error_set(err,
+                                "%s:%d: unknown ESRI grid header '%.*s' (expected ncols, nrows, "
                                 "xllcorner|xllcenter, yllcorner|yllcenter, cellsize, NODATA_value)",
                                 path, l, (int)(s - w), w);
         if (seen[k]) return rd_error_set(err, "%s:%d: '%s' given twice", path, l, names[k]);
@@ -106,8 +117,10 @@ static int asc_header(const char *path, const char **p, int *line, double h[H_N]
     }
     if (!seen[H_NCOLS] || !seen[H_NROWS] || !seen[H_CELLSIZE] ||
         !(seen[H_XLLCORNER] ^ seen[H_XLLCENTER]) || !(seen[H_YLLCORNER] ^ seen[H_YLLCENTER]))
-        return rd_error_set(err, "%s: ESRI grid header incomplete (needs ncols, nrows, cellsize and "
-                            "one of xllcorner/xllcenter and of yllcorner/yllcenter)", path);
+        return rd_error_set(err,
+                            "%s: ESRI grid header incomplete (needs ncols, nrows, cellsize and "
+                            "one of xllcorner/xllcenter and of yllcorner/yllcenter)",
+                            path);
     if (!(h[H_CELLSIZE] > 0) || h[H_NCOLS] != floor(h[H_NCOLS]) || h[H_NROWS] != floor(h[H_NROWS]))
         return rd_error_set(err, "%s: ESRI grid: whole ncols and nrows and a cellsize > 0 needed",
                             path);
@@ -133,7 +146,8 @@ static int asc_read(const char *path, const char *buf, rd_grid *g, rd_error *err
         double v;
         while (n < total && number(&s, e, &v) == 0) {
             if (seen[H_NODATA] && v == h[H_NODATA])
-                return rd_error_set(err, "%s:%d: a NODATA cell (%g) at row %ld, column %ld: "
+                return rd_error_set(err,
+                                    "%s:%d: a NODATA cell (%g) at row %ld, column %ld: "
                                     "terrain needs every height (fill or crop the grid)",
                                     path, line, v, n / nx + 1, n % nx + 1);
             long row = n / nx, col = n % nx; /* rows run north to south */
@@ -148,7 +162,8 @@ static int asc_read(const char *path, const char *buf, rd_grid *g, rd_error *err
         return rd_error_set(err, "%s: %ld heights for a %d x %d grid (%ld expected)", path, n, nx,
                             ny, total);
     while (next_line(&p, &s, &e, &line))
-        if (!blank(s, e)) return rd_error_set(err, "%s:%d: more heights than ncols x nrows", path, line);
+        if (!blank(s, e))
+            return rd_error_set(err, "%s:%d: more heights than ncols x nrows", path, line);
     return 0;
 }
 
@@ -180,7 +195,10 @@ static int find(const double *v, int n, double x, double tol)
     while (lo <= hi) {
         int mid = (lo + hi) / 2;
         if (fabs(v[mid] - x) <= tol) return mid;
-        if (v[mid] < x) lo = mid + 1; else hi = mid - 1;
+        if (v[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
     }
     return -1;
 }
@@ -249,9 +267,11 @@ static int xyz_read(const char *path, const char *buf, rd_grid *g, rd_error *err
         goto out;
     }
     if ((long)nx * ny != n) {
-        rd_error_set(err, "%s: %ld points on %d distinct x and %d distinct y: not one point per "
+        rd_error_set(err,
+                     "%s: %ld points on %d distinct x and %d distinct y: not one point per "
                      "node of a grid (scattered points must be gridded first, e.g. with "
-                     "scipy.interpolate.griddata)", path, n, nx, ny);
+                     "scipy.interpolate.griddata)",
+                     path, n, nx, ny);
         goto out;
     }
     if (grid_alloc(g, nx, ny, path, err)) goto out;
@@ -281,8 +301,8 @@ int rd_grid_read(const char *path, const char *buf, rd_grid *g, rd_error *err)
 {
     const char *dot = strrchr(path, '.');
     memset(g, 0, sizeof *g);
-    int rc = dot && !strcasecmp(dot, ".asc") ? asc_read(path, buf, g, err)
-                                             : xyz_read(path, buf, g, err);
+    int rc =
+        dot && !strcasecmp(dot, ".asc") ? asc_read(path, buf, g, err) : xyz_read(path, buf, g, err);
     if (rc) rd_grid_free(g);
     return rc;
 }

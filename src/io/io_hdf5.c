@@ -75,10 +75,9 @@ static const char *const energy_long_names[RD_NENERGY] = {
 };
 
 /* Event types, in the order of the HDF5 enum /events/type (value = index). */
-static const char *const event_types[] = { "uplift",  "impact",   "slip",      "overturn",
-                                           "recover", "unstable", "unsettled", "rest",
-                                           "lock",    "liftoff",  "lost",      "peak",
-                                           "left",    "fence" };
+static const char *const event_types[] = { "uplift",   "impact",    "slip", "overturn", "recover",
+                                           "unstable", "unsettled", "rest", "lock",     "liftoff",
+                                           "lost",     "peak",      "left", "fence" };
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
 #define RD_H5_NSTATUS (RD_STATUS_UNTRUSTED + 1) /* run statuses, named by rd_status_name */

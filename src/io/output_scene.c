@@ -185,15 +185,17 @@ static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error 
     }
     rd_h5t_axes ax = { { "/body", "quantity" }, { NULL, run_labels } };
     long long g = rd_h5t_group(f, "runout", err);
-    int rc = g < 0 ||
-             rd_h5t_write(g, "bodies", RD_H5T_DOUBLE, v, nf, NRUN, run_units,
-                          "the runout of each free body's centre of mass (docs/RUNOUT.md): "
-                          "horizontal distance and direction from rest, path length, largest "
-                          "speed, kinetic energy and bounce, final orientation, time it left the domain (-1: "
-                          "never), fence crossings and, at the first, its time (-1: none), "
-                          "kinetic energy, speed, height above the surface and place",
-                          &ax, err) ||
-             fence(g, rd_sim_scenario(sim), err);
+    int rc =
+        g < 0 ||
+        rd_h5t_write(
+            g, "bodies", RD_H5T_DOUBLE, v, nf, NRUN, run_units,
+            "the runout of each free body's centre of mass (docs/RUNOUT.md): "
+            "horizontal distance and direction from rest, path length, largest "
+            "speed, kinetic energy and bounce, final orientation, time it left the domain (-1: "
+            "never), fence crossings and, at the first, its time (-1: none), "
+            "kinetic energy, speed, height above the surface and place",
+            &ax, err) ||
+        fence(g, rd_sim_scenario(sim), err);
     rd_h5t_close_group(g);
     free(v);
     return rc ? -1 : 0;

@@ -99,8 +99,9 @@ static int read_until(parser *P, const token *kw, int *on)
 {
     const token *t = take(P);
     if (!t || !tok_is(t, "rest"))
-        return perr(P, t ? t : kw, "expected 'rest' after 'until' (model solve until rest "
-                                   "time-limit T)");
+        return perr(P, t ? t : kw,
+                    "expected 'rest' after 'until' (model solve until rest "
+                    "time-limit T)");
     *on = 1;
     return 0;
 }
@@ -129,8 +130,9 @@ int model_solve(parser *P)
     if (limit && !until)
         return perr(P, verb_token(P), "'time-limit' applies only with 'until rest'");
     if (until && (seen >> 1 & 1u))
-        return perr(P, verb_token(P), "'tail' does not apply with 'until rest' (which runs on "
-                                      "until rest by itself)");
+        return perr(P, verb_token(P),
+                    "'tail' does not apply with 'until rest' (which runs on "
+                    "until rest by itself)");
     return keywords_end(P, k, seen != 0, names);
 }
 
