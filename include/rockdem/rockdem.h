@@ -85,7 +85,8 @@ typedef struct rd_body_summary {
     double fence_time;          /* s of the first crossing (-1: none) */
     double fence_energy;        /* kinetic energy at it, translation and rotation, J */
     double fence_speed;         /* speed of the centre at it, m/s */
-    double fence_height;        /* height of the centre above the fixed surface below it, m */
+    double fence_height;        /* height of the centre above the fixed surface below it, m
+                                   (-1: no crossing; NaN: no surface below it there) */
     double fence_point[3];      /* where the centre crossed, m */
 } rd_body_summary;
 

@@ -225,7 +225,7 @@ int rd_runout_begin(rd_sim *s)
         rd_body_summary *b = &s->body_sum[k];
         rd_copy3(s->x[s->free_body[k]], s->run[k].x_prev);
         b->left_time = b->fence_time = -1;
-        b->fence_height = NAN;
+        b->fence_height = -1;
         b->max_bounce = 0;
     }
     return 0;

@@ -113,7 +113,7 @@ static const col_spec outcome_cols[] = {
     { "body_fence_energy", C_F64, R(b_fence_energy), 1, "J",
       "kinetic energy of the body at its first fence crossing (0: none)" },
     { "body_fence_height", C_F64, R(b_fence_height), 1, "m",
-      "height of the body's centre above the surface at its first fence crossing (NaN: none)" },
+      "height of the body's centre above the surface at its first fence crossing (-1: none)" },
     { "case", C_I64, R(index), 0, "",
       "case index in the sweep plan" }, /* last: writing it commits the row */
 };
