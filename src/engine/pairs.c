@@ -349,7 +349,10 @@ static int touch(rd_sim *s, int i, int j)
     if (p < 0) {
         int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b],
             pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
-        if (!pa && !pb) return 0; /* cannot touch (e.g. two meshes: not modelled) */
+        /* the surface model integrates a non-convex body's planes against a convex partner
+           (surface.c), which needs no subcontact points: a rock on a terrain mesh */
+        int patches = s->sc.contact.model == RD_CONTACT_SURFACE && (s->convex[a] || s->convex[b]);
+        if (!pa && !pb && !patches) return 0; /* cannot touch (e.g. two meshes: not modelled) */
         if ((p = pair_create(s, a, b)) < 0) return -1;
     }
     s->pair[p].seen = s->stamp;
