@@ -13,8 +13,10 @@
 #     omega^2 = 2 m g (z0 - b) / I_O, I_O = 4/3 m R^2.
 # Tolerances: the run's own change when the step is halved (its discretisation error), plus,
 # for the slide, the shear spring's elastic stretch mu m g cos psi / (KS A) at the stop (a rigid
-# block has none), and for the landing the friction booked over the run (an upper bound on what
-# the pivot's slip dissipated before the landing).
+# block has none), and for the landing twice the friction booked before it (the pivot's slip).
+#  5. The same slide on a non-convex terrain mesh (a slope, then level): the vertex model has no
+#     contact there (XFAIL: it falls through); the surface model holds it (strict) and stops it
+#     1.6 mm short (XFAIL: a patch per terrain triangle).
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/runout; rm -rf "$T"; mkdir -p "$T"
@@ -54,6 +56,8 @@ open(f"{T}/kink.asc", "w").write("ncols 13\nnrows 5\nxllcorner 0\nyllcorner 0\nc
                                  "\n".join(rows) + "\n")
 open(f"{T}/kink.dat", "w").write("block import terrain 'kink.asc' name ground\n" +
     tb.replace("until rest time-limit 5", "time 0.3"))
+open(f"{T}/kink_surface.dat", "w").write("block import terrain 'kink.asc' name ground\n" + tb +
+    "contact model surface\ncontact property restitution 1\nmodel damping viscous 0.1\n")
 open(f"{T}/topple.dat", "w").write("""block create brick size 4 2 0.5 position 0 0 -0.25 fixed name floor
 block create brick size 0.6 0.6 1.0 seat-on floor name b
 block initial name b tilt 31.96375653207352 direction 0
@@ -65,6 +69,7 @@ PY
 half() { sed 's/^contact property friction \([0-9]*\)$/contact property friction \1\nmodel timestep auto safety 0.1/' "$1" > "${1%.dat}_h.dat"; }
 for s in slide fence domain terrain topple; do half "$T/$s.dat"; run $s "$T/$s.dat"; run ${s}_h "$T/${s}_h.dat"; done
 "$BIN" run "$T/kink.dat" -q -o "$T/kink.h5" > "$T/kink.log" 2>&1 # it falls through: exit 3
+run kink_surface "$T/kink_surface.dat"
 
 $PY - "$T" <<'PY' || fails=$((fails + 1))
 import h5py, math, sys
@@ -111,9 +116,18 @@ check("domain: at rest once every body is out", f["summary"].attrs["at_rest"], 1
 r, f = rec("topple"); rh, fh = rec("topple_h")
 b, h = 0.3, 0.5; R = math.hypot(b, h); mt = 0.6 * 0.6 * 1.0 * 2700
 z0 = f["position"][0, 0, 2]; ke = mt * g * (z0 - b); v = math.sqrt(2 * g * (z0 - b) / (4 / 3 * R * R)) * R
-fric = f["energy/friction"][-1]
+# dissipation before the landing: friction and damping booked at the last sample before it (the
+# one of largest kinetic energy), doubled for the part of a sample interval left to the landing
+kes = f["energy/kinetic"][:]; i = int(kes.argmax())
+fric = 2 * (f["energy/friction"][i] + f["energy/damping"][i])
 check("topple: kinetic energy at landing (J)", r["max_energy"], ke, abs(r["max_energy"] - rh["max_energy"]) + fric)
 check("topple: landing speed of the centre (m/s)", r["max_speed"], v, abs(r["max_speed"] - rh["max_speed"]) + v * fric / ke)
+r, f = rec("kink_surface")
+check("surface model on a non-convex terrain mesh: held, at rest", f["summary"].attrs["at_rest"], 1, 0)
+gap = abs(r["path_length"] - s_stop); tol = 1.6e-5  # the slide check's tolerance on the ESRI slope
+print(("XPASS" if gap <= tol else "XFAIL") + ": surface model on a triangulated terrain: Coulomb "
+      f"stop distance (m) {r['path_length']:.7g} against {s_stop:.7g} gap={gap:.3g} tol={tol:.3g}")
+bad += gap <= tol  # an XPASS fails: remove the mark
 check("topple: energy residual below 1e-3", f["summary"].attrs["energy_residual_max"], 0, 1e-3)
 sys.exit(1 if bad else 0)
 PY
