@@ -50,6 +50,12 @@ open(f"{T}/slope.asc", "w").write("ncols 5\nnrows 3\nxllcorner 0\nyllcorner 1\nc
 x0 = 1.5; cc = [x0 + 0.1 * n[0], 2.5, -math.tan(psi) * x0 + 0.1 * n[2]]
 tb = block.replace(f"position {c[0]:.12f} 0 {c[2]:.12f}", f"position {cc[0]:.12f} 2.5 {cc[2]:.12f}")
 open(f"{T}/terrain.dat", "w").write("block import terrain 'slope.asc' name ground\n" + tb)
+# the same grid as XYZ points, shuffled, comma-separated
+import random
+pts = [(i + 0.5, 1 + j + 0.5, -math.tan(psi) * (i + 0.5)) for i in range(5) for j in range(3)]
+random.Random(1).shuffle(pts)
+open(f"{T}/slope.xyz", "w").write("# x, y, z (m)\n" + "".join("%.12f,%.12f,%.12f\n" % p for p in pts))
+open(f"{T}/terrain_xyz.dat", "w").write("block import terrain 'slope.xyz' name ground\n" + tb)
 # a non-convex terrain: the slope, then a level runout beyond x = 9 m
 rows = [" ".join("%.12f" % (-math.tan(psi) * min(i + 0.5, 9.0)) for i in range(13)) for r in range(5)]
 open(f"{T}/kink.asc", "w").write("ncols 13\nnrows 5\nxllcorner 0\nyllcorner 0\ncellsize 1\n" +
@@ -81,6 +87,11 @@ half() { sed 's/^contact property friction \([0-9]*\)$/contact property friction
 for s in slide fence domain terrain topple roll; do half "$T/$s.dat"; run $s "$T/$s.dat"; run ${s}_h "$T/${s}_h.dat"; done
 "$BIN" run "$T/kink.dat" -q -o "$T/kink.h5" > "$T/kink.log" 2>&1 # it falls through: exit 3
 run kink_surface "$T/kink_surface.dat"
+# the XYZ points give the ESRI grid's solid: the same volume and centre of mass
+vol() { "$BIN" check "$1" 2>&1 | awk '/^  ground/ { for (i = 1; i < NF; i++) if ($i == "volume") print $(i + 1) }'; }
+va=$(vol "$T/terrain.dat"); vx=$(vol "$T/terrain_xyz.dat")
+if [ -n "$va" ] && [ "$va" = "$vx" ]; then echo "CHECK terrain from XYZ points: volume $vx m^3 as from the ESRI grid"
+else echo "FAIL terrain from XYZ points: volume '$vx' against '$va'"; fails=$((fails + 1)); fi
 
 $PY - "$T" <<'PY' || fails=$((fails + 1))
 import h5py, math, sys
