@@ -48,17 +48,21 @@ def plan(a):
     fig, ax = plt.subplots(figsize=(7.2, 4.2))
     if a.terrain:
         x, y, z = read_asc(a.terrain)
-        cs = ax.contour(x, y, z, levels=12, colors="0.6", linewidths=0.6)
-        ax.clabel(cs, fmt="%.0f m", fontsize=6)
+        cf = ax.contourf(x, y, z, levels=16, cmap="Greys_r", alpha=0.45)
+        ax.contour(x, y, z, levels=cf.levels, colors="0.5", linewidths=0.4)
+        fig.colorbar(cf, ax=ax, shrink=0.8, label="terrain height (m)")
     pos = f["position"][:]
     for k, name in enumerate(names):
         r = dict(zip(q, rb[k]))
         line, = ax.plot(pos[:, k, 0], pos[:, k, 1], lw=1.4,
                         label=f"{name}: runout {r['runout']:.2f} m, top speed {r['max_speed']:.2f} m/s")
-        ax.plot(pos[0, k, 0], pos[0, k, 1], "o", color=line.get_color(), ms=4)
-        ax.plot(pos[-1, k, 0], pos[-1, k, 1], "s", color=line.get_color(), ms=4)
+        ax.plot(pos[0, k, 0], pos[0, k, 1], "o", color=line.get_color(), ms=4,
+                label="start" if k == 0 else None)
+        ax.plot(pos[-1, k, 0], pos[-1, k, 1], "s", color=line.get_color(), ms=4,
+                label="end" if k == 0 else None)
         if r["fence_crossings"] > 0:
-            ax.plot(r["fence_x"], r["fence_y"], "x", color="k", ms=6)
+            ax.plot(r["fence_x"], r["fence_y"], "x", color="k", ms=6,
+                    label="fence crossing" if k == 0 else None)
             ax.annotate(f"{r['fence_energy'] / 1e3:.2f} kJ, {r['fence_height']:.2f} m up",
                         (r["fence_x"], r["fence_y"]), textcoords="offset points", xytext=(4, 6),
                         fontsize=7)
@@ -69,7 +73,7 @@ def plan(a):
     ax.set_ylabel("y (m)")
     ax.set_aspect("equal")
     ax.set_title(text(f.attrs.get("title", "")) or os.path.basename(a.run), fontsize=9)
-    ax.legend(fontsize=7, loc="upper right")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3, frameon=False)
     fig.tight_layout()
     fig.savefig(a.output, dpi=a.dpi)
     return a.output
