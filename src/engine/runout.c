@@ -149,11 +149,13 @@ double rd_ground_below(const rd_sim *s, double x, double y, double z_top)
 /* ---- per body ---- */
 
 /* Gap between body i's lowest hull vertex (over the surface) and the surface below it, m;
- * -INFINITY when no vertex is over the surface. A vertex pressed into the surface by up to the
- * contact band still finds it (its gap is then slightly negative). */
+ * -INFINITY when no vertex is over the surface. A vertex pressed into the surface finds it up
+ * to the body's radius above it (its gap is then negative): with a band of RD_CONTACT_BAND r
+ * the corners of a block landing flat, pressed 1 mm in, missed the surface, and its upper
+ * corners' 0.4 m was taken for a bounce. */
 static double clearance(const rd_sim *s, int i)
 {
-    double gap = INFINITY, band = RD_CONTACT_BAND * s->poly[i].radius;
+    double gap = INFINITY, band = s->poly[i].radius;
     int over = 0;
     for (int e = s->hv0[i]; e < s->hv0[i + 1]; e++) {
         double p[3];
