@@ -75,6 +75,13 @@ model settle off
 model overturn tilt-ratio 1.5 stop off
 model solve time 0.8
 """)
+# a brick thrown straight up at 1 m/s off a floor: its bounce (lowest corner's height) v^2 / 2g
+open(f"{T}/hop.dat", "w").write("""block create brick size 2 2 0.5 position 0 0 -0.25 fixed name floor
+block create brick size 0.4 0.4 0.2 seat-on floor name b
+block initial name b velocity 0 0 1
+contact property friction 30
+model solve time 0.15
+""")
 open(f"{T}/topple.dat", "w").write("""block create brick size 4 2 0.5 position 0 0 -0.25 fixed name floor
 block create brick size 0.6 0.6 1.0 seat-on floor name b
 block initial name b tilt 31.96375653207352 direction 0
@@ -84,7 +91,7 @@ model solve time 1.6
 """)
 PY
 half() { sed 's/^contact property friction \([0-9]*\)$/contact property friction \1\nmodel timestep auto safety 0.1/' "$1" > "${1%.dat}_h.dat"; }
-for s in slide fence domain terrain topple roll; do half "$T/$s.dat"; run $s "$T/$s.dat"; run ${s}_h "$T/${s}_h.dat"; done
+for s in slide fence domain terrain topple roll hop; do half "$T/$s.dat"; run $s "$T/$s.dat"; run ${s}_h "$T/${s}_h.dat"; done
 "$BIN" run "$T/kink.dat" -q -o "$T/kink.h5" > "$T/kink.log" 2>&1 # it falls through: exit 3
 run kink_surface "$T/kink_surface.dat"
 # the XYZ points give the ESRI grid's solid: the same volume and centre of mass
@@ -144,6 +151,11 @@ kes = f["energy/kinetic"][:]; i = int(kes.argmax())
 fric = 2 * (f["energy/friction"][i] + f["energy/damping"][i])
 check("topple: kinetic energy at landing (J)", r["max_energy"], ke, abs(r["max_energy"] - rh["max_energy"]) + fric)
 check("topple: landing speed of the centre (m/s)", r["max_speed"], v, abs(r["max_speed"] - rh["max_speed"]) + v * fric / ke)
+r, f = rec("hop"); rh, fh = rec("hop_h"); dt = f["summary"].attrs["dt"]
+check("bounce of a brick thrown up at 1 m/s (m)", r["max_bounce"], 1 / (2 * g),
+      abs(r["max_bounce"] - rh["max_bounce"]) + g * (8 * dt) ** 2 / 8 + 1.0 * dt / 2)
+# (measured every 8 steps: g (8 dt)^2 / 8; the initial velocity is leapfrog's half-step one, a
+# launch half a step early or late: v0 dt / 2)
 r, f = rec("kink_surface")
 check("surface model on a non-convex terrain mesh: held, at rest", f["summary"].attrs["at_rest"], 1, 0)
 gap = abs(r["path_length"] - s_stop); tol = 1.6e-5  # the slide check's tolerance on the ESRI slope
