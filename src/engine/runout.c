@@ -1,7 +1,7 @@
 /* rockdem — the runout after the topple (docs/RUNOUT.md): where each free body's centre of mass
  * goes once the shaking has set it moving, every step in the ground frame:
- *   - its path length, largest speed and kinetic energy, and largest bounce (the gap between its lowest hull
- *     vertex and the fixed surface below it: 0 while it touches, > 0 in flight);
+ *   - its path length, largest speed and kinetic energy, and largest bounce (the gap between its
+ *     lowest hull vertex and the fixed surface below it, in flight: while it touches, 0);
  *   - the first crossing of its plan path with the fence polyline (`model fence points`):
  *     time, kinetic energy (translation and rotation), speed, the centre's height above the
  *     surface below it there, by linear interpolation within the step;
@@ -245,7 +245,10 @@ void rd_runout_step(rd_sim *s)
         b->path_length += sqrt(rd_dist2(run->x_prev, s->x[i]));
         b->max_speed = fmax(b->max_speed, rd_norm(s->v[i]));
         b->max_energy = fmax(b->max_energy, kinetic(s, i));
-        if (bounce) b->max_bounce = fmax(b->max_bounce, clearance(s, i));
+        /* a body touching something has no gap to find (its lowest vertex bears): only in
+           flight is the surface searched (the PBR's rocking cost 5.6 % more instructions) */
+        if (bounce && !(s->watch[k].area > 0))
+            b->max_bounce = fmax(b->max_bounce, clearance(s, i));
         if (r->nfence >= 2) fence_step(s, k);
         rd_copy3(s->x[i], run->x_prev);
         if (r->domain && outside(r, s->x[i])) {
