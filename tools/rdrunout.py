@@ -89,10 +89,11 @@ def exceedance(a):
     for ax, key, unit in ((axs[0], "runout", "m"), (axs[1], "fence_energy", "J")):
         v = np.sort(s[key][:])
         p = 1.0 - np.arange(1, len(v) + 1) / len(v)  # P(X > v_i) for the sorted cases
-        ax.step(v, p, where="post")
+        ax.step(np.r_[v[0], v], np.r_[1.0, p], where="post")  # 1 below the least case
         ax.set_xlabel(f"{key.replace('_', ' ')} ({unit})")
         ax.set_ylabel("probability of exceedance")
         ax.set_ylim(0, 1.02)
+        ax.set_title(f"{len(v)} cases", fontsize=8)
     fig.tight_layout()
     fig.savefig(a.output, dpi=a.dpi)
     return a.output
