@@ -247,8 +247,7 @@ void rd_runout_step(rd_sim *s)
         b->max_energy = fmax(b->max_energy, kinetic(s, i));
         /* a body touching something has no gap to find (its lowest vertex bears): only in
            flight is the surface searched (the PBR's rocking cost 5.6 % more instructions) */
-        if (bounce && !(s->watch[k].area > 0))
-            b->max_bounce = fmax(b->max_bounce, clearance(s, i));
+        if (bounce && !(s->watch[k].area > 0)) b->max_bounce = fmax(b->max_bounce, clearance(s, i));
         if (r->nfence >= 2) fence_step(s, k);
         rd_copy3(s->x[i], run->x_prev);
         if (r->domain && outside(r, s->x[i])) {

@@ -40,7 +40,7 @@ static void initial_orientation(const double rot[3], const double axes[9], doubl
  * (x, -z, y)); the bounding-box centre stays at the origin. */
 static int mesh_shape(const rd_body_def *d, rd_poly *p, double offset[3], rd_error *err)
 {
-    if (rd_mesh_read(p, d->mesh, offset, err)) return -1;
+    if ((d->terrain ? rd_terrain_read : rd_mesh_read)(p, d->mesh, offset, err)) return -1;
     double s = d->mesh_unit > 0 ? d->mesh_unit : 1.0;
     if (s == 1.0 && d->mesh_up != 1) return 0;
     for (int i = 0; i < p->nv; i++) {

@@ -743,26 +743,35 @@ int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
 {
     const char *dot = strrchr(path, '.');
     const char *ext = dot && !strchr(dot, '/') ? dot + 1 : "";
-    int kind = !strcasecmp(ext, "obj")                              ? 1
-               : !strcasecmp(ext, "ply")                            ? 2
-               : !strcasecmp(ext, "stl")                            ? 3
-               : !strcasecmp(ext, "asc") || !strcasecmp(ext, "xyz") ? 4
-                                                                    : 0;
+    int kind = !strcasecmp(ext, "obj")   ? 1
+               : !strcasecmp(ext, "ply") ? 2
+               : !strcasecmp(ext, "stl") ? 3
+                                         : 0;
     if (!kind)
-        return rd_error_set(err,
-                            "%s: unknown mesh format '%s' (expected .obj, .ply or .stl; a "
-                            "terrain grid .asc or .xyz)",
-                            path, ext);
+        return rd_error_set(err, "%s: unknown mesh format '%s' (expected .obj, .ply or .stl)", path,
+                            ext);
     char *buf = NULL;
     size_t len = 0;
     if (read_all(path, &buf, &len, err)) return -1;
     mesh m = { .path = path };
     int rc = kind == 1   ? obj_read(&m, buf, err)
              : kind == 2 ? ply_read(&m, buf, len, err)
-             : kind == 3 ? stl_read(&m, buf, len, err)
-                         : grid_read(&m, buf, err);
+                         : stl_read(&m, buf, len, err);
     free(buf);
     if (rc == 0) rc = mesh_finish(&m, p, offset, kind == 1, err);
+    mesh_free(&m);
+    return rc;
+}
+
+int rd_terrain_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    if (read_all(path, &buf, &len, err)) return -1;
+    mesh m = { .path = path };
+    int rc = grid_read(&m, buf, err);
+    free(buf);
+    if (rc == 0) rc = mesh_finish(&m, p, offset, 0, err);
     mesh_free(&m);
     return rc;
 }
