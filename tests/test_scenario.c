@@ -348,8 +348,10 @@ static void test_load_reports_line_and_col(void **state)
     rd_error err = { "" }, want = { "" };
     assert_int_equal(rd_scenario_load(sc, path, &err), -1);
     unlink(path);
-    snprintf(want.msg, sizeof want.msg,
-             "%s:2:13: unknown keyword 'tme' for 'model solve' (expected time, tail, force)", path);
+    snprintf(
+        want.msg, sizeof want.msg,
+        "%s:2:13: unknown keyword 'tme' for 'model solve' (expected time, tail, force, until, time-limit)",
+        path);
     assert_string_equal(err.msg, want.msg);
 }
 

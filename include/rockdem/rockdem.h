@@ -72,6 +72,22 @@ typedef struct rd_body_summary {
     double travel;            /* horizontal distance of the centre of mass from its rest position at
                               the end, m (where an overturned or falling body ended up) */
     double drop; /* fall of the centre of mass from where it was placed to the end, m */
+    /* runout (docs/RUNOUT.md): the centre of mass's path after rest, ground frame */
+    double runout_direction;    /* direction of the travel (the runout), rad from +x (0: none) */
+    double path_length;         /* length of the centre's path, m */
+    double max_speed;           /* largest speed of the centre relative to the ground, m/s */
+    double max_energy;          /* largest kinetic energy, translation and rotation, J */
+    double max_bounce;          /* largest gap between the body and the fixed surface below
+                                   it (its lowest hull vertex's clearance), m */
+    double final_quaternion[4]; /* orientation at the end, body to ground frame (w, x, y, z) */
+    double left_time;           /* s the centre left the domain box (-1: never, or no box) */
+    int fence_crossings;        /* times the centre's plan path crossed the fence line */
+    double fence_time;          /* s of the first crossing (-1: none) */
+    double fence_energy;        /* kinetic energy at it, translation and rotation, J */
+    double fence_speed;         /* speed of the centre at it, m/s */
+    double fence_height;        /* height of the centre above the fixed surface below it, m
+                                   (-1: no crossing; NaN: no surface below it there) */
+    double fence_point[3];      /* where the centre crossed, m */
 } rd_body_summary;
 
 /* What one joint (pair of bodies that came into contact) had and did. */
@@ -104,6 +120,8 @@ typedef struct rd_summary {
     double settle_time;         /* simulated settling time, s */
     double energy_residual_max; /* max |balance residual| / energy scale */
     double wall_seconds;        /* wall-clock time of the shaking stage, s */
+    int at_rest;                /* `model solve until rest`: 1 if the run ended with every body
+                                   at rest or out of the domain, 0 at the time limit */
     rd_status status;
 } rd_summary;
 

@@ -33,6 +33,8 @@ typedef struct rd_body_def {
     char mesh[RD_PATH_MAX];    /* mesh: file path (relative paths: to the scenario's folder) */
     double mesh_unit;          /* mesh: metres per file unit (`units mm|cm|m`: 0.001, 0.01, 1);
                                    0 = not declared (read as m) */
+    int terrain;               /* mesh: 1 for `block import terrain` (a height grid's solid,
+                                   fixed, at the file's own coordinates: no position) */
     int mesh_up;               /* mesh: the file's up axis, 2 = z (default), 1 = y (`up y`: the
                                    file's +y becomes +z, its +z becomes -y) */
     char group[RD_NAME_MAX];   /* joint group (`group 'pad'`), "" = none: selects the body in
@@ -296,6 +298,22 @@ typedef struct rd_overturn_def {
  * criterion at 2.28 s, the residual passed 1e-2 at 3.4 s as the drums fell off the stylobate). */
 #define RD_OVERTURN_STOP_ANY 2
 
+#define RD_MAX_FENCE_POINTS 64 /* vertices of the `model fence` polyline */
+
+/* Runout after the topple (docs/RUNOUT.md): `model solve until rest time-limit T`, `model domain
+ * box X0 X1 Y0 Y1 Z0 Z1`, `model fence points X1 Y1 X2 Y2 ...`. */
+typedef struct rd_runout_def {
+    int until_rest;      /* 1: run on (through overturning) until every free body is at rest or
+                           has left the domain, after the motion ends; rd_scenario.duration is
+                           then the time limit, s */
+    int domain;          /* 1: a domain box is given */
+    double lo[3], hi[3]; /* the domain box, ground frame, m: a body whose centre of mass leaves
+                            it is out of the run (event "left") */
+    int nfence;          /* points of the fence polyline in plan (0: none, else >= 2) */
+    double fence[RD_MAX_FENCE_POINTS][2]; /* x, y, m: a vertical fence standing on this line */
+    int domain_line, fence_line;          /* scenario lines (0: none), for messages */
+} rd_runout_def;
+
 typedef struct rd_output_def {
     char path[RD_PATH_MAX]; /* HDF5 file; default "rockdem.h5" */
     double interval;        /* s between samples; default 0.005 */
@@ -327,6 +345,7 @@ typedef struct rd_scenario {
                         place, rather than beside it and renamed over it once the run succeeds */
     int solve_line;  /* scenario line of `model solve` (0: none), for messages */
     rd_overturn_def overturn;
+    rd_runout_def runout;
     rd_output_def output;
     int nhistories;
     rd_history_def history[RD_MAX_HISTORIES];

@@ -113,6 +113,16 @@ typedef struct rd_sweep_result {
     double b_max_slide[RD_SWEEP_BODIES], b_final_twist[RD_SWEEP_BODIES];
     double b_max_twist[RD_SWEEP_BODIES], b_max_slip[RD_SWEEP_BODIES];
     int b_mode[RD_SWEEP_BODIES]; /* rd_sweep_mode */
+    /* runout (docs/RUNOUT.md) */
+    double runout;       /* largest runout (travel from rest) over the bodies, m */
+    double fence_energy; /* largest kinetic energy at a fence crossing over the bodies, J (0:
+                            none crossed) */
+    int at_rest;         /* `until rest`: 1 if the run ended at rest, 0 at its time limit */
+    double b_runout[RD_SWEEP_BODIES], b_runout_direction[RD_SWEEP_BODIES];
+    double b_max_speed[RD_SWEEP_BODIES], b_max_bounce[RD_SWEEP_BODIES];
+    double b_max_energy[RD_SWEEP_BODIES];
+    double b_fence_time[RD_SWEEP_BODIES], b_fence_energy[RD_SWEEP_BODIES];
+    double b_fence_height[RD_SWEEP_BODIES];
 } rd_sweep_result;
 
 /* --- sweep_mode.c ---------------------------------------------------------------------------- */

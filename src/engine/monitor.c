@@ -519,6 +519,7 @@ int rd_monitor_escape(rd_sim *s)
         int i = s->free_body[k];
         const double *c = s->x[i];
         rd_watch *w = &s->watch[k];
+        if (s->run && s->run[k].left) continue; /* out of the domain: out of the run */
         if (c[2] < s->floor_z - s->poly[i].radius && !s->settling &&
             (w->over_once || w->rest_area > 0)) {
             if (!w->lost) {

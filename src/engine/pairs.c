@@ -349,7 +349,9 @@ static int touch(rd_sim *s, int i, int j)
     if (p < 0) {
         int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b],
             pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
-        /* two meshes touch only in the surface model (surface.c); the vertex model cannot */
+        /* the surface model takes any pair (surface.c: a non-convex body's planes against a
+           convex partner, a rock on a terrain mesh; two meshes face against face), with no
+           subcontact points; the vertex model cannot touch two meshes */
         if (!pa && !pb && s->sc.contact.model != RD_CONTACT_SURFACE) return 0;
         if ((p = pair_create(s, a, b)) < 0) return -1;
     }

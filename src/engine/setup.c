@@ -38,9 +38,9 @@ static void initial_orientation(const double rot[3], const double axes[9], doubl
 /* A mesh in the scene's frame: read (path resolved by the parser), scaled to metres by its
  * declared units and turned z-up when the file is y-up (+90 deg about x: (x, y, z) ->
  * (x, -z, y)); the bounding-box centre stays at the origin. */
-static int mesh_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
+static int mesh_shape(const rd_body_def *d, rd_poly *p, double offset[3], rd_error *err)
 {
-    if (rd_mesh_read(p, d->mesh, NULL, err)) return -1;
+    if ((d->terrain ? rd_terrain_read : rd_mesh_read)(p, d->mesh, offset, err)) return -1;
     double s = d->mesh_unit > 0 ? d->mesh_unit : 1.0;
     if (s == 1.0 && d->mesh_up != 1) return 0;
     for (int i = 0; i < p->nv; i++) {
@@ -53,14 +53,15 @@ static int mesh_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
     return 0;
 }
 
-static int build_shape(const rd_body_def *d, rd_poly *p, rd_error *err)
+/* offset: where the shape's origin lies in its file's coordinates (meshes), m. */
+static int build_shape(const rd_body_def *d, rd_poly *p, double offset[3], rd_error *err)
 {
     switch (d->shape) {
     case RD_SHAPE_BRICK: return rd_poly_brick(p, d->size, err);
     case RD_SHAPE_PRISM:
         return rd_poly_prism(p, d->sides, d->radius, d->radius_top, d->size[2], err);
     case RD_SHAPE_HULL: return rd_poly_hull(p, (const double(*)[3])d->verts, d->nverts, err);
-    case RD_SHAPE_MESH: return mesh_shape(d, p, err);
+    case RD_SHAPE_MESH: return mesh_shape(d, p, offset, err);
     }
     return rd_error_set(err, "unknown shape");
 }
@@ -77,7 +78,8 @@ static int build_body(rd_sim *s, int i, rd_error *err)
 {
     const rd_body_def *d = &s->sc.bodies[i];
     rd_mass m;
-    if (build_shape(d, &s->poly[i], err) || rd_poly_mass(&s->poly[i], &m, err)) {
+    double offset[3] = { 0, 0, 0 };
+    if (build_shape(d, &s->poly[i], offset, err) || rd_poly_mass(&s->poly[i], &m, err)) {
         char msg[RD_ERROR_MAX];
         snprintf(msg, sizeof msg, "%s", err->msg);
         return rd_error_set(err, "%s:%d: block '%s': %s", s->sc.file, d->line, d->name, msg);
@@ -89,6 +91,8 @@ static int build_body(rd_sim *s, int i, rd_error *err)
     for (int k = 0; k < 3; k++) s->inertia[i][k] = density * m.principal[k];
     initial_orientation(d->rotation, m.axes, s->q[i]);
     rd_copy3(d->position, s->x[i]); /* the centre of mass */
+    if (d->terrain)                 /* a terrain stays at its file's coordinates */
+        for (int k = 0; k < 3; k++) s->x[i][k] = offset[k] + m.centroid[k];
     s->fixed[i] = d->fixed;
     if (rd_poly_convex(&s->poly[i], RD_CONVEX_TOL(s->poly[i].radius), &s->convex[i], err)) {
         char msg[RD_ERROR_MAX];

@@ -186,6 +186,7 @@ static void step_once(rd_sim *s)
     if (!s->settling) {
         rd_energy_step(s);
         rd_monitor_step(s);
+        rd_runout_step(s);
         if (s->t >= s->next_out - 1e-9 * s->dt) {
             rd_energy_sample(s);
             rd_observe_sample(s);
@@ -485,6 +486,10 @@ int rd_sim_start(rd_sim *s)
     rd_observe_begin(s);
     apply_initial_conditions(s);
     rd_monitor_start(s);
+    if (rd_runout_begin(s)) {
+        snprintf(s->errmsg, sizeof s->errmsg, "out of memory for the runout state");
+        s->status = RD_STATUS_ERROR;
+    }
     s->shaking = 1;
     s->e_fric = s->e_damp = s->e_work = 0;
     s->end = rd_rest_end(s);
@@ -505,7 +510,7 @@ static int shake_once(rd_sim *s)
     if (s->step % RD_PROGRESS_STEPS == 0) rd_progress_report(s->t, s->end);
     if (s->status != RD_STATUS_DONE || !healthy(s)) return 0;
     if ((s->sc.overturn.stop == RD_OVERTURN_STOP_ANY && rd_monitor_any_fallen(s)) ||
-        (s->sc.overturn.stop && rd_monitor_all_fallen(s))) {
+        (s->sc.overturn.stop && !s->sc.runout.until_rest && rd_monitor_all_fallen(s))) {
         s->status = RD_STATUS_OVERTURNED;
         return 0;
     }
@@ -533,6 +538,7 @@ rd_status rd_sim_finish(rd_sim *s)
     s->phase = RD_PHASE_FINISHED;
     rd_progress_report(s->t, s->end);
     rd_monitor_finish(s);
+    rd_runout_finish(s);
     rd_joints_sample(s);
     rd_energy_sample_end(s);
     judge_energy(s);
@@ -563,6 +569,7 @@ void rd_sim_summary(const rd_sim *s, rd_summary *out)
     out->settle_time = s->settle_time;
     out->energy_residual_max = s->resid_max;
     out->wall_seconds = s->wall;
+    out->at_rest = s->at_rest;
     out->status = s->status;
 }
 
@@ -637,6 +644,7 @@ void rd_sim_free(rd_sim *s)
     rd_scenario_free(&s->sc);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
+    rd_runout_free(s);
     void *arrays[] = { s->poly,
                        s->x,
                        s->q,

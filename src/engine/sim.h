@@ -179,6 +179,23 @@ typedef struct rd_watch {
                             support (event "lost" written): the verdict is final */
 } rd_watch;
 
+/* Runout state of one free body (runout.c). */
+typedef struct rd_runout_body {
+    double x_prev[3]; /* centre of mass at the previous step, m */
+    int left;         /* 1 once its centre left the domain box: out of the run */
+} rd_runout_body;
+
+/* The fixed surface seen from above (runout.c): the upward-facing triangles of the fixed
+ * bodies, binned on a plan grid, for the height of the ground below a point. */
+typedef struct rd_ground {
+    int ntri;
+    double (*tri)[3][3]; /* ground frame, m */
+    double lo[2], cell;  /* grid origin and cell size, m */
+    int nx, ny;
+    int *cell0; /* [nx ny + 1] first entry of each cell in item */
+    int *item;  /* triangle indices */
+} rd_ground;
+
 struct rd_sim {
     rd_scenario sc; /* deep copy of the scenario (owned: the caller's may be freed) */
     int nb;         /* bodies, fixed and free, in scenario order */
@@ -368,6 +385,9 @@ struct rd_sim {
     int overlap_pair[2]; /* the two bodies of that overlap */
     double rest_since;   /* tail: time since which every free body has been at rest, s
                               (-1 while something moves) */
+    int at_rest;         /* until rest: 1 once the run ended at rest (rd_summary.at_rest) */
+    rd_runout_body *run; /* [nfree] runout state (runout.c) */
+    rd_ground ground;    /* the fixed surface from above (runout.c) */
     /* histories (history.c) */
     int nhist_col;  /* columns per history sample (time first) */
     int *hist_pair; /* [nhistories] pair index of a joint history, -1 before it exists */
@@ -503,6 +523,14 @@ void rd_monitor_rotation(rd_sim *s, int k, double out[3]);
 void rd_monitor_rotation_peek(const rd_sim *s, int k, double prev, double out[3]);
 void rd_energy_peek(rd_sim *s); /* energy.c: s->energy at t(n), the run's residual untouched */
 void rd_event_add(rd_sim *s, double time, int body, const char *type, double value);
+
+/* runout.c: trajectories, fence and domain (docs/RUNOUT.md) */
+int rd_runout_begin(rd_sim *s);   /* at the start of shaking; -1 out of memory */
+void rd_runout_step(rd_sim *s);   /* every shaking step, after the monitor */
+void rd_runout_finish(rd_sim *s); /* at the end: direction, orientation */
+void rd_runout_free(rd_sim *s);
+/* Height of the fixed surface below (x, y), at most z_top, m (-INFINITY: none). */
+double rd_ground_below(const rd_sim *s, double x, double y, double z_top);
 
 /* observe.c: samples, events and the summary handed to the observers */
 void rd_observe_begin(rd_sim *s);

@@ -409,6 +409,7 @@ static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result
     r->overturned = s->any_overturned;
     r->energy_residual = s->energy_residual_max;
     r->end_time = s->end_time;
+    r->at_rest = s->at_rest;
     r->nbodies =
         s->nbodies < RD_SWEEP_BODIES ? s->nbodies : RD_SWEEP_BODIES; /* inspect_base checked */
     r->overturn_time = -1;
@@ -423,6 +424,16 @@ static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result
         r->b_max_twist[k] = fabs(b->max_twist);
         r->b_max_slip[k] = body_slip(sim, b->name);
         r->b_mode[k] = (int)rd_sweep_mode_of(b, r->b_max_slip[k]);
+        r->b_runout[k] = b->travel;
+        r->b_runout_direction[k] = b->runout_direction;
+        r->b_max_speed[k] = b->max_speed;
+        r->b_max_bounce[k] = b->max_bounce;
+        r->b_max_energy[k] = b->max_energy;
+        r->b_fence_time[k] = b->fence_time;
+        r->b_fence_energy[k] = b->fence_crossings > 0 ? b->fence_energy : 0;
+        r->b_fence_height[k] = b->fence_height;
+        r->runout = fmax(r->runout, b->travel);
+        r->fence_energy = fmax(r->fence_energy, r->b_fence_energy[k]);
         if (b->overturned && (r->overturn_time < 0 || b->overturn_time < r->overturn_time))
             r->overturn_time = b->overturn_time;
         r->max_tilt_ratio = fmax(r->max_tilt_ratio, b->max_tilt_ratio);

@@ -33,8 +33,8 @@
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
 #define RD_SWEEP_LAYOUT                                                                            \
-    3 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
-                            3 = Sa, max twist, joint slip, response modes */
+    4 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
+                            3 = Sa, max twist, joint slip, response modes; 4 = runout */
 /* Space reserved before a row: a new chunk for every column when the row starts one (chunks
  * are allocated whole), plus 32 KiB for chunk-index (B-tree) nodes and object-header updates. */
 #define RD_SWEEP_RESERVE_FIXED (32 << 10)
@@ -94,6 +94,26 @@ static const col_spec outcome_cols[] = {
     { "body_mode", C_I32, R(b_mode), 1, "",
       "response mode: 0 rest, 1 slide, 2 rock, 3 rock-slide, "
       "4 rock-twist, 5 overturn (docs/FRAGILITY.md)" },
+    { "runout", C_F64, R(runout), 0, "m",
+      "largest runout (horizontal travel of the centre from rest) over the free bodies" },
+    { "fence_energy", C_F64, R(fence_energy), 0, "J",
+      "largest kinetic energy at a fence crossing over the free bodies (0: none crossed)" },
+    { "at_rest", C_I32, R(at_rest), 0, "1",
+      "model solve until rest: 1 if every body came to rest or left the domain" },
+    { "body_runout", C_F64, R(b_runout), 1, "m", "runout of the body from rest" },
+    { "body_runout_direction", C_F64, R(b_runout_direction), 1, "rad",
+      "direction of the body's runout from +x" },
+    { "body_max_speed", C_F64, R(b_max_speed), 1, "m/s", "largest speed of the body's centre" },
+    { "body_max_energy", C_F64, R(b_max_energy), 1, "J",
+      "largest kinetic energy of the body (translation and rotation)" },
+    { "body_max_bounce", C_F64, R(b_max_bounce), 1, "m",
+      "largest gap between the body and the fixed surface below it" },
+    { "body_fence_time", C_F64, R(b_fence_time), 1, "s",
+      "time the body first crossed the fence (-1: never)" },
+    { "body_fence_energy", C_F64, R(b_fence_energy), 1, "J",
+      "kinetic energy of the body at its first fence crossing (0: none)" },
+    { "body_fence_height", C_F64, R(b_fence_height), 1, "m",
+      "height of the body's centre above the surface at its first fence crossing (-1: none)" },
     { "case", C_I64, R(index), 0, "",
       "case index in the sweep plan" }, /* last: writing it commits the row */
 };

@@ -120,5 +120,8 @@ int rd_poly_check_at(const rd_poly *p, const char *what, int base, int *bad, rd_
  * offset (m; may be NULL): file coordinates = vertex + offset. STL vertices are merged by
  * exact coordinate match; unused vertices are dropped. The result passes rd_poly_check. */
 int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err);
+/* The closed solid of a height grid (geometry/terrain.c: .asc an ESRI ASCII grid, else gridded
+ * XYZ points), as rd_mesh_read gives a mesh. */
+int rd_terrain_read(rd_poly *p, const char *path, double offset[3], rd_error *err);
 
 #endif

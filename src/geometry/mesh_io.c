@@ -5,6 +5,7 @@
  * it may call base/ only.
  */
 #include "geometry/geom.h"
+#include "geometry/terrain.h"
 #include "base/path.h"
 
 #include <ctype.h>
@@ -722,6 +723,22 @@ static int mesh_finish(mesh *m, rd_poly *p, double offset[3], int base, rd_error
     return 0;
 }
 
+/* A height grid's closed solid (terrain.c) as the mesh m. */
+static int grid_read(mesh *m, const char *buf, rd_error *err)
+{
+    rd_grid g;
+    rd_grid_mesh gm = { 0 };
+    if (rd_grid_read(m->path, buf, &g, err)) return -1;
+    int rc = rd_grid_solid(&g, &gm, err);
+    for (int k = 0; rc == 0 && k < gm.nv; k++) rc = add_vertex(m, gm.v[k], 0, err);
+    for (int t = 0; rc == 0 && t < gm.ntri; t++)
+        rc = add_index(m, gm.tri[t][0], err) || add_index(m, gm.tri[t][1], err) ||
+             add_index(m, gm.tri[t][2], err) || end_face(m, 3, 0, err);
+    rd_grid_free(&g);
+    rd_grid_mesh_free(&gm);
+    return rc;
+}
+
 int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
 {
     const char *dot = strrchr(path, '.');
@@ -742,6 +759,19 @@ int rd_mesh_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
                          : stl_read(&m, buf, len, err);
     free(buf);
     if (rc == 0) rc = mesh_finish(&m, p, offset, kind == 1, err);
+    mesh_free(&m);
+    return rc;
+}
+
+int rd_terrain_read(rd_poly *p, const char *path, double offset[3], rd_error *err)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    if (read_all(path, &buf, &len, err)) return -1;
+    mesh m = { .path = path };
+    int rc = grid_read(&m, buf, err);
+    free(buf);
+    if (rc == 0) rc = mesh_finish(&m, p, offset, 0, err);
     mesh_free(&m);
     return rc;
 }

@@ -75,9 +75,9 @@ static const char *const energy_long_names[RD_NENERGY] = {
 };
 
 /* Event types, in the order of the HDF5 enum /events/type (value = index). */
-static const char *const event_types[] = { "uplift",  "impact",   "slip",      "overturn",
-                                           "recover", "unstable", "unsettled", "rest",
-                                           "lock",    "liftoff",  "lost",      "peak" };
+static const char *const event_types[] = { "uplift",   "impact",    "slip", "overturn", "recover",
+                                           "unstable", "unsettled", "rest", "lock",     "liftoff",
+                                           "lost",     "peak",      "left", "fence" };
 #define RD_H5_NEVTYPES ((int)(sizeof event_types / sizeof event_types[0]))
 
 #define RD_H5_NSTATUS (RD_STATUS_UNTRUSTED + 1) /* run statuses, named by rd_status_name */
@@ -1223,7 +1223,8 @@ static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_
                    attr_write(h, g, "steps", H5T_NATIVE_LONG, 0, &steps, err) ||
                    attr_double(h, g, "settle_time", s->settle_time, "s", err) ||
                    attr_double(h, g, "energy_residual_max", s->energy_residual_max, "1", err) ||
-                   attr_double(h, g, "wall_seconds", s->wall_seconds, "s", err)
+                   attr_double(h, g, "wall_seconds", s->wall_seconds, "s", err) ||
+                   attr_int(h, g, "at_rest", s->at_rest, err)
                ? -1
                : 0;
 }

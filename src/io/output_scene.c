@@ -6,6 +6,9 @@
  *   /joints/properties [joint][property]  kn, ks, friction, cohesion, tension, damping_ratio
  *   /joints/outcomes [joint][outcome]     max_opening, max_slip, final_slip, closed
  *   /outcomes/bodies [body][quantity]     x, y, z at the end, travel, drop, unsupported
+ *   /runout/bodies [body][quantity]       runout, direction, path, speed, bounce, orientation,
+ *                                         domain exit and fence crossing (docs/RUNOUT.md)
+ *   /runout/fence [point][plan]           the fence polyline, when one is given
  * docs/HDF5-LAYOUT.md describes them with the rest of the file.
  * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
  * internals or cli/.
@@ -14,6 +17,7 @@
 #include "io/h5_quiet.h"
 #include "io/io_table.h"
 #include "rockdem/history.h"
+#include "rockdem/observer.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,7 +55,7 @@ static int history(long long f, const rd_sim *sim, rd_error *err)
     return rc ? -1 : 0;
 }
 
-enum { NPROP = 6, NOUT = 4, NBODY = 6 };
+enum { NPROP = 6, NOUT = 4, NBODY = 6, NRUN = 19 };
 
 static int joints(long long f, const rd_sim *sim, rd_error *err)
 {
@@ -137,6 +141,66 @@ static int outcomes(long long f, const rd_summary *s, rd_error *err)
     return rc ? -1 : 0;
 }
 
+static const char run_labels[] =
+    "runout,direction,path_length,max_speed,max_energy,max_bounce,qw,qx,qy,qz,left_time,fence_crossings,"
+    "fence_time,fence_energy,fence_speed,fence_height,fence_x,fence_y,fence_z";
+static const char run_units[] = "m,rad,m,m/s,J,m,1,1,1,1,s,1,s,J,m/s,m,m,m,m";
+
+static int fence(long long g, const rd_scenario *sc, rd_error *err)
+{
+    const rd_runout_def *r = &sc->runout;
+    if (r->nfence < 2) return 0;
+    rd_h5t_axes ax = { { "point", "plan" }, { NULL, "x,y" } };
+    return rd_h5t_write(g, "fence", RD_H5T_DOUBLE, r->fence, r->nfence, 2, "m",
+                        "the fence polyline in plan (a vertical fence standing on it)", &ax, err);
+}
+
+static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error *err)
+{
+    int nf = s->nbodies;
+    double *v = malloc((size_t)(nf + 1) * NRUN * sizeof *v);
+    if (!v) return rd_error_set(err, "out of memory");
+    for (int k = 0; k < nf; k++) {
+        const rd_body_summary *b = &s->body[k];
+        double row[NRUN] = { b->travel,
+                             b->runout_direction,
+                             b->path_length,
+                             b->max_speed,
+                             b->max_energy,
+                             b->max_bounce,
+                             b->final_quaternion[0],
+                             b->final_quaternion[1],
+                             b->final_quaternion[2],
+                             b->final_quaternion[3],
+                             b->left_time,
+                             b->fence_crossings,
+                             b->fence_time,
+                             b->fence_energy,
+                             b->fence_speed,
+                             b->fence_height,
+                             b->fence_point[0],
+                             b->fence_point[1],
+                             b->fence_point[2] };
+        memcpy(v + NRUN * k, row, sizeof row);
+    }
+    rd_h5t_axes ax = { { "/body", "quantity" }, { NULL, run_labels } };
+    long long g = rd_h5t_group(f, "runout", err);
+    int rc =
+        g < 0 ||
+        rd_h5t_write(
+            g, "bodies", RD_H5T_DOUBLE, v, nf, NRUN, run_units,
+            "the runout of each free body's centre of mass (docs/RUNOUT.md): "
+            "horizontal distance and direction from rest, path length, largest "
+            "speed, kinetic energy and bounce, final orientation, time it left the domain (-1: "
+            "never), fence crossings and, at the first, its time (-1: none), "
+            "kinetic energy, speed, height above the surface and place",
+            &ax, err) ||
+        fence(g, rd_sim_scenario(sim), err);
+    rd_h5t_close_group(g);
+    free(v);
+    return rc ? -1 : 0;
+}
+
 /* Bytes the tables take in the file, at most: their doubles (contiguous, uncompressed), each
  * joint's three name strings in the global heap, and RD_TABLE_HEADER per dataset (its object
  * header, units, long_name and dimension-scale attributes), plus an eighth for HDF5's
@@ -145,11 +209,11 @@ static int outcomes(long long f, const rd_summary *s, rd_error *err)
 static size_t scene_bytes(const rd_sim *sim, const rd_summary *s)
 {
     long rows;
-    int cols, nj = rd_sim_joint_count(sim), nd = rd_sim_history_count(sim) + 8;
+    int cols, nj = rd_sim_joint_count(sim), nd = rd_sim_history_count(sim) + 10;
     rd_sim_history_table(sim, &rows, &cols);
     size_t label = 2 * RD_NAME_MAX + 2 + 16; /* a joint's label and its heap object's header */
     size_t raw = sizeof(double) * ((size_t)rows * (size_t)cols + (size_t)nj * (NPROP + NOUT) +
-                                   (size_t)s->nbodies * NBODY) +
+                                   (size_t)s->nbodies * (NBODY + NRUN) + 2 * RD_MAX_FENCE_POINTS) +
                  3 * label * (size_t)nj + RD_TABLE_HEADER * (size_t)nd;
     return raw + raw / 8;
 }
@@ -163,8 +227,10 @@ int rd_h5_scene_tables(rd_h5 *h, const rd_sim *sim, const rd_summary *s, rd_erro
     long long f = rd_h5_file_id(h);
     rd_h5_quiet q = rd_h5_quiet_begin();
     int rc = history(f, sim, err) || joints(f, sim, err) || outcomes(f, s, err) ||
+             runout(f, sim, s, err) ||
              (rd_h5t_count(f, "history/time") >= 0 && rd_h5t_link_scales(f, "history", err)) ||
-             rd_h5t_link_scales(f, "joints", err) || rd_h5t_link_scales(f, "outcomes", err);
+             rd_h5t_link_scales(f, "joints", err) || rd_h5t_link_scales(f, "outcomes", err) ||
+             rd_h5t_link_scales(f, "runout", err);
     rd_h5_quiet_end(q);
     return rc ? rd_h5_fail(h, "cannot write the end-of-run tables", err) : 0;
 }

@@ -154,6 +154,8 @@ int model_settle(parser *P);
 int model_solve(parser *P);
 int model_overturn(parser *P);
 int model_reference(parser *P);
+int model_domain(parser *P); /* parse_runout.c */
+int model_fence(parser *P);
 int contact_property(parser *P);
 int contact_perturbation(parser *P);
 int contact_preset(parser *P);

@@ -346,12 +346,34 @@ int block_create(parser *P)
                 shape->s, expected);
 }
 
+/* block import terrain 'slope.asc' [name N] [group 'G']: a height grid (ESRI ASCII .asc or
+ * gridded .xyz) as a fixed solid at the file's own coordinates (geometry/terrain.c). */
+static int import_terrain(parser *P, const token *at)
+{
+    static const char *const names[] = { "name", "group", NULL };
+    body_cmd c = { .b = { .shape = RD_SHAPE_MESH, .mesh_up = 2, .terrain = 1, .fixed = 1 } };
+    char file[RD_PATH_MAX];
+    if (read_text(P, "a terrain grid file (.asc or .xyz)", file, sizeof file)) return -1;
+    if (resolve_path(P->name, file, c.b.mesh, sizeof c.b.mesh))
+        return perr(P, at, "terrain path too long");
+    const token *kw;
+    int k;
+    while ((k = next_keyword(P, names, &c.seen, &kw)) >= 0)
+        if (k == 0 ? read_name(P, kw, &c.name, c.b.name)
+                   : read_name(P, kw, &(const token *){ NULL }, c.b.group))
+            return -1;
+    if (k == KW_ERR) return -1;
+    return add_body(P, &c.b, c.name, at);
+}
+
 /* block import mesh 'rock.obj' (position X Y Z | seat-on NAME [at X Y]) [rotation ...] ... */
 int block_import(parser *P)
 {
     const token *what = take(P);
+    if (what && tok_is(what, "terrain")) return import_terrain(P, what);
     if (!what || !tok_is(what, "mesh"))
-        return perr(P, what ? what : verb_token(P), "expected 'mesh' after 'block import'");
+        return perr(P, what ? what : verb_token(P),
+                    "expected 'mesh' or 'terrain' after 'block import'");
     return single_body(P, &shapes[3], what);
 }
 

@@ -94,18 +94,45 @@ int model_settle(parser *P)
     return keywords_end(P, k, seen != 0, names);
 }
 
+/* `until rest`: the word after `until` must be `rest`. */
+static int read_until(parser *P, const token *kw, int *on)
+{
+    const token *t = take(P);
+    if (!t || !tok_is(t, "rest"))
+        return perr(P, t ? t : kw,
+                    "expected 'rest' after 'until' (model solve until rest "
+                    "time-limit T)");
+    *on = 1;
+    return 0;
+}
+
 int model_solve(parser *P)
 {
-    static const char *const names[] = { "time", "tail", "force", NULL };
-    const token *kw;
+    static const char *const names[] = { "time", "tail", "force", "until", "time-limit", NULL };
+    const token *kw, *span = NULL;
     unsigned seen = 0;
     int k;
-    P->sc->solve_line = verb_token(P)->line;
-    while ((k = next_keyword(P, names, &seen, &kw)) >= 0)
-        if (keyword_once(P, kw, names[k]) ||
-            (k == 2 ? read_switch(P, kw, &P->sc->force)
-                    : read_value(P, kw, R_POS, U_PLAIN, k == 0 ? &P->sc->duration : &P->sc->tail)))
-            return -1;
+    rd_scenario *sc = P->sc;
+    sc->solve_line = verb_token(P)->line;
+    while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
+        int rc = keyword_once(P, kw, names[k]);
+        if (!rc && k == 2) rc = read_switch(P, kw, &sc->force);
+        if (!rc && k == 3) rc = read_until(P, kw, &sc->runout.until_rest);
+        if (!rc && (k == 0 || k == 4)) rc = exclusive(P, &span, kw);
+        if (!rc && k != 2 && k != 3)
+            rc = read_value(P, kw, R_POS, U_PLAIN, k == 1 ? &sc->tail : &sc->duration);
+        if (rc) return -1;
+    }
+    if (k == KW_ERR) return -1;
+    int until = seen >> 3 & 1u, limit = seen >> 4 & 1u;
+    if (until && !limit)
+        return perr(P, verb_token(P), "'until rest' needs 'time-limit T' (the longest run, s)");
+    if (limit && !until)
+        return perr(P, verb_token(P), "'time-limit' applies only with 'until rest'");
+    if (until && (seen >> 1 & 1u))
+        return perr(P, verb_token(P),
+                    "'tail' does not apply with 'until rest' (which runs on "
+                    "until rest by itself)");
     return keywords_end(P, k, seen != 0, names);
 }
 

@@ -35,6 +35,8 @@ static const struct command {
     { "model", "solve", model_solve },
     { "model", "overturn", model_overturn },
     { "model", "reference", model_reference },
+    { "model", "domain", model_domain },
+    { "model", "fence", model_fence },
     { "model", "save", model_save },
     { "model", "restore", model_restore },
     { "block", "create", block_create },

@@ -48,7 +48,20 @@ class BodySummary(ctypes.Structure):  # rd_body_summary
                 ("unsupported", ctypes.c_int),
                 ("final_position", ctypes.c_double * 3),
                 ("travel", ctypes.c_double),
-                ("drop", ctypes.c_double)]
+                ("drop", ctypes.c_double),
+                ("runout_direction", ctypes.c_double),  # runout (docs/RUNOUT.md)
+                ("path_length", ctypes.c_double),
+                ("max_speed", ctypes.c_double),
+                ("max_energy", ctypes.c_double),
+                ("max_bounce", ctypes.c_double),
+                ("final_quaternion", ctypes.c_double * 4),
+                ("left_time", ctypes.c_double),
+                ("fence_crossings", ctypes.c_int),
+                ("fence_time", ctypes.c_double),
+                ("fence_energy", ctypes.c_double),
+                ("fence_speed", ctypes.c_double),
+                ("fence_height", ctypes.c_double),
+                ("fence_point", ctypes.c_double * 3)]
 
 
 class Summary(ctypes.Structure):  # rd_summary
@@ -62,6 +75,7 @@ class Summary(ctypes.Structure):  # rd_summary
                 ("settle_time", ctypes.c_double),
                 ("energy_residual_max", ctypes.c_double),
                 ("wall_seconds", ctypes.c_double),
+                ("at_rest", ctypes.c_int),
                 ("status", ctypes.c_int)]
 
 

@@ -195,7 +195,8 @@ def body_summary_dict(b: _lib.BodySummary) -> Dict[str, Any]:
     d = {name: getattr(b, name) for name, _ in _lib.BodySummary._fields_ if name != "name"}
     for k in ("overturned", "uplifted", "slid", "unsupported"):
         d[k] = bool(d[k])
-    d["final_position"] = list(d["final_position"])
+    for k in ("final_position", "final_quaternion", "fence_point"):
+        d[k] = list(d[k])
     return d
 
 
@@ -206,7 +207,7 @@ def summary_dict(s: _lib.Summary) -> Dict[str, Any]:
     return {"status": STATUS[s.status], "any_overturned": bool(s.any_overturned),
             "end_time": s.end_time, "dt": s.dt, "dt_critical": s.dt_critical, "steps": s.steps,
             "settle_time": s.settle_time, "energy_residual_max": s.energy_residual_max,
-            "wall_seconds": s.wall_seconds, "bodies": bodies}
+            "wall_seconds": s.wall_seconds, "at_rest": bool(s.at_rest), "bodies": bodies}
 
 
 class _Recorder:

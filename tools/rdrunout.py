@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""rdrunout — runout pictures (docs/RUNOUT.md).
+  plan RUN.h5 [--terrain GRID.asc]: plan view of each free body's centre path over the terrain's
+      height contours, with the fence line, start and end points and the runout figures;
+  exceedance TABLE.h5: the sweep's exceedance curves of runout and of the fence energy,
+      P(X > x) = (number of cases above x) / (cases), against x."""
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rdtools import cli  # noqa: E402
+
+
+def read_asc(path):
+    """An ESRI ASCII grid: x (cell centres), y (south to north), z [y][x]."""
+    head, rows = {}, []
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if not w:
+                continue
+            if w[0][0].isalpha():
+                head[w[0].lower()] = float(w[1])
+            else:
+                rows.append([float(v) for v in w])
+    nx, ny, c = int(head["ncols"]), int(head["nrows"]), head["cellsize"]
+    x0 = head["xllcenter"] if "xllcenter" in head else head["xllcorner"] + 0.5 * c
+    y0 = head["yllcenter"] if "yllcenter" in head else head["yllcorner"] + 0.5 * c
+    z = np.array([v for r in rows for v in r]).reshape(ny, nx)[::-1]
+    return x0 + c * np.arange(nx), y0 + c * np.arange(ny), z
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def plan(a):
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    f = h5py.File(a.run, "r")
+    names = [text(b) for b in f["body"][:]]
+    q = [text(v) for v in f["runout/quantity"][:]]
+    rb = f["runout/bodies"][:]
+    fig, ax = plt.subplots(figsize=(7.2, 4.2))
+    if a.terrain:
+        x, y, z = read_asc(a.terrain)
+        cf = ax.contourf(x, y, z, levels=16, cmap="Greys_r", alpha=0.45)
+        ax.contour(x, y, z, levels=cf.levels, colors="0.5", linewidths=0.4)
+        fig.colorbar(cf, ax=ax, shrink=0.8, label="terrain height (m)")
+    pos = f["position"][:]
+    for k, name in enumerate(names):
+        r = dict(zip(q, rb[k]))
+        line, = ax.plot(pos[:, k, 0], pos[:, k, 1], lw=1.4,
+                        label=f"{name}: runout {r['runout']:.2f} m, top speed {r['max_speed']:.2f} m/s")
+        ax.plot(pos[0, k, 0], pos[0, k, 1], "o", color=line.get_color(), ms=4,
+                label="start" if k == 0 else None)
+        ax.plot(pos[-1, k, 0], pos[-1, k, 1], "s", color=line.get_color(), ms=4,
+                label="end" if k == 0 else None)
+        if r["fence_crossings"] > 0:
+            ax.plot(r["fence_x"], r["fence_y"], "x", color="k", ms=6,
+                    label="fence crossing" if k == 0 else None)
+            ax.annotate(f"{r['fence_energy'] / 1e3:.2f} kJ, {r['fence_height']:.2f} m up",
+                        (r["fence_x"], r["fence_y"]), textcoords="offset points", xytext=(4, 6),
+                        fontsize=7)
+    if "fence" in f["runout"]:
+        fe = f["runout/fence"][:]
+        ax.plot(fe[:, 0], fe[:, 1], "k-", lw=2.0, label="fence")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_aspect("equal")
+    ax.set_title(text(f.attrs.get("title", "")) or os.path.basename(a.run), fontsize=9)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3, frameon=False)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=a.dpi)
+    return a.output
+
+
+def exceedance(a):
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    s = h5py.File(a.run, "r")["sweep"]
+    fig, axs = plt.subplots(1, 2, figsize=(7.2, 3.0))
+    for ax, key, unit in ((axs[0], "runout", "m"), (axs[1], "fence_energy", "J")):
+        v = np.sort(s[key][:])
+        p = 1.0 - np.arange(1, len(v) + 1) / len(v)  # P(X > v_i) for the sorted cases
+        ax.step(np.r_[v[0], v], np.r_[1.0, p], where="post")  # 1 below the least case
+        ax.set_xlabel(f"{key.replace('_', ' ')} ({unit})")
+        ax.set_ylabel("probability of exceedance")
+        ax.set_ylim(0, 1.02)
+        ax.set_title(f"{len(v)} cases", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=a.dpi)
+    return a.output
+
+
+def main():
+    p = cli.Parser(prog="rdrunout", description=cli.describe(__doc__))
+    p.add_argument("what", choices=("plan", "exceedance"))
+    p.add_argument("run", metavar="FILE.h5", help="a run file (plan) or a sweep table (exceedance)")
+    p.add_argument("--terrain", metavar="GRID.asc", help="ESRI ASCII grid for the contours (plan)")
+    p.add_argument("-o", "--output", metavar="OUT.png", help="PNG to write (default: FILE_WHAT.png)")
+    p.add_argument("--dpi", type=int, default=300, help="resolution (default 300)")
+    a = p.parse_args()
+    a.output = a.output or os.path.splitext(a.run)[0] + "_" + a.what + ".png"
+    cli.ensure_writable(a.output)
+    print("wrote %s" % (plan(a) if a.what == "plan" else exceedance(a)))
+
+
+if __name__ == "__main__":
+    sys.exit(cli.run(main, "rdrunout"))
