@@ -52,9 +52,9 @@ all: $(BIN)/rockdem $(BUILD)/librockdem.so
 # the engine library alone, static and shared (an embedding program or Python's ctypes)
 lib: $(BUILD)/librockdem.a $(BUILD)/librockdem.so
 
-# examples/embed.c: a scene run through the public API alone, no file (docs/ARCHITECTURE.md)
+# docs/examples/embed.c: a scene run through the public API alone, no file (docs/ARCHITECTURE.md)
 examples: $(BUILD)/embed
-$(BUILD)/embed: examples/embed.c $(BUILD)/librockdem.a $(HEADERS)
+$(BUILD)/embed: docs/examples/embed.c $(BUILD)/librockdem.a $(HEADERS)
 	$(CC) $(WFLAGS) $(CFLAGS) $(SAN) -Iinclude $< $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 deps: $(DEPS_STAMP)
@@ -221,7 +221,7 @@ $(BIN)/rockdem-mpi: src/cli/rockdem_mpi.c $(CLIOBJ) $(BUILD)/librockdem.a $(HEAD
 	$(MPICC) $(ALL_CFLAGS) $< $(CLIOBJ) $(BUILD)/librockdem.a $(LDLIBS) -o $@
 
 # the C style of .clang-format (Debian clang-format 14) applied in place
-FORMAT_FILES = $(wildcard src/*/*.c src/*/*.h include/rockdem/*.h tests/*.c tests/*.h tests/fuzz/*.c examples/*.c bench/*.c)
+FORMAT_FILES = $(wildcard src/*/*.c src/*/*.h include/rockdem/*.h tests/*.c tests/*.h tests/fuzz/*.c docs/examples/*.c bench/*.c)
 .PHONY: format
 format:
 	clang-format -i $(FORMAT_FILES)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Cost per step against scene size (issue 14): dry-stone walls of 50, 500 and 5,000 bricks
 # (bench/wall.py: 5 courses, running bond, the wall growing in length) loaded, settled and
-# shaken through the library with no file (examples/embed.c), CPU time per step (settling and
+# shaken through the library with no file (docs/examples/embed.c), CPU time per step (settling and
 # shaking steps; CPU rather than wall time, steadier on a shared machine).
 #
 #   bash bench/scale.sh [BUILD]     (BUILD holds librockdem.a and embed; default: build)

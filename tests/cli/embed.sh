@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# examples/embed.c, built against librockdem.a with the public headers only, runs its built-in
+# docs/examples/embed.c, built against librockdem.a with the public headers only, runs its built-in
 # scene without writing anything: no file appears in its working directory, and the observer's
 # peak tilt (the largest of the 5 ms samples) agrees with the summary's (tracked every step).
 set -eu

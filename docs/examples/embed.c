@@ -1,6 +1,6 @@
 /* Embedding rockdem: a scene built in memory, run with no file at all, watched by an observer.
  *
- *   cc -std=c11 -Iinclude examples/embed.c build/librockdem.so -o embed   (or `make examples`)
+ *   cc -std=c11 -Iinclude docs/examples/embed.c build/librockdem.so -o embed   (or `make examples`)
  *   ./embed              the built-in scene: a granite block on a pedestal, a one-sine pulse
  *   ./embed SCENE.dat    any scenario file (its `output hdf5` line is ignored: nothing is written)
  *
