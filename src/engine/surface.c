@@ -109,7 +109,7 @@ struct rd_surface {
     rd_dashpots dp;       /* this step's patch dashpots, solved implicitly (dashpot.c) */
     surf_meas *meas;      /* per pair, its joint's measures at the last step it was live */
     int cap_meas;
-    long stamp;           /* surface steps taken */
+    long stamp; /* surface steps taken */
 };
 
 static int grow(void **arr, int *cap, int n, size_t size)
