@@ -314,6 +314,9 @@ typedef struct rd_scenario {
     int force;       /* `model solve ... force on` (or rockdem run --force): run even when the
                         estimated step count exceeds RD_STEP_BUDGET (include/rockdem/rockdem.h) */
     int solve_line;  /* scenario line of `model solve` (0: none), for messages */
+    int quiet_stop;  /* 1: end the run once every free body is at rest and what is left of the
+                        motion can no longer lift or slide it (engine/quiet_end.c; sweep and
+                        threshold cases set it, `rockdem sweep --full` does not; default 0) */
     rd_overturn_def overturn;
     rd_output_def output;
     int nhistories;
