@@ -23,7 +23,10 @@
 # (and the per-run wall times in the table), not the second.
 # Environment: STUDY (seed002 or echo-cliff, default seed002), SEEDS (record seeds of the
 # sample), DIRECTIONS (the sample's directions, deg, comma-separated), JOBS (workers, default
-# the number of online cores), DURATION (record and run length, s, default 20).
+# the number of online cores), DURATION (record and run length, s, default 20), FULL (1: run
+# every case to its end, `rockdem sweep --full`; default: a case ends once at rest with the
+# record left unable to lift or slide it, column quiet_end), TABLE (keep the sample's table
+# there).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd); root=$(dirname "$here")
 bindir=${1:-bin}; case $bindir in /*) ;; *) bindir="$PWD/$bindir" ;; esac
@@ -45,6 +48,7 @@ echo-cliff)
 *) die "STUDY must be seed002 or echo-cliff, got '$study'" ;;
 esac
 jobs=${JOBS:-$(nproc)}; duration=${DURATION:-20}
+case ${FULL:-0} in 0) full= ;; 1) full=--full ;; *) die "FULL must be 0 or 1, got '$FULL'" ;; esac
 posint SEEDS "$seeds"; posint JOBS "$jobs"; posint DURATION "$duration"
 [ -x "$rockdem" ] || die "no rockdem executable at $rockdem (build it first: make)"
 [ -f "$root/scenarios/pbr.obj" ] || die "no scenarios/pbr.obj (make scenarios/pbr.obj)"
@@ -71,7 +75,7 @@ t0=$(date +%s.%N)
 # the CPU time of the sweep and its workers (waited for): the children line of `times`
 cpu_s=$(
     "$rockdem" sweep "$tmp/study.dat" --axis "motion.seed=$seedlist" --directions "$sample_dirs" --scales "$LEVELS" \
-        -j "$jobs" -q -o "$tmp/sample.h5" >/dev/null || exit 1
+        -j "$jobs" $full -q -o "$tmp/sample.h5" >/dev/null || exit 1
     times > "$tmp/times" # (a builtin in this shell: a pipe would fork a shell with no children)
     sed -n 2p "$tmp/times" | awk '{ n = split($1 " " $2, f, " "); s = 0
         for (i = 1; i <= n; i++) { split(f[i], ms, "m"); s += ms[1] * 60 + ms[2] }; printf "%.2f", s }'
@@ -80,6 +84,7 @@ wall=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
 load1=$(cut -d' ' -f1-3 /proc/loadavg)
 cpu=$(sed -n 's/^model name[[:space:]]*:[[:space:]]*//p' /proc/cpuinfo | head -n1)
 
+[ -z "${TABLE:-}" ] || cp "$tmp/sample.h5" "$TABLE"
 /usr/bin/python3 - "$tmp/sample.h5" "$wall" "$cpu_s" "$runs" "$jobs" "$STUDY_RUNS" "$TARGET_S" "$duration" "$study" <<'PY'
 import sys
 import h5py
@@ -94,6 +99,7 @@ with h5py.File(path, "r") as f:
     over = s["overturned"][:].astype(bool)
     end = s["end_time"][:]
     pga = s["pga"][:]
+    quiet = s["quiet_end"][:]
     direction = s["direction"][:] if "direction" in s else None
 if len(per) != runs:
     sys.exit("bench/pbr_study.sh: the table has %d rows, expected %d" % (len(per), runs))
@@ -102,6 +108,9 @@ from_cpu = cpu * study / runs / 2
 print("per run: %.1f CPU s on average; wall (as loaded): %.1f s (standing %.1f s, overturned "
       "%.1f s), %.1f simulated s" % (cpu / runs, per.mean(), per[~over].mean() if (~over).any() else float("nan"),
                                       per[over].mean() if over.any() else float("nan"), end.mean()))
+print("ended quietly (at rest, the record left unable to lift or slide the rock): %d of %d runs, "
+      "%.1f simulated s on average of the standing runs" % ((quiet >= 0).sum(), runs,
+      end[~over].mean() if (~over).any() else float("nan")))
 for g in np.unique(np.round(pga / 9.80665, 2)):
     sel = np.round(pga / 9.80665, 2) == g
     print("  PGA %.2f g: %d/%d overturned, %.1f s per run" % (g, over[sel].sum(), sel.sum(), per[sel].mean()))

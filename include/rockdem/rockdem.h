@@ -188,6 +188,10 @@ RD_API rd_status rd_sim_finish(rd_sim *sim);
 RD_API double rd_sim_time(const rd_sim *sim);
 RD_API double rd_sim_end_time(const rd_sim *sim);
 
+/* Time at which a run with sc.quiet_stop ended because every free body was at rest and the
+ * motion left could no longer lift or slide it, s; -1 when it did not end so. */
+RD_API double rd_sim_quiet_end(const rd_sim *sim);
+
 /* Fill the summary (valid after rd_sim_run, also after an early stop; out->body borrowed). */
 RD_API void rd_sim_summary(const rd_sim *sim, rd_summary *out);
 

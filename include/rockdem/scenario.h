@@ -344,6 +344,9 @@ typedef struct rd_scenario {
     int overwrite;   /* rockdem run --overwrite: write over an earlier run file at the output in
                         place, rather than beside it and renamed over it once the run succeeds */
     int solve_line;  /* scenario line of `model solve` (0: none), for messages */
+    int quiet_stop;  /* 1: end the run once every free body is at rest and what is left of the
+                        motion can no longer lift or slide it (engine/quiet_end.c; sweep and
+                        threshold cases set it, `rockdem sweep --full` does not; default 0) */
     rd_overturn_def overturn;
     rd_runout_def runout;
     rd_output_def output;

@@ -54,6 +54,7 @@ typedef struct rd_sweep_plan {
     double amplitude;     /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
     int perturbed;        /* 1: the scenario's interface perturbation removes, raises or scatters */
     const char *keep_dir; /* --keep-runs DIR: each case's HDF5 file there; NULL: no file */
+    int full;             /* --full: every case runs to its end (no quiet end: sc.quiet_stop 0) */
 } rd_sweep_plan;
 
 enum {
@@ -106,6 +107,8 @@ typedef struct rd_sweep_result {
     char mode[RD_SWEEP_TEXT]; /* rd_sweep_mode_name of the most severe body mode */
     double energy_residual;   /* max |balance residual| / energy scale */
     double end_time;          /* simulated time reached, s */
+    double quiet_end;         /* the case ended here, at rest with the motion left unable to
+                                 lift or slide it (rd_sim_quiet_end), s; -1: it did not */
     double wall_seconds;      /* wall time of the whole case (setup + run), s */
     int nbodies;
     int b_overturned[RD_SWEEP_BODIES];

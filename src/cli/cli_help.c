@@ -148,8 +148,8 @@ static const sub_help pages[] = {
       "  -q                no progress line\n" },
     { "sweep",
       "usage: rockdem sweep FILE [--set KEY=VALUE]... [--axis KEY=V1,V2,...]... [--records F1,F2,...]\n"
-      "             [--scales S1,S2,...] [--directions D1,D2,...] [-j N] [--keep-runs DIR] [-q]\n"
-      "             -o TABLE.h5\n"
+      "             [--scales S1,S2,...] [--directions D1,D2,...] [-j N] [--keep-runs DIR] [--full]\n"
+      "             [-q] -o TABLE.h5\n"
       "Every combination of the axes (the last varies fastest) is one DEM run; results go\n"
       "to the HDF5 table /sweep as they finish. Running the same command again resumes it.\n"
       "  --axis KEY=V1,V2  a --set key and its values (repeatable); interface=K sweeps K\n"
@@ -159,6 +159,8 @@ static const sub_help pages[] = {
       "  --directions D1,D2  motion direction, degrees from +x\n"
       "  -j N              worker processes (default: the number of cores)\n"
       "  --keep-runs DIR   keep every case's run file in DIR (default: deleted)\n"
+      "  --full            run every case to its end (default: a case ends once at rest\n"
+      "                    and the motion left cannot lift or slide it; column quiet_end)\n"
       "  -o TABLE.h5       the table (required); docs/FRAGILITY.md, docs/HDF5-LAYOUT.md\n"
       "  -q                no progress line\n" },
     { "keys",

@@ -90,6 +90,8 @@ static int parse_args(int argc, char **argv, sweep_args *a, rd_sweep_plan *p, rd
             a->njobs = (int)n;
         } else if (!strcmp(argv[i], "-q"))
             a->quiet = 1;
+        else if (!strcmp(argv[i], "--full"))
+            p->full = 1;
         else
             return rd_error_set(
                 err, "rockdem sweep: unknown option or missing value '%s' (see rockdem --help)",

@@ -13,8 +13,7 @@
 #include "engine/sim.h"
 #include "base/vec.h"
 
-#define RD_REST_KE   1e-7 /* kinetic energy / (m g r): about 1 mm/s for r = 0.5 m */
-#define RD_REST_HOLD 0.1  /* s the rest must last */
+#define RD_REST_KE 1e-7 /* kinetic energy / (m g r): about 1 mm/s for r = 0.5 m */
 
 /* Time after which the tail may stop the run, s: with `until rest`, the end of the motion. */
 static double tail_start(const rd_sim *s)

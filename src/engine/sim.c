@@ -493,6 +493,10 @@ int rd_sim_start(rd_sim *s)
     s->shaking = 1;
     s->e_fric = s->e_damp = s->e_work = 0;
     s->end = rd_rest_end(s);
+    if (rd_quiet_begin(s)) {
+        snprintf(s->errmsg, sizeof s->errmsg, "out of memory (the quiet end's record peaks)");
+        s->status = RD_STATUS_ERROR;
+    }
     s->phase = s->status == RD_STATUS_DONE ? RD_PHASE_SHAKING : RD_PHASE_OVER;
     return s->phase == RD_PHASE_SHAKING;
 }
@@ -514,7 +518,8 @@ static int shake_once(rd_sim *s)
         s->status = RD_STATUS_OVERTURNED;
         return 0;
     }
-    return !rd_rest_reached(s); /* free-vibration tail: everything at rest */
+    /* free-vibration tail, or a case whose remaining motion cannot move it: everything at rest */
+    return !rd_rest_reached(s) && !rd_quiet_reached(s);
 }
 
 int rd_sim_advance(rd_sim *s, long nsteps, double t_until)
@@ -641,6 +646,7 @@ void rd_sim_free(rd_sim *s)
     if (!s) return;
     rd_observe_release(s);
     rd_surface_free(s);
+    rd_quiet_free(s);
     rd_scenario_free(&s->sc);
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);

@@ -380,14 +380,15 @@ struct rd_sim {
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
     double wall;             /* wall seconds of the shaking stage */
     double settle_ratio;     /* unbalanced-force ratio reached by the settle stage */
-    double overlap;      /* deepest overlap of two bodies as placed beyond RD_OVERLAP_FRACTION, m
+    double overlap;         /* deepest overlap of two bodies as placed beyond RD_OVERLAP_FRACTION, m
                               (0: none; overlap.c) */
-    int overlap_pair[2]; /* the two bodies of that overlap */
-    double rest_since;   /* tail: time since which every free body has been at rest, s
+    int overlap_pair[2];    /* the two bodies of that overlap */
+    double rest_since;      /* tail: time since which every free body has been at rest, s
                               (-1 while something moves) */
-    int at_rest;         /* until rest: 1 once the run ended at rest (rd_summary.at_rest) */
-    rd_runout_body *run; /* [nfree] runout state (runout.c) */
-    rd_ground ground;    /* the fixed surface from above (runout.c) */
+    int at_rest;            /* until rest: 1 once the run ended at rest (rd_summary.at_rest) */
+    rd_runout_body *run;    /* [nfree] runout state (runout.c) */
+    rd_ground ground;       /* the fixed surface from above (runout.c) */
+    struct rd_quiet *quiet; /* sc.quiet_stop: the motion's remaining peaks (quiet_end.c) */
     /* histories (history.c) */
     int nhist_col;  /* columns per history sample (time first) */
     int *hist_pair; /* [nhistories] pair index of a joint history, -1 before it exists */
@@ -494,12 +495,21 @@ void rd_energy_sample(rd_sim *s);
 void rd_energy_sample_end(rd_sim *s);
 
 /* rest.c: the free-vibration tail (`model solve time T tail D`) */
+#define RD_REST_HOLD 0.1 /* s a rest must last (the tail's and quiet_end.c's) */
 /* Longest the shaking stage runs, s: the duration; with a tail, the later of the duration and
  * the motion's end, plus the tail. */
 double rd_run_length(const rd_sim *s);
 /* rd_run_length, with the tail's rest watch reset: the run's end time. */
 double rd_rest_end(rd_sim *s);
 int rd_rest_reached(rd_sim *s);
+
+/* quiet_end.c: a sweep or threshold case ends once nothing left of the motion can move it */
+/* Prepare the remaining-peak tables (sc.quiet_stop; after rd_monitor_rest). 0, or -1 (memory). */
+int rd_quiet_begin(rd_sim *s);
+/* 1 once every free body has been at rest RD_REST_HOLD s and the motion left cannot lift or
+ * slide any of them (the time is kept: rd_sim_quiet_end). */
+int rd_quiet_reached(rd_sim *s);
+void rd_quiet_free(rd_sim *s);
 
 /* monitor.c */
 void rd_monitor_rest(rd_sim *s);

@@ -235,6 +235,7 @@ static int case_scenario(const rd_sweep_plan *p, long k, const char *dir, rd_sce
                                 p->axis[i].value[v]);
         if (rd_scenario_set(sc, a, err)) return -1;
     }
+    sc->quiet_stop = !p->full; /* engine/quiet_end.c */
     if (dir) snprintf(sc->output.path, sizeof sc->output.path, "%s/case-%06ld.h5", dir, k);
     return rd_scenario_validate(sc, err);
 }
@@ -476,6 +477,7 @@ void rd_sweep_run_case(const rd_sweep_plan *p, long k, rd_sweep_result *r)
         rd_summary s;
         rd_sim_summary(sim, &s);
         copy_summary(sim, &s, r);
+        r->quiet_end = rd_sim_quiet_end(sim);
         r->status = (int)st;
         if (rd_status_failed(st))
             snprintf(r->message, sizeof r->message, "%.199s", rd_sim_error(sim));

@@ -80,6 +80,9 @@ static const col_spec outcome_cols[] = {
     { "energy_residual", C_F64, R(energy_residual), 0, "1",
       "max |energy balance residual| / energy scale" },
     { "end_time", C_F64, R(end_time), 0, "s", "simulated time reached" },
+    { "quiet_end", C_F64, R(quiet_end), 0, "s",
+      "the case ended here: every body at rest, the motion left unable to lift or slide it "
+      "(-1: ran to its end; rockdem sweep --full)" },
     { "wall_seconds", C_F64, R(wall_seconds), 0, "s", "wall time of the case (setup and run)" },
     { "hash", C_U64, R(hash), 0, "", "FNV-1a 64 hash of the case overrides" },
     { "body_overturned", C_I32, R(b_overturned), 1, "1", "1 if the body overturned" },

@@ -38,6 +38,7 @@ static int dem_overturns(const rd_scenario *base, double amplitude, int *over, r
     sc->motion.horizontal.amplitude = amplitude;
     sc->output.interval = fmax(sc->output.interval, 0.05); /* a coarse sampling: no history kept */
     sc->overturn.stop = RD_OVERTURN_STOP_ANY;
+    sc->quiet_stop = 1; /* ends once at rest after the pulse (engine/quiet_end.c) */
     rd_sim *sim = rd_sim_create(sc, err);
     int rc = -1;
     if (sim) {

@@ -16,5 +16,5 @@ if nm "$BUILD/librockdem.a" 2>/dev/null | grep -q __asan_init; then
 fi
 make -s mpi BUILD="$BUILD" BIN="$BINDIR" SAN="$san" > "$T/mpi.log" 2>&1 || { cat "$T/mpi.log"; exit 1; }
 mpirun --allow-run-as-root --oversubscribe -n 2 "$BINDIR/rockdem-mpi" sweep "$DET_SCENE" --scales "$DET_SCALES" \
-    --directions "$DET_DIRECTIONS" -q --keep-runs "$T/runs" -o "$T/mpi.h5" >/dev/null || exit 1
+    --directions "$DET_DIRECTIONS" --full -q --keep-runs "$T/runs" -o "$T/mpi.h5" >/dev/null || exit 1
 det_check "MPI sweep (2 ranks)" "$(det_hash "$T"/runs/case-*.h5)"

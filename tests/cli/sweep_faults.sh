@@ -79,9 +79,9 @@ rc=0; "$BIN" sweep "$S" "${args[@]}" -o /nonexistent/rd/t.h5 2> "$T/out.err" || 
 [ "$rc" -eq 2 ]
 grep -q "/nonexistent/rd/t.h5: cannot create the table: No such file or directory" "$T/out.err"
 
-# 4. SIGKILL the coordinator: its two workers (running 600 s cases, about a minute of work
-#    each) leave within 3 s
-"$BIN" sweep "$S" --set model.duration=600 --scales 0.1g,0.2g -j 2 -q -o "$T/kill.h5" 2> /dev/null &
+# 4. SIGKILL the coordinator: its two workers (running 600 s cases to their end, --full: about
+#    a minute of work each) leave within 3 s
+"$BIN" sweep "$S" --set model.duration=600 --scales 0.1g,0.2g -j 2 --full -q -o "$T/kill.h5" 2> /dev/null &
 pid=$!
 for _ in $(seq 100); do [ "$(pgrep -P "$pid" | wc -l)" -ge 2 ] && break; sleep 0.05; done
 workers=$(pgrep -P "$pid" | tr '\n' ' ')
