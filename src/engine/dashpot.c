@@ -13,6 +13,7 @@
  */
 #include "engine/dashpot.h"
 #include "base/vec.h"
+#include "base/grow.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -23,21 +24,9 @@
     1e-14 /* a sweep that moves no body's velocity by more than this
                                    fraction of its size (|v| + |w| radius) ends the solve */
 
-static int grow(void **arr, int *cap, int n, size_t size)
-{
-    if (n <= *cap) return 0;
-    int c = *cap ? *cap : 16;
-    while (c < n) c *= 2;
-    void *p = realloc(*arr, (size_t)c * size);
-    if (!p) return -1;
-    *arr = p;
-    *cap = c;
-    return 0;
-}
-
 rd_dashpot *rd_dashpot_new(rd_dashpots *d)
 {
-    if (grow((void **)&d->e, &d->cap, d->n + 1, sizeof *d->e)) return NULL;
+    if (rd_grow((void **)&d->e, &d->cap, d->n + 1, sizeof *d->e)) return NULL;
     return &d->e[d->n++];
 }
 
@@ -108,8 +97,8 @@ static void chol6_solve(const double L[21], const double b[6], double x[6])
 /* Per body, the dashpots it takes part in (CSR; list[2 n ..) is the fill scratch). */
 static int body_lists(const rd_sim *s, rd_dashpots *d)
 {
-    if (grow((void **)&d->first, &d->cap_b, s->nb + 1, sizeof *d->first) ||
-        grow((void **)&d->list, &d->cap_l, 2 * d->n + s->nb, sizeof *d->list))
+    if (rd_grow((void **)&d->first, &d->cap_b, s->nb + 1, sizeof *d->first) ||
+        rd_grow((void **)&d->list, &d->cap_l, 2 * d->n + s->nb, sizeof *d->list))
         return -1;
     if (s->nb > d->cap_x) {
         void *xi = realloc(d->xi, (size_t)s->nb * sizeof *d->xi);

@@ -36,6 +36,7 @@
 #include "engine/dashpot.h"
 #include "contact/contact.h"
 #include "base/vec.h"
+#include "base/grow.h"
 
 #include <float.h>
 #include <math.h>
@@ -112,18 +113,6 @@ struct rd_surface {
     long stamp; /* surface steps taken */
 };
 
-static int grow(void **arr, int *cap, int n, size_t size)
-{
-    if (n <= *cap) return 0;
-    int c = *cap ? *cap : 16;
-    while (c < n) c *= 2;
-    void *p = realloc(*arr, (size_t)c * size);
-    if (!p) return -1;
-    *arr = p;
-    *cap = c;
-    return 0;
-}
-
 static uint64_t state_key(int pair, int plane, int face)
 {
     return ((uint64_t)pair << 42) | ((uint64_t)plane << 21) | (uint64_t)face;
@@ -163,7 +152,7 @@ static surf_state *state_of(struct rd_surface *S, uint64_t k)
         if (rehash(S, 2 * S->hcap)) return NULL;
         return state_of(S, k);
     }
-    if (grow((void **)&S->st, &S->cap_st, S->nst + 1, sizeof *S->st)) return NULL;
+    if (rd_grow((void **)&S->st, &S->cap_st, S->nst + 1, sizeof *S->st)) return NULL;
     surf_state *st = &S->st[S->nst];
     memset(st, 0, sizeof *st);
     st->key = k;
@@ -336,7 +325,7 @@ int rd_surface_init(rd_sim *s, rd_error *err)
         if (body_planes(&s->poly[i], &S->body[i], err, s->sc.bodies[i].name)) return -1;
         if (s->poly[i].nf > most) most = s->poly[i].nf;
     }
-    if (grow((void **)&S->pl, &S->cap_pl, most, sizeof *S->pl)) {
+    if (rd_grow((void **)&S->pl, &S->cap_pl, most, sizeof *S->pl)) {
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -535,7 +524,7 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     st->kn = j->kn;
     st->ks = j->ks;
     if (st->stamp != S->stamp) {
-        if (grow((void **)&S->on_next, &S->cap_on_next, S->non_next + 1, sizeof *S->on_next))
+        if (rd_grow((void **)&S->on_next, &S->cap_on_next, S->non_next + 1, sizeof *S->on_next))
             return -1;
         S->on_next[S->non_next++] = (int)(st - S->st);
         st->stamp = S->stamp;
@@ -570,7 +559,7 @@ static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, dou
     for (int e = B->plane_f0[P]; e < B->plane_f0[P + 1]; e++) {
         const int f = B->plane_face[e], nv = Pi->flen[f];
         const double(*v2)[2] = B->f2 + B->f2_0[f];
-        if (grow((void **)&S->ins, &S->cap_ins, n + 2, sizeof *S->ins)) return -1;
+        if (rd_grow((void **)&S->ins, &S->cap_ins, n + 2, sizeof *S->ins)) return -1;
         rd_poly2 *a = &S->ins[n], *b = &S->ins[n + 1];
         a->n = nv;
         memcpy(a->p, v2, (size_t)nv * sizeof *v2);
@@ -612,7 +601,7 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
     int n = 0;
     *m = (rd_moments){ 0, 0, 0, 0, 0, 0 };
     for (int e = 0; e < nin; e++) {
-        if (grow((void **)&S->comp, &S->cap_comp, n + 2, sizeof *S->comp)) return -1;
+        if (rd_grow((void **)&S->comp, &S->cap_comp, n + 2, sizeof *S->comp)) return -1;
         rd_poly2 *a = &S->comp[n], *b = &S->comp[n + 1];
         poly_copy(a, &S->ins[e]);
         int alive = 1;
@@ -735,7 +724,7 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
         S->seen_stamp = 1;
     }
     int n = 0;
-    if (grow((void **)&S->ord, &S->cap_ord, S->cand.n, sizeof *S->ord)) return -1;
+    if (rd_grow((void **)&S->ord, &S->cap_ord, S->cand.n, sizeof *S->ord)) return -1;
     for (int k = 0; k < S->cand.n; k++) {
         const int P = B->plane_of[S->cand.ab[k][0]];
         if (B->seen[P] == S->seen_stamp) continue;
@@ -850,8 +839,8 @@ static void plane_in(const surf_body *Br, int Q, const double rot[9], const doub
 /* One piece (a convex polygon of plane P's coordinates) into the pieces store, group (P, Q). */
 static int keep_piece(struct rd_surface *S, int *n, const rd_poly2 *p, int P, int Q)
 {
-    if (grow((void **)&S->comp, &S->cap_comp, *n + 2, sizeof *S->comp) ||
-        grow((void **)&S->pkey, &S->cap_pkey, 2 * (*n + 1), sizeof *S->pkey))
+    if (rd_grow((void **)&S->comp, &S->cap_comp, *n + 2, sizeof *S->comp) ||
+        rd_grow((void **)&S->pkey, &S->cap_pkey, 2 * (*n + 1), sizeof *S->pkey))
         return -1;
     poly_copy(&S->comp[*n], p);
     S->pkey[2 * *n] = P;
@@ -1106,8 +1095,8 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     if (rd_bvh_overlaps(&B->tree, &Br->tree, rot, tr, band, &S->cand)) return -1;
     /* the facing and depth tests; the survivors in place, as mesh_cand */
     mesh_cand *mc = (mesh_cand *)S->ord;
-    if (grow((void **)&S->ord, &S->cap_ord,
-             (int)(sizeof(mesh_cand) / sizeof(int)) * (S->cand.n + 1), sizeof *S->ord))
+    if (rd_grow((void **)&S->ord, &S->cap_ord,
+                (int)(sizeof(mesh_cand) / sizeof(int)) * (S->cand.n + 1), sizeof *S->ord))
         return -1;
     mc = (mesh_cand *)S->ord;
     int nc = 0;
