@@ -7,6 +7,7 @@
 #include "geometry/geom.h"
 #include "geometry/terrain.h"
 #include "base/path.h"
+#include "base/grow.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -42,18 +43,6 @@ typedef struct mesh {
  * coarser rounding moves contacts by more than the band. */
 #define MESH_F32_REL_MAX 1e-3
 
-static int grow(void **a, int *cap, int need, size_t size)
-{
-    if (need <= *cap) return 0;
-    int c = *cap ? *cap : 256;
-    while (c < need) c *= 2;
-    void *n = realloc(*a, (size_t)c * size);
-    if (!n) return -1;
-    *a = n;
-    *cap = c;
-    return 0;
-}
-
 /* Add vertex x read on `line` (0: a binary file; the message then names the vertex index). */
 static int add_vertex(mesh *m, const double x[3], int line, rd_error *err)
 {
@@ -65,7 +54,7 @@ static int add_vertex(mesh *m, const double x[3], int line, rd_error *err)
                 err, "%s%s: vertex %d: coordinate %c = %g %s", m->path, at, m->nv, 'x' + k, x[k],
                 isfinite(x[k]) ? "m is beyond the 1e9 m accepted" : "is not a finite number");
         }
-    if (grow((void **)&m->v, &m->vcap, m->nv + 1, sizeof *m->v))
+    if (rd_grow((void **)&m->v, &m->vcap, m->nv + 1, sizeof *m->v))
         return rd_error_set(err, "%s: out of memory", m->path);
     memcpy(m->v[m->nv++], x, sizeof *m->v);
     return 0;
@@ -73,7 +62,7 @@ static int add_vertex(mesh *m, const double x[3], int line, rd_error *err)
 
 static int add_index(mesh *m, int i, rd_error *err)
 {
-    if (grow((void **)&m->idx, &m->icap, m->ni + 1, sizeof *m->idx))
+    if (rd_grow((void **)&m->idx, &m->icap, m->ni + 1, sizeof *m->idx))
         return rd_error_set(err, "%s: out of memory", m->path);
     m->idx[m->ni++] = i;
     return 0;
@@ -82,8 +71,8 @@ static int add_index(mesh *m, int i, rd_error *err)
 /* End a face of len vertices read on `line` (0: binary). */
 static int end_face(mesh *m, int len, int line, rd_error *err)
 {
-    if (grow((void **)&m->flen, &m->fcap, m->nf + 1, sizeof *m->flen) ||
-        grow((void **)&m->fline, &m->flcap, m->nf + 1, sizeof *m->fline))
+    if (rd_grow((void **)&m->flen, &m->fcap, m->nf + 1, sizeof *m->flen) ||
+        rd_grow((void **)&m->fline, &m->flcap, m->nf + 1, sizeof *m->fline))
         return rd_error_set(err, "%s: out of memory", m->path);
     m->fline[m->nf] = line;
     m->flen[m->nf++] = len;
@@ -521,7 +510,7 @@ static int stl_merge(mesh *m, rd_error *err)
     qsort(order, (size_t)n, sizeof *order, by_xyz);
     int nu = 0, rc = 0;
     m->ni = 0;
-    if (grow((void **)&m->idx, &m->icap, n, sizeof *m->idx))
+    if (rd_grow((void **)&m->idx, &m->icap, n, sizeof *m->idx))
         rc = rd_error_set(err, "%s: out of memory", m->path);
     for (int i = 0; i < n && rc == 0; i++) {
         if (i == 0 || by_xyz(&order[i - 1], &order[i])) memcpy(u[nu++], m->v[order[i]], sizeof *u);
@@ -600,7 +589,7 @@ static int stl_ascii(mesh *m, const char *buf, rd_error *err)
                                     line, facet, corners);
             corners = 0;
             facet++;
-            if (grow((void **)&m->tline, &m->tcap, m->nt + 1, sizeof *m->tline))
+            if (rd_grow((void **)&m->tline, &m->tcap, m->nt + 1, sizeof *m->tline))
                 return rd_error_set(err, "%s: out of memory", m->path);
             m->tline[m->nt++] = line;
         }
