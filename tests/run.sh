@@ -91,18 +91,47 @@ tally() {
     pass=$((pass + p)); fail=$((fail + f)); skip=$((skip + s)); xfail=$((xfail + x))
 }
 
-for t in "$BUILD"/tests/test_*; do
-    [ -x "$t" ] || continue
-    out=$("$t" 2>&1); rc=$?
-    tally "$(basename "$t")" "$out" "$(classify_cmocka "$(basename "$t")" "$out" "$rc")"
-done
+# Every test runs in its own scratch directory ($RD_TMP/NAME), RD_JOBS at a time (default: one
+# per core); a script with the line "# rd-test: alone" (it times itself or builds) runs after the
+# others, by itself. Results are tallied in the listed order, whatever order they finished in.
+JOBS=${RD_JOBS:-$(nproc)}
+OUT="$RD_TMP/.results"; mkdir -p "$OUT"
+tests=(); alone=()
+for t in "$BUILD"/tests/test_*; do [ -x "$t" ] && tests+=("$t"); done
 for s in tests/cli/*.sh; do
     [ "${RD_TESTS:-all}" = unit ] && break   # RD_TESTS=unit: the CMocka binaries only
     [ -f "$s" ] || continue
-    out=$(bash "$s" 2>&1); rc=$?
-    lines=$(classify_script "$(basename "$s")" "$out" "$rc")
-    tally "$(basename "$s")" "$out" "$lines"
-    case $lines in fail*) printf '%s\n' "$out" | tail -30 ;; esac
+    tests+=("$s")
+    grep -q '^# rd-test: alone' "$s" && alone+=("$s")
+done
+
+# run_one PATH: its output in $OUT/NAME.out, its exit status in .rc, its wall seconds in .s
+run_one() {
+    local name start; name=$(basename "$1"); start=$(date +%s)
+    mkdir -p "$RD_TMP/$name"
+    case $1 in
+        *.sh) RD_TMP="$RD_TMP/$name" bash "$1" > "$OUT/$name.out" 2>&1 ;;
+        *) "$1" > "$OUT/$name.out" 2>&1 ;;
+    esac
+    echo $? > "$OUT/$name.rc"; echo $(($(date +%s) - start)) > "$OUT/$name.s"
+}
+is_alone() { local a; for a in "${alone[@]}"; do [ "$a" = "$1" ] && return 0; done; return 1; }
+for t in "${tests[@]}"; do
+    is_alone "$t" && continue
+    while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n; done
+    run_one "$t" &
+done
+wait
+for t in "${alone[@]}"; do run_one "$t"; done
+
+for t in "${tests[@]}"; do
+    name=$(basename "$t"); out=$(cat "$OUT/$name.out"); rc=$(cat "$OUT/$name.rc")
+    case $t in
+        *.sh) lines=$(classify_script "$name" "$out" "$rc")
+              tally "$name ($(cat "$OUT/$name.s") s)" "$out" "$lines"
+              case $lines in fail*) printf '%s\n' "$out" | tail -30 ;; esac ;;
+        *) tally "$name ($(cat "$OUT/$name.s") s)" "$out" "$(classify_cmocka "$name" "$out" "$rc")" ;;
+    esac
 done
 summary="$skip skipped"
 [ "$skip" -gt 0 ] && summary="$summary ($(printf '%s; ' "${skips[@]}" | sed 's/; $//'))"

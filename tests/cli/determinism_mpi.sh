@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# rd-test: alone
 # Determinism over MPI: the sweep of tests/cli/determinism.sh run by rockdem-mpi on 2 ranks
 # (rank 0 coordinates; rank 0 and rank 1 both run cases) gives the pinned DET_HASH. Skipped (exit 77)
 # without mpicc/mpirun.

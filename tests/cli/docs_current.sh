@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# rd-test: alone
 # The docs' generated blocks and figures are what the program prints and draws now
 # (tools/docgen.py check): the README's quick-start output, docs/CONTACT.md's preset restitutions
 # and the defaults' row of its layout table, docs/FRAGILITY.md's worked-example table against

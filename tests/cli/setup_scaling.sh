@@ -1,4 +1,5 @@
 #!/bin/bash
+# rd-test: alone
 # Setup and output of a run file grow linearly with the bodies (issue 44): bench/wall.py walls
 # of 250 and 1,000 bricks with `model settle off` and a 1e-4 s solve (a few steps: the time is
 # the scene's setup and the HDF5 file). Four times the bricks must cost less than 8 times the

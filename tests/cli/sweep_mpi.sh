@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# rd-test: alone
 # rockdem-mpi: the same sweep over 2 MPI ranks (rank 0 writes the table; both ranks run cases)
 # gives exactly the outcome columns of the single-machine sweep. Skipped (exit 77, counted as
 # skipped by tests/run.sh) without mpicc/mpirun.
