@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "io/io_hdf5.h"
+#include "io/io_bodies.h"
 
 #define NB       2
 #define NSAMPLES 1000
@@ -41,18 +42,11 @@ static rd_h5_meta make_meta(rd_h5_body *bodies)
 {
     static const char *names[NB] = { "left", "right" };
     for (int i = 0; i < NB; i++) {
-        bodies[i] = (rd_h5_body){ names[i],
-                                  2000.0 + i,
-                                  { 1, 2, 3 },
-                                  { 1, 1, 2 },
-                                  0.4636 + i,
-                                  8,
-                                  &cube_vertices[0][0],
-                                  12,
-                                  &cube_faces[0][0],
-                                  0,
-                                  { 0 },
-                                  { 0 } };
+        bodies[i] = (rd_h5_body){
+            names[i], 2000.0 + i,           { 1, 2, 3 }, { 1, 1, 2 },       0.4636 + i,
+            8,        &cube_vertices[0][0], 12,          &cube_faces[0][0], 0,
+            { 0 },    { 1, 0, 0, 0 }
+        };
     }
     return (rd_h5_meta){ SCENARIO,
                          "test.dat",
@@ -366,10 +360,10 @@ static void check_root(hid_t f)
     check_enum_attr(f, "/", "spacing_rule", "fixed");
     check_str_attr(f, "/", "spacing_units", "m");
     check_str_attr(f, "/", "kn_units", "Pa/m");
-    check_str_attr(f, "/", "Conventions", "rockdem-2");
+    check_str_attr(f, "/", "Conventions", "rockdem-3");
     int layout = 0;
     assert_true(H5LTget_attribute_int(f, "/", "layout_version", &layout) >= 0);
-    assert_int_equal(layout, 2);
+    assert_int_equal(layout, 3);
     check_str_attr(f, "/time", "units", "s");
     check_str_attr(f, "/energy/kinetic", "units", "J");
     check_str_attr(f, "/position", "long_name", "centre of mass, ground frame");
@@ -392,24 +386,46 @@ static void check_bodies(hid_t f)
     assert_string_equal(names[1], "right");
     H5free_memory(names[0]);
     H5free_memory(names[1]);
-    double v[3];
-    assert_true(attr_d(f, "/bodies/right", "mass") == 2001.0);
+    /* one row per block (left, right), the geometry concatenated in block order */
+    double *v;
+    hsize_t three = 3, four = 4;
+    assert_int_equal(read_all(f, "/bodies/mass", &v, 1, NULL), NB);
+    assert_true(v[0] == 2000.0 && v[1] == 2001.0);
+    free(v);
     /* the summary's alpha (support polygon at rest) replaces the brick estimate 1.4636 */
-    assert_true(attr_d(f, "/bodies/right", "alpha") == 1.5);
-    assert_true(H5LTget_attribute_double(f, "/bodies/left", "inertia_principal", v) >= 0);
-    assert_true(v[0] == 1 && v[1] == 2 && v[2] == 3);
-    assert_true(H5LTget_attribute_double(f, "/bodies/left", "size", v) >= 0);
-    assert_true(v[0] == 1 && v[1] == 1 && v[2] == 2);
-    int fixed = -1, faces[12][3];
-    assert_true(H5LTget_attribute_int(f, "/bodies/left", "fixed", &fixed) >= 0);
-    assert_int_equal(fixed, 0);
-    double *vert;
-    hsize_t three = 3;
-    assert_int_equal(read_all(f, "/bodies/left/vertices", &vert, 2, &three), 8);
-    assert_memory_equal(vert, cube_vertices, sizeof cube_vertices);
-    free(vert);
-    assert_true(H5LTread_dataset_int(f, "/bodies/right/faces", &faces[0][0]) >= 0);
-    assert_memory_equal(faces, cube_faces, sizeof cube_faces);
+    assert_int_equal(read_all(f, "/bodies/alpha", &v, 1, NULL), NB);
+    assert_true(v[0] == 0.5 && v[1] == 1.5);
+    free(v);
+    assert_int_equal(read_all(f, "/bodies/inertia_principal", &v, 2, &three), NB);
+    assert_true(v[3] == 1 && v[4] == 2 && v[5] == 3);
+    free(v);
+    /* the sizes at rest replace those given at open (1 1 2) */
+    assert_int_equal(read_all(f, "/bodies/size", &v, 2, &three), NB);
+    assert_true(v[0] == 1.5 && v[1] == 1.5 && v[2] == 2 && v[3] == 2.5);
+    free(v);
+    assert_int_equal(read_all(f, "/bodies/quaternion", &v, 2, &four), NB);
+    assert_true(v[0] == 1 && v[4] == 1);
+    free(v);
+    int ints[2 * NB];
+    assert_true(H5LTread_dataset_int(f, "/bodies/fixed", ints) >= 0);
+    assert_true(ints[0] == 0 && ints[1] == 0);
+    assert_true(H5LTread_dataset_int(f, "/bodies/vertex_count", ints) >= 0);
+    assert_true(ints[0] == 8 && ints[1] == 8);
+    check_str_attr(f, "/bodies/vertex_count", "sample_dimension", "vertex");
+    assert_int_equal(read_all(f, "/bodies/vertices", &v, 2, &three), 2 * 8);
+    assert_memory_equal(v, cube_vertices, sizeof cube_vertices);
+    assert_memory_equal(v + 24, cube_vertices, sizeof cube_vertices);
+    free(v);
+    int faces[2 * 12][3];
+    assert_true(H5LTread_dataset_int(f, "/bodies/faces", &faces[0][0]) >= 0);
+    assert_memory_equal(faces[12], cube_faces, sizeof cube_faces); /* local indices */
+    /* precariousness: left 2 rows, right 1 */
+    assert_true(H5LTread_dataset_int(f, "/bodies/lean_count", ints) >= 0);
+    assert_true(ints[0] == 2 && ints[1] == 1);
+    check_str_attr(f, "/bodies/lean_count", "sample_dimension", "lean");
+    assert_int_equal(read_all(f, "/bodies/precariousness", &v, 2, &three), 3);
+    assert_true(v[0] == 0 && v[4] == 0.5 && v[6] == 3 && v[8] == 9.81);
+    free(v);
 }
 
 /* /position must be chunked with shuffle and deflate and unlimited in time. */
@@ -492,6 +508,11 @@ static void test_roundtrip(void **state)
     rd_error err = { { 0 } };
     rd_h5 *h = rd_h5_open(fx->path, &meta, &err);
     assert_non_null(h);
+    static const double prec_left[2][3] = { { 0, 0.5, 5 }, { 3.14, 0.5, 5 } };
+    static const double prec_right[1][3] = { { 3, 1, 9.81 } };
+    rd_h5_rest_body rest[NB] = { { { 1.5, 1.5, 2 }, 2, &prec_left[0][0] },
+                                 { { 2.5, 2.5, 2 }, 1, &prec_right[0][0] } };
+    assert_int_equal(rd_h5_bodies_rest(h, rest, NB, &err), 0);
     append_range(h, 0, 400);
     assert_int_equal(rd_h5_event(h, 1.25, 0, "uplift", 0.001, &err), 0);
     assert_int_equal(rd_h5_event(h, 2.5, 1, "overturn", 1.6, &err), 0);

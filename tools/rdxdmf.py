@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """rdxdmf — an XDMF sidecar so ParaView animates the bodies of a rockdem run: RUN.xmf (one grid
-per output step in a temporal collection: the bodies' triangles from /bodies/<name>/faces) and
+per output step in a temporal collection: the bodies' triangles from /bodies/faces) and
 its companion RUN.vis.h5 holding the world vertex coordinates of every step (/step_<k>/xyz),
 computed as position + R(quaternion) * body-frame vertices. Open RUN.xmf in ParaView."""
 import os

@@ -16,6 +16,8 @@ import h5py
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from rdtools.bodies import Bodies  # tools/ is this script's folder
+
 
 FIXED = "(fixed base)"   # the lower side of the lowest free body's joint
 
@@ -26,7 +28,8 @@ def joint_slips(path):
     with h5py.File(path, "r") as f:
         x, q = f["position"][:], f["quaternion"][:]
         names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["bodies"]["names"][:]]
-        verts = [f["bodies"][n]["vertices"][:] for n in names]
+        bodies = Bodies(f)
+        verts = [bodies.vertices(n) for n in names]
     free = list(range(x.shape[1]))  # /position holds the free bodies, in output order
     rot = [Rotation.from_quat(np.c_[q[:, k, 1], q[:, k, 2], q[:, k, 3], q[:, k, 0]]) for k in free]
     out = []

@@ -12,13 +12,15 @@ import h5py
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from rdtools.bodies import Bodies  # tools/ is this script's folder
+
 
 def main(path):
     with h5py.File(path, "r") as f:
         x = f["position"][:, 0]
         q = f["quaternion"][:, 0]
-        name = [k for k in f["bodies"] if isinstance(f["bodies"][k], h5py.Group)][0]
-        verts = f["bodies"][name]["vertices"][:]
+        bodies = Bodies(f)
+        verts = bodies.vertices(bodies.names[0])  # the first free body
     rot = Rotation.from_quat(np.c_[q[:, 1], q[:, 2], q[:, 3], q[:, 0]])
     world = np.stack([x + rot.apply(v) for v in verts], axis=1)
     hop = world[:, :, 2].min(axis=1).max()

@@ -18,10 +18,11 @@ export TMPDIR=${SLURM_TMPDIR:-${TMPDIR:-/tmp}}
 # the fragility example of the README: 6 record seeds x 2 directions x 6 PGA levels = 72 runs
 # (a real study gives --axis motion.seed=1,...,140 and the 19 levels and 8 directions it needs)
 SCENE=scenarios/pbr_fragility.dat
-TABLE=pbr_sweep-$SLURM_JOB_ID.h5
+TABLE=${TABLE:-pbr_sweep-$SLURM_JOB_ID.h5}   # resume: TABLE=<the earlier table> sbatch ...
 # srun starts the ranks under Slurm's own launcher (mpirun -n $SLURM_NTASKS does the same where
 # the MPI is not built with Slurm's PMI support). An interrupted job (scancel, the time limit)
-# keeps every finished case: resubmit with the same TABLE to resume (give it a fixed name).
+# keeps every finished case: resubmit with TABLE set to its table to resume.
+# tests/cli/slurm_script.sh runs this script under a stand-in srun (mpirun on 2 ranks).
 srun bin/rockdem-mpi sweep "$SCENE" --axis motion.seed=1,2,3,4,5,6 --directions 0,90 \
     --scales 0.15g,0.25g,0.35g,0.5g,0.7g,1.0g -q -o "$TABLE"
 echo "table: $TABLE (tools/rdfragility.py reads it: docs/FRAGILITY.md)"

@@ -19,13 +19,87 @@
 #define RD_CHECK_WALL_MAX 1.0  /* ... or fewer, when they take longer than this, s */
 #define RD_CHECK_PLAN_TOL 1e-9 /* overlap and level tolerance of the plan boxes, per m of size */
 
-/* Does free body j stand on body i, directly or through the bodies under it (at rest)? */
-static int stands_on(const rd_sim *s, int j, int i)
+/* A list of bodies per body, in ascending order: body i's are member[start[i] .. start[i+1]). */
+typedef struct body_lists {
+    int *start; /* [nb + 1] */
+    int *member;
+} body_lists;
+
+static void lists_free(body_lists *l)
 {
-    for (int n = 0; n < s->nb && j >= 0 && !s->fixed[j]; n++) {
-        j = s->watch[s->free_of[j]].rests_on;
-        if (j == i) return 1;
+    free(l->start);
+    free(l->member);
+}
+
+/* Walks free body j's chain of supports at rest (what it rests on, what that rests on, ... to
+ * a fixed body, nothing, or nb steps: a cycle), calling back each body once: the bodies j
+ * stands on, directly or through the bodies under it. fill 0 counts into start, 1 appends. */
+static void chain_visit(const rd_sim *s, int j, int *mark, body_lists *l, int fill)
+{
+    for (int n = 0, a = j; n < s->nb && a >= 0 && !s->fixed[a]; n++) {
+        a = s->watch[s->free_of[a]].rests_on;
+        if (a < 0 || mark[a] == j) continue;
+        mark[a] = j;
+        if (fill)
+            l->member[l->start[a + 1]++] = j;
+        else
+            l->start[a + 1]++;
     }
+}
+
+/* Each body's tower: itself (free) and every free body that stands on it, ascending: one pass
+ * over the chains, O(bodies x courses), where asking each pair was quadratic (a 10,000-brick
+ * wall's check). The sums over a tower keep the order of a loop over all bodies. */
+static int towers(const rd_sim *s, body_lists *l)
+{
+    l->start = calloc((size_t)s->nb + 1, sizeof *l->start);
+    int *mark = malloc(sizeof *mark * (size_t)(s->nb + 1));
+    l->member = NULL;
+    if (!l->start || !mark) {
+        free(mark);
+        return -1;
+    }
+    for (int fill = 0; fill < 2; fill++) {
+        for (int i = 0; i < s->nb; i++) mark[i] = -1;
+        for (int j = 0; j < s->nb; j++) {
+            if (s->fixed[j]) continue;
+            mark[j] = j;
+            if (fill)
+                l->member[l->start[j + 1]++] = j;
+            else
+                l->start[j + 1]++;
+            chain_visit(s, j, mark, l, fill);
+        }
+        if (fill) break;
+        for (int i = 0; i < s->nb; i++) l->start[i + 1] += l->start[i];
+        l->member = malloc(sizeof *l->member * (size_t)(l->start[s->nb] + 1));
+        if (!l->member) break;
+        for (int i = s->nb; i > 0; i--) l->start[i] = l->start[i - 1]; /* fill from each start */
+        l->start[0] = 0;
+    }
+    free(mark);
+    return l->member ? 0 : -1;
+}
+
+/* Each body's contact pairs, ascending. */
+static int pair_lists(const rd_sim *s, body_lists *l)
+{
+    l->start = calloc((size_t)s->nb + 1, sizeof *l->start);
+    l->member = malloc(sizeof *l->member * (size_t)(2 * s->npair + 1));
+    if (!l->start || !l->member) return -1;
+    for (int p = 0; p < s->npair; p++) {
+        l->start[s->pair[p].a + 1]++;
+        if (s->pair[p].b != s->pair[p].a) l->start[s->pair[p].b + 1]++;
+    }
+    for (int i = 0; i < s->nb; i++) l->start[i + 1] += l->start[i];
+    int *next = malloc(sizeof *next * (size_t)(s->nb + 1));
+    if (!next) return -1;
+    memcpy(next, l->start, sizeof *next * (size_t)s->nb);
+    for (int p = 0; p < s->npair; p++) {
+        l->member[next[s->pair[p].a]++] = p;
+        if (s->pair[p].b != s->pair[p].a) l->member[next[s->pair[p].b]++] = p;
+    }
+    free(next);
     return 0;
 }
 
@@ -35,16 +109,16 @@ static int stands_on(const rd_sim *s, int j, int i)
  * I_O sums each body's inertia about the edge's axis a = (-dy, dx, 0) through its centre
  * (principal moments I_k times (a in body axes)_k^2) and m_j r_j^2 (r_j its distance to the
  * edge line). */
-static double pivot_frequency(const rd_sim *s, int i, const double com[3], double m, double dx,
-                              double dy, double alpha, double *R)
+static double pivot_frequency(const rd_sim *s, const body_lists *tw, int i, const double com[3],
+                              double m, double dx, double dy, double alpha, double *R)
 {
     const double a[3] = { -dy, dx, 0 };
     const double *seat = s->watch[s->free_of[i]].seat; /* seat . x = seat[3] */
     double h = com[2] -
                (seat[3] - seat[0] * com[0] - seat[1] * com[1]) / seat[2]; /* height over the seat */
     double d = h * tan(alpha), P[3] = { com[0] + d * dx, com[1] + d * dy, com[2] - h }, io = 0;
-    for (int j = 0; j < s->nb; j++) {
-        if (!(j == i || (!s->fixed[j] && stands_on(s, j, i)))) continue;
+    for (int t = tw->start[i]; t < tw->start[i + 1]; t++) {
+        const int j = tw->member[t];
         double ab[3], r[3];
         rd_mat_tvec(s->R[j], a, ab);
         for (int k = 0; k < 3; k++) io += s->inertia[j][k] * ab[k] * ab[k];
@@ -60,17 +134,17 @@ static double pivot_frequency(const rd_sim *s, int i, const double com[3], doubl
 /* Body i's tipping angles along +- the shaking direction: its own, and with everything that
  * stands on it as one rigid assembly (a drum column, a stack or a statue on its plinth tips
  * first as a whole, at a smaller angle than any one of its parts). */
-static void shaking_alphas(const rd_sim *s, int i, rd_check_body *cb)
+static void shaking_alphas(const rd_sim *s, const body_lists *tw, int i, rd_check_body *cb)
 {
     const double psi =
         s->sc.motion.horizontal.kind != RD_PULSE_NONE ? s->sc.motion.horizontal.direction : 0.0;
     const double dx = cos(psi), dy = sin(psi);
     double com[3] = { 0, 0, 0 }, m = 0;
-    for (int j = 0; j < s->nb; j++)
-        if (j == i || (!s->fixed[j] && stands_on(s, j, i))) {
-            rd_axpy(s->mass[j], s->x[j], com);
-            m += s->mass[j];
-        }
+    for (int t = tw->start[i]; t < tw->start[i + 1]; t++) {
+        const int j = tw->member[t];
+        rd_axpy(s->mass[j], s->x[j], com);
+        m += s->mass[j];
+    }
     for (int k = 0; k < 3; k++) com[k] /= m;
     int k = s->free_of[i];
     cb->alpha_shaking = fmin(rd_monitor_alpha_at(s, k, s->x[i], dx, dy),
@@ -79,7 +153,8 @@ static void shaking_alphas(const rd_sim *s, int i, rd_check_body *cb)
            an = rd_monitor_alpha_at(s, k, com, -dx, -dy);
     cb->alpha_tower = fmin(ap, an);
     double sgn = ap <= an ? 1.0 : -1.0; /* the side it tips to first */
-    cb->p_tower = pivot_frequency(s, i, com, m, sgn * dx, sgn * dy, cb->alpha_tower, &cb->R_tower);
+    cb->p_tower =
+        pivot_frequency(s, tw, i, com, m, sgn * dx, sgn * dy, cb->alpha_tower, &cb->R_tower);
     cb->lean_tower = atan2(sgn * dy, sgn * dx);
 }
 
@@ -142,14 +217,13 @@ static int below(const rd_sim *s, const double (*box)[6], int i, double *gap)
 
 /* What body i touches as placed: the lowest partner with active points, and the deepest
  * overlap with a body near it (overlap.c: a vertex of one inside the other). */
-static void touching(const rd_sim *s, int i, rd_check_body *cb)
+static void touching(const rd_sim *s, const body_lists *pairs, int i, rd_check_body *cb)
 {
     cb->rests_on = -1;
     cb->overlaps = -1;
     cb->overlap = 0;
-    for (int p = 0; p < s->npair; p++) {
-        const rd_pair *pr = &s->pair[p];
-        if (pr->a != i && pr->b != i) continue;
+    for (int t = pairs->start[i]; t < pairs->start[i + 1]; t++) {
+        const rd_pair *pr = &s->pair[pairs->member[t]];
         int other = pr->a == i ? pr->b : pr->a, active = 0;
         double depth = rd_overlap_depth(s, i, other);
         if (depth > cb->overlap) {
@@ -268,6 +342,15 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
     for (int i = 0; i < s->nb; i++) extent(s, i, box[i], box[i] + 3);
     s->sc.settle.enabled = 0; /* as placed: support polygons from the lowest vertices */
     rd_monitor_rest(s);
+    body_lists tw = { 0 }, pairs = { 0 };
+    if (towers(s, &tw) || pair_lists(probe, &pairs)) {
+        lists_free(&tw);
+        lists_free(&pairs);
+        if (probe != s) rd_sim_free(probe);
+        rd_sim_free(s);
+        free(box);
+        return rd_error_set(err, "out of memory");
+    }
     for (int i = 0; i < s->nb; i++) {
         rd_check_body *cb = &rep->body[i];
         const rd_body_def *d = &s->sc.bodies[i];
@@ -280,7 +363,7 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
         extent(s, i, lo, hi);
         for (int k = 0; k < 3; k++) cb->extent[k] = hi[k] - lo[k];
         cb->npoints = s->pt0[i + 1] - s->pt0[i];
-        touching(probe, i, cb);
+        touching(probe, &pairs, i, cb);
         cb->below = s->fixed[i] ? -1 : below(s, (const double(*)[6])box, i, &cb->gap);
         if (cb->rests_on < 0 && cb->below >= 0 && fabs(cb->gap) <= 1e-9 * (1.0 + s->poly[i].radius))
             cb->rests_on = cb->below; /* placed exactly on it: a closed joint at zero force */
@@ -288,9 +371,11 @@ int rd_check_scene(const rd_scenario *sc, rd_check_report *rep, rd_error *err)
             const rd_watch *w = &s->watch[s->free_of[i]];
             cb->alpha_min = w->sum->alpha_min;
             cb->alpha = w->sum->alpha;
-            shaking_alphas(s, i, cb);
+            shaking_alphas(s, &tw, i, cb);
         }
     }
+    lists_free(&tw);
+    lists_free(&pairs);
     if (probe != s) rd_sim_free(probe);
     free(box);
     static_sinks(s, rep);

@@ -25,6 +25,7 @@
  * UTF-8 and enumerations (run status, event type, spacing rule) are HDF5 enums.
  */
 #include "io/io_hdf5.h"
+#include "io/io_bodies.h"
 #include "io/io_table.h"
 #include "io/h5_quiet.h"
 #include "base/fault.h"
@@ -45,7 +46,8 @@
 #define RD_H5_BUF           256 /* rows buffered between writes; also the chunk length in time */
 #define RD_H5_DEFLATE       4   /* deflate level */
 #define RD_H5_SERNAME       48  /* bytes of a series path */
-#define RD_H5_LAYOUT        2   /* layout_version: 2 = dimension scales, enums, /events group */
+/* layout_version: 3 = /bodies as tables over `block`; 2 = dimension scales, enums, /events */
+#define RD_H5_LAYOUT        3
 #define RD_H5_STATUS        16  /* bytes of the root `status` attribute, NUL included */
 #define RD_H5_STATUS_MSG    512 /* bytes of the root `status_message` attribute */
 /* Space reserved before each batch of writes: the batch's raw size plus an eighth (shuffle keeps
@@ -53,10 +55,6 @@
  * deflateBound) plus 64 KiB for metadata (attributes, chunk-index B-tree nodes of every
  * dataset, object-header and heap updates). */
 #define RD_H5_RESERVE_FIXED (64 << 10)
-/* Bytes a body's group takes in the file besides its vertex and triangle tables, generously:
- * its object headers, about 20 attributes, the tables' dimension scales (a 33-body drum column's
- * file is 180 KB after opening, about 4 KB per body over a 2-body scene's). */
-#define RD_H5_BODY_BYTES    (8 << 10)
 /* Bytes one event can take on disk (its columns, 25 bytes, and its body name in the global
  * heap of variable-length strings, with the heap's per-object overhead), generously. */
 #define RD_H5_EVENT_BYTES   128
@@ -187,7 +185,6 @@ struct rd_h5 {
     struct stat id; /* device and inode of the file at open: is it still at path? */
     int broken;     /* a write failed: nothing more is written; fault holds why */
     char fault[RD_ERROR_MAX];
-    struct ref_list *later; /* [DIM_COUNT] while the bodies are written (attach_later), else NULL */
 };
 
 /* ---- types ---- */
@@ -366,145 +363,13 @@ static hid_t scale_create(const rd_h5 *h, hid_t loc, const char *name, hid_t typ
     return H5I_INVALID_HID;
 }
 
-/* A scale of the indices 0..n-1 (an axis with no better labels). */
-static hid_t index_scale(const rd_h5 *h, hid_t loc, const char *name, int n, const char *long_name,
-                         rd_error *err)
-{
-    int *ix = malloc((size_t)(n > 0 ? n : 1) * sizeof *ix);
-    if (!ix) {
-        rd_error_set(err, "%s: out of memory", h->path);
-        return H5I_INVALID_HID;
-    }
-    for (int i = 0; i < n; i++) ix[i] = i;
-    hid_t d = scale_create(h, loc, name, H5T_NATIVE_INT, (hsize_t)n, ix, long_name, err);
-    free(ix);
-    return d;
-}
-
-/* One entry of a dimension scale's REFERENCE_LIST attribute: HDF5 1.10's ds_list_t (H5DS
- * writes it with this compound type: "dataset" an object reference, "dimension" an int). */
-typedef struct ds_ref {
-    hobj_ref_t ref;       /* the dataset the scale is attached to */
-    unsigned int dim_idx; /* the axis of that dataset */
-} ds_ref;
-
-/* The attachments to a root scale gathered while the bodies are written. H5DSattach_scale
- * reads and rewrites a scale's whole REFERENCE_LIST on every attach: with every body's vertex
- * and triangle tables on the shared xyz and corner scales that is quadratic in the bodies (5
- * CPU-s of a 10,000-brick wall's setup, perf). attach_later writes the dataset's side at once
- * and keeps the scale's entry here; ref_list_write writes the list once, the same entries in
- * the same order as H5DSattach_scale would have left. */
-typedef struct ref_list {
-    ds_ref *e;
-    size_t n, cap;
-} ref_list;
-
-static hid_t reflist_type(void)
-{
-    hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(ds_ref));
-    if (t >= 0 && (H5Tinsert(t, "dataset", HOFFSET(ds_ref, ref), H5T_STD_REF_OBJ) < 0 ||
-                   H5Tinsert(t, "dimension", HOFFSET(ds_ref, dim_idx), H5T_NATIVE_INT) < 0)) {
-        H5Tclose(t);
-        return H5I_INVALID_HID;
-    }
-    return t;
-}
-
-/* d's DIMENSION_LIST (one variable-length list of scale references per axis) with a
- * reference to scale added on axis k, as H5DSattach_scale writes it. 0 or -1. */
-static int dimension_list_add(hid_t d, hid_t scale, int k)
-{
-    hid_t space = H5Dget_space(d);
-    int rank = space >= 0 ? H5Sget_simple_extent_ndims(space) : -1;
-    if (space >= 0) H5Sclose(space);
-    if (rank <= k) return -1;
-    hobj_ref_t ref;
-    if (H5Rcreate(&ref, scale, ".", H5R_OBJECT, -1) < 0) return -1;
-    hvl_t buf[rank], old[rank];
-    hsize_t n = (hsize_t)rank;
-    hid_t vt = H5Tvlen_create(H5T_STD_REF_OBJ), as = H5Screate_simple(1, &n, NULL);
-    int exists = H5Aexists(d, "DIMENSION_LIST") > 0, rc = -1;
-    hid_t a = exists ? H5Aopen(d, "DIMENSION_LIST", H5P_DEFAULT) : H5I_INVALID_HID;
-    memset(old, 0, sizeof old);
-    if (vt >= 0 && as >= 0 && (!exists || (a >= 0 && H5Aread(a, vt, old) >= 0))) {
-        hobj_ref_t *list = malloc((old[k].len + 1) * sizeof *list);
-        if (list) {
-            memcpy(buf, old, sizeof buf);
-            if (old[k].len) memcpy(list, old[k].p, old[k].len * sizeof *list);
-            list[old[k].len] = ref;
-            buf[k] = (hvl_t){ .len = old[k].len + 1, .p = list };
-            /* replaced, not written over: overwriting leaves the old lists in the global heap */
-            if (exists) {
-                H5Aclose(a);
-                a = H5Adelete(d, "DIMENSION_LIST") < 0
-                        ? H5I_INVALID_HID
-                        : H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
-            } else {
-                a = H5Acreate2(d, "DIMENSION_LIST", vt, as, H5P_DEFAULT, H5P_DEFAULT);
-            }
-            rc = a >= 0 && H5Awrite(a, vt, buf) >= 0 ? 0 : -1;
-            free(list);
-        }
-        if (exists) H5Dvlen_reclaim(vt, as, H5P_DEFAULT, old);
-    }
-    if (a >= 0) H5Aclose(a);
-    if (as >= 0) H5Sclose(as);
-    if (vt >= 0) H5Tclose(vt);
-    return rc;
-}
-
-static int attach_later(hid_t d, hid_t scale, int k, ref_list *l)
-{
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 64;
-        ds_ref *e = realloc(l->e, cap * sizeof *e);
-        if (!e) return -1;
-        l->e = e;
-        l->cap = cap;
-    }
-    ds_ref *r = &l->e[l->n];
-    if (H5Rcreate(&r->ref, d, ".", H5R_OBJECT, -1) < 0 || dimension_list_add(d, scale, k))
-        return -1;
-    r->dim_idx = (unsigned)k;
-    l->n++;
-    return 0;
-}
-
-/* Write the gathered attachments of root scale i as its REFERENCE_LIST (none yet: the bodies
- * are the first datasets attached to it) and free them. 0 or -1 with err. */
-static int ref_list_write(rd_h5 *h, int i, rd_error *err)
-{
-    ref_list *l = &h->later[i];
-    int rc = 0;
-    if (l->n) {
-        hsize_t n = l->n;
-        hid_t t = reflist_type(), sp = H5Screate_simple(1, &n, NULL);
-        hid_t a = t >= 0 && sp >= 0 && H5Aexists(h->dims[i], "REFERENCE_LIST") == 0
-                      ? H5Acreate2(h->dims[i], "REFERENCE_LIST", t, sp, H5P_DEFAULT, H5P_DEFAULT)
-                      : H5I_INVALID_HID;
-        rc = a >= 0 && H5Awrite(a, t, l->e) >= 0 ? 0 : -1;
-        if (a >= 0) H5Aclose(a);
-        if (sp >= 0) H5Sclose(sp);
-        if (t >= 0) H5Tclose(t);
-    }
-    free(l->e);
-    *l = (ref_list){ 0 };
-    return rc ? rd_error_set(err, "%s: cannot write the dimension scales' references", h->path) : 0;
-}
-
-/* Attach scales[k] to axis k of d (rank axes); a root scale while the bodies are written
- * through attach_later. */
+/* Attach scales[k] to axis k of d (rank axes). */
 static int attach(const rd_h5 *h, hid_t d, const hid_t *scales, int rank, const char *what,
                   rd_error *err)
 {
-    for (int k = 0; k < rank; k++) {
-        int root = -1;
-        for (int i = 0; h->later && i < DIM_COUNT; i++)
-            if (scales[k] == h->dims[i]) root = i;
-        if (root >= 0 ? attach_later(d, scales[k], k, &h->later[root])
-                      : H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
+    for (int k = 0; k < rank; k++)
+        if (H5DSattach_scale(d, scales[k], (unsigned)k) < 0)
             return rd_error_set(err, "%s: cannot attach dimension %d of '%s'", h->path, k, what);
-    }
     return 0;
 }
 
@@ -560,7 +425,7 @@ static int write_root_attrs(const rd_h5 *h, const rd_h5_meta *m, rd_error *err)
 {
     hid_t r = h->file;
     const double deg = 180.0 / 3.14159265358979323846; /* degrees per radian */
-    return attr_str(h, r, "Conventions", "rockdem-2", err) ||
+    return attr_str(h, r, "Conventions", "rockdem-3", err) ||
                    attr_int(h, r, "layout_version", RD_H5_LAYOUT, err) ||
                    attr_str(h, r, "program", "rockdem", err) ||
                    attr_str(h, r, "version", RD_VERSION, err) ||
@@ -581,76 +446,31 @@ static int write_root_attrs(const rd_h5 *h, const rd_h5_meta *m, rd_error *err)
                : 0;
 }
 
-/* Small contiguous [n][3] dataset under loc (n may be 0), axes (row scale, columns scale). */
-static int write_table3(const rd_h5 *h, hid_t loc, const char *name, hid_t ftype, hid_t mtype,
-                        int n, const void *data, const hid_t scales[2], const char *units,
-                        const char *long_name, rd_error *err)
+static int name_order(const void *a, const void *b)
 {
-    hsize_t dims[2] = { (hsize_t)n, 3 };
-    hid_t space = H5Screate_simple(2, dims, NULL);
-    hid_t d = space >= 0
-                  ? H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)
-                  : H5I_INVALID_HID;
-    int ok = d >= 0 && (n == 0 || H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
-    if (space >= 0) H5Sclose(space);
-    if (!ok) {
-        if (d >= 0) H5Dclose(d);
-        return rd_error_set(err, "%s: cannot write dataset '%s'", h->path, name);
-    }
-    int rc = describe(h, d, units, long_name, err) || attach(h, d, scales, 2, name, err);
-    H5Dclose(d);
-    return rc ? -1 : 0;
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
-/* vertices [vertex][xyz] and faces [face][corner] of a body group, with their index scales. */
-static int write_geometry(const rd_h5 *h, hid_t g, const rd_h5_body *b, rd_error *err)
+/* No two bodies share a name (the rows of /bodies/block are told apart by it): sorted, then
+ * neighbours compared, O(n log n) for a 10,000-brick wall. */
+static int check_unique(const char *path, const rd_h5_meta *m, rd_error *err)
 {
-    hid_t vs = index_scale(h, g, "vertex", b->nvert, "vertex of the body", err);
-    hid_t fs = vs >= 0 ? index_scale(h, g, "face", b->ntri, "triangle of the surface", err)
-                       : H5I_INVALID_HID;
-    hid_t vdims[2] = { vs, h->dims[DIM_XYZ] }, fdims[2] = { fs, h->dims[DIM_CORNER] };
-    int rc = vs < 0 || fs < 0 ||
-                     write_table3(h, g, "vertices", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, b->nvert,
-                                  b->vertices, vdims, "m",
-                                  "vertex, body frame, about the centre of mass", err) ||
-                     write_table3(h, g, "faces", H5T_STD_I32LE, H5T_NATIVE_INT, b->ntri,
-                                  b->triangles, fdims, NULL,
-                                  "triangle, indices into vertices (outward normal by the "
-                                  "right-hand rule)",
-                                  err)
-                 ? -1
-                 : 0;
-    if (fs >= 0) H5Dclose(fs);
-    if (vs >= 0) H5Dclose(vs);
+    int n = m->nbodies + m->nfixed;
+    const char **s = malloc(sizeof *s * (size_t)n);
+    if (!s) return rd_error_set(err, "%s: out of memory", path);
+    for (int i = 0; i < n; i++)
+        s[i] = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
+    qsort(s, (size_t)n, sizeof *s, name_order);
+    int rc = 0;
+    for (int i = 1; i < n && !rc; i++)
+        if (!strcmp(s[i - 1], s[i]))
+            rc = rd_error_set(err, "%s: two bodies are named '%s'", path, s[i]);
+    free(s);
     return rc;
 }
 
-static int write_body(const rd_h5 *h, const rd_h5_body *b, rd_error *err)
-{
-    char path[RD_NAME_MAX + 16];
-    snprintf(path, sizeof path, "/bodies/%s", b->name);
-    hid_t g = H5Gcreate2(h->file, path, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (g < 0) return rd_error_set(err, "%s: cannot create group '%s'", h->path, path);
-    int rc = attr_double(h, g, "mass", b->mass, "kg", err) ||
-                     attr_write(h, g, "inertia_principal", H5T_NATIVE_DOUBLE, 3, b->inertia, err) ||
-                     attr_units(h, g, "inertia_principal", "kg m^2", err) ||
-                     attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, b->size, err) ||
-                     attr_units(h, g, "size", "m", err) ||
-                     attr_double(h, g, "alpha", b->alpha, "rad", err) ||
-                     attr_int(h, g, "fixed", b->fixed, err) ||
-                     (b->fixed &&
-                      (attr_write(h, g, "position", H5T_NATIVE_DOUBLE, 3, b->position, err) ||
-                       attr_units(h, g, "position", "m", err) ||
-                       attr_write(h, g, "quaternion", H5T_NATIVE_DOUBLE, 4, b->quaternion, err))) ||
-                     write_geometry(h, g, b, err)
-                 ? -1
-                 : 0;
-    H5Gclose(g);
-    return rc;
-}
-
-/* At least one free body, each named as HDF5 groups can be and short enough for
- * rd_body_summary. */
+/* At least one free body, each named as HDF5 groups can be (/history/body/<name>), short
+ * enough for rd_body_summary, and no two alike. */
 static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
 {
     if (m->nbodies < 1)
@@ -659,43 +479,15 @@ static int check_names(const char *path, const rd_h5_meta *m, rd_error *err)
     for (int i = 0; i < m->nbodies + m->nfixed; i++) {
         const char *n = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
         if (!n || !n[0] || strlen(n) >= RD_NAME_MAX || strchr(n, '/') || !strcmp(n, ".") ||
-            !strcmp(n, "..") || !strcmp(n, "names"))
+            !strcmp(n, ".."))
             return rd_error_set(err, "%s: invalid body name '%s'", path, n ? n : "");
     }
-    return 0;
+    return check_unique(path, m, err);
 }
 
-/* Every body's group, its attachments to the root scales gathered and written once. */
-static int write_groups(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
+static int write_bodies(const rd_h5 *h, const rd_h5_meta *m, rd_error *err)
 {
-    ref_list later[DIM_COUNT] = { { 0 } };
-    h->later = later;
-    int rc = 0;
-    for (int i = 0; !rc && i < h->nb; i++) rc = write_body(h, &m->bodies[i], err);
-    for (int i = 0; !rc && i < m->nfixed; i++) rc = write_body(h, &m->fixed_bodies[i], err);
-    for (int i = 0; i < DIM_COUNT; i++)
-        if (ref_list_write(h, i, err)) rc = -1;
-    h->later = NULL;
-    return rc;
-}
-
-static int write_bodies(rd_h5 *h, const rd_h5_meta *m, rd_error *err)
-{
-    if (write_groups(h, m, err)) return -1;
-    hsize_t n = (hsize_t)h->nb;
-    hid_t space = H5Screate_simple(1, &n, NULL);
-    hid_t d = space >= 0 ? H5Dcreate2(h->file, "/bodies/names", h->str_type, space, H5P_DEFAULT,
-                                      H5P_DEFAULT, H5P_DEFAULT)
-                         : H5I_INVALID_HID;
-    int ok = d >= 0 && H5Dwrite(d, h->str_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, h->name_list) >= 0 &&
-             !describe(h, d, NULL,
-                       "free bodies, in output order (fixed bodies: groups with "
-                       "fixed = 1)",
-                       err) &&
-             !attach(h, d, &h->body_dim, 1, "/bodies/names", err);
-    if (d >= 0) H5Dclose(d);
-    if (space >= 0) H5Sclose(space);
-    return ok ? 0 : rd_error_set(err, "%s: cannot write /bodies/names", h->path);
+    return rd_h5_bodies_write(h->file, m, err) ? rd_error_set(err, "%s: %s", h->path, err->msg) : 0;
 }
 
 static int series_create(rd_h5 *h, rd_h5_series *s, const rd_h5_series_spec *sp, rd_error *err)
@@ -933,16 +725,9 @@ static rd_h5 *h5_open(const char *path, const rd_h5_meta *meta, rd_error *err)
         return NULL;
     }
     h->fd = *fdp;
-    /* bytes of every body's group, free and fixed: its vertex and triangle tables and headers
-       (the free bodies' tables alone left a 31-body scene 73 KB short, so HDF5 wrote past a
-       full disk or size limit and left a file no reader opens) */
-    size_t tables = 0;
-    for (int i = 0; i < meta->nbodies + meta->nfixed; i++) {
-        const rd_h5_body *b =
-            i < meta->nbodies ? &meta->bodies[i] : &meta->fixed_bodies[i - meta->nbodies];
-        tables += 3 * (sizeof(double) * (size_t)b->nvert + sizeof(int) * (size_t)b->ntri) +
-                  RD_H5_BODY_BYTES;
-    }
+    /* bytes of the bodies' tables (the free bodies' tables alone left a 31-body scene 73 KB
+       short once, so HDF5 wrote past a full disk or size limit and left a file no reader opens) */
+    size_t tables = rd_h5_bodies_bytes(meta);
     if (make_types(h)) {
         rd_error_set(err, "%s: cannot create the string and enum types", path);
         destroy(h);
@@ -1099,55 +884,6 @@ static const rd_h5_body_field body_fields[] = {
 };
 #undef RD_FIELD
 
-static int h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
-{
-    if (reserve(h, sizeof(double) * 3 * (size_t)n, err)) return -1;
-    char path[RD_NAME_MAX + 16];
-    snprintf(path, sizeof path, "/bodies/%s", body);
-    hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
-    if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
-    static const char *const cols[3] = { "lean_direction", "alpha", "tip_acceleration" };
-    static const char *const units[3] = { "rad", "rad", "m/s^2" };
-    if (H5Lexists(g, "precariousness", H5P_DEFAULT) > 0) { /* replaced: no dangling scales */
-        H5Ldelete(g, "precariousness", H5P_DEFAULT);
-        H5Ldelete(g, "lean", H5P_DEFAULT);
-        H5Ldelete(g, "quantity", H5P_DEFAULT);
-    }
-    hid_t ls = index_scale(h, g, "lean", n, "lean direction sampled", err);
-    hid_t qs = ls >= 0 ? scale_create(h, g, "quantity", h->str_type, 3, cols,
-                                      "column of the precariousness table", err)
-                       : H5I_INVALID_HID;
-    hid_t scales[2] = { ls, qs };
-    int rc =
-        ls < 0 || qs < 0 || attr_write(h, qs, "units", h->str_type, 3, units, err) ||
-                write_table3(h, g, "precariousness", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, table,
-                             scales, NULL,
-                             "lean direction the body tips towards (rad from +x), "
-                             "static tipping angle alpha (rad), quasi-static tipping acceleration "
-                             "g tan(alpha) (m/s^2); units per column in quantity.units",
-                             err)
-            ? -1
-            : 0;
-    if (qs >= 0) H5Dclose(qs);
-    if (ls >= 0) H5Dclose(ls);
-    H5Gclose(g);
-    return rc;
-}
-
-static int h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err)
-{
-    char path[RD_NAME_MAX + 16];
-    snprintf(path, sizeof path, "/bodies/%s", body);
-    hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
-    if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
-    int rc = attr_write(h, g, "size", H5T_NATIVE_DOUBLE, 3, size, err) ||
-                     attr_units(h, g, "size", "m", err)
-                 ? -1
-                 : 0;
-    H5Gclose(g);
-    return rc;
-}
-
 /* order[i] = index in s->body of the body written as /bodies/names[i] (i itself when the
  * orders agree, as the engine's do: no search). */
 static int summary_order(const rd_h5 *h, const rd_summary *s, int *order, rd_error *err)
@@ -1192,21 +928,15 @@ static int write_body_fields(const rd_h5 *h, hid_t g, const rd_summary *s, const
     return rc;
 }
 
-/* The support-polygon alpha found at rest replaces the brick estimate of /bodies/<b>/alpha. */
-static int update_body_alpha(const rd_h5 *h, const rd_summary *s, const int *order, rd_error *err)
+/* The support-polygon alpha found at rest replaces the brick estimate in /bodies/alpha. */
+static int body_alpha(const rd_h5 *h, const rd_summary *s, const int *order, rd_error *err)
 {
-    for (int i = 0; i < h->nb; i++) {
-        double a = s->body[order[i]].alpha;
-        if (!(a > 0)) continue;
-        char path[RD_NAME_MAX + 16];
-        snprintf(path, sizeof path, "/bodies/%s", h->names[i]);
-        hid_t g = H5Gopen2(h->file, path, H5P_DEFAULT);
-        if (g < 0) return rd_error_set(err, "%s: no group '%s'", h->path, path);
-        int rc = attr_double(h, g, "alpha", a, "rad", err);
-        H5Gclose(g);
-        if (rc) return -1;
-    }
-    return 0;
+    double *a = malloc(sizeof *a * (size_t)h->nb);
+    if (!a) return rd_error_set(err, "%s: out of memory", h->path);
+    for (int i = 0; i < h->nb; i++) a[i] = s->body[order[i]].alpha;
+    int rc = rd_h5_bodies_alpha(h->file, a, h->nb, err);
+    free(a);
+    return rc ? rd_error_set(err, "%s: %s", h->path, err->msg) : 0;
 }
 
 static int write_summary_attrs(const rd_h5 *h, hid_t g, const rd_summary *s, rd_error *err)
@@ -1242,7 +972,7 @@ static int summary_group(rd_h5 *h, const rd_summary *s, const int *order, rd_err
     hid_t g = H5Gopen2(h->file, "/summary", H5P_DEFAULT);
     if (g < 0) return rd_error_set(err, "%s: cannot create group '/summary'", h->path);
     int rc = write_summary_attrs(h, g, s, err) || write_body_fields(h, g, s, order, err) ||
-             update_body_alpha(h, s, order, err);
+             body_alpha(h, s, order, err);
     H5Gclose(g);
     return rc;
 }
@@ -1357,19 +1087,9 @@ int rd_h5_event(rd_h5 *h, double time, int body, const char *type, double value,
 
 int rd_h5_flush(rd_h5 *h, rd_error *err) { RD_H5_QUIETLY(int, h5_flush(h, err)); }
 
-int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err)
-{
-    RD_H5_QUIETLY(int, h5_precariousness(h, body, table, n, err));
-}
-
 int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err)
 {
     RD_H5_QUIETLY(int, h5_summary(h, s, err));
-}
-
-int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err)
-{
-    RD_H5_QUIETLY(int, h5_body_size(h, body, size, err));
 }
 
 int rd_h5_reserve(rd_h5 *h, size_t bytes, rd_error *err)

@@ -2,7 +2,7 @@
  * appended to chunked, deflate-compressed, extendible datasets, then H5Fflush'ed, so a run that
  * stops early (Ctrl-C, NaN, error) leaves a valid file with everything written so far.
  *
- * Layout (all SI; docs/HDF5-LAYOUT.md is the full description, layout_version 2). Every
+ * Layout (all SI; docs/HDF5-LAYOUT.md is the full description, layout_version 3). Every
  * dataset has `units` (where it has any) and `long_name`; every attribute with units has a
  * companion `<name>_units`; every axis has an HDF5 dimension scale (netCDF-4 style); strings are
  * variable-length UTF-8; status, event type and spacing rule are HDF5 enums.
@@ -12,13 +12,14 @@
  *                          spacing_rule (enum auto|vertices|fixed), spacing (fixed only)
  *   /time /body /xyz /wxyz /rotation_part /corner     dimension scales (body: free body names)
  *   /bodies/names          [body] free bodies in output order
- *   /bodies/<name>/        every body, fixed ones too: attributes mass, inertia_principal[3],
+ *   /bodies/               every body, fixed ones too, one row each over the axis `block`
+ *                          (io_bodies.h): block (names), fixed, mass, inertia_principal[3],
  *                          size[3] (extents at rest along x, y, z), alpha (static tipping angle
  *                          about the edge of the support polygon at rest, least of the +-x, +-y
- *                          leans; 0 for fixed bodies), fixed (fixed bodies: position[3],
- *                          quaternion[4]);
- *                          datasets vertices [vertex][xyz] (body frame, about the centre of
- *                          mass), faces [face][corner], precariousness [lean][quantity]
+ *                          leans; 0 for fixed bodies), position[3], quaternion[4] (as placed);
+ *                          vertices [vertex][xyz] (body frame, about the centre of mass), faces
+ *                          [face][corner] and precariousness [lean][quantity] of all bodies in
+ *                          block order with vertex_count, face_count, lean_count per block
  *   /position              [time][body][xyz]   centre of mass, ground frame, m
  *   /quaternion            [time][body][wxyz]  body -> ground frame
  *   /velocity              [time][body][xyz]   m/s, relative to the ground
@@ -59,8 +60,8 @@ typedef struct rd_h5_body {
     int ntri;
     const int *triangles; /* [ntri][3] */
     int fixed;            /* 1: a fixed body (pedestal), drawn but not in the time series */
-    double position[3];   /* fixed bodies: centre of mass, ground frame, m */
-    double quaternion[4]; /* fixed bodies: orientation (w, x, y, z), body -> ground frame */
+    double position[3];   /* centre of mass as placed, ground frame, m */
+    double quaternion[4]; /* orientation as placed (w, x, y, z), body -> ground frame */
 } rd_h5_body;
 
 typedef struct rd_h5_meta {
@@ -109,13 +110,6 @@ int rd_h5_ground_im(rd_h5 *h, const rd_motion_def *m, rd_error *err);
 int rd_h5_flush(rd_h5 *h, rd_error *err);
 /* Write the /summary group (may be called more than once; last call wins). 0 or -1. */
 int rd_h5_summary(rd_h5 *h, const rd_summary *s, rd_error *err);
-/* Write /bodies/<body>/precariousness [n][3]: lean direction the body tips towards (rad from
- * +x), static tipping angle alpha (rad) and quasi-static tipping acceleration g tan(alpha)
- * (m/s^2, the ground acceleration pointing the opposite way). Replaces an earlier table. */
-int rd_h5_precariousness(rd_h5 *h, const char *body, const double *table, int n, rd_error *err);
-/* Replace the attribute size [3] (m) of /bodies/<body> given at rd_h5_open by the body's
- * extents at rest (known once it rests on its support; alpha follows with the summary). */
-int rd_h5_body_size(rd_h5 *h, const char *body, const double size[3], rd_error *err);
 /* The run has ended (`ok`: done or overturned): a file written to a temporary (meta.target) is
  * flushed, closed and renamed over its target, so the earlier file there is replaced only by a
  * whole, successful run; with !ok, or written in place, nothing happens. 0, or -1 with err (the

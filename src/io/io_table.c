@@ -154,6 +154,38 @@ int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *dat
     return ok ? 0 : rd_error_set(err, "cannot write dataset '%s'", name);
 }
 
+int rd_h5t_write_rows(long long loc, const char *name, rd_h5t_type t, const void *data, long first,
+                      long rows, rd_error *err)
+{
+    hid_t d = exists((hid_t)loc, name) ? H5Dopen2((hid_t)loc, name, H5P_DEFAULT) : H5I_INVALID_HID;
+    hid_t fs = d >= 0 ? H5Dget_space(d) : H5I_INVALID_HID, ms = H5I_INVALID_HID;
+    hsize_t dims[2] = { 0, 1 };
+    int rank = fs >= 0 ? H5Sget_simple_extent_dims(fs, dims, NULL) : -1;
+    int ok =
+        (rank == 1 || rank == 2) && first >= 0 && rows >= 0 && (hsize_t)(first + rows) <= dims[0];
+    if (ok && rows > 0) {
+        hsize_t start[2] = { (hsize_t)first, 0 }, count[2] = { (hsize_t)rows, dims[1] };
+        ms = H5Screate_simple(rank, count, NULL);
+        ok = ms >= 0 && H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+             H5Dwrite(d, mem_type(t), ms, fs, H5P_DEFAULT, data) >= 0;
+    }
+    if (ms >= 0) H5Sclose(ms);
+    if (fs >= 0) H5Sclose(fs);
+    if (d >= 0) H5Dclose(d);
+    return ok ? 0
+              : rd_error_set(err, "cannot write rows %ld..%ld of dataset '%s'", first,
+                             first + rows - 1, name);
+}
+
+int rd_h5t_attr(long long loc, const char *name, const char *key, const char *value, rd_error *err)
+{
+    hid_t o = H5Oopen((hid_t)loc, name, H5P_DEFAULT);
+    int ok = o >= 0 && (H5Aexists(o, key) <= 0 || H5Adelete(o, key) >= 0) &&
+             str_attr(o, key, value) == 0;
+    if (o >= 0) H5Oclose(o);
+    return ok ? 0 : rd_error_set(err, "cannot write attribute '%s' of '%s'", key, name);
+}
+
 long long rd_h5t_group(long long loc, const char *name, rd_error *err)
 {
     hid_t g = exists((hid_t)loc, name)

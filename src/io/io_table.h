@@ -38,6 +38,13 @@ void rd_h5t_close(long long file);
 int rd_h5t_write(long long loc, const char *name, rd_h5t_type t, const void *data, long rows,
                  int cols, const char *units, const char *long_name, const rd_h5t_axes *axes,
                  rd_error *err);
+/* Overwrite rows [first, first + rows) of the existing dataset `name` (1-D, or 2-D of its
+ * own width) with data of type t. 0 or -1. */
+int rd_h5t_write_rows(long long loc, const char *name, rd_h5t_type t, const void *data, long first,
+                      long rows, rd_error *err);
+/* A variable-length UTF-8 string attribute `key` = value on the object `name` under loc
+ * (created, or replaced). 0 or -1. */
+int rd_h5t_attr(long long loc, const char *name, const char *key, const char *value, rd_error *err);
 /* Open (creating it when missing) group `name` under loc: its id, or -1. */
 long long rd_h5t_group(long long loc, const char *name, rd_error *err);
 void rd_h5t_close_group(long long g);

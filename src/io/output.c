@@ -8,6 +8,7 @@
 #include "rockdem/observer.h"
 #include "base/path.h"
 #include "io/io_hdf5.h"
+#include "io/io_bodies.h"
 #include "io/output_scene.h"
 
 #include <math.h>
@@ -36,18 +37,22 @@ static const char *overturn_text(const rd_overturn_def *o, char *buf, size_t n)
     return buf;
 }
 
-/* The scene is at rest: each body's precariousness table and size (alpha comes with the
+/* The scene is at rest: each free body's precariousness table and size (alpha comes with the
  * summary, from the same support polygon). */
 static int on_begin(void *user, rd_sim *sim, rd_error *err)
 {
-    for (int k = 0; k < rd_sim_body_count(sim, NULL); k++) {
-        rd_body_info b;
-        rd_sim_body_info(sim, k, &b);
-        if (rd_h5_precariousness(user, b.name, b.precariousness, b.nprec, err) ||
-            rd_h5_body_size(user, b.name, b.size, err))
-            return -1;
+    int n = rd_sim_body_count(sim, NULL);
+    rd_h5_rest_body *b = malloc(sizeof *b * (size_t)(n > 0 ? n : 1));
+    if (!b) return rd_error_set(err, "out of memory");
+    for (int k = 0; k < n; k++) {
+        rd_body_info info;
+        rd_sim_body_info(sim, k, &info);
+        b[k] = (rd_h5_rest_body){ .nprec = info.nprec, .precariousness = info.precariousness };
+        memcpy(b[k].size, info.size, sizeof b[k].size);
     }
-    return 0;
+    int rc = rd_h5_bodies_rest(user, b, n, err);
+    free(b);
+    return rc;
 }
 
 static int on_sample(void *user, rd_sim *sim, const rd_sample *s, rd_error *err)

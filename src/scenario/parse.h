@@ -12,6 +12,7 @@
 #include "rockdem/motion.h"
 #include "rockdem/record.h"
 #include "rockdem/scenario.h"
+#include "scenario/name_index.h"
 
 #include <stddef.h>
 
@@ -102,9 +103,13 @@ typedef struct parser {
     int motion_line[3];    /* lines that set the records' direction, scale, baseline (0: none) */
     setting *settings;     /* single-valued settings given so far (malloc'ed; freed by the parse) */
     int nsettings, settings_cap;
+    rd_name_index names; /* the bodies so far by name (freed by the parse) */
 } parser;
 
 enum { KW_ERR = -1, KW_END = -2 };
+
+/* Index of the body named name[0..len) created so far, or -1 (find_body through P->names). */
+int parse_find_body(parser *P, const char *name, size_t len);
 
 /* Sets err to "file:line:col: message" at token t; returns -1. */
 int perr(const parser *P, const token *t, const char *fmt, ...) RD_PRINTF(3, 4);

@@ -31,7 +31,7 @@ static int read_seat(parser *P, const token *kw, rd_body_def *b)
 {
     const token *t;
     if (read_name(P, kw, &t, b->seat_on)) return -1;
-    int j = find_body(P->sc, b->seat_on, strlen(b->seat_on));
+    int j = parse_find_body(P, b->seat_on, strlen(b->seat_on));
     if (j < 0)
         return perr(P, t, "unknown block '%s' (seat-on needs a block created before this line)",
                     b->seat_on);
@@ -180,7 +180,7 @@ static int add_body(parser *P, const rd_body_def *b, const token *name, const to
     rd_body_def d = *b;
     d.line = P->tok[0].line;
     if (!d.name[0]) snprintf(d.name, sizeof d.name, "block%d", sc->nbodies + 1);
-    int dup = find_body(sc, d.name, strlen(d.name));
+    int dup = parse_find_body(P, d.name, strlen(d.name));
     if (dup >= 0 && name)
         return perr(P, name, "duplicate block name '%s' (first created on line %d)", d.name,
                     sc->bodies[dup].line);
@@ -401,7 +401,7 @@ int block_initial(parser *P)
     }
     if (k == KW_ERR) return -1;
     if (!name) return perr(P, verb_token(P), "missing 'name' for 'block initial'");
-    int i = find_body(P->sc, id, strlen(id));
+    int i = parse_find_body(P, id, strlen(id));
     if (i < 0)
         return perr(P, name, "unknown block '%s' (no 'block create ... name %s' before this line)",
                     id, id);

@@ -182,6 +182,7 @@ int rd_scenario_parse(rd_scenario *sc, const char *name, const char *text, rd_er
             break;
         }
     free(P.settings);
+    rd_name_index_free(&P.names);
     if (rc >= 0 && prepare_records(sc, name, err)) rc = -1;
     if (rc < 0) {
         rd_scenario_free(sc);

@@ -4,6 +4,7 @@
  * base/, records/ and geometry/, never engine/, io/ or cli/.
  */
 #include "scenario/parse.h"
+#include "scenario/name_index.h"
 
 #include <math.h>
 #include <string.h>
@@ -45,7 +46,7 @@ static const char *model_problem(const rd_scenario *sc)
     return NULL;
 }
 
-static const char *body_problem(const rd_scenario *sc, int i)
+static const char *body_problem(const rd_scenario *sc, int i, rd_name_index *names)
 {
     const rd_body_def *b = &sc->bodies[i];
     if (b->shape == RD_SHAPE_BRICK && !(b->size[0] > 0 && b->size[1] > 0 && b->size[2] > 0))
@@ -58,7 +59,9 @@ static const char *body_problem(const rd_scenario *sc, int i)
     if (b->shape == RD_SHAPE_MESH && b->mesh[0] == '\0') return "a mesh needs a file";
     if (!(b->mass >= 0)) return "mass must be > 0 (or 0 to use the density)";
     if (!(b->tilt >= 0 && b->tilt < 90.0 * RD_DEG)) return "tilt must be in [0, 90) degrees";
-    if (find_body(sc, b->name, strlen(b->name)) != i) return "name used by an earlier block";
+    int first = rd_name_index_find(names, sc, b->name, strlen(b->name));
+    if ((first == -2 ? find_body(sc, b->name, strlen(b->name)) : first) != i)
+        return "name used by an earlier block";
     if (!valid_name(b->name, strlen(b->name))) return "invalid name";
     return NULL;
 }
@@ -97,10 +100,14 @@ int rd_scenario_validate(const rd_scenario *sc, rd_error *err)
     if (!(sc->duration > 0))
         return rd_error_set(err, "%s: no duration (add 'model solve time <s>')", f);
     if ((bad = model_problem(sc))) return rd_error_set(err, "%s: %s", f, bad);
+    rd_name_index names = { 0 };
     for (int i = 0; i < sc->nbodies; i++)
-        if ((bad = body_problem(sc, i)))
+        if ((bad = body_problem(sc, i, &names))) {
+            rd_name_index_free(&names);
             return rd_error_set(err, "%s:%d: block '%s': %s", f, sc->bodies[i].line,
                                 sc->bodies[i].name, bad);
+        }
+    rd_name_index_free(&names);
     if ((bad = pulse_problem(&sc->motion.horizontal)))
         return rd_error_set(err, "%s:%d: horizontal pulse: %s", f, sc->motion.horizontal.line, bad);
     if ((bad = pulse_problem(&sc->motion.vertical)))

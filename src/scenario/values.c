@@ -193,6 +193,12 @@ int find_body(const rd_scenario *sc, const char *name, size_t len)
     return -1;
 }
 
+int parse_find_body(parser *P, const char *name, size_t len)
+{
+    int i = rd_name_index_find(&P->names, P->sc, name, len);
+    return i == -2 ? find_body(P->sc, name, len) : i;
+}
+
 /* Appends ", word" (or "word" to an empty buf), truncating quietly. */
 void append(char *buf, size_t size, const char *word)
 {

@@ -36,7 +36,7 @@ assert ds["quaternion"].dims == ("time", "body", "wxyz")
 assert ds["rotation"].dims == ("time", "body", "rotation_part")
 assert list(ds["body"].values) == ["cask"]
 assert ds["time"].attrs["units"] == "s" and ds["position"].attrs["units"] == "m"
-assert ds.attrs["Conventions"] == "rockdem-2" and ds.attrs["layout_version"] == 2
+assert ds.attrs["Conventions"] == "rockdem-3" and ds.attrs["layout_version"] == 3
 assert ds.attrs["kn_units"] == "Pa/m" and ds.attrs["dt_units"] == "s"
 gr = check(run, "ground")
 assert gr["acceleration"].dims == ("time", "xyz") and gr["acceleration"].attrs["units"] == "m/s^2"
@@ -58,7 +58,16 @@ with h5py.File(run, "r") as f:
     sr = h5py.check_enum_dtype(f.attrs.get_id("spacing_rule").dtype)
     assert {v: k for k, v in sr.items()}[int(f.attrs["spacing_rule"])] == "vertices"  # the default
     assert "spacing" not in f.attrs  # no 0 standing for "vertices"
-    assert int(f["bodies/pad"].attrs["fixed"]) == 1 and f["bodies/pad/vertices"].shape[1] == 3
+    # layout 3: a row per body over `block` (free bodies first), geometry concatenated
+    blk = list(f["bodies/block"].asstr()[()])
+    assert blk == ["cask", "pad"], blk
+    assert list(f["bodies/fixed"][()]) == [0, 1] and f["bodies/vertices"].shape[1] == 3
+    vc = f["bodies/vertex_count"]
+    assert vc.attrs["sample_dimension"] == "vertex" and vc[1] == 8  # the pad: a brick
+    assert sum(vc[()]) == f["bodies/vertices"].shape[0]
+    assert sum(f["bodies/face_count"][()]) == f["bodies/faces"].shape[0]
+    assert list(f["bodies/lean_count"][()]) == [72, 0]  # free bodies at rest only
+    assert f["bodies/precariousness"].shape == (72, 3)
 sw = check(sweep, "sweep")
 assert sw["pga"].dims == ("case",) and sw["pga"].attrs["units"] == "m/s^2"
 assert sw["body_max_tilt_ratio"].dims == ("case", "body")

@@ -57,7 +57,7 @@ n = h["time"].shape[0]
 assert h["tilt"].shape == (n, 1) and h["position"].shape == (n, 1, 3) and n > 100
 a_used = h["tilt"][1:, 0] / h["tilt_ratio"][1:, 0]  # alpha towards the lean (t > 0: tilt > 0)
 with h5py.File(run.path, "r") as p:
-    tab = p["bodies/block/precariousness"][:, 1]
+    tab = p["bodies/precariousness"][:p["bodies/lean_count"][0], 1]  # free body 0's rows
 assert np.all((a_used >= tab.min() * (1 - 1e-9)) & (a_used <= tab.max() * (1 + 1e-9)))
 assert abs(np.nanmax(h["tilt_ratio"]) - b["max_tilt_ratio"]) < 0.05 * b["max_tilt_ratio"]  # sampled vs every step
 ds = run.dataset()

@@ -30,6 +30,8 @@ printf '%s\n' "$out" | grep -q '^cask: '
 import sys, h5py
 f = h5py.File(sys.argv[1], "r")
 assert f["rotation"].shape[1:] == (8, 3)
-assert f["bodies/col-d1/precariousness"].shape == (72, 3)
+blk = list(f["bodies/block"].asstr()[()])
+assert f["bodies/lean_count"][blk.index("col-d1")] == 72
+assert f["bodies/precariousness"].shape == (72 * 8, 3)  # every free drum at rest
 assert f.attrs["overturn_criterion"] in ("tilt-ratio 1", b"tilt-ratio 1")
 PY

@@ -29,6 +29,7 @@ from statsmodels.stats.proportion import proportion_confint
 from . import RDError
 from . import fragility as F
 from .fraginput import load, select
+from .bodies import Bodies
 from .runfile import open_h5, as_str
 
 G = 9.80665
@@ -303,13 +304,13 @@ def geometry(run_path, body=None):
         if name not in names:
             raise RDError("%s: no free body '%s' (it has %s)" % (run_path, name, ", ".join(names)))
         k = names.index(name)
-        b = f["bodies/" + name]
-        if "precariousness" not in b:
-            raise RDError("%s: /bodies/%s has no precariousness table" % (run_path, name))
-        pr = b["precariousness"][()]
-        mass = float(b.attrs["mass"])
-        Ip = np.asarray(b.attrs["inertia_principal"], float)
-        verts = b["vertices"][()]
+        b = Bodies(f)
+        pr = b.precariousness(name)
+        if pr is None:
+            raise RDError("%s: /bodies has no precariousness table of '%s'" % (run_path, name))
+        mass = float(b.attr(name, "mass"))
+        Ip = np.asarray(b.attr(name, "inertia_principal"), float)
+        verts = b.vertices(name)
         q = f["quaternion"][0, k, :]
         m = re.search(r"^\s*model\s+gravity\s+([0-9.eE+-]+)", as_str(f.attrs.get("scenario", "")), re.M)
         g = float(m.group(1)) if m else G

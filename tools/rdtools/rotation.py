@@ -32,7 +32,7 @@ def lean_direction(quaternion):
 
 def alpha_toward(table, psi):
     """Static tipping angle (rad) towards lean directions psi, interpolated (periodically) from
-    a precariousness table [n][3] (direction, alpha, g tan alpha; /bodies/<b>/precariousness)."""
+    a precariousness table [n][3] (direction, alpha, g tan alpha; /bodies/precariousness)."""
     t = np.asarray(table, float)
     d = np.mod(t[:, 0], 2 * np.pi)
     o = np.argsort(d)

@@ -140,21 +140,27 @@ class Run:
     def nsamples(self):
         return self.data("time").shape[0]
 
+    def bodies(self):
+        """Every body's mass, geometry and precariousness (rdtools.bodies.Bodies), either layout."""
+        if getattr(self, "_bodies", None) is None:
+            from .bodies import Bodies
+            self._bodies = Bodies(self.f)
+        return self._bodies
+
     def body_geometry(self, name):
         """(vertices [nv,3] body frame about the centre of mass, faces [nf,3] int)."""
-        v = self.data("bodies/%s/vertices" % name).astype(float)
-        fc = self.data("bodies/%s/faces" % name).astype(np.int64)
+        b = self.bodies()
+        if name not in b or b.vertices(name) is None or b.faces(name) is None:
+            raise RDError("%s: /bodies has no vertices and faces of '%s'" % (self.path, name))
+        v, fc = b.vertices(name).astype(float), b.faces(name).astype(np.int64)
         if v.ndim != 2 or v.shape[1] != 3 or fc.ndim != 2 or fc.shape[1] != 3:
-            raise RDError("%s: /bodies/%s: vertices/faces must be [n][3]" % (self.path, name))
+            raise RDError("%s: /bodies: vertices/faces of '%s' must be [n][3]" % (self.path, name))
         if fc.size and (fc.min() < 0 or fc.max() >= len(v)):
-            raise RDError("%s: /bodies/%s/faces: vertex index out of range" % (self.path, name))
+            raise RDError("%s: /bodies: faces of '%s': vertex index out of range" % (self.path, name))
         return v, fc
 
     def body_attr(self, name, key, default=None):
-        g = "bodies/%s" % name
-        if g not in self.f:
-            return default
-        return self.f[g].attrs.get(key, default)
+        return self.bodies().attr(name, key, default)
 
     def tilt_ratio(self, k, name):
         """tilt / alpha of free body k (named name) at every sample, alpha being the static
@@ -163,10 +169,10 @@ class Run:
         when neither is known."""
         from .rotation import alpha_toward, lean_direction
         tilt = self.data("tilt")[:, k]
-        prec = "bodies/%s/precariousness" % name
-        if prec in self.f and self.f[prec].shape[0] >= 3:
+        prec = self.bodies().precariousness(name)
+        if prec is not None and prec.shape[0] >= 3:
             psi = lean_direction(self.data("quaternion")[:, k, :])
-            return tilt / alpha_toward(self.f[prec][()], psi)
+            return tilt / alpha_toward(prec, psi)
         a = np.atleast_1d(np.asarray(self.summary().get("alpha", [np.nan] * (k + 1)), float))
         a = a[k] if k < len(a) else np.nan
         if not (a > 0):

@@ -71,8 +71,7 @@ def draw_scene(path, out, sample=0, title=None, dpi=300, elev=18, azim=-60):
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     with Run(path) as run:
         free = run.body_names()
-        # one group per body; /bodies also holds the names and the dimension scales (datasets)
-        names = [n for n, g in run.f["bodies"].items() if hasattr(g, "keys")]
+        names = run.bodies().names  # every body, fixed ones too
         fig = plt.figure(figsize=(3.6, 3.6))
         ax = fig.add_subplot(projection="3d")
         lo, hi = np.full(3, np.inf), np.full(3, -np.inf)

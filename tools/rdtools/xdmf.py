@@ -37,17 +37,15 @@ COMPRESS = dict(compression="gzip", compression_opts=4, shuffle=True)
 
 
 def _fixed_bodies(r, free):
-    """[(name, world vertices, faces)] of the fixed bodies (layout 2 writes them with fixed=1)."""
+    """[(name, world vertices, faces)] of the fixed bodies (fixed = 1 in /bodies)."""
     out = []
-    if "bodies" not in r.f:
-        return out
-    for nm in r.f["bodies"]:
-        g = r.f["bodies"][nm]
-        if nm in free or not isinstance(g, h5py.Group) or int(g.attrs.get("fixed", 0)) != 1:
+    b = r.bodies()
+    for nm in b.fixed_names():
+        if nm in free:
             continue
         v, fc = r.body_geometry(nm)
-        pos = np.asarray(g.attrs.get("position", np.zeros(3)), float)
-        q = np.asarray(g.attrs.get("quaternion", [1.0, 0, 0, 0]), float)
+        pos = np.asarray(b.attr(nm, "position", np.zeros(3)), float)
+        q = np.asarray(b.attr(nm, "quaternion", [1.0, 0, 0, 0]), float)
         out.append((nm, world_vertices(pos, q, v), fc))
     return out
 

@@ -124,10 +124,13 @@ class Run:
                 out["ground_" + k] = f["ground"][k][()]
             for k in f["energy"]:
                 out["energy_" + k] = f["energy"][k][()]
+            sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+            from rdtools.bodies import Bodies
+            bodies = Bodies(f)
             for name in self.names:
-                prec = "bodies/%s/precariousness" % name
-                if name not in self._prec and prec in f:
-                    self._prec[name] = f[prec][()]
+                prec = bodies.precariousness(name) if name in bodies else None
+                if name not in self._prec and prec is not None:
+                    self._prec[name] = prec
         return out
 
     def _tilt_ratio(self, h: Dict[str, np.ndarray]) -> np.ndarray:
