@@ -579,7 +579,21 @@ BLOCKS = [  # name, file, generator, checker (None: the exact rerun)
 OTHER = ("validation", "figures", "constants")
 
 
+def with_debian_python():
+    """The generators read HDF5 with h5py and draw with matplotlib, which Debian's /usr/bin/python3
+    has (tools/install-deps.sh); another python3 first on PATH (pyenv, a venv) may lack them:
+    rerun under Debian's, or say what is missing."""
+    try:
+        import h5py  # noqa: F401
+        import matplotlib  # noqa: F401
+    except ImportError as e:
+        if os.path.realpath(sys.executable) != os.path.realpath(PY) and os.access(PY, os.X_OK):
+            os.execv(PY, [PY] + sys.argv)
+        die("%s: %s (tools/install-deps.sh installs python3-h5py and python3-matplotlib)" % (sys.executable, e))
+
+
 def main():
+    with_debian_python()
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mode", choices=("write", "check", "list"))
     ap.add_argument("blocks", nargs="*")
