@@ -30,6 +30,7 @@ that matches prints CHECK. Blocks and their sources:
   assess-cask       docs/ASSESS.md      `rockdem assess` of the shipped cask at 0.6 g (7 s of CPU)
   assess-stronger   docs/ASSESS.md      the same at 1.2 g and of the drum cask (make docs only)
   cpu-times         docs/PERFORMANCE.md CPU seconds of three fixed commands; check: rerun
+  physics-residuals docs/PHYSICS.md     the energy residual of each shipped scene (5 s of CPU)
   perf-kernel, perf-yade, perf-impact, perf-columns, perf-study
                     docs/PERFORMANCE.md the output of each `make bench` script, from
                                         build/bench/out/*.txt (`make docs-bench` writes them);
@@ -400,6 +401,32 @@ def check_fragility_pbr(a, c, committed):
         c.time("fragility-pbr: the 6 cases' CPU time", float(m.group(1)), cpu)
 
 
+# ---- physics-residuals: the energy residual of the shipped scenes -------------------------------
+RESIDUAL_SCENES = (("default.dat", "the cask of `make run`, 0.6 g one-sine"),
+                   ("cask.dat", "the assessed cask on its pad"),
+                   ("statue.dat", "a statue on its pedestal, two free blocks"),
+                   ("pbr.dat", "the scanned-style PBR on its pedestal"),
+                   ("seed000_topple.dat", "seed 000: a block that trips over its edge"),
+                   ("seed001_cask.dat", "seed 001: casks released from a tilt"))
+RESIDUAL_LINE = re.compile(r"^run: status (\w+),.* energy residual ([0-9.e+-]+)$", re.M)
+
+
+def gen_physics_residuals(a):
+    tmp = tempfile.mkdtemp(prefix="docgen_")
+    rows = ["| scenario | scene | status | energy residual |", "|---|---|---|---|"]
+    try:
+        for name, what in RESIDUAL_SCENES:
+            out, _ = run([a.bin, "run", os.path.join("scenarios", name), "-o", os.path.join(tmp, "r.h5")],
+                         ok=(0, 3))
+            m = RESIDUAL_LINE.search(out)
+            if not m:
+                die("scenarios/%s: no 'run: status ..., energy residual' line" % name)
+            rows.append("| `scenarios/%s` | %s | %s | %s |" % (name, what, m.group(1), m.group(2)))
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return "\n".join(rows)
+
+
 # ---- cpu-times: CPU seconds of fixed commands --------------------------------------------------
 CPU_CMDS = [
     ("scenarios/default.dat (6 s, `make run`)", ["run", "scenarios/default.dat", "-q"]),
@@ -574,6 +601,7 @@ BLOCKS = [  # name, file, generator, checker (None: the exact rerun)
     ("assess-cask", "docs/ASSESS.md", gen_assess_cask, None),
     ("assess-stronger", "docs/ASSESS.md", gen_assess_stronger, "skip"),
     ("cpu-times", "docs/PERFORMANCE.md", gen_cpu_times, check_cpu_times),
+    ("physics-residuals", "docs/PHYSICS.md", gen_physics_residuals, None),
     ("python-example", "docs/PYTHON.md", gen_python_example, "skip"),
 ] + [(n, "docs/PERFORMANCE.md", None, "skip") for n in BENCH]
 OTHER = ("validation", "figures", "constants")
