@@ -46,6 +46,7 @@ that matches prints CHECK. Blocks and their sources:
                                         byte-identical)
 """
 import argparse
+import glob
 import os
 import re
 import resource
@@ -511,7 +512,36 @@ def gen_figures(a):
     return "redrawn"
 
 
+PRINT_DPI = 300   # issue 46: every figure of the docs prints at 300 dpi
+
+
+def png_dpi(path):
+    """The resolution a PNG states in its pHYs chunk (dots per inch), or None without one."""
+    import struct
+    with open(path, "rb") as f:
+        data = f.read()
+    at = data.find(b"pHYs")
+    if data[:8] != b"\x89PNG\r\n\x1a\n" or at < 0:
+        return None
+    x, y, unit = struct.unpack(">IIB", data[at + 4:at + 13])
+    return (x * 0.0254, y * 0.0254) if unit == 1 else None
+
+
+def check_dpi(c):
+    bad = 0
+    for path in sorted(glob.glob(os.path.join(ROOT, "docs", "**", "*.png"), recursive=True)):
+        dpi = png_dpi(path)
+        if dpi is None or max(abs(d - PRINT_DPI) for d in dpi) > 0.5:
+            stated = "no stated" if dpi is None else "%.0f" % dpi[0]
+            c.fail("figure %s" % os.path.relpath(path, ROOT), "%s dpi, not %d" % (stated, PRINT_DPI),
+                   "draw it with dpi=%d" % PRINT_DPI)
+            bad += 1
+    if not bad:
+        c.ok("figures: every PNG under docs/ states %d dpi" % PRINT_DPI)
+
+
 def check_figures(a, c):
+    check_dpi(c)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.image as mi
