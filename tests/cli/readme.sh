@@ -42,10 +42,15 @@ frag=$(awk '/^## Tutorial/ { on = 1 } on && /^## Scene/ { exit } on' README.md |
 mkdir -p "$T/tut/scenarios"
 cp "$T/myrock.dat" "$T/tut/scenarios/myrock.dat"; cp scenarios/pbr.obj "$T/tut/scenarios/pbr.obj"
 REPO=$(pwd)
-sweep=$(sed "s|^bin/rockdem |$BIN |" "$T/sweep_cmd.txt")
-if (cd "$T/tut" && eval "$sweep --set model.duration=0.5 -q" > sweep.txt 2>&1) && [ -s "$T/tut/myrock_sweep.h5" ]
+ABSBIN=$(cd "$(dirname "$BIN")" && pwd)/$(basename "$BIN")
+sweep=$(sed "s|^bin/rockdem |$ABSBIN |" "$T/sweep_cmd.txt")
+if (cd "$T/tut" && eval "$sweep --set model.duration=0.5 -q" > sweep.txt 2>&1) &&
+    [ -s "$T/tut/myrock_sweep.h5" ]
 then judge readme-tutorial-sweep ok
-else tail -3 "$T/tut/sweep.txt"; judge readme-tutorial-sweep "the tutorial's sweep command fails: $sweep"; fi
+else
+    tail -3 "$T/tut/sweep.txt"
+    judge readme-tutorial-sweep "the tutorial's sweep command fails: $sweep"
+fi
 if [ -n "$frag" ] && (cd "$T/tut" && eval "${frag/tools\//$REPO/tools/}" > frag.txt 2>&1) &&
     [ -s "$T/tut/myrock_fragility.png" ]
 then judge readme-tutorial-fragility ok
