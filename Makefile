@@ -102,7 +102,8 @@ $(BUILD)/tests/rockdem-general: src/cli/main.c $(CLIOBJ) $(filter-out $(BUILD)/o
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) src/cli/main.c $(filter %.o,$^) $(LDLIBS) -o $@
 
-run: $(BIN)/rockdem
+# also the shipped PBR's mesh, so the README's next commands (scenarios/pbr.dat) run as written
+run: $(BIN)/rockdem scenarios/pbr.obj
 	$(BIN)/rockdem run scenarios/default.dat
 
 # the shipped PBR's mesh comes from a seeded generator (no mesh is committed)

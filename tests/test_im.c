@@ -1,7 +1,7 @@
-/* Tests for intensity measures (src/im.c) and the exact oscillator response (src/sdof.c):
- * peaks and Arias intensity of a sampled sine against closed forms, significant duration
- * against a root of the analytic Husid curve, the Nigam-Jennings recurrence against a GSL ODE
- * solution, and spectral acceleration against steady-state amplification. */
+/* Tests for intensity measures (src/records/im.c) and the exact oscillator response
+ * (src/records/sdof.c): peaks and Arias intensity of a sampled sine against closed forms,
+ * significant duration against a root of the analytic Husid curve, the Nigam-Jennings recurrence
+ * against a GSL ODE solution, and spectral acceleration against steady-state amplification. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

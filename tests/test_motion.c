@@ -1,5 +1,5 @@
-/* Tests for the built-in pulses (src/motion.c): closed-form integrals against GSL quadrature,
- * values at key instants, direction splitting, zero outside the window, end times. */
+/* Tests for the built-in pulses (src/records/motion.c): closed-form integrals against GSL
+ * quadrature, values at key instants, direction splitting, zero outside the window, end times. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -39,7 +39,7 @@ if want gallery; then
     mkdir -p "$O/gallery"
     for sc in default pbr column statue seed001_cask seed000_topple; do
         "$BIN" run "scenarios/$sc.dat" --set model.duration=0.01 -q -o "$W/$sc.h5" >/dev/null
-        $PY tools/rdscene.py "$W/$sc.h5" -o "$O/gallery/$sc.png" --dpi 150 >/dev/null
+        $PY tools/rdscene.py "$W/$sc.h5" -o "$O/gallery/$sc.png" >/dev/null
     done
 fi
 # 5. the study figure from its table (make study reruns the 72 DEM runs)

@@ -21,6 +21,8 @@ import numpy as np
 
 G = 9.80665  # standard gravity: accelerations printed in g, as the program does
 DPI = 300
+# legends beside the axes, never over the data
+OUTSIDE = dict(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
 
 
 def psa(t, acc, periods, zeta):
@@ -109,9 +111,9 @@ def fig_spectrum(a, d, plt):
     ax.set_xlabel("period T (s)")
     ax.set_ylabel("spectral acceleration Sa (g)")
     ax.grid(True, which="both", lw=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(**OUTSIDE)
     fig.tight_layout()
-    fig.savefig(os.path.join(d, "fig_spectrum.png"), dpi=DPI)
+    fig.savefig(os.path.join(d, "fig_spectrum.png"), dpi=DPI, bbox_inches="tight")
     plt.close(fig)
     return meas
 
@@ -147,14 +149,14 @@ def fig_histories(a, d, plt):
     top = max(p[0] for p in peaks)
     if limit < 5 * top:  # the limit drawn only where it does not flatten the histories
         ax1.axhline(limit, color="k", ls=":", lw=0.8, label="alpha / %.0f" % ev["sf_rock"])
-    ax1.set_ylabel("tilt (rad); alpha / %.0f = %.3g" % (ev["sf_rock"], limit))
-    ax1.legend(fontsize=7)
+    ax1.set_ylabel("tilt (rad)\nlimit alpha / %.0f = %.3g rad" % (ev["sf_rock"], limit))
+    ax1.legend(**OUTSIDE)
     ax2.set_ylabel("base slide on the pad (mm)")
     ax2.set_xlabel("time (s)")
     for ax in (ax1, ax2):
         ax.grid(True, lw=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(d, "fig_histories.png"), dpi=DPI)
+    fig.savefig(os.path.join(d, "fig_histories.png"), dpi=DPI, bbox_inches="tight")
     plt.close(fig)
     return peaks
 
@@ -176,10 +178,10 @@ def fig_margins(a, d, plt):
     ax.set_yticks(y)
     ax.set_yticklabels([r[0] for r in rows], fontsize=7)
     ax.set_xlabel("allowable PGA (g)")
-    ax.legend(fontsize=7)
+    ax.legend(**OUTSIDE)
     ax.grid(True, axis="x", lw=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(d, "fig_margins.png"), dpi=DPI)
+    fig.savefig(os.path.join(d, "fig_margins.png"), dpi=DPI, bbox_inches="tight")
     plt.close(fig)
 
 

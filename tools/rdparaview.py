@@ -12,10 +12,16 @@ k-th step with --every k) unless an up-to-date RUN.xmf is there; given RUN.xmf i
 The .xmf is opened by its absolute path: ParaView 5.11's Xdmf3 readers join a bare file name
 ("run.xmf") and the HDF5 path inside it wrongly.
 
-Headless: Debian's ParaView renders only on an X display (its build has no EGL or OSMesa, and
---force-offscreen-rendering still opens an X window: without a display pvpython dies with
-SIGSEGV in XSync). With no $DISPLAY the script therefore runs itself again under xvfb-run (a
-virtual X display, Debian's xvfb), or says in one line what to install."""
+Headless (no $DISPLAY), in this order:
+  1. offscreen: when this ParaView's VTK has an EGL or OSMesa render window (vtkEGLRenderWindow,
+     vtkOSOpenGLRenderWindow: ParaView's own egl/osmesa builds, and every build on VTK 9.4 or
+     later, which picks its window at run time), VTK_DEFAULT_OPENGL_WINDOW selects it (EGL
+     first) and the view renders offscreen, no X server involved;
+  2. Xvfb: Debian's ParaView (5.11, VTK 9.1) has neither, and --force-offscreen-rendering still
+     opens an X window (without a display pvpython dies with SIGSEGV in XSync, exit 139), so the
+     script runs itself again under xvfb-run (a virtual X display, Debian's xvfb);
+  3. otherwise it says in one line what to install.
+A VTK_DEFAULT_OPENGL_WINDOW set by the user is kept."""
 import argparse
 import os
 import sys
@@ -27,20 +33,43 @@ sys.path.insert(0, HERE)
 XVFB_SCREEN = "-screen 0 1280x1024x24 +extension GLX"  # room for the 1200 x 800 picture
 
 
-def ensure_display(argv):
-    """Without an X display, re-run this script under xvfb-run (never returns), or return an
-    error line when xvfb-run is missing; None when a display is there (or already virtual)."""
-    if os.environ.get("DISPLAY"):
+# VTK's headless render windows, preferred first: EGL (GPU or Mesa's EGL), then OSMesa (CPU)
+HEADLESS_WINDOWS = ("vtkEGLRenderWindow", "vtkOSOpenGLRenderWindow")
+
+
+def headless_window():
+    """The name of a render window of this VTK that needs no X display, or None."""
+    if os.environ.get("VTK_DEFAULT_OPENGL_WINDOW") in HEADLESS_WINDOWS:
+        return os.environ["VTK_DEFAULT_OPENGL_WINDOW"]
+    try:
+        from vtkmodules import vtkRenderingOpenGL2 as gl
+    except ImportError:
         return None
+    return next((w for w in HEADLESS_WINDOWS if hasattr(gl, w)), None)
+
+
+def rendering(argv):
+    """How this run renders: "X display", "Xvfb" or "offscreen, <window>" (VTK_DEFAULT_OPENGL_WINDOW
+    then names it); without any, re-run this script under xvfb-run (never returns) or None."""
+    if os.environ.get("DISPLAY"):
+        return "Xvfb" if os.environ.get("RDPARAVIEW_XVFB") else "X display"
+    window = headless_window()
+    if window:
+        os.environ["VTK_DEFAULT_OPENGL_WINDOW"] = window
+        return "offscreen, " + window
     import shutil
     xvfb, pvpython = shutil.which("xvfb-run"), shutil.which("pvpython")
     if not xvfb or not pvpython or os.environ.get("RDPARAVIEW_XVFB"):
-        return ("rdparaview: error: no X display ($DISPLAY unset) and no xvfb-run: Debian's ParaView "
-                "renders only on a display; install xvfb (apt-get install xvfb) or set DISPLAY")
+        return None
     env = dict(os.environ, RDPARAVIEW_XVFB="1")
     # pvpython's sys.executable names its embedded interpreter, not a program to run
     cmd = [xvfb, "-a", "-s", XVFB_SCREEN, pvpython, os.path.abspath(__file__)] + list(argv)
     os.execve(xvfb, cmd, env)
+
+
+NO_RENDERING = ("rdparaview: error: no X display ($DISPLAY unset), no EGL or OSMesa render window "
+                "in this ParaView and no xvfb-run: install xvfb (apt-get install xvfb), use an egl "
+                "or osmesa build of ParaView, or set DISPLAY")
 
 
 def sidecar(path, every, frame):
@@ -119,9 +148,9 @@ def main(argv):
     if not os.path.exists(a.run):
         sys.stderr.write("rdparaview: error: %s: no such file\n" % a.run)
         return 2
-    no_display = ensure_display(argv)
-    if no_display:
-        sys.stderr.write(no_display + "\n")
+    mode = rendering(argv)
+    if mode is None:
+        sys.stderr.write(NO_RENDERING + "\n")
         return 2
     xmf = sidecar(a.run, a.every, a.frame)
     from paraview import simple as pv
@@ -133,9 +162,9 @@ def main(argv):
         pv.SaveScreenshot(a.screenshot, view, ImageResolution=[1200, 800])
     if a.state:
         pv.SaveState(a.state)
-    print("rdparaview: %s: %d steps from %g to %g s%s%s" % (
+    print("rdparaview: %s: %d steps from %g to %g s%s%s (rendering: %s)" % (
         xmf, len(ts), ts[0], ts[-1], "; state " + a.state if a.state else "",
-        "; picture " + a.screenshot if a.screenshot else ""))
+        "; picture " + a.screenshot if a.screenshot else "", mode))
     if os.environ.get("RDPARAVIEW_XVFB"):
         # ParaView's teardown on Xvfb's GLX fails (GLXBadContext, exit 1) after everything is
         # written: leave without it

@@ -104,6 +104,13 @@ def main():
         figure(read_table(md), png)
         print("redrew %s" % png)
         return
+    if len(sys.argv) != 3 or sys.argv[1].startswith("-"):
+        if sys.argv[1:2] in (["-h"], ["--help"]):
+            print(__doc__)
+            return
+        sys.stderr.write("study: error: usage: tools/study.py ROCKDEM OUTDIR, or --replot "
+                         "TABLE.md [--png PATH]\n")
+        sys.exit(2)
     exe, outdir = sys.argv[1], sys.argv[2]
     tmp = tempfile.mkdtemp(prefix="rockdem_study_")
     rows = []

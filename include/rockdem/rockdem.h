@@ -159,11 +159,14 @@ typedef struct rd_check_info {
 
 /* Everything rd_sim_create checks, without writing: meshes read and checked, bodies seated,
  * subcontact points and their perturbation built, the time step and the step count against
- * RD_STEP_BUDGET, and that the output file can be created (its folder exists and is
- * writable). info may be NULL. 0, or -1 with err ("file:line: ..." where a line applies). */
+ * RD_STEP_BUDGET; and, for the run file rd_sim_write_hdf5 would write, that it can be created
+ * (its folder exists and is writable). info may be NULL. 0, or -1 with err ("file:line: ..."
+ * where a line applies). */
 RD_API int rd_sim_check(const rd_scenario *sc, rd_check_info *info, rd_error *err);
 
-/* Build the simulation (geometry, subcontact points, time step, output file). NULL on error. */
+/* Build the simulation (geometry, subcontact points, time step; the state of `model restore`,
+ * or the observer that writes `model save`'s checkpoint). It opens no run file: that is
+ * rd_sim_write_hdf5's (rockdem/output.h). NULL on error. */
 RD_API rd_sim *rd_sim_create(const rd_scenario *sc, rd_error *err);
 
 /* Settle (if asked), then shake for the scenario's duration. The engine writes no file: its

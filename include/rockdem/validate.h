@@ -56,7 +56,7 @@ RD_API int rd_refscene_map(const rd_scenario *sc, rd_refscene *rs, rd_error *err
 RD_API int rd_refscene_solve(const rd_scenario *sc, const rd_refscene *rs, rd_ref_result *res,
                              rd_error *err);
 
-/* Write a solution in the DEM's HDF5 layout (src/io_hdf5.h) to path: poses from the rigid
+/* Write a solution in the DEM's HDF5 layout (src/io/io_hdf5.h) to path: poses from the rigid
  * rotation about the active pivot, tilt, ground, events, summary; energies kinetic and
  * gravitational (the others zero). When sum is not NULL, fills it and body[0..nblock), the
  * caller's storage that sum->body then points at. */

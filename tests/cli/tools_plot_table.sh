@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# rdplot and rdtable on a real run: the PNG is written, the table's values equal the /summary
-# attributes, pga/pgv equal the applied pulse; bad inputs (missing file, not HDF5, not a rockdem
-# file, missing dataset) give one line and exit 2.
+# rdplot and rdtable on a real run: the PNG is written, its energies are the energy terms, the
+# table's values equal the /summary attributes, pga/pgv equal the applied pulse; bad inputs
+# (missing file, not HDF5, not a rockdem file, missing dataset) give one line and exit 2.
 set -eu
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/tools_pt; mkdir -p "$T"
 PY=/usr/bin/python3
@@ -28,6 +28,13 @@ A = 0.6 * 9.80665
 assert abs(float(r["pga"]) - A) < 0.01 * A, r["pga"]
 assert abs(float(r["pgv"]) - A / np.pi) < 0.01 * A / np.pi, r["pgv"]
 assert r["im_source"] == "computed"
+# rdplot's energy panel: the energy terms, not the /time scale linked into /energy for xarray
+sys.path.insert(0, "tools")
+from rdtools.runfile import Run
+with Run(run) as rr:
+    en = list(rr.energies())
+assert en == ["kinetic", "gravitational", "elastic", "friction", "damping", "ground_work",
+              "residual"], en
 print("table ok")
 PY
 # a record run: pga/pgv come from the /ground attributes of the whole record (h1_pga, h1_pgv)

@@ -42,6 +42,19 @@ def test_stepped_run_equals_the_cli(block_file, cli, tmp_path):
     sim.close()
 
 
+def test_histories_from_the_file_equal_those_in_memory(block_file, tmp_path):
+    sim = rockdem.Simulation(rockdem.Scenario.load(block_file), output=str(tmp_path / "r.h5"))
+    run = sim.run()
+    sim.close()
+    mem = run.histories()
+    disk = rockdem.Run(run.path, run.summary, run.event_list, body_names=run.names).histories()
+    # the same names: the dimension scales linked into /ground and /energy (time, xyz) for
+    # xarray are no histories
+    assert sorted(disk) == sorted(mem)
+    for k in mem:
+        assert np.array_equal(disk[k], mem[k]), k
+
+
 def test_results_in_memory_without_a_file(block_file, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     before = sorted(os.listdir(tmp_path))

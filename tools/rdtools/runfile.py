@@ -180,16 +180,19 @@ class Run:
         return tilt / a if a > 0 else None
 
     def energies(self):
-        """dict name -> [N] array for the /energy datasets present (in the canonical order)."""
+        """dict name -> [N] array for the /energy datasets present (in the canonical order).
+        The dimension scales linked into the group for netCDF readers (/energy/time, the same
+        dataset as /time) are coordinates, not energies, and are left out."""
         if "energy" not in self.f:
             raise RDError("%s: missing group /energy" % self.path)
         out = {}
         for k in ENERGY_NAMES:
             if "energy/" + k in self.f:
                 out[k] = self.f["energy/" + k][()]
-        for k in self.f["energy"]:
-            if k not in out:
-                out[k] = self.f["energy/" + k][()]
+        for k, d in self.f["energy"].items():
+            scale = d.attrs.get("CLASS") == b"DIMENSION_SCALE"
+            if k not in out and isinstance(d, h5py.Dataset) and not scale:
+                out[k] = d[()]
         return out
 
     def events(self):

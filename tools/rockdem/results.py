@@ -120,10 +120,10 @@ class Run:
             out["time"] = f["time"][()]
             for k in SERIES:
                 out[k] = f[k][()]
-            for k in f["ground"]:
-                out["ground_" + k] = f["ground"][k][()]
-            for k in f["energy"]:
-                out["energy_" + k] = f["energy"][k][()]
+            for g in ("ground", "energy"):   # not the dimension scales linked in for xarray
+                for k, d in f[g].items():
+                    if d.attrs.get("CLASS") != b"DIMENSION_SCALE":
+                        out[g + "_" + k] = d[()]
             sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
             from rdtools.bodies import Bodies
             bodies = Bodies(f)

@@ -334,7 +334,7 @@ def rot_matrix(rdeg):
     Rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
     Ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
     Rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
-    return Rz @ Ry @ Rx  # about x, then y, then z (extrinsic), as src/setup.c
+    return Rz @ Ry @ Rx  # about x, then y, then z (extrinsic), as src/engine/setup.c
 
 
 def hull(points):

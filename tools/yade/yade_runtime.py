@@ -67,7 +67,7 @@ def pair_ks(i1, i2):
     return KS * a
 
 
-# ---- ground motion: rockdem's pulses (src/motion.c), acceleration only ----
+# ---- ground motion: rockdem's pulses (src/records/motion.c), acceleration only ----
 def pulse_acc(p, t):
     tau = t - p["start"]
     if tau <= 0:
