@@ -52,6 +52,9 @@
  * taken as not touching it (a mesh's far side): such a depth ends the run as penetrated
  * (monitor.c) long before a touching face gets there. */
 #define RD_SURF_DEPTH_CAP 0.25
+/* A bound on an affine function over a box taken as negative only below minus this fraction of
+ * its terms' size: far beyond round-off, so a rejection never drops a piece the clip keeps. */
+#define RD_SURF_ROUNDOFF  1e-12
 
 /* The planes of one body, body frame. */
 typedef struct surf_body {
@@ -65,6 +68,10 @@ typedef struct surf_body {
                                min, y min, x max, y max): an affine depth's bounds over the plane
                                are at its corners */
     int *plane_of;         /* [nf] the plane of each face */
+    int *plane_c0;         /* [nplane + 1] first cell of each plane (the convex path) */
+    int *c2_0;             /* [ncell + 1] first vertex of cell c in c2 */
+    double (*c2)[2];       /* the cells: each plane's faces merged into convex polygons
+                               (rd_patch_cells), its coordinates, counter-clockwise */
     rd_bvh tree;           /* the faces' boxes, body frame (contact/bvh.c) */
     int *seen;             /* [nplane] stamp: plane taken this step (the convex path) */
 } surf_body;
@@ -93,8 +100,9 @@ struct rd_surface {
     int *on_next, non_next, cap_on_next;
     rd_poly2 *comp; /* scratch: one patch's compressed pieces */
     int cap_comp;
-    rd_poly2 *ins; /* scratch: the parts of one plane's faces inside r */
+    rd_poly2 *ins; /* scratch: the parts of one plane's cells inside r */
     int cap_ins;
+    double inbox[4];  /* their bounding box, the plane's coordinates (x, y min, x, y max), m */
     double (*pl)[4];  /* scratch: r's planes in the integration body's frame (u, d) */
     double (*uw)[3];  /* scratch: r's outward normals, ground frame */
     double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
@@ -162,6 +170,58 @@ static surf_state *state_of(struct rd_surface *S, uint64_t k)
 }
 
 /* Body i's faces grouped by plane, each plane's frame, the faces' polygons in it. */
+/* Each plane's faces merged into convex cells (rd_patch_cells), once: the convex path clips a
+ * cell where it clipped each face (a flat base cut into 535 triangles is a few cells). 0, -1
+ * when out of memory. */
+static int plane_cells(const rd_poly *P, surf_body *B)
+{
+    const int nf = P->nf, nv2 = B->f2_0[nf];
+    int *f0 = malloc(((size_t)nf + 1) * sizeof *f0),
+        *vid = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *vid);
+    int *slot = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *slot),
+        *c0 = malloc(((size_t)nf + 1) * sizeof *c0);
+    double(*xy)[2] = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *xy);
+    B->plane_c0 = malloc(((size_t)B->nplane + 1) * sizeof *B->plane_c0);
+    B->c2_0 = malloc(((size_t)nf + 1) * sizeof *B->c2_0);
+    B->c2 = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *B->c2);
+    int bad = !f0 || !vid || !slot || !c0 || !xy || !B->plane_c0 || !B->c2_0 || !B->c2;
+    int nc = 0, w = 0;
+    for (int k = 0; k < B->nplane && !bad; k++) {
+        int nface = 0, m = 0;
+        for (int e = B->plane_f0[k]; e < B->plane_f0[k + 1]; e++) {
+            const int f = B->plane_face[e];
+            f0[nface++] = m;
+            for (int j = 0; j < P->flen[f]; j++, m++) {
+                vid[m] = P->fidx[P->fstart[f] + j];
+                xy[m][0] = B->f2[B->f2_0[f] + j][0];
+                xy[m][1] = B->f2[B->f2_0[f] + j][1];
+            }
+        }
+        f0[nface] = m;
+        const int n =
+            rd_patch_cells(nface, f0, vid, (const double(*)[2])xy, RD_PATCH_CELL_MAX, c0, slot);
+        if (n < 0) bad = 1;
+        B->plane_c0[k] = nc;
+        for (int c = 0; c < n; c++, nc++) {
+            B->c2_0[nc] = w;
+            for (int q = c0[c]; q < c0[c + 1]; q++, w++) {
+                B->c2[w][0] = xy[slot[q]][0];
+                B->c2[w][1] = xy[slot[q]][1];
+            }
+        }
+    }
+    if (!bad) {
+        B->plane_c0[B->nplane] = nc;
+        B->c2_0[nc] = w;
+    }
+    free(f0);
+    free(vid);
+    free(slot);
+    free(c0);
+    free(xy);
+    return bad ? -1 : 0;
+}
+
 static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char *name)
 {
     int nf = P->nf, nv2 = 0;
@@ -256,6 +316,10 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     free(fill);
     free(pd);
     B->plane_of = plane_of;
+    if (plane_cells(P, B)) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     B->seen = calloc((size_t)(B->nplane ? B->nplane : 1), sizeof *B->seen);
     double(*lo)[3] = malloc((size_t)(nf ? nf : 1) * sizeof *lo);
     double(*hi)[3] = malloc((size_t)(nf ? nf : 1) * sizeof *hi);
@@ -378,6 +442,9 @@ void rd_surface_free(rd_sim *s)
         free(B->f2);
         free(B->box);
         free(B->plane_of);
+        free(B->plane_c0);
+        free(B->c2_0);
+        free(B->c2);
         free(B->seen);
         rd_bvh_free(&B->tree);
     }
@@ -449,11 +516,42 @@ static int patch_dashpot(rd_sim *s, int i, int r, double c_a, const rd_moments *
     return 0;
 }
 
+/* The twisting lever of a patch (the integral of d |r - c| about its centroid c), found only
+ * when the Coulomb test needs it: from the pieces pc[0 .. n) (the convex path), or given. */
+typedef struct surf_twist {
+    const rd_poly2 *pc; /* the compressed pieces; NULL: tors is given */
+    int n;
+    const double *c, *dep; /* the centroid, the depth's coefficients (plane coordinates) */
+    rd_patch_scratch *sc;
+    double tors; /* m^4 */
+} surf_twist;
+
+/* The lever itself (once). */
+static double twist_exact(surf_twist *tw)
+{
+    if (tw->pc) {
+        const double *d = tw->dep;
+        tw->tors = tw->n == 1
+                       ? rd_patch_torsion(tw->pc, tw->c, d[0], d[1], d[2])
+                       : rd_patch_torsion_set(tw->pc, tw->n, tw->c, d[0], d[1], d[2], tw->sc);
+        tw->pc = NULL;
+    }
+    return tw->tors;
+}
+
+/* A lower bound of it: the Coulomb test with this lever finds most sticking patches inside the
+ * limit surface at a tenth of the cost (rd_patch_spring_s2). */
+static double twist_lower(const surf_twist *tw)
+{
+    const double *d = tw->dep;
+    return tw->pc ? rd_patch_torsion_bound(tw->pc, tw->n, tw->c, d[0], d[1], d[2]) : tw->tors;
+}
+
 /* One patch (plane P of body i against face g of r) with the compressed region's moments m,
- * its load ld (depth coefficients dep, plane frame fr) and twisting lever tors: the law, its
+ * its load ld (depth coefficients dep, plane frame fr) and twisting lever tw: the law, its
  * forces into the sums. */
 static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, int g,
-                       const rd_moments *m, const rd_patch_load *ld, double tors,
+                       const rd_moments *m, const rd_patch_load *ld, surf_twist *tw,
                        const double fr[4][3], const double dep[3], double c_a, surf_sums *sum)
 {
     struct rd_surface *S = s->surf;
@@ -498,7 +596,10 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     const double kA = j->ks * ld->area, kJ = j->ks * ld->polar;
     rd_law_shear_load(sp->fs, uw, vr, vn, kA, s->dt);
     sp->mt -= kJ * spin * s->dt;
-    double flim = j->tan_phi * rd_max(fn, 0.0), mlim = ld->f > 0 ? flim * tors / ld->f : 0.0;
+    double flim = j->tan_phi * rd_max(fn, 0.0),
+           mlim = ld->f > 0 ? flim * twist_lower(tw) / ld->f : 0.0;
+    if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1))
+        mlim = ld->f > 0 ? flim * twist_exact(tw) / ld->f : 0.0;
     int slip = rd_patch_spring_cap(sp, f0, m0, kA, kJ, flim, mlim, &s->e_fric);
     rd_axpy(1.0, sp->fs, F);
     rd_cross(C, sp->fs, tmp);
@@ -539,15 +640,14 @@ static void poly_copy(rd_poly2 *a, const rd_poly2 *b)
     memcpy(a->p, b->p, (size_t)b->n * sizeof b->p[0]);
 }
 
-/* The parts of plane P's faces (body i) inside r, behind every plane of r (d_h >= 0), into
- * S->ins: found once per plane and step, so a plane that does not reach r costs one pass, and
- * each face g then clips only what is inside. A face whose every vertex lies deeper than cap
- * below the nearest plane is left out (a mesh's far side). Returns the count, -1 when out of
- * memory. */
-static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, double cap)
+/* The parts of plane P's cells (body i; its faces merged, plane_cells) inside r, behind every
+ * plane of r (d_h >= 0), into S->ins, and their bounding box into S->inbox: found once per plane
+ * and step, so a plane that does not reach r costs one pass, and each face g then clips only
+ * what is inside. A cell whose every vertex lies deeper than cap below the nearest plane is
+ * left out (a mesh's far side). Returns the count, -1 when out of memory. */
+static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap)
 {
     struct rd_surface *S = s->surf;
-    const rd_poly *Pi = &s->poly[i];
     const double *bx = B->box[P];
     for (int h = 0; h < nr; h++) { /* the whole plane in front of one plane of r: outside it */
         const double *dh = S->dep[h];
@@ -556,16 +656,19 @@ static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, dou
         if (hi <= 0) return 0;
     }
     int n = 0;
-    for (int e = B->plane_f0[P]; e < B->plane_f0[P + 1]; e++) {
-        const int f = B->plane_face[e], nv = Pi->flen[f];
-        const double(*v2)[2] = B->f2 + B->f2_0[f];
+    double *ib = S->inbox;
+    ib[0] = ib[1] = DBL_MAX;
+    ib[2] = ib[3] = -DBL_MAX;
+    for (int c = B->plane_c0[P]; c < B->plane_c0[P + 1]; c++) {
+        const int nv = B->c2_0[c + 1] - B->c2_0[c];
+        const double(*v2)[2] = B->c2 + B->c2_0[c];
         if (rd_grow((void **)&S->ins, &S->cap_ins, n + 2, sizeof *S->ins)) return -1;
         rd_poly2 *a = &S->ins[n], *b = &S->ins[n + 1];
         a->n = nv;
         memcpy(a->p, v2, (size_t)nv * sizeof *v2);
         int alive = 1;
         double deep =
-            DBL_MAX; /* the least, over the face's vertices, of their nearest-plane depth */
+            DBL_MAX; /* the least, over the cell's vertices, of their nearest-plane depth */
         for (int k = 0; k < nv; k++) {
             double dmin = DBL_MAX;
             for (int h = 0; h < nr; h++)
@@ -587,9 +690,32 @@ static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, dou
         }
         if (!alive) continue;
         if (a != &S->ins[n]) poly_copy(&S->ins[n], a);
+        for (int k = 0; k < a->n; k++)
+            for (int q = 0; q < 2; q++) {
+                ib[q] = rd_min(ib[q], a->p[k][q]);
+                ib[q + 2] = rd_max(ib[q + 2], a->p[k][q]);
+            }
         n++;
     }
     return n;
+}
+
+/* Can face g of r be the nearest plane anywhere in the inside pieces' box S->inbox? Not when
+ * for some other face h the affine d_h - d_g is negative all over the box (its largest value
+ * at a corner, less a round-off margin): every piece would clip to nothing. */
+static int nearest_possible(const struct rd_surface *S, int g, int nr)
+{
+    const double *dg = S->dep[g], *ib = S->inbox;
+    const double X = rd_max(fabs(ib[0]), fabs(ib[2])), Y = rd_max(fabs(ib[1]), fabs(ib[3]));
+    for (int h = 0; h < nr; h++) {
+        if (h == g) continue;
+        const double *dh = S->dep[h];
+        double c0 = dh[0] - dg[0], cx = dh[1] - dg[1], cy = dh[2] - dg[2];
+        double hi = c0 + rd_max(cx * ib[0], cx * ib[2]) + rd_max(cy * ib[1], cy * ib[3]);
+        double tol = RD_SURF_ROUNDOFF * (fabs(c0) + fabs(cx) * X + fabs(cy) * Y);
+        if (hi < -tol) return 0;
+    }
+    return 1;
 }
 
 /* The parts of the inside pieces S->ins[0 .. nin) where face g of r is the nearest plane (d_h -
@@ -609,10 +735,15 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
             if (h == g) continue;
             const double *dh = S->dep[h];
             double c0 = dh[0] - dg[0], cx = dh[1] - dg[1], cy = dh[2] - dg[2];
-            int cut = 0;
-            for (int k = 0; k < a->n && !cut; k++) cut = c0 + cx * a->p[k][0] + cy * a->p[k][1] < 0;
+            int cut = 0, kept = 0; /* a vertex outside, a vertex inside */
+            for (int k = 0; k < a->n; k++) {
+                if (c0 + cx * a->p[k][0] + cy * a->p[k][1] < 0)
+                    cut = 1;
+                else
+                    kept = 1;
+            }
             if (!cut) continue;
-            alive = rd_patch_clip_half(a, cx, cy, c0, b) > 0;
+            alive = kept && rd_patch_clip_half(a, cx, cy, c0, b) > 0;
             rd_poly2 *t = a;
             a = b;
             b = t;
@@ -771,9 +902,10 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             S->dep[h][1] = -rd_dot(pl, fr[1]);
             S->dep[h][2] = -rd_dot(pl, fr[2]);
         }
-        const int nin = plane_inside(s, B, i, P, nr, cap);
+        const int nin = plane_inside(s, B, P, nr, cap);
         if (nin < 0) return -1;
         for (int g = 0; g < nr && nin > 0; g++) {
+            if (!nearest_possible(S, g, nr)) continue;
             rd_moments m;
             int n = nearest_pieces(S, nin, g, nr, &m);
             if (n < 0) return -1;
@@ -783,10 +915,8 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
             const double c[2] = { ld.cx, ld.cy };
-            double tors = n == 1
-                              ? rd_patch_torsion(S->comp, c, dg[0], dg[1], dg[2])
-                              : rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
-            if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, tors, fr, dg, c_a, &sum)) return -1;
+            surf_twist tw = { S->comp, n, c, dg, &S->tsc, 0.0 };
+            if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, &tw, fr, dg, c_a, &sum)) return -1;
         }
     }
     return pair_finish(s, pair, pr, i, r, &sum);
@@ -1167,7 +1297,8 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
             for (int q = k; q < e; q++)
                 tors += rd_patch_torsion(&S->comp[ix[q]], c, dep[0], dep[1], dep[2]);
             rd_mat_vec(s->R[r], Br->frame[Q][3], S->uw[Q]);
-            rc = patch_apply(s, pr, pair, i, r, P, Q, &m, &ld, tors, fr, dep, c_a, &sum);
+            surf_twist tw = { NULL, 0, c, dep, NULL, tors };
+            rc = patch_apply(s, pr, pair, i, r, P, Q, &m, &ld, &tw, fr, dep, c_a, &sum);
         }
         k = e;
     }
