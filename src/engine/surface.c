@@ -106,6 +106,7 @@ struct rd_surface {
     double (*pl)[4];  /* scratch: r's planes in the integration body's frame (u, d) */
     double (*uw)[3];  /* scratch: r's outward normals, ground frame */
     double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
+    int *hcut;        /* scratch: the planes of r that may cut a piece */
     int cap_pl;
     rd_patch_scratch tsc; /* scratch of rd_patch_torsion_set */
     rd_bvh_pairs cand;    /* scratch: candidate faces, or face pairs, from the trees */
@@ -395,7 +396,8 @@ int rd_surface_init(rd_sim *s, rd_error *err)
     }
     S->uw = malloc((size_t)S->cap_pl * sizeof *S->uw);
     S->dep = malloc((size_t)S->cap_pl * sizeof *S->dep);
-    if (!S->uw || !S->dep) {
+    S->hcut = malloc((size_t)S->cap_pl * sizeof *S->hcut);
+    if (!S->uw || !S->dep || !S->hcut) {
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -458,6 +460,7 @@ void rd_surface_free(rd_sim *s)
     free(S->pl);
     free(S->uw);
     free(S->dep);
+    free(S->hcut);
     free(S->tsc.slot);
     free(S->tsc.count);
     free(S->tsc.ends);
@@ -640,6 +643,18 @@ static void poly_copy(rd_poly2 *a, const rd_poly2 *b)
     memcpy(a->p, b->p, (size_t)b->n * sizeof b->p[0]);
 }
 
+/* The bounds of the affine d = c[0] + c[1] x + c[2] y over the box bx (x min, y min, x max, y
+ * max; at its corners), and the round-off margin tol within which a vertex inside the box may
+ * exceed them when evaluated on its own. */
+static void box_bounds(const double c[3], const double bx[4], double *lo, double *hi, double *tol)
+{
+    const double x0 = c[1] * bx[0], x1 = c[1] * bx[2], y0 = c[2] * bx[1], y1 = c[2] * bx[3];
+    *lo = c[0] + rd_min(x0, x1) + rd_min(y0, y1);
+    *hi = c[0] + rd_max(x0, x1) + rd_max(y0, y1);
+    *tol =
+        RD_SURF_ROUNDOFF * (fabs(c[0]) + rd_max(fabs(x0), fabs(x1)) + rd_max(fabs(y0), fabs(y1)));
+}
+
 /* The parts of plane P's cells (body i; its faces merged, plane_cells) inside r, behind every
  * plane of r (d_h >= 0), into S->ins, and their bounding box into S->inbox: found once per plane
  * and step, so a plane that does not reach r costs one pass, and each face g then clips only
@@ -649,12 +664,20 @@ static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap
 {
     struct rd_surface *S = s->surf;
     const double *bx = B->box[P];
+    int ncut = 0, *cut_by = S->hcut; /* the planes of r that may cut a cell */
+    double least_hi = DBL_MAX, least_tol = 0;
     for (int h = 0; h < nr; h++) { /* the whole plane in front of one plane of r: outside it */
-        const double *dh = S->dep[h];
-        double hi =
-            dh[0] + rd_max(dh[1] * bx[0], dh[1] * bx[2]) + rd_max(dh[2] * bx[1], dh[2] * bx[3]);
+        double lo, hi, tol;
+        box_bounds(S->dep[h], bx, &lo, &hi, &tol);
         if (hi <= 0) return 0;
+        if (!(lo > tol)) cut_by[ncut++] = h;
+        if (hi < least_hi) {
+            least_hi = hi;
+            least_tol = tol;
+        }
     }
+    /* a plane of r with every point of the box within cap: no cell is a far side */
+    const int far_test = !(least_hi < cap - least_tol);
     int n = 0;
     double *ib = S->inbox;
     ib[0] = ib[1] = DBL_MAX;
@@ -668,17 +691,17 @@ static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap
         memcpy(a->p, v2, (size_t)nv * sizeof *v2);
         int alive = 1;
         double deep =
-            DBL_MAX; /* the least, over the cell's vertices, of their nearest-plane depth */
-        for (int k = 0; k < nv; k++) {
+            -DBL_MAX; /* the least, over the cell's vertices, of their nearest-plane depth */
+        for (int k = 0; k < nv && far_test; k++) {
             double dmin = DBL_MAX;
             for (int h = 0; h < nr; h++)
                 dmin =
                     rd_min(dmin, S->dep[h][0] + S->dep[h][1] * v2[k][0] + S->dep[h][2] * v2[k][1]);
-            deep = rd_min(deep, dmin);
+            deep = k ? rd_min(deep, dmin) : dmin;
         }
         if (deep > cap) continue;
-        for (int h = 0; h < nr && alive; h++) {
-            const double *dh = S->dep[h];
+        for (int e = 0; e < ncut && alive; e++) {
+            const double *dh = S->dep[cut_by[e]];
             int cut = 0;
             for (int k = 0; k < a->n && !cut; k++)
                 cut = dh[0] + dh[1] * a->p[k][0] + dh[2] * a->p[k][1] < 0;
@@ -701,27 +724,29 @@ static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap
 }
 
 /* Can face g of r be the nearest plane anywhere in the inside pieces' box S->inbox? Not when
- * for some other face h the affine d_h - d_g is negative all over the box (its largest value
- * at a corner, less a round-off margin): every piece would clip to nothing. */
-static int nearest_possible(const struct rd_surface *S, int g, int nr)
+ * for some other face h the affine d_h - d_g is negative all over the box (every piece would
+ * clip to nothing). Otherwise the faces h whose d_h - d_g may be negative somewhere in the box
+ * (those that may cut a piece) into S->hcut; returns their count + 1, 0 when g cannot be. */
+static int nearest_possible(struct rd_surface *S, int g, int nr)
 {
-    const double *dg = S->dep[g], *ib = S->inbox;
-    const double X = rd_max(fabs(ib[0]), fabs(ib[2])), Y = rd_max(fabs(ib[1]), fabs(ib[3]));
+    const double *dg = S->dep[g];
+    int n = 0;
     for (int h = 0; h < nr; h++) {
         if (h == g) continue;
         const double *dh = S->dep[h];
-        double c0 = dh[0] - dg[0], cx = dh[1] - dg[1], cy = dh[2] - dg[2];
-        double hi = c0 + rd_max(cx * ib[0], cx * ib[2]) + rd_max(cy * ib[1], cy * ib[3]);
-        double tol = RD_SURF_ROUNDOFF * (fabs(c0) + fabs(cx) * X + fabs(cy) * Y);
+        const double c[3] = { dh[0] - dg[0], dh[1] - dg[1], dh[2] - dg[2] };
+        double lo, hi, tol;
+        box_bounds(c, S->inbox, &lo, &hi, &tol);
         if (hi < -tol) return 0;
+        if (!(lo > tol)) S->hcut[n++] = h;
     }
-    return 1;
+    return n + 1;
 }
 
 /* The parts of the inside pieces S->ins[0 .. nin) where face g of r is the nearest plane (d_h -
- * d_g >= 0 for every other face h): into S->comp, their moments summed into *m. Returns the
- * piece count, -1 when out of memory. */
-static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_moments *m)
+ * d_g >= 0 for the nh faces h of S->hcut, the others hold it over the pieces' box): into
+ * S->comp, their moments summed into *m. Returns the piece count, -1 when out of memory. */
+static int nearest_pieces(struct rd_surface *S, int nin, int g, int nh, rd_moments *m)
 {
     const double *dg = S->dep[g];
     int n = 0;
@@ -731,9 +756,8 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
         rd_poly2 *a = &S->comp[n], *b = &S->comp[n + 1];
         poly_copy(a, &S->ins[e]);
         int alive = 1;
-        for (int h = 0; h < nr && alive; h++) {
-            if (h == g) continue;
-            const double *dh = S->dep[h];
+        for (int q = 0; q < nh && alive; q++) {
+            const double *dh = S->dep[S->hcut[q]];
             double c0 = dh[0] - dg[0], cx = dh[1] - dg[1], cy = dh[2] - dg[2];
             int cut = 0, kept = 0; /* a vertex outside, a vertex inside */
             for (int k = 0; k < a->n; k++) {
@@ -905,9 +929,10 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
         const int nin = plane_inside(s, B, P, nr, cap);
         if (nin < 0) return -1;
         for (int g = 0; g < nr && nin > 0; g++) {
-            if (!nearest_possible(S, g, nr)) continue;
+            const int nh = nearest_possible(S, g, nr) - 1;
+            if (nh < 0) continue;
             rd_moments m;
-            int n = nearest_pieces(S, nin, g, nr, &m);
+            int n = nearest_pieces(S, nin, g, nh, &m);
             if (n < 0) return -1;
             if (n == 0) continue;
             rd_patch_load ld;
