@@ -14,8 +14,9 @@
  *    gives the same force, moments, energy and (about the common centroid) twisting lever to
  *    round-off;
  *  - rd_patch_faces: a square face half over a reference face's edge, and a tilted face;
- *  - rd_patch_cells: a square cut into 2 n^2 triangles (interior vertices) and an L of six
- *    triangles merged into convex cells whose moments are the region's to round-off;
+ *  - rd_patch_cells: a rectangle cut into 2 n^2 triangles (interior vertices on the grid, and
+ *    moved off it) and an L of six triangles merged into convex cells whose moments are the
+ *    region's to round-off;
  *  - rd_patch_torsion_bound: between 0 and the twisting lever on the square, the 12-gon and an
  *    affine pressure off the centre (the inequality |r - c| >= |r - c|^2 / rmax), and on the
  *    square its closed-form ratio sqrt 2 / (sqrt 2 + ln(1 + sqrt 2)) = 0.616.
@@ -369,6 +370,36 @@ static void test_cells_grid(void **state)
     rd_check_rel("grid cells: Sxy (m^4)", m.sxy, ex.sxy, ROUNDOFF, RD_STRICT);
 }
 
+/* The same rectangle with its 49 interior vertices moved off the grid (by up to 0.3 of a cell,
+ * a fixed pseudo-random pattern; a scanned rock's sawn base): merging face by face cannot
+ * close the irregular stars, the outline (convex, 32 vertices) re-triangulated and merged is
+ * one cell, with the rectangle's moments. */
+static void test_cells_jittered(void **state)
+{
+    (void)state;
+    enum { NF = 2 * GRID_N * GRID_N };
+    int f0[NF + 1], vid[3 * NF], c0[NF + 1], cs[3 * NF];
+    double xy[3 * NF][2];
+    const double w = 0.5, h = 0.3;
+    int nf = grid_faces(GRID_N, w, h, NULL, f0, vid, xy);
+    for (int q = 0; q < f0[nf]; q++) {
+        const int i = vid[q] / (GRID_N + 1), j = vid[q] % (GRID_N + 1);
+        if (i == 0 || j == 0 || i == GRID_N || j == GRID_N) continue;
+        xy[q][0] += 0.3 * w / GRID_N * sin(12.9898 * vid[q]);
+        xy[q][1] += 0.3 * h / GRID_N * cos(78.233 * vid[q]);
+    }
+    int nc = rd_patch_cells(nf, f0, vid, (const double(*)[2])xy, RD_PATCH_CELL_MAX, c0, cs);
+    rd_moments m, ex;
+    rd_poly2 r = rect(0, 0, w, h);
+    rd_patch_moments(&r, &ex);
+    int convex = cells_moments(nc, c0, cs, (const double(*)[2])xy, &m);
+    rd_check_abs("jittered grid cells: every cell convex", (double)!convex, 0.0, 0.5, RD_STRICT);
+    rd_check_abs("jittered grid cells: one cell", (double)nc, 1.0, 0.5, RD_STRICT);
+    rd_check_rel("jittered grid cells: area (m^2)", m.a, ex.a, ROUNDOFF, RD_STRICT);
+    rd_check_rel("jittered grid cells: Sx (m^3)", m.sx, ex.sx, ROUNDOFF, RD_STRICT);
+    rd_check_rel("jittered grid cells: Sxy (m^4)", m.sxy, ex.sxy, ROUNDOFF, RD_STRICT);
+}
+
 /* An L of three squares (six triangles) is not convex: at least two cells, each convex, with
  * the L's area. */
 static void test_cells_l_shape(void **state)
@@ -430,6 +461,7 @@ int main(void)
         cmocka_unit_test(test_faces_half_over),
         cmocka_unit_test(test_faces_tilted),
         cmocka_unit_test(test_cells_grid),
+        cmocka_unit_test(test_cells_jittered),
         cmocka_unit_test(test_cells_l_shape),
         cmocka_unit_test(test_torsion_bound),
     };

@@ -216,3 +216,25 @@ int rd_bvh_query(const rd_bvh *a, const double lo[3], const double hi[3], rd_bvh
     }
     return query_node(a, 0, c, h, out);
 }
+
+static int carried_node(const rd_bvh *a, int k, const double rot[9], const double tr[3],
+                        const double *lo, const double *hi, double margin, rd_bvh_pairs *out)
+{
+    double c[3], h[3];
+    carry(a, k, rot, tr, c, h);
+    if (!meets(lo, hi, c, h, margin)) return 0;
+    if (a->child[k] < 0) {
+        for (int i = a->first[k]; i < a->first[k] + a->count[k]; i++)
+            if (push(out, a->item[i], 0)) return -1;
+        return 0;
+    }
+    if (carried_node(a, a->child[k], rot, tr, lo, hi, margin, out)) return -1;
+    return carried_node(a, a->child[k] + 1, rot, tr, lo, hi, margin, out);
+}
+
+int rd_bvh_query_carried(const rd_bvh *a, const double rot[9], const double tr[3],
+                         const double lo[3], const double hi[3], double margin, rd_bvh_pairs *out)
+{
+    if (a->nnode == 0) return 0;
+    return carried_node(a, 0, rot, tr, lo, hi, margin, out);
+}

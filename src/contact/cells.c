@@ -11,9 +11,16 @@
  */
 #include "contact/contact.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Longest outline (edges) that is re-triangulated: ear clipping is quadratic in it. */
+#define RD_PATCH_OUTLINE_MAX  1024
+/* The re-triangulated outline must hold the faces' area to this fraction (round-off): else a
+ * mesh whose coplanar faces overlap or meet at T-junctions keeps the greedy cells. */
+#define RD_PATCH_OUTLINE_AREA 1e-9
 
 /* The scratch of one merge: the directed edges of the faces (vertex ids u -> v) and the face
  * that brought each; each face's cell (union-find) and each cell's slot list. */
@@ -157,8 +164,9 @@ static int work_init(cells_work *w, int nface, const int *f0, const int *vid)
     return 0;
 }
 
-int rd_patch_cells(int nface, const int *f0, const int *vid, const double (*xy)[2], int maxv,
-                   int *c0, int *cslot)
+/* The faces merged greedily (Hertel and Mehlhorn) into convex cells. */
+static int merge_faces(int nface, const int *f0, const int *vid, const double (*xy)[2], int maxv,
+                       int *c0, int *cslot)
 {
     cells_work w;
     memset(&w, 0, sizeof w);
@@ -185,4 +193,184 @@ int rd_patch_cells(int nface, const int *f0, const int *vid, const double (*xy)[
     c0[nc] = m;
     work_free(&w, nface);
     return nc;
+}
+
+/* Twice the signed area of the polygon of slots s[0 .. n). */
+static double area2(const int *s, int n, const double (*xy)[2])
+{
+    double a = 0;
+    for (int k = 0; k < n; k++) {
+        const double *u = xy[s[k]], *v = xy[s[k + 1 == n ? 0 : k + 1]];
+        a += u[0] * v[1] - v[0] * u[1];
+    }
+    return a;
+}
+
+/* Does point p lie inside or on triangle (a, b, c), counter-clockwise? */
+static int in_triangle(const double *a, const double *b, const double *c, const double *p)
+{
+    const double ab = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+    const double bc = (c[0] - b[0]) * (p[1] - b[1]) - (c[1] - b[1]) * (p[0] - b[0]);
+    const double ca = (a[0] - c[0]) * (p[1] - c[1]) - (a[1] - c[1]) * (p[0] - c[0]);
+    return ab >= 0 && bc >= 0 && ca >= 0;
+}
+
+/* Ear clipping of the simple counter-clockwise loop of slots s[0 .. n) into triangles appended
+ * to tri (slot triples) from *nt. 0, 1 when it finds no ear (a degenerate loop). */
+static int ear_clip(int *s, int n, const int *vid, const double (*xy)[2], int *tri, int *nt)
+{
+    while (n > 3) {
+        int found = 0;
+        for (int i = 0; i < n && !found; i++) {
+            const int p = s[(i + n - 1) % n], q = s[i], r = s[(i + 1) % n];
+            const double *a = xy[p], *b = xy[q], *c = xy[r];
+            if (!((b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]) > 0)) continue;
+            int blocked = 0;
+            for (int j = 0; j < n && !blocked; j++) {
+                const int t = s[j];
+                if (vid[t] == vid[p] || vid[t] == vid[q] || vid[t] == vid[r]) continue;
+                blocked = in_triangle(a, b, c, xy[t]);
+            }
+            if (blocked) continue;
+            tri[3 * *nt] = p;
+            tri[3 * *nt + 1] = q;
+            tri[3 * *nt + 2] = r;
+            (*nt)++;
+            memmove(s + i, s + i + 1, (size_t)(n - i - 1) * sizeof *s);
+            n--;
+            found = 1;
+        }
+        if (!found) return 1;
+    }
+    if (n == 3) {
+        memcpy(tri + 3 * *nt, s, 3 * sizeof *s);
+        (*nt)++;
+    }
+    return 0;
+}
+
+/* The outline of the faces (their edges with no twin), as simple counter-clockwise loops of
+ * slots into loop (loop starts in l0), when it is one: every outline vertex starts one outline
+ * edge and every loop has positive area (no hole). Returns the loop count, 0 when the outline
+ * is none of these or longer than RD_PATCH_OUTLINE_MAX, -1 when out of memory. */
+static int outline_loops(const cells_work *w, int nface, const int *f0, const int *vid,
+                         const double (*xy)[2], int *loop, int *l0)
+{
+    const int ne = f0[nface];
+    int *from = malloc((size_t)ne * sizeof *from), *used = calloc((size_t)ne, sizeof *used);
+    int *next = malloc((size_t)ne * sizeof *next);
+    if (!from || !used || !next) {
+        free(from);
+        free(used);
+        free(next);
+        return -1;
+    }
+    int nb = 0, ok = 1;
+    for (int f = 0; f < nface; f++)
+        for (int q = f0[f]; q < f0[f + 1]; q++) {
+            const int q1 = q + 1 == f0[f + 1] ? f0[f] : q + 1;
+            if (w->key[key_slot(w, edge_key(vid[q1], vid[q]))] == 0) {
+                from[nb] = q;
+                next[nb++] = q1;
+            }
+        }
+    if (nb > RD_PATCH_OUTLINE_MAX) ok = 0;
+    /* the outline edge that starts where edge k ends: quadratic, nb is small */
+    int nl = 0, m = 0;
+    for (int k = 0; k < nb && ok; k++) {
+        if (used[k]) continue;
+        l0[nl++] = m;
+        int e = k;
+        while (ok && !used[e]) {
+            used[e] = 1;
+            loop[m++] = from[e];
+            int nx = -1, count = 0;
+            for (int j = 0; j < nb; j++)
+                if (vid[from[j]] == vid[next[e]]) nx = j, count++;
+            ok = count == 1;
+            e = nx;
+        }
+        ok = ok && e == k && area2(loop + l0[nl - 1], m - l0[nl - 1], xy) > 0;
+    }
+    l0[nl] = m;
+    free(from);
+    free(used);
+    free(next);
+    return ok ? nl : 0;
+}
+
+/* The faces' area, twice (each face's shoelace). */
+static double faces_area2(int nface, const int *f0, const double (*xy)[2])
+{
+    double a = 0;
+    for (int f = 0; f < nface; f++) {
+        int s[RD_PATCH_FACE_MAX];
+        const int n = f0[f + 1] - f0[f];
+        for (int k = 0; k < n && k < RD_PATCH_FACE_MAX; k++) s[k] = f0[f] + k;
+        a += area2(s, n < RD_PATCH_FACE_MAX ? n : RD_PATCH_FACE_MAX, xy);
+    }
+    return a;
+}
+
+/* The outline re-triangulated (ear clipping, so no interior vertex is left) and the triangles
+ * merged: into c0 / cslot when that gives fewer than nc cells within the caller's room and the
+ * triangles' area is the faces' to round-off. Returns the cell count (nc when kept), -1 when
+ * out of memory. */
+static int merge_outline(int nface, const int *f0, const int *vid, const double (*xy)[2], int maxv,
+                         int nc, int *c0, int *cslot)
+{
+    cells_work w;
+    memset(&w, 0, sizeof w);
+    const int ne = f0[nface];
+    int *loop = malloc((size_t)ne * sizeof *loop), *l0 = malloc(((size_t)ne + 1) * sizeof *l0);
+    int *tri = malloc(3 * (size_t)ne * sizeof *tri), *t0 = malloc(((size_t)ne + 1) * sizeof *t0);
+    int *tc0 = malloc(((size_t)ne + 1) * sizeof *tc0), *tcs = malloc(3 * (size_t)ne * sizeof *tcs);
+    int rc = nc, nl = -1;
+    if (loop && l0 && tri && t0 && tc0 && tcs && !work_init(&w, nface, f0, vid))
+        nl = outline_loops(&w, nface, f0, vid, xy, loop, l0);
+    int nt = 0, stuck = nl <= 0;
+    for (int l = 0; l < nl && !stuck; l++)
+        stuck = ear_clip(loop + l0[l], l0[l + 1] - l0[l], vid, xy, tri, &nt);
+    if (!stuck) {
+        for (int t = 0; t <= nt; t++) t0[t] = 3 * t;
+        double at = 0, af = faces_area2(nface, f0, xy);
+        for (int t = 0; t < nt; t++) at += area2(tri + 3 * t, 3, xy);
+        /* the triangles as faces of their own slots 3 t + k (tri maps them back) */
+        int *tv = malloc(3 * (size_t)(nt ? nt : 1) * sizeof *tv);
+        double(*txy)[2] = malloc(3 * (size_t)(nt ? nt : 1) * sizeof *txy);
+        for (int q = 0; tv && txy && q < 3 * nt; q++) {
+            tv[q] = vid[tri[q]];
+            txy[q][0] = xy[tri[q]][0];
+            txy[q][1] = xy[tri[q]][1];
+        }
+        int n2 = !tv || !txy ? -1
+                 : fabs(at - af) <= RD_PATCH_OUTLINE_AREA * fabs(af)
+                     ? merge_faces(nt, t0, tv, (const double(*)[2])txy, maxv, tc0, tcs)
+                     : nc;
+        free(tv);
+        free(txy);
+        if (n2 < 0) rc = -1;
+        if (n2 >= 0 && n2 < nc && tc0[n2] <= ne) {
+            memcpy(c0, tc0, ((size_t)n2 + 1) * sizeof *c0);
+            for (int q = 0; q < tc0[n2]; q++) cslot[q] = tri[tcs[q]];
+            rc = n2;
+        }
+    }
+    if (nl < 0) rc = -1;
+    work_free(&w, nface);
+    free(loop);
+    free(l0);
+    free(tri);
+    free(t0);
+    free(tc0);
+    free(tcs);
+    return rc;
+}
+
+int rd_patch_cells(int nface, const int *f0, const int *vid, const double (*xy)[2], int maxv,
+                   int *c0, int *cslot)
+{
+    int nc = merge_faces(nface, f0, vid, xy, maxv, c0, cslot);
+    if (nc <= 1) return nc;
+    return merge_outline(nface, f0, vid, xy, maxv, nc, c0, cslot);
 }

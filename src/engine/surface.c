@@ -850,8 +850,8 @@ static int pair_finish(rd_sim *s, int pair, rd_pair *pr, int i, int r, const sur
     return measure_store(s, pair, sum);
 }
 
-/* The planes of body i (its tree) that may reach into body r: those with a face whose box meets
- * r's box carried into i's frame, grown by margin (m); into S->ord. Returns the
+/* The planes of body i (its tree) that may reach into body r: those with a face whose box,
+ * carried into r's frame, meets r's box there grown by margin (m); into S->ord. Returns the
  * count, -1 when out of memory. */
 static int near_planes(rd_sim *s, int i, int r, double margin)
 {
@@ -859,20 +859,11 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
     surf_body *B = &S->body[i];
     const rd_bvh *tr_r = &S->body[r].tree;
     if (tr_r->nnode == 0) return 0;
-    double rot[9], tr[3], c[3], h[3], lo[3], hi[3];
-    rel_pose(s, i, r, rot, tr);
-    for (int a = 0; a < 3; a++) {
-        c[a] = tr[a];
-        h[a] = margin;
-        for (int k = 0; k < 3; k++) {
-            c[a] += rot[3 * a + k] * 0.5 * (tr_r->lo[0][k] + tr_r->hi[0][k]);
-            h[a] += fabs(rot[3 * a + k]) * 0.5 * (tr_r->hi[0][k] - tr_r->lo[0][k]);
-        }
-        lo[a] = c[a] - h[a];
-        hi[a] = c[a] + h[a];
-    }
+    double rot[9], tr[3];
+    rel_pose(s, r, i, rot, tr);
     S->cand.n = 0;
-    if (rd_bvh_query(&B->tree, lo, hi, &S->cand)) return -1;
+    if (rd_bvh_query_carried(&B->tree, rot, tr, tr_r->lo[0], tr_r->hi[0], margin, &S->cand))
+        return -1;
     if (++S->seen_stamp == 0) { /* the stamp wrapped: start the marks again */
         for (int b = 0; b < s->nb; b++)
             memset(S->body[b].seen, 0, (size_t)S->body[b].nplane * sizeof(int));
