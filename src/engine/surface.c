@@ -6,8 +6,9 @@
  * lies behind every face plane of r, and its depth is its distance below the nearest one,
  * min over g of d_g(p) = dR_g - u_g . p: for convex r the exact depth, continuous across faces.
  * For a plane P of the integration body (its coplanar faces together) and a face g of r, the
- * patch is the part of P's faces where g is the nearest plane and p is behind it: each face's
- * polygon clipped first by d_h >= 0 for every face h of r (inside r: once per plane and step),
+ * patch is the part of P's faces where g is the nearest plane and p is behind it: each of P's
+ * convex cells (its faces merged at setup, contact/cells.c) clipped first by d_h >= 0 for every
+ * face h of r (inside r: once per plane and step),
  * then by the half-planes d_h - d_g >= 0 (every other face h), all affine in P's coordinates. No facing rule: the penetration energy (KN / 2) integral of d^2
  * over the whole surface is then a continuous function of the pose (a rule that admitted a
  * block's side face once it faced the floor within 80 deg gave it, at that tilt, the wedge
