@@ -193,30 +193,6 @@ int rd_bvh_overlaps(const rd_bvh *a, const rd_bvh *b, const double rot[9], const
     return pairs_node(a, 0, b, 0, rot, tr, margin, out);
 }
 
-static int query_node(const rd_bvh *a, int k, const double c[3], const double h[3],
-                      rd_bvh_pairs *out)
-{
-    if (!meets(a->lo[k], a->hi[k], c, h, 0)) return 0;
-    if (a->child[k] < 0) {
-        for (int i = a->first[k]; i < a->first[k] + a->count[k]; i++)
-            if (push(out, a->item[i], 0)) return -1;
-        return 0;
-    }
-    if (query_node(a, a->child[k], c, h, out)) return -1;
-    return query_node(a, a->child[k] + 1, c, h, out);
-}
-
-int rd_bvh_query(const rd_bvh *a, const double lo[3], const double hi[3], rd_bvh_pairs *out)
-{
-    if (a->nnode == 0) return 0;
-    double c[3], h[3];
-    for (int k = 0; k < 3; k++) {
-        c[k] = 0.5 * (lo[k] + hi[k]);
-        h[k] = 0.5 * (hi[k] - lo[k]);
-    }
-    return query_node(a, 0, c, h, out);
-}
-
 /* Node k of a carried by (rot, tr), |rot| given: centre and half-widths. */
 static void carry_abs(const rd_bvh *a, int k, const double rot[9], const double arot[9],
                       const double tr[3], double c[3], double h[3])

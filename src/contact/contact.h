@@ -244,10 +244,6 @@ typedef struct rd_bvh_pairs {
 int rd_bvh_overlaps(const rd_bvh *a, const rd_bvh *b, const double rot[9], const double tr[3],
                     double margin, rd_bvh_pairs *out);
 
-/* The items of tree a whose boxes meet the box lo .. hi (a's frame), appended to out as (item,
- * 0). 0, or -1 when out of memory. */
-int rd_bvh_query(const rd_bvh *a, const double lo[3], const double hi[3], rd_bvh_pairs *out);
-
 /* The items of tree a whose boxes, carried into another frame by x' = rot x + tr (each node as
  * the box around its rotated box, so the looseness is a node's size times the rotation, small
  * at the leaves), meet the box lo .. hi of that frame grown by margin (m): appended to out as

@@ -172,7 +172,6 @@ static surf_state *state_of(struct rd_surface *S, uint64_t k)
     return st;
 }
 
-/* Body i's faces grouped by plane, each plane's frame, the faces' polygons in it. */
 /* Each plane's faces merged into convex cells (rd_patch_cells), once: the convex path clips a
  * cell where it clipped each face (a flat base cut into 535 triangles is a few cells). 0, -1
  * when out of memory. */
@@ -225,6 +224,7 @@ static int plane_cells(const rd_poly *P, surf_body *B)
     return bad ? -1 : 0;
 }
 
+/* Body i's faces grouped by plane, each plane's frame, the faces' polygons in it. */
 static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char *name)
 {
     int nf = P->nf, nv2 = 0;
@@ -545,7 +545,7 @@ static double twist_exact(surf_twist *tw)
 }
 
 /* A lower bound of it: the Coulomb test with this lever finds most sticking patches inside the
- * limit surface at a tenth of the cost (rd_patch_spring_s2). */
+ * limit surface at a third of the cost (rd_patch_spring_s2). */
 static double twist_lower(const surf_twist *tw)
 {
     const double *d = tw->dep;
