@@ -13,7 +13,13 @@
  *  - tessellation: a square face as one quad, 2 and 200 triangles against one reference face
  *    gives the same force, moments, energy and (about the common centroid) twisting lever to
  *    round-off;
- *  - rd_patch_faces: a square face half over a reference face's edge, and a tilted face.
+ *  - rd_patch_faces: a square face half over a reference face's edge, and a tilted face;
+ *  - rd_patch_cells: a rectangle cut into 2 n^2 triangles (interior vertices on the grid, and
+ *    moved off it) and an L of six triangles merged into convex cells whose moments are the
+ *    region's to round-off;
+ *  - rd_patch_torsion_bound: between 0 and the twisting lever on the square, the 12-gon and an
+ *    affine pressure off the centre (the inequality |r - c| >= |r - c|^2 / rmax), and on the
+ *    square its closed-form ratio sqrt 2 / (sqrt 2 + ln(1 + sqrt 2)) = 0.616.
  * Round-off tolerance: 1e-12 relative (sums of a few hundred terms of order 1). */
 #include <stdarg.h>
 #include <stddef.h>
@@ -284,6 +290,164 @@ static void test_faces_tilted(void **state)
                  ROUNDOFF, RD_STRICT);
 }
 
+/* The faces of an n x n grid of squares over [0, w] x [0, h], each cut into two triangles
+ * counter-clockwise, as rd_patch_cells takes them; keep[k] (or all when NULL) picks squares. */
+static int grid_faces(int n, double w, double h, const int *keep, int *f0, int *vid,
+                      double (*xy)[2])
+{
+    int nf = 0, m = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            if (keep && !keep[i * n + j]) continue;
+            const int a = i * (n + 1) + j, b = a + 1, c = a + n + 2, d = a + n + 1;
+            const int tri[2][3] = { { a, b, c }, { a, c, d } };
+            for (int t = 0; t < 2; t++) {
+                f0[nf++] = m;
+                for (int k = 0; k < 3; k++, m++) {
+                    vid[m] = tri[t][k];
+                    xy[m][0] = w * (tri[t][k] % (n + 1)) / n;
+                    xy[m][1] = h * (tri[t][k] / (n + 1)) / n;
+                }
+            }
+        }
+    f0[nf] = m;
+    return nf;
+}
+
+/* The cells' moments summed, and whether every cell is convex and counter-clockwise. */
+static int cells_moments(int nc, const int *c0, const int *cs, const double (*xy)[2], rd_moments *m)
+{
+    int convex = 1;
+    *m = (rd_moments){ 0, 0, 0, 0, 0, 0 };
+    for (int c = 0; c < nc; c++) {
+        rd_poly2 p;
+        p.n = c0[c + 1] - c0[c];
+        for (int k = 0; k < p.n; k++) {
+            p.p[k][0] = xy[cs[c0[c] + k]][0];
+            p.p[k][1] = xy[cs[c0[c] + k]][1];
+        }
+        for (int k = 0; k < p.n; k++) {
+            const double *a = p.p[k], *b = p.p[(k + 1) % p.n], *q = p.p[(k + 2) % p.n];
+            if ((b[0] - a[0]) * (q[1] - b[1]) - (b[1] - a[1]) * (q[0] - b[0]) < 0) convex = 0;
+        }
+        rd_moments pm;
+        rd_patch_moments(&p, &pm);
+        m->a += pm.a;
+        m->sx += pm.sx;
+        m->sy += pm.sy;
+        m->sxx += pm.sxx;
+        m->sxy += pm.sxy;
+        m->syy += pm.syy;
+    }
+    return convex;
+}
+
+#define GRID_N 8
+
+/* A 0.5 x 0.3 m rectangle cut into 2 GRID_N^2 triangles (49 interior vertices): convex cells
+ * with the rectangle's moments; merging must remove interior vertices (a face-by-face merge
+ * that cannot close a vertex's star leaves a cell per few triangles), so at most GRID_N cells
+ * (one per row of squares at worst). */
+static void test_cells_grid(void **state)
+{
+    (void)state;
+    enum { NF = 2 * GRID_N * GRID_N };
+    int f0[NF + 1], vid[3 * NF], c0[NF + 1], cs[3 * NF];
+    double xy[3 * NF][2];
+    const double w = 0.5, h = 0.3;
+    int nf = grid_faces(GRID_N, w, h, NULL, f0, vid, xy);
+    int nc = rd_patch_cells(nf, f0, vid, (const double(*)[2])xy, RD_PATCH_CELL_MAX, c0, cs);
+    rd_moments m, ex;
+    rd_poly2 r = rect(0, 0, w, h);
+    rd_patch_moments(&r, &ex);
+    int convex = cells_moments(nc, c0, cs, (const double(*)[2])xy, &m);
+    printf("grid of %d triangles: %d cells\n", nf, nc);
+    rd_check_abs("grid cells: every cell convex", (double)!convex, 0.0, 0.5, RD_STRICT);
+    rd_check_abs("grid cells: at most GRID_N cells", (double)(nc > GRID_N), 0.0, 0.5, RD_STRICT);
+    rd_check_rel("grid cells: area (m^2)", m.a, ex.a, ROUNDOFF, RD_STRICT);
+    rd_check_rel("grid cells: Sx (m^3)", m.sx, ex.sx, ROUNDOFF, RD_STRICT);
+    rd_check_rel("grid cells: Syy (m^4)", m.syy, ex.syy, ROUNDOFF, RD_STRICT);
+    rd_check_rel("grid cells: Sxy (m^4)", m.sxy, ex.sxy, ROUNDOFF, RD_STRICT);
+}
+
+/* The same rectangle with its 49 interior vertices moved off the grid (by up to 0.3 of a cell,
+ * a fixed pseudo-random pattern; a scanned rock's sawn base): merging face by face cannot
+ * close the irregular stars, the outline (convex, 32 vertices) re-triangulated and merged is
+ * one cell, with the rectangle's moments. */
+static void test_cells_jittered(void **state)
+{
+    (void)state;
+    enum { NF = 2 * GRID_N * GRID_N };
+    int f0[NF + 1], vid[3 * NF], c0[NF + 1], cs[3 * NF];
+    double xy[3 * NF][2];
+    const double w = 0.5, h = 0.3;
+    int nf = grid_faces(GRID_N, w, h, NULL, f0, vid, xy);
+    for (int q = 0; q < f0[nf]; q++) {
+        const int i = vid[q] / (GRID_N + 1), j = vid[q] % (GRID_N + 1);
+        if (i == 0 || j == 0 || i == GRID_N || j == GRID_N) continue;
+        xy[q][0] += 0.3 * w / GRID_N * sin(12.9898 * vid[q]);
+        xy[q][1] += 0.3 * h / GRID_N * cos(78.233 * vid[q]);
+    }
+    int nc = rd_patch_cells(nf, f0, vid, (const double(*)[2])xy, RD_PATCH_CELL_MAX, c0, cs);
+    rd_moments m, ex;
+    rd_poly2 r = rect(0, 0, w, h);
+    rd_patch_moments(&r, &ex);
+    int convex = cells_moments(nc, c0, cs, (const double(*)[2])xy, &m);
+    rd_check_abs("jittered grid cells: every cell convex", (double)!convex, 0.0, 0.5, RD_STRICT);
+    rd_check_abs("jittered grid cells: one cell", (double)nc, 1.0, 0.5, RD_STRICT);
+    rd_check_rel("jittered grid cells: area (m^2)", m.a, ex.a, ROUNDOFF, RD_STRICT);
+    rd_check_rel("jittered grid cells: Sx (m^3)", m.sx, ex.sx, ROUNDOFF, RD_STRICT);
+    rd_check_rel("jittered grid cells: Sxy (m^4)", m.sxy, ex.sxy, ROUNDOFF, RD_STRICT);
+}
+
+/* An L of three squares (six triangles) is not convex: at least two cells, each convex, with
+ * the L's area. */
+static void test_cells_l_shape(void **state)
+{
+    (void)state;
+    const int keep[4] = { 1, 1, 1, 0 };
+    int f0[7], vid[18], c0[7], cs[18];
+    double xy[18][2];
+    int nf = grid_faces(2, 1.0, 1.0, keep, f0, vid, xy);
+    int nc = rd_patch_cells(nf, f0, vid, (const double(*)[2])xy, RD_PATCH_CELL_MAX, c0, cs);
+    rd_moments m;
+    int convex = cells_moments(nc, c0, cs, (const double(*)[2])xy, &m);
+    rd_check_abs("L cells: every cell convex", (double)!convex, 0.0, 0.5, RD_STRICT);
+    rd_check_abs("L cells: two cells", (double)nc, 2.0, 0.5, RD_STRICT);
+    rd_check_rel("L cells: area (m^2)", m.a, 0.75, ROUNDOFF, RD_STRICT);
+}
+
+/* The torsion bound against the exact lever: a uniform pressure on a square about its centre,
+ * on a regular 12-gon, and an affine pressure about an off-centre point of a triangle. */
+static void test_torsion_bound(void **state)
+{
+    (void)state;
+    rd_poly2 sq = rect(-0.5, -0.5, 0.5, 0.5), tri = { 3, { { 0, 0 }, { 1.2, 0.1 }, { 0.3, 0.9 } } };
+    rd_poly2 gon;
+    gon.n = 12;
+    for (int k = 0; k < 12; k++) {
+        gon.p[k][0] = 0.4 * cos(2 * M_PI * k / 12);
+        gon.p[k][1] = 0.4 * sin(2 * M_PI * k / 12);
+    }
+    const rd_poly2 *poly[3] = { &sq, &gon, &tri };
+    const double c[3][2] = { { 0, 0 }, { 0, 0 }, { 0.45, 0.35 } };
+    const double dep[3][3] = { { 1, 0, 0 }, { 1, 0, 0 }, { 0.1, 0.3, -0.05 } };
+    const char *name[3] = { "square", "12-gon", "triangle, affine pressure" };
+    for (int k = 0; k < 3; k++) {
+        double ex = rd_patch_torsion(poly[k], c[k], dep[k][0], dep[k][1], dep[k][2]);
+        double lo = rd_patch_torsion_bound(poly[k], 1, c[k], dep[k][0], dep[k][1], dep[k][2]);
+        char what[96];
+        snprintf(what, sizeof what, "torsion bound / lever, %s", name[k]);
+        rd_check_abs(what, lo / ex, 0.5, 0.5, RD_STRICT); /* in (0, 1]: a lower bound */
+    }
+    /* the square's ratio in closed form: (a^4 / 6) / (a / sqrt 2) over a^3 (sqrt 2 + ln(1 +
+       sqrt 2)) / 6 */
+    double ex = rd_patch_torsion(&sq, c[0], 1, 0, 0);
+    double lo = rd_patch_torsion_bound(&sq, 1, c[0], 1, 0, 0);
+    rd_check_rel("torsion bound / lever, square, closed form", lo / ex,
+                 sqrt(2.0) / (sqrt(2.0) + log(1 + sqrt(2.0))), 1e-8, RD_STRICT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -296,6 +460,10 @@ int main(void)
         cmocka_unit_test(test_tessellation),
         cmocka_unit_test(test_faces_half_over),
         cmocka_unit_test(test_faces_tilted),
+        cmocka_unit_test(test_cells_grid),
+        cmocka_unit_test(test_cells_jittered),
+        cmocka_unit_test(test_cells_l_shape),
+        cmocka_unit_test(test_torsion_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -193,26 +193,41 @@ int rd_bvh_overlaps(const rd_bvh *a, const rd_bvh *b, const double rot[9], const
     return pairs_node(a, 0, b, 0, rot, tr, margin, out);
 }
 
-static int query_node(const rd_bvh *a, int k, const double c[3], const double h[3],
-                      rd_bvh_pairs *out)
+/* Node k of a carried by (rot, tr), |rot| given: centre and half-widths. */
+static void carry_abs(const rd_bvh *a, int k, const double rot[9], const double arot[9],
+                      const double tr[3], double c[3], double h[3])
 {
-    if (!meets(a->lo[k], a->hi[k], c, h, 0)) return 0;
+    const double *lo = a->lo[k], *hi = a->hi[k];
+    const double cb[3] = { 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2]) };
+    const double hb[3] = { 0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1]), 0.5 * (hi[2] - lo[2]) };
+    for (int r = 0; r < 3; r++) {
+        const double *m = rot + 3 * r, *am = arot + 3 * r;
+        c[r] = tr[r] + m[0] * cb[0] + m[1] * cb[1] + m[2] * cb[2];
+        h[r] = am[0] * hb[0] + am[1] * hb[1] + am[2] * hb[2];
+    }
+}
+
+static int carried_node(const rd_bvh *a, int k, const double rot[9], const double arot[9],
+                        const double tr[3], const double *lo, const double *hi, double margin,
+                        rd_bvh_pairs *out)
+{
+    double c[3], h[3];
+    carry_abs(a, k, rot, arot, tr, c, h);
+    if (!meets(lo, hi, c, h, margin)) return 0;
     if (a->child[k] < 0) {
         for (int i = a->first[k]; i < a->first[k] + a->count[k]; i++)
             if (push(out, a->item[i], 0)) return -1;
         return 0;
     }
-    if (query_node(a, a->child[k], c, h, out)) return -1;
-    return query_node(a, a->child[k] + 1, c, h, out);
+    if (carried_node(a, a->child[k], rot, arot, tr, lo, hi, margin, out)) return -1;
+    return carried_node(a, a->child[k] + 1, rot, arot, tr, lo, hi, margin, out);
 }
 
-int rd_bvh_query(const rd_bvh *a, const double lo[3], const double hi[3], rd_bvh_pairs *out)
+int rd_bvh_query_carried(const rd_bvh *a, const double rot[9], const double tr[3],
+                         const double lo[3], const double hi[3], double margin, rd_bvh_pairs *out)
 {
     if (a->nnode == 0) return 0;
-    double c[3], h[3];
-    for (int k = 0; k < 3; k++) {
-        c[k] = 0.5 * (lo[k] + hi[k]);
-        h[k] = 0.5 * (hi[k] - lo[k]);
-    }
-    return query_node(a, 0, c, h, out);
+    double arot[9];
+    for (int k = 0; k < 9; k++) arot[k] = fabs(rot[k]);
+    return carried_node(a, 0, rot, arot, tr, lo, hi, margin, out);
 }

@@ -73,6 +73,13 @@ void rd_patch_moments(const rd_poly2 *p, rd_moments *m);
  * sqrt(alpha t^2 + beta t + gamma) and of t times it. */
 double rd_patch_torsion(const rd_poly2 *p, const double c[2], double d0, double gx, double gy);
 
+/* A lower bound of rd_patch_torsion summed over n pieces about one centre c, cheap (no square
+ * root of a quadratic): the integral of d |r - c|^2 over them divided by the largest |r - c| of
+ * their vertices (|r - c| >= |r - c|^2 / rmax), from their third area moments. The pieces must
+ * lie where d >= 0. 0 when it cannot bound (no area). */
+double rd_patch_torsion_bound(const rd_poly2 *pieces, int n, const double c[2], double d0,
+                              double gx, double gy);
+
 /* Scratch of rd_patch_torsion_set (zero it before first use; free its arrays after). */
 typedef struct rd_patch_scratch {
     int cap;
@@ -108,6 +115,20 @@ void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd
 int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], const double n[3],
                    const rd_poly2 *s, const double (*rv)[3], int nr, const double u[3], double dR,
                    rd_poly2 *patch, double dep[3]);
+
+/* Most vertices of a cell of merged coplanar faces (rd_patch_cells): clipped by the planes of
+ * a convex partner it stays well inside RD_PATCH_MAX. */
+#define RD_PATCH_CELL_MAX 64
+
+/* Coplanar faces merged into convex cells, once at setup (contact/cells.c): nface faces, face f
+ * the slots f0[f] .. f0[f + 1) (counter-clockwise in the plane's coordinates), slot q its
+ * vertex id vid[q] (equal ids: one vertex) at xy[q]. Two cells that share a chain of edges are
+ * joined while the union stays convex (no right turn) and of at most maxv vertices; an
+ * interior vertex that the join closes drops out, every other vertex is kept to the bit. The
+ * cells (as slot lists, counter-clockwise) into c0 (room for nface + 1) and cslot (room for
+ * f0[nface]). Returns the cell count, -1 when out of memory. */
+int rd_patch_cells(int nface, const int *f0, const int *vid, const double (*xy)[2], int maxv,
+                   int *c0, int *cslot);
 
 /* ---- The joint law of a patch (docs/CONTACT.md section 8), written once ----
  * Normal: the Winkler pressure KN d (+ a dashpot's c_a dd/dt, c_a in Pa s/m) integrated over the
@@ -165,15 +186,21 @@ static inline double rd_patch_spring_resize(rd_patch_spring *sp, double ks, doub
  * r x_t^2) / (2 k) (the trapezoid work of the step less its energy change; engine/law.h
  * rd_law_shear_cap for one spring), added to *e_fric (J; never negative: slip gives no energy
  * back). Returns 1 on slip. */
+/* (fs, mt) against the limit surface: (|fs| / flim)^2 + (mt / mlim)^2, infinite when a limit is
+ * 0 and a spring is loaded. Never larger for a larger mlim: a lower bound of mlim that finds the
+ * springs inside (<= 1) proves them inside, the twisting lever need not be computed. */
+static inline double rd_patch_spring_s2(const rd_patch_spring *sp, double flim, double mlim)
+{
+    double ft2 = sp->fs[0] * sp->fs[0] + sp->fs[1] * sp->fs[1] + sp->fs[2] * sp->fs[2];
+    if (flim > 0 && mlim > 0) return ft2 / (flim * flim) + sp->mt * sp->mt / (mlim * mlim);
+    return (ft2 > 0 || sp->mt != 0) ? INFINITY : 0.0;
+}
+
 static inline int rd_patch_spring_cap(rd_patch_spring *sp, const double f0[3], double m0, double kA,
                                       double kJ, double flim, double mlim, double *e_fric)
 {
     double ft2 = sp->fs[0] * sp->fs[0] + sp->fs[1] * sp->fs[1] + sp->fs[2] * sp->fs[2];
-    double s2;
-    if (flim > 0 && mlim > 0)
-        s2 = ft2 / (flim * flim) + sp->mt * sp->mt / (mlim * mlim);
-    else
-        s2 = (ft2 > 0 || sp->mt != 0) ? INFINITY : 0.0;
+    double s2 = rd_patch_spring_s2(sp, flim, mlim);
     if (s2 <= 1) return 0;
     double r = isfinite(s2) ? 1 / sqrt(s2) : 0.0;
     double f0ft = f0[0] * sp->fs[0] + f0[1] * sp->fs[1] + f0[2] * sp->fs[2];
@@ -217,8 +244,12 @@ typedef struct rd_bvh_pairs {
 int rd_bvh_overlaps(const rd_bvh *a, const rd_bvh *b, const double rot[9], const double tr[3],
                     double margin, rd_bvh_pairs *out);
 
-/* The items of tree a whose boxes meet the box lo .. hi (a's frame), appended to out as (item,
- * 0). 0, or -1 when out of memory. */
-int rd_bvh_query(const rd_bvh *a, const double lo[3], const double hi[3], rd_bvh_pairs *out);
+/* The items of tree a whose boxes, carried into another frame by x' = rot x + tr (each node as
+ * the box around its rotated box, so the looseness is a node's size times the rotation, small
+ * at the leaves), meet the box lo .. hi of that frame grown by margin (m): appended to out as
+ * (item, 0). A body's faces near a partner, tested in the partner's own frame, where its box is
+ * tight. 0, or -1 when out of memory. */
+int rd_bvh_query_carried(const rd_bvh *a, const double rot[9], const double tr[3],
+                         const double lo[3], const double hi[3], double margin, rd_bvh_pairs *out);
 
 #endif

@@ -13,14 +13,20 @@
 
 /* A fan triangle whose doubled area is below this fraction of its squared size is taken as a
  * line (rd_patch_torsion). */
-#define RD_PATCH_THIN 1e-13
+#define RD_PATCH_THIN        1e-13
+/* rd_patch_torsion_bound is lowered by this fraction: far above its round-off, far below the
+ * bound's own slack (it is 0.62 of the integral on a square, 0.75 on a disc) */
+#define RD_PATCH_BOUND_SLACK 1e-9
 
 int rd_patch_clip_half(const rd_poly2 *in, double a, double b, double c, rd_poly2 *out)
 {
     out->n = 0;
+    double f[RD_PATCH_MAX]; /* the line's function at each vertex */
+    for (int i = 0; i < in->n; i++) f[i] = a * in->p[i][0] + b * in->p[i][1] + c;
     for (int i = 0; i < in->n; i++) {
-        const double *p = in->p[i], *q = in->p[(i + 1) % in->n];
-        double fp = a * p[0] + b * p[1] + c, fq = a * q[0] + b * q[1] + c;
+        const int j = i + 1 == in->n ? 0 : i + 1;
+        const double *p = in->p[i], *q = in->p[j];
+        const double fp = f[i], fq = f[j];
         if (fp >= 0) {
             if (out->n == RD_PATCH_MAX) return out->n = 0;
             out->p[out->n][0] = p[0];
@@ -63,7 +69,7 @@ void rd_patch_moments(const rd_poly2 *p, rd_moments *m)
     const double x0 = p->p[0][0], y0 = p->p[0][1];
     double a = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
     for (int i = 0; i < p->n; i++) {
-        const double *u = p->p[i], *v = p->p[(i + 1) % p->n];
+        const double *u = p->p[i], *v = p->p[i + 1 == p->n ? 0 : i + 1];
         double xi = u[0] - x0, yi = u[1] - y0, xj = v[0] - x0, yj = v[1] - y0;
         double cr = xi * yj - xj * yi;
         a += cr;
@@ -122,7 +128,7 @@ double rd_patch_torsion(const rd_poly2 *p, const double c[2], double d0, double 
     const double dc = d0 + gx * c[0] + gy * c[1];
     double sum = 0;
     for (int i = 0; i < p->n; i++) {
-        const double *u = p->p[i], *v = p->p[(i + 1) % p->n];
+        const double *u = p->p[i], *v = p->p[i + 1 == p->n ? 0 : i + 1];
         const double a[2] = { u[0] - c[0], u[1] - c[1] }, e[2] = { v[0] - u[0], v[1] - u[1] };
         sum += fan_share(a, e, dc, gx, gy);
     }
@@ -176,7 +182,7 @@ double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], do
     unsigned m = (unsigned)hcap - 1;
     for (int k = 0; k < n; k++)
         for (int i = 0; i < pieces[k].n; i++) {
-            const double *u = pieces[k].p[i], *v = pieces[k].p[(i + 1) % pieces[k].n];
+            const double *u = pieces[k].p[i], *v = pieces[k].p[i + 1 == pieces[k].n ? 0 : i + 1];
             int fwd = before(u, v);
             const double *lo = fwd ? u : v, *hi = fwd ? v : u;
             unsigned q = edge_hash(lo, hi) & m;
@@ -205,6 +211,36 @@ double rd_patch_torsion_set(const rd_poly2 *pieces, int n, const double c[2], do
         sum += sc->count[e] * fan_share(a, d, dc, gx, gy);
     }
     return sum;
+}
+
+/* The integral of (dc + gx X + gy Y)(X^2 + Y^2) over a counter-clockwise polygon, X, Y about
+ * c (Green's theorem: the second and third area moments about c), and the largest |r - c| of
+ * its vertices into *rmax. */
+static double weighted_polar(const rd_poly2 *p, const double c[2], double dc, double gx, double gy,
+                             double *rmax)
+{
+    double i2 = 0, x3 = 0, y3 = 0, x2y = 0, xy2 = 0;
+    for (int i = 0; i < p->n; i++) {
+        const double *u = p->p[i], *v = p->p[i + 1 == p->n ? 0 : i + 1];
+        const double xi = u[0] - c[0], yi = u[1] - c[1], xj = v[0] - c[0], yj = v[1] - c[1];
+        const double cr = xi * yj - xj * yi;
+        *rmax = rd_max(*rmax, xi * xi + yi * yi);
+        i2 += (xi * xi + xi * xj + xj * xj + yi * yi + yi * yj + yj * yj) * cr;
+        x3 += (xi * xi * xi + xi * xi * xj + xi * xj * xj + xj * xj * xj) * cr;
+        y3 += (yi * yi * yi + yi * yi * yj + yi * yj * yj + yj * yj * yj) * cr;
+        x2y += (xi * xi * (3 * yi + yj) + 2 * xi * xj * (yi + yj) + xj * xj * (yi + 3 * yj)) * cr;
+        xy2 += (yi * yi * (3 * xi + xj) + 2 * yi * yj * (xi + xj) + yj * yj * (xi + 3 * xj)) * cr;
+    }
+    return dc * i2 / 12 + gx * (x3 / 20 + xy2 / 60) + gy * (x2y / 60 + y3 / 20);
+}
+
+double rd_patch_torsion_bound(const rd_poly2 *pieces, int n, const double c[2], double d0,
+                              double gx, double gy)
+{
+    const double dc = d0 + gx * c[0] + gy * c[1];
+    double w = 0, r2 = 0;
+    for (int k = 0; k < n; k++) w += weighted_polar(&pieces[k], c, dc, gx, gy, &r2);
+    return r2 > 0 && w > 0 ? (1 - RD_PATCH_BOUND_SLACK) * w / sqrt(r2) : 0.0;
 }
 
 void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd_patch_load *out)

@@ -6,8 +6,9 @@
  * lies behind every face plane of r, and its depth is its distance below the nearest one,
  * min over g of d_g(p) = dR_g - u_g . p: for convex r the exact depth, continuous across faces.
  * For a plane P of the integration body (its coplanar faces together) and a face g of r, the
- * patch is the part of P's faces where g is the nearest plane and p is behind it: each face's
- * polygon clipped first by d_h >= 0 for every face h of r (inside r: once per plane and step),
+ * patch is the part of P's faces where g is the nearest plane and p is behind it: each of P's
+ * convex cells (its faces merged at setup, contact/cells.c) clipped first by d_h >= 0 for every
+ * face h of r (inside r: once per plane and step),
  * then by the half-planes d_h - d_g >= 0 (every other face h), all affine in P's coordinates. No facing rule: the penetration energy (KN / 2) integral of d^2
  * over the whole surface is then a continuous function of the pose (a rule that admitted a
  * block's side face once it faced the floor within 80 deg gave it, at that tilt, the wedge
@@ -52,6 +53,9 @@
  * taken as not touching it (a mesh's far side): such a depth ends the run as penetrated
  * (monitor.c) long before a touching face gets there. */
 #define RD_SURF_DEPTH_CAP 0.25
+/* A bound on an affine function over a box taken as negative only below minus this fraction of
+ * its terms' size: far beyond round-off, so a rejection never drops a piece the clip keeps. */
+#define RD_SURF_ROUNDOFF  1e-12
 
 /* The planes of one body, body frame. */
 typedef struct surf_body {
@@ -65,6 +69,10 @@ typedef struct surf_body {
                                min, y min, x max, y max): an affine depth's bounds over the plane
                                are at its corners */
     int *plane_of;         /* [nf] the plane of each face */
+    int *plane_c0;         /* [nplane + 1] first cell of each plane (the convex path) */
+    int *c2_0;             /* [ncell + 1] first vertex of cell c in c2 */
+    double (*c2)[2];       /* the cells: each plane's faces merged into convex polygons
+                               (rd_patch_cells), its coordinates, counter-clockwise */
     rd_bvh tree;           /* the faces' boxes, body frame (contact/bvh.c) */
     int *seen;             /* [nplane] stamp: plane taken this step (the convex path) */
 } surf_body;
@@ -93,11 +101,14 @@ struct rd_surface {
     int *on_next, non_next, cap_on_next;
     rd_poly2 *comp; /* scratch: one patch's compressed pieces */
     int cap_comp;
-    rd_poly2 *ins; /* scratch: the parts of one plane's faces inside r */
+    rd_poly2 *ins; /* scratch: the parts of one plane's cells inside r */
     int cap_ins;
+    double inbox[4];  /* their bounding box, the plane's coordinates (x, y min, x, y max), m */
     double (*pl)[4];  /* scratch: r's planes in the integration body's frame (u, d) */
     double (*uw)[3];  /* scratch: r's outward normals, ground frame */
     double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
+    int *hcut;        /* scratch: the planes of r that may cut a piece */
+    int front;        /* the plane of r that last put a whole plane in front of it */
     int cap_pl;
     rd_patch_scratch tsc; /* scratch of rd_patch_torsion_set */
     rd_bvh_pairs cand;    /* scratch: candidate faces, or face pairs, from the trees */
@@ -159,6 +170,58 @@ static surf_state *state_of(struct rd_surface *S, uint64_t k)
     st->stamp = -1;
     S->hash[q] = S->nst++;
     return st;
+}
+
+/* Each plane's faces merged into convex cells (rd_patch_cells), once: the convex path clips a
+ * cell where it clipped each face (a flat base cut into 535 triangles is a few cells). 0, -1
+ * when out of memory. */
+static int plane_cells(const rd_poly *P, surf_body *B)
+{
+    const int nf = P->nf, nv2 = B->f2_0[nf];
+    int *f0 = malloc(((size_t)nf + 1) * sizeof *f0),
+        *vid = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *vid);
+    int *slot = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *slot),
+        *c0 = malloc(((size_t)nf + 1) * sizeof *c0);
+    double(*xy)[2] = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *xy);
+    B->plane_c0 = malloc(((size_t)B->nplane + 1) * sizeof *B->plane_c0);
+    B->c2_0 = malloc(((size_t)nf + 1) * sizeof *B->c2_0);
+    B->c2 = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *B->c2);
+    int bad = !f0 || !vid || !slot || !c0 || !xy || !B->plane_c0 || !B->c2_0 || !B->c2;
+    int nc = 0, w = 0;
+    for (int k = 0; k < B->nplane && !bad; k++) {
+        int nface = 0, m = 0;
+        for (int e = B->plane_f0[k]; e < B->plane_f0[k + 1]; e++) {
+            const int f = B->plane_face[e];
+            f0[nface++] = m;
+            for (int j = 0; j < P->flen[f]; j++, m++) {
+                vid[m] = P->fidx[P->fstart[f] + j];
+                xy[m][0] = B->f2[B->f2_0[f] + j][0];
+                xy[m][1] = B->f2[B->f2_0[f] + j][1];
+            }
+        }
+        f0[nface] = m;
+        const int n =
+            rd_patch_cells(nface, f0, vid, (const double(*)[2])xy, RD_PATCH_CELL_MAX, c0, slot);
+        if (n < 0) bad = 1;
+        B->plane_c0[k] = nc;
+        for (int c = 0; c < n; c++, nc++) {
+            B->c2_0[nc] = w;
+            for (int q = c0[c]; q < c0[c + 1]; q++, w++) {
+                B->c2[w][0] = xy[slot[q]][0];
+                B->c2[w][1] = xy[slot[q]][1];
+            }
+        }
+    }
+    if (!bad) {
+        B->plane_c0[B->nplane] = nc;
+        B->c2_0[nc] = w;
+    }
+    free(f0);
+    free(vid);
+    free(slot);
+    free(c0);
+    free(xy);
+    return bad ? -1 : 0;
 }
 
 /* Body i's faces grouped by plane, each plane's frame, the faces' polygons in it. */
@@ -256,6 +319,10 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     free(fill);
     free(pd);
     B->plane_of = plane_of;
+    if (plane_cells(P, B)) {
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
     B->seen = calloc((size_t)(B->nplane ? B->nplane : 1), sizeof *B->seen);
     double(*lo)[3] = malloc((size_t)(nf ? nf : 1) * sizeof *lo);
     double(*hi)[3] = malloc((size_t)(nf ? nf : 1) * sizeof *hi);
@@ -331,7 +398,8 @@ int rd_surface_init(rd_sim *s, rd_error *err)
     }
     S->uw = malloc((size_t)S->cap_pl * sizeof *S->uw);
     S->dep = malloc((size_t)S->cap_pl * sizeof *S->dep);
-    if (!S->uw || !S->dep) {
+    S->hcut = malloc((size_t)S->cap_pl * sizeof *S->hcut);
+    if (!S->uw || !S->dep || !S->hcut) {
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -378,6 +446,9 @@ void rd_surface_free(rd_sim *s)
         free(B->f2);
         free(B->box);
         free(B->plane_of);
+        free(B->plane_c0);
+        free(B->c2_0);
+        free(B->c2);
         free(B->seen);
         rd_bvh_free(&B->tree);
     }
@@ -391,6 +462,7 @@ void rd_surface_free(rd_sim *s)
     free(S->pl);
     free(S->uw);
     free(S->dep);
+    free(S->hcut);
     free(S->tsc.slot);
     free(S->tsc.count);
     free(S->tsc.ends);
@@ -449,11 +521,42 @@ static int patch_dashpot(rd_sim *s, int i, int r, double c_a, const rd_moments *
     return 0;
 }
 
+/* The twisting lever of a patch (the integral of d |r - c| about its centroid c), found only
+ * when the Coulomb test needs it: from the pieces pc[0 .. n) (the convex path), or given. */
+typedef struct surf_twist {
+    const rd_poly2 *pc; /* the compressed pieces; NULL: tors is given */
+    int n;
+    const double *c, *dep; /* the centroid, the depth's coefficients (plane coordinates) */
+    rd_patch_scratch *sc;
+    double tors; /* m^4 */
+} surf_twist;
+
+/* The lever itself (once). */
+static double twist_exact(surf_twist *tw)
+{
+    if (tw->pc) {
+        const double *d = tw->dep;
+        tw->tors = tw->n == 1
+                       ? rd_patch_torsion(tw->pc, tw->c, d[0], d[1], d[2])
+                       : rd_patch_torsion_set(tw->pc, tw->n, tw->c, d[0], d[1], d[2], tw->sc);
+        tw->pc = NULL;
+    }
+    return tw->tors;
+}
+
+/* A lower bound of it: the Coulomb test with this lever finds most sticking patches inside the
+ * limit surface at a third of the cost (rd_patch_spring_s2). */
+static double twist_lower(const surf_twist *tw)
+{
+    const double *d = tw->dep;
+    return tw->pc ? rd_patch_torsion_bound(tw->pc, tw->n, tw->c, d[0], d[1], d[2]) : tw->tors;
+}
+
 /* One patch (plane P of body i against face g of r) with the compressed region's moments m,
- * its load ld (depth coefficients dep, plane frame fr) and twisting lever tors: the law, its
+ * its load ld (depth coefficients dep, plane frame fr) and twisting lever tw: the law, its
  * forces into the sums. */
 static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, int g,
-                       const rd_moments *m, const rd_patch_load *ld, double tors,
+                       const rd_moments *m, const rd_patch_load *ld, surf_twist *tw,
                        const double fr[4][3], const double dep[3], double c_a, surf_sums *sum)
 {
     struct rd_surface *S = s->surf;
@@ -498,7 +601,10 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     const double kA = j->ks * ld->area, kJ = j->ks * ld->polar;
     rd_law_shear_load(sp->fs, uw, vr, vn, kA, s->dt);
     sp->mt -= kJ * spin * s->dt;
-    double flim = j->tan_phi * rd_max(fn, 0.0), mlim = ld->f > 0 ? flim * tors / ld->f : 0.0;
+    double flim = j->tan_phi * rd_max(fn, 0.0),
+           mlim = ld->f > 0 ? flim * twist_lower(tw) / ld->f : 0.0;
+    if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1))
+        mlim = ld->f > 0 ? flim * twist_exact(tw) / ld->f : 0.0;
     int slip = rd_patch_spring_cap(sp, f0, m0, kA, kJ, flim, mlim, &s->e_fric);
     rd_axpy(1.0, sp->fs, F);
     rd_cross(C, sp->fs, tmp);
@@ -539,43 +645,68 @@ static void poly_copy(rd_poly2 *a, const rd_poly2 *b)
     memcpy(a->p, b->p, (size_t)b->n * sizeof b->p[0]);
 }
 
-/* The parts of plane P's faces (body i) inside r, behind every plane of r (d_h >= 0), into
- * S->ins: found once per plane and step, so a plane that does not reach r costs one pass, and
- * each face g then clips only what is inside. A face whose every vertex lies deeper than cap
- * below the nearest plane is left out (a mesh's far side). Returns the count, -1 when out of
- * memory. */
-static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, double cap)
+/* The bounds of the affine d = c[0] + c[1] x + c[2] y over the box bx (x min, y min, x max, y
+ * max; at its corners), and the round-off margin tol within which a vertex inside the box may
+ * exceed them when evaluated on its own. */
+static void box_bounds(const double c[3], const double bx[4], double *lo, double *hi, double *tol)
+{
+    const double x0 = c[1] * bx[0], x1 = c[1] * bx[2], y0 = c[2] * bx[1], y1 = c[2] * bx[3];
+    *lo = c[0] + rd_min(x0, x1) + rd_min(y0, y1);
+    *hi = c[0] + rd_max(x0, x1) + rd_max(y0, y1);
+    *tol =
+        RD_SURF_ROUNDOFF * (fabs(c[0]) + rd_max(fabs(x0), fabs(x1)) + rd_max(fabs(y0), fabs(y1)));
+}
+
+/* The parts of plane P's cells (body i; its faces merged, plane_cells) inside r, behind every
+ * plane of r (d_h >= 0), into S->ins, and their bounding box into S->inbox: found once per plane
+ * and step, so a plane that does not reach r costs one pass, and each face g then clips only
+ * what is inside. A cell whose every vertex lies deeper than cap below the nearest plane is
+ * left out (a mesh's far side). Returns the count, -1 when out of memory. */
+static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap)
 {
     struct rd_surface *S = s->surf;
-    const rd_poly *Pi = &s->poly[i];
     const double *bx = B->box[P];
+    int ncut = 0, *cut_by = S->hcut; /* the planes of r that may cut a cell */
+    double least_hi = DBL_MAX, least_tol = 0;
     for (int h = 0; h < nr; h++) { /* the whole plane in front of one plane of r: outside it */
-        const double *dh = S->dep[h];
-        double hi =
-            dh[0] + rd_max(dh[1] * bx[0], dh[1] * bx[2]) + rd_max(dh[2] * bx[1], dh[2] * bx[3]);
-        if (hi <= 0) return 0;
+        double lo, hi, tol;
+        box_bounds(S->dep[h], bx, &lo, &hi, &tol);
+        if (hi <= 0) {
+            S->front = h;
+            return 0;
+        }
+        if (!(lo > tol)) cut_by[ncut++] = h;
+        if (hi < least_hi) {
+            least_hi = hi;
+            least_tol = tol;
+        }
     }
+    /* a plane of r with every point of the box within cap: no cell is a far side */
+    const int far_test = !(least_hi < cap - least_tol);
     int n = 0;
-    for (int e = B->plane_f0[P]; e < B->plane_f0[P + 1]; e++) {
-        const int f = B->plane_face[e], nv = Pi->flen[f];
-        const double(*v2)[2] = B->f2 + B->f2_0[f];
+    double *ib = S->inbox;
+    ib[0] = ib[1] = DBL_MAX;
+    ib[2] = ib[3] = -DBL_MAX;
+    for (int c = B->plane_c0[P]; c < B->plane_c0[P + 1]; c++) {
+        const int nv = B->c2_0[c + 1] - B->c2_0[c];
+        const double(*v2)[2] = B->c2 + B->c2_0[c];
         if (rd_grow((void **)&S->ins, &S->cap_ins, n + 2, sizeof *S->ins)) return -1;
         rd_poly2 *a = &S->ins[n], *b = &S->ins[n + 1];
         a->n = nv;
         memcpy(a->p, v2, (size_t)nv * sizeof *v2);
         int alive = 1;
         double deep =
-            DBL_MAX; /* the least, over the face's vertices, of their nearest-plane depth */
-        for (int k = 0; k < nv; k++) {
+            -DBL_MAX; /* the least, over the cell's vertices, of their nearest-plane depth */
+        for (int k = 0; k < nv && far_test; k++) {
             double dmin = DBL_MAX;
             for (int h = 0; h < nr; h++)
                 dmin =
                     rd_min(dmin, S->dep[h][0] + S->dep[h][1] * v2[k][0] + S->dep[h][2] * v2[k][1]);
-            deep = rd_min(deep, dmin);
+            deep = k ? rd_min(deep, dmin) : dmin;
         }
         if (deep > cap) continue;
-        for (int h = 0; h < nr && alive; h++) {
-            const double *dh = S->dep[h];
+        for (int e = 0; e < ncut && alive; e++) {
+            const double *dh = S->dep[cut_by[e]];
             int cut = 0;
             for (int k = 0; k < a->n && !cut; k++)
                 cut = dh[0] + dh[1] * a->p[k][0] + dh[2] * a->p[k][1] < 0;
@@ -587,15 +718,40 @@ static int plane_inside(rd_sim *s, const surf_body *B, int i, int P, int nr, dou
         }
         if (!alive) continue;
         if (a != &S->ins[n]) poly_copy(&S->ins[n], a);
+        for (int k = 0; k < a->n; k++)
+            for (int q = 0; q < 2; q++) {
+                ib[q] = rd_min(ib[q], a->p[k][q]);
+                ib[q + 2] = rd_max(ib[q + 2], a->p[k][q]);
+            }
         n++;
     }
     return n;
 }
 
+/* Can face g of r be the nearest plane anywhere in the inside pieces' box S->inbox? Not when
+ * for some other face h the affine d_h - d_g is negative all over the box (every piece would
+ * clip to nothing). Otherwise the faces h whose d_h - d_g may be negative somewhere in the box
+ * (those that may cut a piece) into S->hcut; returns their count + 1, 0 when g cannot be. */
+static int nearest_possible(struct rd_surface *S, int g, int nr)
+{
+    const double *dg = S->dep[g];
+    int n = 0;
+    for (int h = 0; h < nr; h++) {
+        if (h == g) continue;
+        const double *dh = S->dep[h];
+        const double c[3] = { dh[0] - dg[0], dh[1] - dg[1], dh[2] - dg[2] };
+        double lo, hi, tol;
+        box_bounds(c, S->inbox, &lo, &hi, &tol);
+        if (hi < -tol) return 0;
+        if (!(lo > tol)) S->hcut[n++] = h;
+    }
+    return n + 1;
+}
+
 /* The parts of the inside pieces S->ins[0 .. nin) where face g of r is the nearest plane (d_h -
- * d_g >= 0 for every other face h): into S->comp, their moments summed into *m. Returns the
- * piece count, -1 when out of memory. */
-static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_moments *m)
+ * d_g >= 0 for the nh faces h of S->hcut, the others hold it over the pieces' box): into
+ * S->comp, their moments summed into *m. Returns the piece count, -1 when out of memory. */
+static int nearest_pieces(struct rd_surface *S, int nin, int g, int nh, rd_moments *m)
 {
     const double *dg = S->dep[g];
     int n = 0;
@@ -605,14 +761,18 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nr, rd_momen
         rd_poly2 *a = &S->comp[n], *b = &S->comp[n + 1];
         poly_copy(a, &S->ins[e]);
         int alive = 1;
-        for (int h = 0; h < nr && alive; h++) {
-            if (h == g) continue;
-            const double *dh = S->dep[h];
+        for (int q = 0; q < nh && alive; q++) {
+            const double *dh = S->dep[S->hcut[q]];
             double c0 = dh[0] - dg[0], cx = dh[1] - dg[1], cy = dh[2] - dg[2];
-            int cut = 0;
-            for (int k = 0; k < a->n && !cut; k++) cut = c0 + cx * a->p[k][0] + cy * a->p[k][1] < 0;
+            int cut = 0, kept = 0; /* a vertex outside, a vertex inside */
+            for (int k = 0; k < a->n; k++) {
+                if (c0 + cx * a->p[k][0] + cy * a->p[k][1] < 0)
+                    cut = 1;
+                else
+                    kept = 1;
+            }
             if (!cut) continue;
-            alive = rd_patch_clip_half(a, cx, cy, c0, b) > 0;
+            alive = kept && rd_patch_clip_half(a, cx, cy, c0, b) > 0;
             rd_poly2 *t = a;
             a = b;
             b = t;
@@ -695,8 +855,8 @@ static int pair_finish(rd_sim *s, int pair, rd_pair *pr, int i, int r, const sur
     return measure_store(s, pair, sum);
 }
 
-/* The planes of body i (its tree) that may reach into body r: those with a face whose box meets
- * r's box carried into i's frame, grown by margin (m); into S->ord. Returns the
+/* The planes of body i (its tree) that may reach into body r: those with a face whose box,
+ * carried into r's frame, meets r's box there grown by margin (m); into S->ord. Returns the
  * count, -1 when out of memory. */
 static int near_planes(rd_sim *s, int i, int r, double margin)
 {
@@ -704,20 +864,11 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
     surf_body *B = &S->body[i];
     const rd_bvh *tr_r = &S->body[r].tree;
     if (tr_r->nnode == 0) return 0;
-    double rot[9], tr[3], c[3], h[3], lo[3], hi[3];
-    rel_pose(s, i, r, rot, tr);
-    for (int a = 0; a < 3; a++) {
-        c[a] = tr[a];
-        h[a] = margin;
-        for (int k = 0; k < 3; k++) {
-            c[a] += rot[3 * a + k] * 0.5 * (tr_r->lo[0][k] + tr_r->hi[0][k]);
-            h[a] += fabs(rot[3 * a + k]) * 0.5 * (tr_r->hi[0][k] - tr_r->lo[0][k]);
-        }
-        lo[a] = c[a] - h[a];
-        hi[a] = c[a] + h[a];
-    }
+    double rot[9], tr[3];
+    rel_pose(s, r, i, rot, tr);
     S->cand.n = 0;
-    if (rd_bvh_query(&B->tree, lo, hi, &S->cand)) return -1;
+    if (rd_bvh_query_carried(&B->tree, rot, tr, tr_r->lo[0], tr_r->hi[0], margin, &S->cand))
+        return -1;
     if (++S->seen_stamp == 0) { /* the stamp wrapped: start the marks again */
         for (int b = 0; b < s->nb; b++)
             memset(S->body[b].seen, 0, (size_t)S->body[b].nplane * sizeof(int));
@@ -732,6 +883,24 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
         S->ord[n++] = P;
     }
     return n; /* in the tree's order: the same every step for the same overlap */
+}
+
+/* The depth below plane h of r over plane frame fr, affine in its coordinates, into S->dep[h]. */
+static void plane_depth(struct rd_surface *S, const double fr[4][3], int h)
+{
+    const double *pl = S->pl[h];
+    S->dep[h][0] = pl[3] - rd_dot(pl, fr[0]);
+    S->dep[h][1] = -rd_dot(pl, fr[1]);
+    S->dep[h][2] = -rd_dot(pl, fr[2]);
+}
+
+/* Is plane P of body B wholly in front of plane h of r (over its box)? */
+static int in_front(struct rd_surface *S, const surf_body *B, int P, int h)
+{
+    double lo, hi, tol;
+    plane_depth(S, B->frame[P], h);
+    box_bounds(S->dep[h], B->box[P], &lo, &hi, &tol);
+    return hi <= 0;
 }
 
 /* Every patch of live pair number pair whose body r is convex (section 8.1): the planes of i
@@ -765,17 +934,17 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
     for (int kp = 0; kp < np; kp++) {
         const int P = S->ord[kp];
         const double(*fr)[3] = B->frame[P];
-        for (int h = 0; h < nr; h++) { /* depth below plane h of r, in P's coordinates */
-            const double *pl = S->pl[h];
-            S->dep[h][0] = pl[3] - rd_dot(pl, fr[0]);
-            S->dep[h][1] = -rd_dot(pl, fr[1]);
-            S->dep[h][2] = -rd_dot(pl, fr[2]);
-        }
-        const int nin = plane_inside(s, B, i, P, nr, cap);
+        /* the plane of r that put the last plane wholly in front usually does it again: one
+           depth and one box test reject most candidates (plane_inside's own first test) */
+        if (in_front(S, B, P, S->front < nr ? S->front : 0)) continue;
+        for (int h = 0; h < nr; h++) plane_depth(S, fr, h);
+        const int nin = plane_inside(s, B, P, nr, cap);
         if (nin < 0) return -1;
         for (int g = 0; g < nr && nin > 0; g++) {
+            const int nh = nearest_possible(S, g, nr) - 1;
+            if (nh < 0) continue;
             rd_moments m;
-            int n = nearest_pieces(S, nin, g, nr, &m);
+            int n = nearest_pieces(S, nin, g, nh, &m);
             if (n < 0) return -1;
             if (n == 0) continue;
             rd_patch_load ld;
@@ -783,10 +952,8 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
             const double c[2] = { ld.cx, ld.cy };
-            double tors = n == 1
-                              ? rd_patch_torsion(S->comp, c, dg[0], dg[1], dg[2])
-                              : rd_patch_torsion_set(S->comp, n, c, dg[0], dg[1], dg[2], &S->tsc);
-            if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, tors, fr, dg, c_a, &sum)) return -1;
+            surf_twist tw = { S->comp, n, c, dg, &S->tsc, 0.0 };
+            if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, &tw, fr, dg, c_a, &sum)) return -1;
         }
     }
     return pair_finish(s, pair, pr, i, r, &sum);
@@ -1167,7 +1334,8 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
             for (int q = k; q < e; q++)
                 tors += rd_patch_torsion(&S->comp[ix[q]], c, dep[0], dep[1], dep[2]);
             rd_mat_vec(s->R[r], Br->frame[Q][3], S->uw[Q]);
-            rc = patch_apply(s, pr, pair, i, r, P, Q, &m, &ld, tors, fr, dep, c_a, &sum);
+            surf_twist tw = { NULL, 0, c, dep, NULL, tors };
+            rc = patch_apply(s, pr, pair, i, r, P, Q, &m, &ld, &tw, fr, dep, c_a, &sum);
         }
         k = e;
     }
