@@ -168,7 +168,7 @@ static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty
     c->size = H5Tget_size(c->mtype);
 }
 
-/* Elements per row of a column on axis per_body (0: one; at least one: an axis of none). */
+/* Elements per row of a column on axis per_body (0: one; at least one: no free body). */
 static int axis_width(const rd_sweep_plan *p, int per_body)
 {
     int n = per_body == PER_FENCE ? p->nfences : per_body ? p->nbodies : 1;
@@ -186,6 +186,7 @@ static void layout(rd_sweep_table *t)
     }
     for (int i = 0; i < NOUT; i++) {
         const col_spec *s = &outcome_cols[i];
+        if (s->per_body == PER_FENCE && p->nfences == 0) continue; /* no fence, no fence axis */
         column *c = &t->col[t->ncols++];
         col_init(t, c, s->name, s->type, axis_width(p, s->per_body));
         c->spec = s;
@@ -278,12 +279,13 @@ static hid_t name_scale(rd_sweep_table *t, const char *name, const char (*names)
 }
 
 /* `case` becomes the scale of every column's rows, /sweep/body that of the per-body axis,
- * /sweep/fence that of the per-fence one. */
+ * /sweep/fence that of the per-fence one (made only when the scenario has fences, as are the
+ * per-fence columns). */
 static int attach_scales(rd_sweep_table *t)
 {
     const rd_sweep_plan *p = t->plan;
     hid_t b = name_scale(t, "body", p->body, p->nbodies, "free body");
-    hid_t fe = name_scale(t, "fence", p->fence, p->nfences, "fence (model fence)");
+    hid_t fe = p->nfences ? name_scale(t, "fence", p->fence, p->nfences, "fence (model fence)") : 0;
     hid_t ck = t->col[t->ncols - 1].dset;
     int rc = b >= 0 && fe >= 0 && H5DSset_scale(ck, "case") >= 0 ? 0 : -1;
     for (int i = 0; !rc && i < t->ncols - 1; i++) {
@@ -294,7 +296,7 @@ static int attach_scales(rd_sweep_table *t)
             rc = -1;
     }
     if (b >= 0) H5Dclose(b);
-    if (fe >= 0) H5Dclose(fe);
+    if (fe > 0) H5Dclose(fe);
     return rc;
 }
 
