@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """rdrunout — runout pictures (docs/RUNOUT.md).
   plan RUN.h5 [--terrain GRID.asc]: plan view of each free body's centre path over the terrain's
-      height contours, with the fence line, start and end points and the runout figures;
-  exceedance TABLE.h5: the sweep's exceedance curves of runout and of the fence energy,
+      height contours, with each fence (named) and its crossings, start and end points and the
+      runout figures;
+  exceedance TABLE.h5: the sweep's exceedance curves of runout and of the fence energy (one
+      curve per fence when there are several),
       P(X > x) = (number of cases above x) / (cases), against x."""
 import os
 import sys
@@ -36,6 +38,21 @@ def text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
+def fences(f):
+    """Each fence of a run file: (name, polyline [point][x, y], per body {quantity: value})."""
+    r = f["runout"]
+    if "fences" in r:
+        for name in r["fences"]:
+            g = r["fences"][name]
+            q = [text(v) for v in g["quantity"][:]]
+            yield name, g["points"][:], [dict(zip(q, row)) for row in g["bodies"][:]]
+    elif "fence" in r:  # a file written before fences were named
+        q = [text(v) for v in r["quantity"][:]]
+        hits = [{k[6:] if k.startswith("fence_") else k: v for k, v in zip(q, row)}
+                for row in r["bodies"][:]]
+        yield "fence", r["fence"][:], hits
+
+
 def plan(a):
     import h5py
     import matplotlib
@@ -60,15 +77,16 @@ def plan(a):
                 label="start" if k == 0 else None)
         ax.plot(pos[-1, k, 0], pos[-1, k, 1], "s", color=line.get_color(), ms=4,
                 label="end" if k == 0 else None)
-        if r["fence_crossings"] > 0:
-            ax.plot(r["fence_x"], r["fence_y"], "x", color="k", ms=6,
-                    label="fence crossing" if k == 0 else None)
-            ax.annotate(f"{r['fence_energy'] / 1e3:.2f} kJ, {r['fence_height']:.2f} m up",
-                        (r["fence_x"], r["fence_y"]), textcoords="offset points", xytext=(4, 6),
-                        fontsize=7)
-    if "fence" in f["runout"]:
-        fe = f["runout/fence"][:]
-        ax.plot(fe[:, 0], fe[:, 1], "k-", lw=2.0, label="fence")
+    for fname, fe, hits in fences(f):
+        ax.plot(fe[:, 0], fe[:, 1], "k-", lw=2.0)
+        ax.annotate(fname, (fe[-1, 0], fe[-1, 1]), textcoords="offset points", xytext=(3, 3),
+                    fontsize=7)
+        for k, h in enumerate(hits):
+            if h["crossings"] > 0:
+                ax.plot(h["x"], h["y"], "x", color="k", ms=6)
+                ax.annotate(f"{h['energy'] / 1e3:.2f} kJ, {h['height']:.2f} m up",
+                            (h["x"], h["y"]), textcoords="offset points", xytext=(4, -10),
+                            fontsize=7)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.set_aspect("equal")
@@ -86,11 +104,18 @@ def exceedance(a):
     import matplotlib.pyplot as plt
     s = h5py.File(a.run, "r")["sweep"]
     fig, axs = plt.subplots(1, 2, figsize=(7.2, 3.0))
-    for ax, key, unit in ((axs[0], "runout", "m"), (axs[1], "fence_energy", "J")):
-        v = np.sort(s[key][:])
-        p = 1.0 - np.arange(1, len(v) + 1) / len(v)  # P(X > v_i) for the sorted cases
-        ax.step(np.r_[v[0], v], np.r_[1.0, p], where="post")  # 1 below the least case
-        ax.set_xlabel(f"{key.replace('_', ' ')} ({unit})")
+    energy = [("all fences", s["fence_energy"][:])]
+    if "fence" in s and "fence_max_energy" in s and len(s["fence"]) > 1:
+        energy = [(text(n), s["fence_max_energy"][:, j]) for j, n in enumerate(s["fence"][:])]
+    for ax, key, unit, curves in ((axs[0], "runout", "m", [("", s["runout"][:])]),
+                                  (axs[1], "fence energy", "J", energy)):
+        for label, col in curves:
+            v = np.sort(col)
+            p = 1.0 - np.arange(1, len(v) + 1) / len(v)  # P(X > v_i) for the sorted cases
+            ax.step(np.r_[v[0], v], np.r_[1.0, p], where="post", label=label or None)
+        if len(curves) > 1:
+            ax.legend(fontsize=7, loc="lower left", frameon=False)
+        ax.set_xlabel(f"{key} ({unit})")
         ax.set_ylabel("probability of exceedance")
         ax.set_ylim(0, 1.02)
         ax.set_title(f"{len(v)} cases", fontsize=8)

@@ -48,6 +48,18 @@ RD_API const char *rd_status_name(rd_status st);
  * untrusted energy balance): ensembles count such runs as errors. */
 RD_API int rd_status_failed(rd_status st);
 
+/* A body's crossings of one fence (docs/RUNOUT.md): its centre's plan path against the fence's
+ * polyline, the first crossing interpolated within its step. */
+typedef struct rd_fence_hit {
+    int crossings;   /* times the centre's plan path crossed the fence line */
+    double time;     /* s of the first crossing (-1: none) */
+    double energy;   /* kinetic energy at it, translation and rotation, J */
+    double speed;    /* speed of the centre at it, m/s */
+    double height;   /* height of the centre above the fixed surface below it, m (-1: no
+                        crossing; NaN: no surface below it there) */
+    double point[3]; /* where the centre crossed, m */
+} rd_fence_hit;
+
 /* What a run found, per free body and overall (written as HDF5 summary attributes). */
 typedef struct rd_body_summary {
     char name[RD_NAME_MAX];
@@ -81,13 +93,8 @@ typedef struct rd_body_summary {
                                    it (its lowest hull vertex's clearance), m */
     double final_quaternion[4]; /* orientation at the end, body to ground frame (w, x, y, z) */
     double left_time;           /* s the centre left the domain box (-1: never, or no box) */
-    int fence_crossings;        /* times the centre's plan path crossed the fence line */
-    double fence_time;          /* s of the first crossing (-1: none) */
-    double fence_energy;        /* kinetic energy at it, translation and rotation, J */
-    double fence_speed;         /* speed of the centre at it, m/s */
-    double fence_height;        /* height of the centre above the fixed surface below it, m
-                                   (-1: no crossing; NaN: no surface below it there) */
-    double fence_point[3];      /* where the centre crossed, m */
+    int nfences;                /* fences of the scenario (rd_runout_def.fence) */
+    rd_fence_hit fence[RD_MAX_FENCES]; /* the body at each, in the scenario's order */
 } rd_body_summary;
 
 /* What one joint (pair of bodies that came into contact) had and did. */

@@ -298,10 +298,19 @@ typedef struct rd_overturn_def {
  * criterion at 2.28 s, the residual passed 1e-2 at 3.4 s as the drums fell off the stylobate). */
 #define RD_OVERTURN_STOP_ANY 2
 
-#define RD_MAX_FENCE_POINTS 64 /* vertices of the `model fence` polyline */
+#define RD_MAX_FENCE_POINTS 64 /* vertices of one `model fence` polyline */
+#define RD_MAX_FENCES       8  /* `model fence` commands of a scenario */
+
+/* One fence: `model fence points X1 Y1 X2 Y2 ... [name N]`. */
+typedef struct rd_fence_def {
+    char name[RD_NAME_MAX];               /* unique; default "fence<k>" (k = 1-based order) */
+    int npoint;                           /* points of its plan polyline, >= 2 */
+    double point[RD_MAX_FENCE_POINTS][2]; /* x, y, m: a vertical fence standing on this line */
+    int line;                             /* scenario line, for messages */
+} rd_fence_def;
 
 /* Runout after the topple (docs/RUNOUT.md): `model solve until rest time-limit T`, `model domain
- * box X0 X1 Y0 Y1 Z0 Z1`, `model fence points X1 Y1 X2 Y2 ...`. */
+ * box X0 X1 Y0 Y1 Z0 Z1`, `model fence points X1 Y1 X2 Y2 ... [name N]` (up to RD_MAX_FENCES). */
 typedef struct rd_runout_def {
     int until_rest;      /* 1: run on (through overturning) until every free body is at rest or
                            has left the domain, after the motion ends; rd_scenario.duration is
@@ -309,9 +318,9 @@ typedef struct rd_runout_def {
     int domain;          /* 1: a domain box is given */
     double lo[3], hi[3]; /* the domain box, ground frame, m: a body whose centre of mass leaves
                             it is out of the run (event "left") */
-    int nfence;          /* points of the fence polyline in plan (0: none, else >= 2) */
-    double fence[RD_MAX_FENCE_POINTS][2]; /* x, y, m: a vertical fence standing on this line */
-    int domain_line, fence_line;          /* scenario lines (0: none), for messages */
+    int nfences;         /* fences given (0: none) */
+    rd_fence_def fence[RD_MAX_FENCES]; /* in the order given */
+    int domain_line;                   /* scenario line (0: none), for messages */
 } rd_runout_def;
 
 typedef struct rd_output_def {

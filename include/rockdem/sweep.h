@@ -50,6 +50,8 @@ typedef struct rd_sweep_plan {
     char *axes_text; /* canonical "key=v1,v2\n" per axis, then "--set a\n" (owned) */
     int nbodies;     /* free bodies */
     char body[RD_SWEEP_BODIES][RD_NAME_MAX];
+    int nfences; /* fences of the scenario (`model fence`) */
+    char fence[RD_MAX_FENCES][RD_NAME_MAX];
     int pulse;            /* 1: the scenario's horizontal motion is a pulse (no records) */
     double amplitude;     /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
     int perturbed;        /* 1: the scenario's interface perturbation removes, raises or scatters */
@@ -118,14 +120,18 @@ typedef struct rd_sweep_result {
     int b_mode[RD_SWEEP_BODIES]; /* rd_sweep_mode */
     /* runout (docs/RUNOUT.md) */
     double runout;       /* largest runout (travel from rest) over the bodies, m */
-    double fence_energy; /* largest kinetic energy at a fence crossing over the bodies, J (0:
-                            none crossed) */
+    double fence_energy; /* largest kinetic energy at a crossing over the bodies and fences, J
+                            (0: none crossed) */
     int at_rest;         /* `until rest`: 1 if the run ended at rest, 0 at its time limit */
     double b_runout[RD_SWEEP_BODIES], b_runout_direction[RD_SWEEP_BODIES];
     double b_max_speed[RD_SWEEP_BODIES], b_max_bounce[RD_SWEEP_BODIES];
     double b_max_energy[RD_SWEEP_BODIES];
-    double b_fence_time[RD_SWEEP_BODIES], b_fence_energy[RD_SWEEP_BODIES];
+    double b_fence_time[RD_SWEEP_BODIES], b_fence_energy[RD_SWEEP_BODIES]; /* the first fence */
     double b_fence_height[RD_SWEEP_BODIES];
+    /* per fence, over the bodies: the largest kinetic energy at a first crossing (J; 0: none),
+       the largest centre height above the surface there (m; -1: none), the bodies that crossed */
+    double f_energy[RD_MAX_FENCES], f_height[RD_MAX_FENCES];
+    int f_crossed[RD_MAX_FENCES];
 } rd_sweep_result;
 
 /* --- sweep_mode.c ---------------------------------------------------------------------------- */

@@ -275,6 +275,9 @@ static int inspect_base(rd_sweep_plan *p, rd_error *err)
                               RD_SWEEP_BODIES, RD_SWEEP_BODIES);
         else if (!sc.bodies[i].fixed)
             snprintf(p->body[p->nbodies++], RD_NAME_MAX, "%s", sc.bodies[i].name);
+    p->nfences = sc.runout.nfences;
+    for (int f = 0; f < p->nfences; f++)
+        snprintf(p->fence[f], RD_NAME_MAX, "%s", sc.runout.fence[f].name);
     p->pulse = !rd_motion_has_records(&sc.motion);
     p->amplitude = sc.motion.horizontal.amplitude;
     const rd_perturb_def *d = &sc.contact.perturb;
@@ -414,6 +417,7 @@ static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result
     r->nbodies =
         s->nbodies < RD_SWEEP_BODIES ? s->nbodies : RD_SWEEP_BODIES; /* inspect_base checked */
     r->overturn_time = -1;
+    for (int f = 0; f < RD_MAX_FENCES; f++) r->f_height[f] = -1;
     rd_sweep_mode mode = RD_MODE_REST;
     for (int k = 0; k < r->nbodies; k++) {
         const rd_body_summary *b = &s->body[k];
@@ -430,11 +434,19 @@ static void copy_summary(const rd_sim *sim, const rd_summary *s, rd_sweep_result
         r->b_max_speed[k] = b->max_speed;
         r->b_max_bounce[k] = b->max_bounce;
         r->b_max_energy[k] = b->max_energy;
-        r->b_fence_time[k] = b->fence_time;
-        r->b_fence_energy[k] = b->fence_crossings > 0 ? b->fence_energy : 0;
-        r->b_fence_height[k] = b->fence_height;
+        const rd_fence_hit *h0 = &b->fence[0];
+        r->b_fence_time[k] = h0->time;
+        r->b_fence_energy[k] = h0->crossings > 0 ? h0->energy : 0;
+        r->b_fence_height[k] = h0->height;
         r->runout = fmax(r->runout, b->travel);
-        r->fence_energy = fmax(r->fence_energy, r->b_fence_energy[k]);
+        for (int f = 0; f < b->nfences; f++) {
+            const rd_fence_hit *h = &b->fence[f];
+            if (h->crossings == 0) continue;
+            r->f_crossed[f]++;
+            r->f_energy[f] = fmax(r->f_energy[f], h->energy);
+            r->f_height[f] = fmax(r->f_height[f], h->height);
+            r->fence_energy = fmax(r->fence_energy, h->energy);
+        }
         if (b->overturned && (r->overturn_time < 0 || b->overturn_time < r->overturn_time))
             r->overturn_time = b->overturn_time;
         r->max_tilt_ratio = fmax(r->max_tilt_ratio, b->max_tilt_ratio);

@@ -33,8 +33,9 @@
 
 #define RD_SWEEP_CHUNK 64 /* rows per chunk */
 #define RD_SWEEP_LAYOUT                                                                            \
-    4 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
-                            3 = Sa, max twist, joint slip, response modes; 4 = runout */
+    5 /* /sweep layout_version: 2 = scales, status enum, numeric ncases;
+                            3 = Sa, max twist, joint slip, response modes; 4 = runout;
+                            5 = per-fence columns on the fence axis */
 /* Space reserved before a row: a new chunk for every column when the row starts one (chunks
  * are allocated whole), plus 32 KiB for chunk-index (B-tree) nodes and object-header updates. */
 #define RD_SWEEP_RESERVE_FIXED (32 << 10)
@@ -45,12 +46,13 @@ typedef struct col_spec {
     const char *name;
     col_type type;
     size_t off;   /* in rd_sweep_result */
-    int per_body; /* 1: [rows][nbodies] */
+    int per_body; /* 1: [rows][nbodies]; PER_FENCE: [rows][nfences] */
     const char *units;
     const char *long_name;
 } col_spec;
 
-#define R(f) offsetof(rd_sweep_result, f)
+#define PER_FENCE 2
+#define R(f)      offsetof(rd_sweep_result, f)
 static const col_spec outcome_cols[] = {
     { "pga", C_F64, R(im[RD_IM_PGA]), 0, "m/s^2", "peak ground acceleration" },
     { "pgv", C_F64, R(im[RD_IM_PGV]), 0, "m/s", "peak ground velocity" },
@@ -112,11 +114,17 @@ static const col_spec outcome_cols[] = {
     { "body_max_bounce", C_F64, R(b_max_bounce), 1, "m",
       "largest gap between the body and the fixed surface below it" },
     { "body_fence_time", C_F64, R(b_fence_time), 1, "s",
-      "time the body first crossed the fence (-1: never)" },
+      "time the body first crossed the first fence (-1: never)" },
     { "body_fence_energy", C_F64, R(b_fence_energy), 1, "J",
-      "kinetic energy of the body at its first fence crossing (0: none)" },
+      "kinetic energy of the body at its first crossing of the first fence (0: none)" },
     { "body_fence_height", C_F64, R(b_fence_height), 1, "m",
-      "height of the body's centre above the surface at its first fence crossing (-1: none)" },
+      "height of the body's centre above the surface at its first crossing of the first fence "
+      "(-1: none)" },
+    { "fence_max_energy", C_F64, R(f_energy), PER_FENCE, "J",
+      "largest kinetic energy at a first crossing of the fence over the free bodies (0: none)" },
+    { "fence_max_height", C_F64, R(f_height), PER_FENCE, "m",
+      "largest centre height above the surface at a first crossing of the fence (-1: none)" },
+    { "fence_crossed", C_I32, R(f_crossed), PER_FENCE, "1", "free bodies that crossed the fence" },
     { "case", C_I64, R(index), 0, "",
       "case index in the sweep plan" }, /* last: writing it commits the row */
 };
@@ -160,6 +168,13 @@ static void col_init(rd_sweep_table *t, column *c, const char *name, col_type ty
     c->size = H5Tget_size(c->mtype);
 }
 
+/* Elements per row of a column on axis per_body (0: one; at least one: no free body). */
+static int axis_width(const rd_sweep_plan *p, int per_body)
+{
+    int n = per_body == PER_FENCE ? p->nfences : per_body ? p->nbodies : 1;
+    return n > 0 ? n : 1;
+}
+
 static void layout(rd_sweep_table *t)
 {
     const rd_sweep_plan *p = t->plan;
@@ -171,8 +186,9 @@ static void layout(rd_sweep_table *t)
     }
     for (int i = 0; i < NOUT; i++) {
         const col_spec *s = &outcome_cols[i];
+        if (s->per_body == PER_FENCE && p->nfences == 0) continue; /* no fence, no fence axis */
         column *c = &t->col[t->ncols++];
-        col_init(t, c, s->name, s->type, s->per_body ? (p->nbodies > 0 ? p->nbodies : 1) : 1);
+        col_init(t, c, s->name, s->type, axis_width(p, s->per_body));
         c->spec = s;
     }
 }
@@ -244,29 +260,43 @@ static int create_column(rd_sweep_table *t, column *c)
                : 0;
 }
 
-/* `case` becomes the scale of every column's rows, /sweep/body that of the per-body axis. */
+/* A 1-D dataset of n names (at least one, "" for none) under /sweep, made a dimension scale.
+ * Its id, or -1. */
+static hid_t name_scale(rd_sweep_table *t, const char *name, const char (*names)[RD_NAME_MAX],
+                        int n, const char *long_name)
+{
+    const char *v[RD_SWEEP_BODIES];
+    hsize_t nn = (hsize_t)(n > 0 ? n : 1);
+    for (int k = 0; k < (int)nn; k++) v[k] = k < n ? names[k] : "";
+    hid_t sp = H5Screate_simple(1, &nn, NULL);
+    hid_t d = H5Dcreate2(t->group, name, t->vstr, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(sp);
+    if (d >= 0 && H5Dwrite(d, t->vstr, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0 &&
+        H5DSset_scale(d, name) >= 0 && !attr_text(t, d, "long_name", long_name))
+        return d;
+    if (d >= 0) H5Dclose(d);
+    return -1;
+}
+
+/* `case` becomes the scale of every column's rows, /sweep/body that of the per-body axis,
+ * /sweep/fence that of the per-fence one (made only when the scenario has fences, as are the
+ * per-fence columns). */
 static int attach_scales(rd_sweep_table *t)
 {
     const rd_sweep_plan *p = t->plan;
-    const char *names[RD_SWEEP_BODIES];
-    hsize_t nb = (hsize_t)(p->nbodies > 0 ? p->nbodies : 1);
-    for (int k = 0; k < (int)nb; k++) names[k] = k < p->nbodies ? p->body[k] : "";
-    hid_t sp = H5Screate_simple(1, &nb, NULL);
-    hid_t b = H5Dcreate2(t->group, "body", t->vstr, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5Sclose(sp);
+    hid_t b = name_scale(t, "body", p->body, p->nbodies, "free body");
+    hid_t fe = p->nfences ? name_scale(t, "fence", p->fence, p->nfences, "fence (model fence)") : 0;
     hid_t ck = t->col[t->ncols - 1].dset;
-    int rc = b >= 0 && H5Dwrite(b, t->vstr, H5S_ALL, H5S_ALL, H5P_DEFAULT, names) >= 0 &&
-                     H5DSset_scale(b, "body") >= 0 && !attr_text(t, b, "long_name", "free body") &&
-                     H5DSset_scale(ck, "case") >= 0
-                 ? 0
-                 : -1;
+    int rc = b >= 0 && fe >= 0 && H5DSset_scale(ck, "case") >= 0 ? 0 : -1;
     for (int i = 0; !rc && i < t->ncols - 1; i++) {
         const column *c = &t->col[i];
+        const int ax = c->spec ? c->spec->per_body : 0;
         if (H5DSattach_scale(c->dset, ck, 0) < 0 ||
-            (c->spec && c->spec->per_body && H5DSattach_scale(c->dset, b, 1) < 0))
+            (ax && H5DSattach_scale(c->dset, ax == PER_FENCE ? fe : b, 1) < 0))
             rc = -1;
     }
     if (b >= 0) H5Dclose(b);
+    if (fe > 0) H5Dclose(fe);
     return rc;
 }
 
@@ -615,7 +645,9 @@ static void cell(const rd_sweep_table *t, const column *c, const rd_sweep_result
         buf[0] = (char)(r->status >= 0 && r->status <= RD_STATUS_UNTRUSTED ? r->status
                                                                            : RD_STATUS_ERROR);
     } else {
-        size_t n = c->spec->per_body ? (size_t)t->plan->nbodies : 1;
+        size_t n = c->spec->per_body == PER_FENCE ? (size_t)t->plan->nfences
+                   : c->spec->per_body            ? (size_t)t->plan->nbodies
+                                                  : 1;
         memcpy(buf, (const char *)r + c->spec->off, n * c->size);
     }
 }

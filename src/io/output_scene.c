@@ -8,7 +8,8 @@
  *   /outcomes/bodies [body][quantity]     x, y, z at the end, travel, drop, unsupported
  *   /runout/bodies [body][quantity]       runout, direction, path, speed, bounce, orientation,
  *                                         domain exit and fence crossing (docs/RUNOUT.md)
- *   /runout/fence [point][plan]           the fence polyline, when one is given
+ *   /runout/fence [point][plan]           the first fence's polyline, when one is given
+ *   /runout/fences/<name>/points, bodies  every fence's polyline and each body's crossings
  * docs/HDF5-LAYOUT.md describes them with the rest of the file.
  * Folder io/ owns the HDF5 output file; it may call base/ and the public headers, never engine/
  * internals or cli/.
@@ -55,7 +56,7 @@ static int history(long long f, const rd_sim *sim, rd_error *err)
     return rc ? -1 : 0;
 }
 
-enum { NPROP = 6, NOUT = 4, NBODY = 6, NRUN = 19 };
+enum { NPROP = 6, NOUT = 4, NBODY = 6, NRUN = 19, NHIT = 8 };
 
 static int joints(long long f, const rd_sim *sim, rd_error *err)
 {
@@ -146,13 +147,54 @@ static const char run_labels[] =
     "fence_time,fence_energy,fence_speed,fence_height,fence_x,fence_y,fence_z";
 static const char run_units[] = "m,rad,m,m/s,J,m,1,1,1,1,s,1,s,J,m/s,m,m,m,m";
 
-static int fence(long long g, const rd_scenario *sc, rd_error *err)
+static const char hit_labels[] = "crossings,time,energy,speed,height,x,y,z";
+static const char hit_units[] = "1,s,J,m/s,m,m,m,m";
+
+/* /runout/fences/<name>/points and bodies: fence f's polyline and each body's crossings. */
+static int fence_tables(long long g, const rd_summary *s, const rd_fence_def *fe, int f,
+                        rd_error *err)
+{
+    int nf = s->nbodies;
+    double *v = malloc((size_t)(nf + 1) * NHIT * sizeof *v);
+    if (!v) return rd_error_set(err, "out of memory");
+    for (int k = 0; k < nf; k++) {
+        const rd_fence_hit *h = &s->body[k].fence[f];
+        double row[NHIT] = { h->crossings, h->time,     h->energy,   h->speed,
+                             h->height,    h->point[0], h->point[1], h->point[2] };
+        memcpy(v + NHIT * k, row, sizeof row);
+    }
+    rd_h5t_axes pax = { { "point", "plan" }, { NULL, "x,y" } };
+    rd_h5t_axes bax = { { "/body", "quantity" }, { NULL, hit_labels } };
+    long long fg = rd_h5t_group(g, fe->name, err);
+    int rc =
+        fg < 0 ||
+        rd_h5t_write(fg, "points", RD_H5T_DOUBLE, fe->point, fe->npoint, 2, "m",
+                     "the fence polyline in plan (a vertical fence standing on it)", &pax, err) ||
+        rd_h5t_write(fg, "bodies", RD_H5T_DOUBLE, v, nf, NHIT, hit_units,
+                     "each free body's crossings of this fence and, at the first, its time "
+                     "(-1: none), kinetic energy, speed, centre height above the surface "
+                     "and place",
+                     &bax, err);
+    rd_h5t_close_group(fg);
+    free(v);
+    return rc ? -1 : 0;
+}
+
+/* /runout/fence (the first fence's polyline, as before several were allowed) and
+ * /runout/fences/<name>/ for every fence. */
+static int fences(long long g, const rd_summary *s, const rd_scenario *sc, rd_error *err)
 {
     const rd_runout_def *r = &sc->runout;
-    if (r->nfence < 2) return 0;
+    if (r->nfences == 0) return 0;
     rd_h5t_axes ax = { { "point", "plan" }, { NULL, "x,y" } };
-    return rd_h5t_write(g, "fence", RD_H5T_DOUBLE, r->fence, r->nfence, 2, "m",
-                        "the fence polyline in plan (a vertical fence standing on it)", &ax, err);
+    if (rd_h5t_write(g, "fence", RD_H5T_DOUBLE, r->fence[0].point, r->fence[0].npoint, 2, "m",
+                     "the first fence's polyline in plan (all of them: /runout/fences)", &ax, err))
+        return -1;
+    long long fg = rd_h5t_group(g, "fences", err);
+    int rc = fg < 0;
+    for (int f = 0; f < r->nfences && !rc; f++) rc = fence_tables(fg, s, &r->fence[f], f, err);
+    rd_h5t_close_group(fg);
+    return rc ? -1 : 0;
 }
 
 static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error *err)
@@ -173,14 +215,14 @@ static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error 
                              b->final_quaternion[2],
                              b->final_quaternion[3],
                              b->left_time,
-                             b->fence_crossings,
-                             b->fence_time,
-                             b->fence_energy,
-                             b->fence_speed,
-                             b->fence_height,
-                             b->fence_point[0],
-                             b->fence_point[1],
-                             b->fence_point[2] };
+                             b->fence[0].crossings,
+                             b->fence[0].time,
+                             b->fence[0].energy,
+                             b->fence[0].speed,
+                             b->fence[0].height,
+                             b->fence[0].point[0],
+                             b->fence[0].point[1],
+                             b->fence[0].point[2] };
         memcpy(v + NRUN * k, row, sizeof row);
     }
     rd_h5t_axes ax = { { "/body", "quantity" }, { NULL, run_labels } };
@@ -192,10 +234,11 @@ static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error 
             "the runout of each free body's centre of mass (docs/RUNOUT.md): "
             "horizontal distance and direction from rest, path length, largest "
             "speed, kinetic energy and bounce, final orientation, time it left the domain (-1: "
-            "never), fence crossings and, at the first, its time (-1: none), "
-            "kinetic energy, speed, height above the surface and place",
+            "never), the first fence's crossings and, at the first, its time (-1: none), "
+            "kinetic energy, speed, height above the surface and place (every fence: "
+            "/runout/fences)",
             &ax, err) ||
-        fence(g, rd_sim_scenario(sim), err);
+        fences(g, s, rd_sim_scenario(sim), err);
     rd_h5t_close_group(g);
     free(v);
     return rc ? -1 : 0;
@@ -209,11 +252,13 @@ static int runout(long long f, const rd_sim *sim, const rd_summary *s, rd_error 
 static size_t scene_bytes(const rd_sim *sim, const rd_summary *s)
 {
     long rows;
-    int cols, nj = rd_sim_joint_count(sim), nd = rd_sim_history_count(sim) + 10;
+    const int nfence = rd_sim_scenario(sim)->runout.nfences;
+    int cols, nj = rd_sim_joint_count(sim), nd = rd_sim_history_count(sim) + 10 + 3 * nfence;
     rd_sim_history_table(sim, &rows, &cols);
     size_t label = 2 * RD_NAME_MAX + 2 + 16; /* a joint's label and its heap object's header */
     size_t raw = sizeof(double) * ((size_t)rows * (size_t)cols + (size_t)nj * (NPROP + NOUT) +
-                                   (size_t)s->nbodies * (NBODY + NRUN) + 2 * RD_MAX_FENCE_POINTS) +
+                                   (size_t)s->nbodies * (NBODY + NRUN + NHIT * (size_t)nfence) +
+                                   2 * RD_MAX_FENCE_POINTS * (size_t)(nfence + 1)) +
                  3 * label * (size_t)nj + RD_TABLE_HEADER * (size_t)nd;
     return raw + raw / 8;
 }

@@ -77,8 +77,8 @@ def _rows_from_sweep(path, f, observed, outcome="overturned"):
             d = s[k]
             if not isinstance(d, h5py.Dataset) or d.ndim != 1:
                 continue
-            if k == "body" and as_str(d.attrs.get("CLASS", b"")) == "DIMENSION_SCALE":
-                continue  # the per-body axis of the body_* columns (layout 2), not a row column
+            if k in ("body", "fence") and as_str(d.attrs.get("CLASS", b"")) == "DIMENSION_SCALE":
+                continue  # the per-body (layout 2) or per-fence (layout 5) axis, not a row column
             fields[k] = d[()]
             names = enum_names(d.dtype)
             if names:  # status (layout 2): an HDF5 enum, compared by name (--where status=done)

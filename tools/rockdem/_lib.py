@@ -10,6 +10,7 @@ import os
 from typing import Iterator
 
 RD_NAME_MAX = 64      # include/rockdem/scenario.h
+RD_MAX_FENCES = 8     # include/rockdem/scenario.h
 RD_ERROR_MAX = 512    # include/rockdem/error.h
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -25,6 +26,15 @@ class Error(ctypes.Structure):
     @property
     def text(self):
         return self.msg.decode("utf-8", "replace")
+
+
+class FenceHit(ctypes.Structure):  # rd_fence_hit
+    _fields_ = [("crossings", ctypes.c_int),
+                ("time", ctypes.c_double),
+                ("energy", ctypes.c_double),
+                ("speed", ctypes.c_double),
+                ("height", ctypes.c_double),
+                ("point", ctypes.c_double * 3)]
 
 
 class BodySummary(ctypes.Structure):  # rd_body_summary
@@ -56,12 +66,8 @@ class BodySummary(ctypes.Structure):  # rd_body_summary
                 ("max_bounce", ctypes.c_double),
                 ("final_quaternion", ctypes.c_double * 4),
                 ("left_time", ctypes.c_double),
-                ("fence_crossings", ctypes.c_int),
-                ("fence_time", ctypes.c_double),
-                ("fence_energy", ctypes.c_double),
-                ("fence_speed", ctypes.c_double),
-                ("fence_height", ctypes.c_double),
-                ("fence_point", ctypes.c_double * 3)]
+                ("nfences", ctypes.c_int),
+                ("fence", FenceHit * RD_MAX_FENCES)]
 
 
 class Summary(ctypes.Structure):  # rd_summary

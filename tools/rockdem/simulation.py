@@ -192,11 +192,14 @@ class _Names(dict):
 
 def body_summary_dict(b: _lib.BodySummary) -> Dict[str, Any]:
     """An rd_body_summary as a dict (flags as bools, final_position as a list, m)."""
-    d = {name: getattr(b, name) for name, _ in _lib.BodySummary._fields_ if name != "name"}
+    skip = ("name", "nfences", "fence")
+    d = {name: getattr(b, name) for name, _ in _lib.BodySummary._fields_ if name not in skip}
     for k in ("overturned", "uplifted", "slid", "unsupported"):
         d[k] = bool(d[k])
-    for k in ("final_position", "final_quaternion", "fence_point"):
+    for k in ("final_position", "final_quaternion"):
         d[k] = list(d[k])
+    d["fence"] = [{name: (list(getattr(h, name)) if name == "point" else getattr(h, name))
+                   for name, _ in _lib.FenceHit._fields_} for h in b.fence[:b.nfences]]
     return d
 
 
