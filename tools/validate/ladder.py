@@ -1086,8 +1086,9 @@ def markdown(rows, nrun, wall, when, path, contact="vertex", depth="full", error
     out += [
            "Verdicts: **pass** (error <= tolerance), **FAIL**, **xfail** (a known gap, listed with its reason below;",
            "it prints its gap on every run), **xpass** (a known gap that closed: remove its mark).", "",
-           "Totals: %d pass, %d FAIL, %d xfail, %d xpass; %d rockdem runs in %.0f s." % (
-               n["pass"], n["FAIL"], n["xfail"], n["xpass"], nrun, wall), "",
+           "Totals: %d pass, %d FAIL, %d xfail, %d xpass%s; %d rockdem runs in %.0f s." % (
+               n["pass"], n["FAIL"], n["xfail"], n["xpass"],
+               ", %d cases that could not run" % len(errors) if errors else "", nrun, wall), "",
            "| case | quantity | reference | reference source | rockdem | error | tolerance | tolerance source | verdict |",
            "|---|---|---|---|---|---|---|---|---|"]
     cell = lambda v: str(v).replace("|", "\\|")   # a "|" inside a cell would split the table
@@ -1146,7 +1147,7 @@ def main():
             fn(L)
         except Exception as e:  # a case that cannot run is a failure, never a silent skip
             print("FAIL %s: %s" % (fn.__name__, e))
-            L.errors.append((fn.__name__, str(e)))
+            L.errors.append((fn.__name__, str(e).replace(tmp, "$TMP")))   # a report that does not name a temp dir
             errors += 1
     wall = time.time() - t0
     when = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
