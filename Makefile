@@ -124,6 +124,16 @@ validate: $(BIN)/rockdem
 	/usr/bin/python3 tools/validate/ladder.py --depth full --bin $(BIN)/rockdem --md docs/validation.md \
 	    --json $(BUILD)/validate/results.json
 
+# the same ladder with every DEM run under the opt-in surface contact model (ladder.py --contact
+# surface: docs/CONTACT.md section 8): writes docs/validation-surface.md, a generated report.
+# The surface model is 3-20 times slower; `make validate-surface SURFACE_DEPTH=fast` runs the
+# fast depth (about 5 min on 2 cores).
+SURFACE_DEPTH ?= full
+.PHONY: validate-surface
+validate-surface: $(BIN)/rockdem
+	/usr/bin/python3 tools/validate/ladder.py --depth $(SURFACE_DEPTH) --contact surface --bin $(BIN)/rockdem \
+	    --md docs/validation-surface.md --json $(BUILD)/validate/results-surface.json
+
 # AddressSanitizer and UBSan, with the internal invariants checked (RD_DEBUG: base/assert.h).
 # `make asan` runs every test so built; `make asan-unit` the CMocka unit tests only (.ci/run).
 ASAN_VARS := BUILD=build-asan BIN=build-asan/bin OPT=-O1 \

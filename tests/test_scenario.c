@@ -728,6 +728,7 @@ static void test_set_good(void **state)
     set_ok("model.damping=viscous 0.05");
     set_ok("model.timestep=2e-6");
     set_ok("model.settle=off");
+    set_ok("contact.model=surface");
     set_ok("model.gravity=1g");
     set_ok("motion.amplitude=0.4g");
     set_ok("motion.direction=45");
@@ -743,6 +744,7 @@ static void test_set_good(void **state)
     assert_int_equal(sc->timestep.kind, RD_TIMESTEP_FIXED);
     assert_float_equal(sc->timestep.dt, 2e-6, 1e-18);
     assert_int_equal(sc->settle.enabled, 0);
+    assert_int_equal(sc->contact.model, RD_CONTACT_SURFACE);
     assert_float_equal(sc->gravity, G0, EPS);
     assert_float_equal(sc->motion.horizontal.amplitude, 0.4 * G0, EPS);
     assert_float_equal(sc->motion.horizontal.direction, 45.0 * DEG, EPS);
@@ -800,7 +802,7 @@ static void test_set_bad_key(void **state)
         "--set contact.frction=30: unknown key 'contact.frction' (expected "
         "contact.stiffness-normal, contact.stiffness-shear, contact.friction, contact.friction-coefficient, "
         "contact.cohesion, contact.tension, contact.spacing, contact.restitution, contact.interface-seed, "
-        "contact.interface-remove, contact.interface-raise, contact.interface-scatter)");
+        "contact.interface-remove, contact.interface-raise, contact.interface-scatter, contact.model)");
     set_fails("solver.dt=1", "--set solver.dt=1: unknown key 'solver.dt' (expected a key in "
                              "contact, model, motion, output or block.<name>)");
     set_fails("model.gravity", "--set model.gravity: expected section.key=value");
@@ -824,6 +826,8 @@ static void test_set_bad_value(void **state)
               "--set contact.spacing=some: expected a number, auto or vertices, got 'some'");
     set_fails("model.damping=viscous 12",
               "--set model.damping=viscous 12: value must be in (0, 10]");
+    set_fails("contact.model=mortar",
+              "--set contact.model=mortar: expected vertex or surface, got 'mortar'");
     set_fails("model.damping=sticky",
               "--set model.damping=sticky: expected none, viscous <ratio> or local <alpha>, got "
               "'sticky'");

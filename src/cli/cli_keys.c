@@ -47,6 +47,8 @@ static const key_doc keys[] = {
       "a raised subcontact moves up to this far into its body" },
     { "contact.interface-scatter", "1", "0",
       "c.o.v. of the lognormal factor on each subcontact's area" },
+    { "contact.model", "vertex | surface", "vertex",
+      "contact model: vertex subcontacts or patches from the touching faces" },
     { "motion.amplitude", "m/s^2 or g", "scenario", "horizontal pulse amplitude" },
     { "motion.frequency", "Hz", "scenario", "pulse frequency (sine, cosine, harmonic)" },
     { "motion.duration", "s", "scenario", "pulse duration (rectangular, triangle)" },

@@ -620,12 +620,16 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     rd_law_relative_velocity_of(s->v[i], s->w[i], s->v[r], s->w[r], r_free, C, rt, vr);
     double vn = rd_dot(vr, uw), spin = rd_dot(wrel, uw);
     rd_patch_spring *sp = &st->sp;
+    double fp[3] = { sp->fs[0], sp->fs[1], sp->fs[2] }; /* last step's springs, turned */
+    const double mp = sp->mt;
+    rd_law_shear_turn(fp, uw);
     s->e_fric += rd_patch_spring_resize(sp, j->ks, ld->area, ld->polar);
     rd_law_shear_turn(sp->fs, uw);
     const double f0[3] = { sp->fs[0], sp->fs[1], sp->fs[2] }, m0 = sp->mt;
     const double kA = j->ks * ld->area, kJ = j->ks * ld->polar;
     rd_law_shear_load(sp->fs, uw, vr, vn, kA, s->dt);
     sp->mt -= kJ * spin * s->dt;
+    s->e_fric += rd_patch_resize_work(sp, fp, mp, f0, m0, kA, kJ);
     double flim = j->tan_phi * rd_max(fn, 0.0),
            mlim = ld->f > 0 ? flim * twist_lower(tw) / ld->f : 0.0;
     if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1))

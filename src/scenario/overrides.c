@@ -21,6 +21,7 @@ typedef enum set_kind {
     S_DAMPING,
     S_TIMESTEP,
     S_SETTLE,
+    S_MODEL,
     S_FILE,
     S_RECORD /* a record setting: the records are re-read and/or re-processed */
 } set_kind;
@@ -53,6 +54,7 @@ static const set_key set_keys[] = {
       U_PLAIN },
     { "contact.interface-scatter", S_NUMBER, offsetof(rd_scenario, contact.perturb.scatter),
       R_NONNEG, U_PLAIN },
+    { "contact.model", S_MODEL, 0, R_ANY, U_PLAIN },
     { "model.gravity", S_NUMBER, offsetof(rd_scenario, gravity), R_NONNEG, U_ACCEL },
     { "model.density", S_NUMBER, offsetof(rd_scenario, density), R_POS, U_PLAIN },
     { "model.duration", S_NUMBER, offsetof(rd_scenario, duration), R_POS, U_PLAIN },
@@ -220,6 +222,17 @@ static int set_settle(const setter *S)
     return 0;
 }
 
+/* contact.model: vertex (subcontacts) or surface (patches from the touching faces), as the
+ * scenario's 'contact model' (docs/CONTACT.md section 8). */
+static int set_model(const setter *S)
+{
+    if (strcasecmp(S->value, "vertex") != 0 && strcasecmp(S->value, "surface") != 0)
+        return serr(S, "expected vertex or surface, got '%s'", S->value);
+    S->sc->contact.model =
+        strcasecmp(S->value, "surface") == 0 ? RD_CONTACT_SURFACE : RD_CONTACT_VERTEX;
+    return 0;
+}
+
 static int set_file(const setter *S)
 {
     size_t len = strlen(S->value);
@@ -337,6 +350,7 @@ static int set_apply(const setter *S, const set_key *k)
     case S_DAMPING: return set_damping(S);
     case S_TIMESTEP: return set_timestep(S);
     case S_SETTLE: return set_settle(S);
+    case S_MODEL: return set_model(S);
     case S_FILE: return set_file(S);
     case S_RECORD: return set_record(S, k);
     }

@@ -19,10 +19,9 @@ for f in L_on_L L_on_L_free; do
     else echo "FAIL $f-done: rc=$rc status '$st': $(grep -m1 -E 'passed|left|refus|error' "$T/$f.txt")"; fails=$((fails + 1)); fi
     if awk -v t="${tilt:-0}" 'BEGIN { exit !(t > 1e-3) }'; then echo "CHECK $f-rocks (max tilt $tilt rad)"
     else echo "FAIL $f-rocks: max tilt '$tilt' rad (want > 1e-3)"; fails=$((fails + 1)); fi
+    # two free meshes rocking and sliding at 1.2 g: 1.13e-3 (an expected failure) until the
+    # springs' resize was booked at mid-step (docs/CONTACT.md section 8.10), 1.6e-4 since
     if awk -v r="${res:-1}" 'BEGIN { exit !(r < 1e-3) }'; then echo "CHECK $f-energy (residual $res, tol 1e-3)"
-    elif [ "$f" = L_on_L_free ] && awk -v r="${res:-1}" 'BEGIN { exit !(r < 2e-3) }'; then
-        # known gap (docs/CONTACT.md section 8.5): two free meshes rocking and sliding at 1.2 g
-        echo "XFAIL: energy residual of two free meshes gap=$res tol=1e-3"
     else echo "FAIL $f-energy: residual '$res' (tol 1e-3)"; fails=$((fails + 1)); fi
 done
 # a toppling L column strikes its free neighbour (both meshes): the run ends done, the neighbour
