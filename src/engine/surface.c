@@ -243,43 +243,40 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     B->plane_face = malloc((size_t)(nf ? nf : 1) * sizeof *B->plane_face);
     B->f2_0 = malloc(((size_t)nf + 1) * sizeof *B->f2_0);
     B->f2 = malloc((size_t)(nv2 ? nv2 : 1) * sizeof *B->f2);
-    double *pd = malloc((size_t)(nf ? nf : 1) * sizeof *pd);
-    if (!plane_of || !B->frame || !B->plane_f0 || !B->plane_face || !B->f2_0 || !B->f2 || !pd) {
+    if (!plane_of || !B->frame || !B->plane_f0 || !B->plane_face || !B->f2_0 || !B->f2) {
         free(plane_of);
-        free(pd);
         rd_error_set(err, "out of memory");
         return -1;
     }
     const double tol = RD_FACE_TOL * (1.0 + P->radius);
-    B->nplane = 0;
-    for (int f = 0; f < nf; f++) {
-        int k = 0;
-        for (; k < B->nplane; k++)
-            if (rd_dot(B->frame[k][3], P->fn[f]) > 1 - RD_SURF_COPLANAR &&
-                fabs(pd[k] - P->fd[f]) <= tol)
-                break;
-        if (k == B->nplane) { /* a new plane: its frame from the face's first vertex and edge */
-            const double *v0 = P->v[P->fidx[P->fstart[f]]], *v1 = P->v[P->fidx[P->fstart[f] + 1]];
-            double *o = B->frame[k][0], *e1 = B->frame[k][1], *e2 = B->frame[k][2],
-                   *n = B->frame[k][3];
-            rd_copy3(P->fn[f], n);
-            rd_copy3(v0, o);
-            double e[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
-            rd_axpy(-rd_dot(e, n), n, e);
-            double le = rd_norm(e);
-            for (int c = 0; c < 3; c++) e1[c] = e[c] / le;
-            rd_cross(n, e1, e2);
-            pd[k] = P->fd[f];
-            B->nplane++;
-        }
-        plane_of[f] = k;
-        B->plane_f0[k + 1]++;
+    int *first = malloc((size_t)(nf ? nf : 1) * sizeof *first);
+    B->nplane = first ? rd_plane_group(nf, (const double(*)[3])P->fn, P->fd, RD_SURF_COPLANAR, tol,
+                                       plane_of, first)
+                      : -1;
+    if (B->nplane < 0) {
+        free(first);
+        free(plane_of);
+        rd_error_set(err, "out of memory");
+        return -1;
     }
+    for (int k = 0; k < B->nplane; k++) { /* its frame from the first face's vertex and edge */
+        const int f = first[k];
+        const double *v0 = P->v[P->fidx[P->fstart[f]]], *v1 = P->v[P->fidx[P->fstart[f] + 1]];
+        double *o = B->frame[k][0], *e1 = B->frame[k][1], *e2 = B->frame[k][2], *n = B->frame[k][3];
+        rd_copy3(P->fn[f], n);
+        rd_copy3(v0, o);
+        double e[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
+        rd_axpy(-rd_dot(e, n), n, e);
+        double le = rd_norm(e);
+        for (int c = 0; c < 3; c++) e1[c] = e[c] / le;
+        rd_cross(n, e1, e2);
+    }
+    free(first);
+    for (int f = 0; f < nf; f++) B->plane_f0[plane_of[f] + 1]++;
     for (int k = 0; k < B->nplane; k++) B->plane_f0[k + 1] += B->plane_f0[k];
     int *fill = calloc((size_t)B->nplane + 1, sizeof *fill);
     if (!fill) {
         free(plane_of);
-        free(pd);
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -301,7 +298,6 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     if (!B->box) {
         free(fill);
         free(plane_of);
-        free(pd);
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -317,7 +313,6 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
                 }
     }
     free(fill);
-    free(pd);
     B->plane_of = plane_of;
     if (plane_cells(P, B)) {
         rd_error_set(err, "out of memory");
