@@ -987,6 +987,8 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
 typedef struct mesh_cand {
     int fi, Q, fr;
     int facing; /* 1: the faces face each other (a patch); 0: R only rules points out */
+    int behind; /* 1: part of S may lie behind R's plane (a patch's source); 0: S is wholly in
+                   front, beyond round-off, and R only rules its prism out for the others */
 } mesh_cand;
 
 /* The region a candidate face H of r takes out of another candidate's pieces on face S of i
@@ -1225,11 +1227,10 @@ static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand,
     sp.n = Pi->flen[fi];
     memcpy(sp.p, B->f2 + B->f2_0[fi], (size_t)sp.n * sizeof sp.p[0]);
     const double sliver = RD_SURF_SLIVER * poly_area(&sp);
-    if (face_sides(S, Pr, Br, fr, cand, nc, rot, tr)) return -1;
-    const mesh_side *side = S->side;
+    int sides = 0; /* face_sides built: on the first piece source (most faces have none) */
     double rv[RD_PATCH_FACE_MAX][3];
     for (int k = 0; k < nc; k++) {
-        if (!cand[k].facing) continue;
+        if (!cand[k].facing || !cand[k].behind) continue;
         const int fr_ = cand[k].fr, Q = cand[k].Q, nr = Pr->flen[fr_];
         double u[3], dR, dep[3];
         plane_in(Br, Q, rot, tr, u, &dR);
@@ -1242,6 +1243,9 @@ static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand,
             continue;
         if (!rd_patch_clip_half(&patch, dep[1], dep[2], dep[0], &cut)) continue;
         poly_copy(&patch, &cut);
+        if (!sides && face_sides(S, Pr, Br, fr, cand, nc, rot, tr)) return -1;
+        sides = 1;
+        const mesh_side *side = S->side;
         /* the nearest face over each point: the part of the piece that lies in the prism of
            another candidate face H (of another plane) with d_H < d_R (nearer, or in front of
            H: outside r there) is taken out, piece minus a convex region, in convex parts */
@@ -1335,6 +1339,8 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
                 (int)(sizeof(mesh_cand) / sizeof(int)) * 2 * (S->cand.n + 1), sizeof *S->ord))
         return -1;
     mc = (mesh_cand *)S->ord;
+    /* S wholly in front of R by more than the round-off of the depths (their terms' size) */
+    const double front_tol = RD_SURF_ROUNDOFF * (Pi->radius + Pr->radius + rd_norm(tr));
     int nc = 0;
     for (int k = 0; k < S->cand.n; k++) {
         const int fi = S->cand.ab[k][0], fr_ = S->cand.ab[k][1], Q = Br->plane_of[fr_];
@@ -1353,7 +1359,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
         /* a facing R wholly in front still rules its prism out for the others; a face that
            does not face S counts only where S is behind it */
         if (!facing && !(dhi > 0 && dlo < band)) continue;
-        mc[nc++] = (mesh_cand){ fi, Q, fr_, facing };
+        mc[nc++] = (mesh_cand){ fi, Q, fr_, facing, dhi > -front_tol };
     }
     if (sort_cand(S, mc, nc, Pi->nf, Br->nplane, Pr->nf)) return -1;
     int npc = 0;
