@@ -19,7 +19,10 @@
  *    region's to round-off;
  *  - rd_patch_torsion_bound: between 0 and the twisting lever on the square, the 12-gon and an
  *    affine pressure off the centre (the inequality |r - c| >= |r - c|^2 / rmax), and on the
- *    square its closed-form ratio sqrt 2 / (sqrt 2 + ln(1 + sqrt 2)) = 0.616.
+ *    square its closed-form ratio sqrt 2 / (sqrt 2 + ln(1 + sqrt 2)) = 0.616;
+ *  - rd_plane_group: the same planes, face by face, as the first-fit scan of every plane, on
+ *    faces scattered about a few planes across the tolerances' edges (normals turned by up to
+ *    twice the angle tolerance, offsets moved by up to twice dtol: both sides of both bounds).
  * Round-off tolerance: 1e-12 relative (sums of a few hundred terms of order 1). */
 #include <stdarg.h>
 #include <stddef.h>
@@ -448,6 +451,67 @@ static void test_torsion_bound(void **state)
                  sqrt(2.0) / (sqrt(2.0) + log(1 + sqrt(2.0))), 1e-8, RD_STRICT);
 }
 
+/* The first-fit scan that rd_plane_group must reproduce: each face against every plane. */
+static int plane_scan(int nf, const double (*fn)[3], const double *fd, double ntol, double dtol,
+                      int *plane_of)
+{
+    int np = 0, *first = malloc((size_t)nf * sizeof *first);
+    for (int f = 0; f < nf; f++) {
+        int k = 0;
+        for (; k < np; k++) {
+            const double *m = fn[first[k]];
+            if (fn[f][0] * m[0] + fn[f][1] * m[1] + fn[f][2] * m[2] > 1 - ntol &&
+                fabs(fd[first[k]] - fd[f]) <= dtol)
+                break;
+        }
+        if (k == np) first[np++] = f;
+        plane_of[f] = k;
+    }
+    free(first);
+    return np;
+}
+
+static void test_plane_group(void **state)
+{
+    (void)state;
+    enum { NF = 4000, NBASE = 12 };
+    const double ntol = 1e-9, dtol = 2e-6, amax = 2 * sqrt(2 * ntol);
+    double(*fn)[3] = malloc(NF * sizeof *fn), *fd = malloc(NF * sizeof *fd);
+    int *pa = malloc(NF * sizeof *pa), *pb = malloc(NF * sizeof *pb),
+        *first = malloc(NF * sizeof *first);
+    srand(39);
+    for (int f = 0; f < NF; f++) {
+        const int b = f % NBASE; /* base plane b: its normal on a spiral, offset b / 10 m */
+        const double th = 0.4 + 0.2 * b, ph = 2.1 * b;
+        const double n[3] = { sin(th) * cos(ph), sin(th) * sin(ph), cos(th) };
+        const double e1[3] = { -sin(ph), cos(ph), 0 };
+        const double e2[3] = { n[1] * e1[2] - n[2] * e1[1], n[2] * e1[0] - n[0] * e1[2],
+                               n[0] * e1[1] - n[1] * e1[0] };
+        const double a = amax * rand() / RAND_MAX, w = 2 * M_PI * rand() / RAND_MAX;
+        double len = 0;
+        for (int c = 0; c < 3; c++) {
+            fn[f][c] = cos(a) * n[c] + sin(a) * (cos(w) * e1[c] + sin(w) * e2[c]);
+            len += fn[f][c] * fn[f][c];
+        }
+        for (int c = 0; c < 3; c++) fn[f][c] /= sqrt(len);
+        fd[f] = 0.1 * b + 2 * dtol * (2.0 * rand() / RAND_MAX - 1);
+    }
+    const int na = rd_plane_group(NF, (const double(*)[3])fn, fd, ntol, dtol, pa, first);
+    const int nb = plane_scan(NF, (const double(*)[3])fn, fd, ntol, dtol, pb);
+    int same = na == nb;
+    for (int f = 0; f < NF && same; f++) same = pa[f] == pb[f];
+    for (int k = 0; k < na && same; k++) same = pa[first[k]] == k;
+    printf("CHECK plane_group: %d faces, %d planes (scan %d), same grouping %d\n", NF, na, nb,
+           same);
+    assert_true(same);
+    assert_true(na > NBASE && na < NF / 4); /* both merges and misses happened */
+    free(fn);
+    free(fd);
+    free(pa);
+    free(pb);
+    free(first);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -464,6 +528,7 @@ int main(void)
         cmocka_unit_test(test_cells_jittered),
         cmocka_unit_test(test_cells_l_shape),
         cmocka_unit_test(test_torsion_bound),
+        cmocka_unit_test(test_plane_group),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

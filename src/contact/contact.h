@@ -130,6 +130,15 @@ int rd_patch_faces(const double o[3], const double e1[3], const double e2[3], co
 int rd_patch_cells(int nface, const int *f0, const int *vid, const double (*xy)[2], int maxv,
                    int *c0, int *cslot);
 
+/* A body's nf faces (unit outward normals fn, offsets fd: fn . x = fd on face f, m) grouped
+ * into planes, once at setup (contact/planes.c): face f joins the first plane opened before it
+ * whose opening face's normal m has fn[f] . m > 1 - ntol and whose offset is within dtol (m), or
+ * opens the next one; ntol, dtol > 0. The same grouping as comparing each face with every
+ * plane, in expected time linear in nf. Each face's plane into plane_of, each plane's opening
+ * face into first (room for nf). Returns the plane count, -1 when out of memory. */
+int rd_plane_group(int nf, const double (*fn)[3], const double *fd, double ntol, double dtol,
+                   int *plane_of, int *first);
+
 /* ---- The joint law of a patch (docs/CONTACT.md section 8), written once ----
  * Normal: the Winkler pressure KN d (+ a dashpot's c_a dd/dt, c_a in Pa s/m) integrated over the
  * compressed region exactly (rd_patch_load). Shear: one spring per patch, the resultant fs of the
