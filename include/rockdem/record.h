@@ -146,7 +146,8 @@ RD_API void rd_stochastic_defaults(rd_stochastic_def *def);
 
 /* Gaussian white noise (gsl_rng_mt19937 + gsl_ran_gaussian, the given seed), filtered by the
  * Kanai-Tajimi ground oscillator and the Clough-Penzien high-pass (when highpass > 0), times the Saragoni-Hart envelope, scaled to def->pga. The
- * same definition gives the same record bit for bit. Not baseline-corrected. */
+ * same definition gives the same record bit for bit. Not baseline-corrected: the correction
+ * moves the peak, and rd_motion_prepare scales the corrected record back to def->pga. */
 RD_API int rd_record_stochastic(rd_record *r, const rd_stochastic_def *def, rd_error *err);
 
 /* --- match.c: spectral matching ------------------------------------------------------------ */

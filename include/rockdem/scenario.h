@@ -209,7 +209,8 @@ typedef struct rd_stochastic_def {
     double peak_time;        /* Saragoni-Hart envelope: time of its peak as a fraction of the
                          duration (default 0.2) */
     double end_level;        /* envelope at the end relative to its peak (default 0.05) */
-    double pga;              /* the record is scaled to this PGA, m/s^2 (default 0.3 g) */
+    double pga;              /* PGA of the applied record, m/s^2, after the baseline correction
+                         (motion_record.c; default 0.3 g) */
     unsigned long seed;      /* gsl_rng_mt19937 seed (default 1) */
 } rd_stochastic_def;
 

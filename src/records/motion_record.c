@@ -2,8 +2,9 @@
  *
  * Each component (h1, h2, vertical) keeps two records: `raw`, as read from its file or made by
  * the generator (SI units), and `applied`, what the ground does: raw, baseline-corrected
- * (polynomial of degree m->baseline, so the ground velocity ends at zero), times one scale
- * factor shared by all components (a pair keeps its ratio). Both are owned by the definition
+ * (polynomial of degree m->baseline, so the ground velocity ends at zero), a generated record
+ * scaled back to its own target PGA, then times one scale factor shared by all components (a
+ * pair keeps its ratio). Scaling comes last, so a requested PGA is the applied one. Both are owned by the definition
  * and freed by rd_motion_release (called from rd_scenario_free).
  *
  * Folder records/ owns ground motions (records, readers, stochastic generation, intensity
@@ -180,6 +181,18 @@ static int too_short(const rd_component_def *d, int degree, rd_error *err)
         d->path[0] ? d->path : d->applied->name, n, n == 1 ? "" : "s", degree, need);
 }
 
+/* A generated record's own target PGA holds for the record that drives the bodies: the
+ * baseline correction moves its peak (0.3 g requested, 0.2955 g applied for seed 1 over 8 s
+ * before this step), so the corrected record is scaled back to it. A shared PGA or PGV target
+ * (m->scale) replaces it, and without a correction the generator's scaling already holds. */
+static int generator_pga(const rd_motion_def *m, rd_component_def *d, rd_error *err)
+{
+    if (d->source != RD_SOURCE_STOCHASTIC || m->baseline == 0 || m->scale == RD_SCALE_PGA ||
+        m->scale == RD_SCALE_PGV)
+        return 0;
+    return rd_record_scale_to_pga(d->applied, d->stochastic.pga, err);
+}
+
 int rd_motion_prepare(rd_motion_def *m, rd_error *err)
 {
     for (int c = 0; c < RD_NCOMPONENTS; c++) {
@@ -190,6 +203,7 @@ int rd_motion_prepare(rd_motion_def *m, rd_error *err)
         if (!d->applied) return -1;
         if (m->baseline > 0 && too_short(d, m->baseline, err)) return -1;
         if (m->baseline > 0 && rd_record_baseline(d->applied, m->baseline, err)) return -1;
+        if (generator_pga(m, d, err)) return -1;
     }
     if (scale_factor(m, err)) return -1;
     for (int c = 0; c < RD_NCOMPONENTS; c++)
