@@ -205,11 +205,14 @@ check-yade: $(BIN)/rockdem
 # every generated block of the docs (sample outputs, the worked example's table and timings,
 # the contact tables, CPU times; tools/docgen.py, about 5 min on 2 cores), docs/validation.md
 # from the last `make validate` results file, the performance tables from the last
-# `make docs-bench` outputs, and the figures (tools/doc_figures.sh). `make test` checks them
-# (tests/cli/docs_current.sh).
+# `make docs-bench` outputs, the figures (tools/doc_figures.sh) and the fragility worked
+# example's figures (docs/fragility/, tools/fragility_example.sh: about 1 min). `make test` checks
+# the blocks and tools/doc_figures.sh's figures (tests/cli/docs_current.sh). The runout example's
+# figures (docs/runout/) come from its own runs: scenarios/runout/run.sh (30 min or more).
 .PHONY: docs docs-bench docs-validation
 docs: $(BIN)/rockdem $(BUILD)/librockdem.so scenarios/pbr.obj
 	@/usr/bin/python3 tools/docgen.py write --bin $(BIN)/rockdem
+	@bash tools/fragility_example.sh $(BIN)/rockdem > /dev/null
 # rerun `make bench` and `make bench-study` (about 15 min) into $(BUILD)/bench/out, then write
 # docs/PERFORMANCE.md's tables from them
 docs-bench: $(BIN)/rockdem $(BUILD)/bench/kernel $(BUILD)/bench/kernel-native scenarios/pbr.obj
