@@ -455,14 +455,14 @@ static int name_order(const void *a, const void *b)
  * neighbours compared, O(n log n) for a 10,000-brick wall. */
 static int check_unique(const char *path, const rd_h5_meta *m, rd_error *err)
 {
-    int n = m->nbodies + m->nfixed;
-    const char **s = malloc(sizeof *s * (size_t)n);
+    const size_t nb = (size_t)m->nbodies, n = nb + (size_t)m->nfixed; /* both >= 0: check_names */
+    if (n < 2) return 0;
+    const char **s = malloc(sizeof *s * n);
     if (!s) return rd_error_set(err, "%s: out of memory", path);
-    for (int i = 0; i < n; i++)
-        s[i] = i < m->nbodies ? m->bodies[i].name : m->fixed_bodies[i - m->nbodies].name;
-    qsort(s, (size_t)n, sizeof *s, name_order);
+    for (size_t i = 0; i < n; i++) s[i] = i < nb ? m->bodies[i].name : m->fixed_bodies[i - nb].name;
+    qsort(s, n, sizeof *s, name_order);
     int rc = 0;
-    for (int i = 1; i < n && !rc; i++)
+    for (size_t i = 1; i < n && !rc; i++)
         if (!strcmp(s[i - 1], s[i]))
             rc = rd_error_set(err, "%s: two bodies are named '%s'", path, s[i]);
     free(s);
