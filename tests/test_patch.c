@@ -335,12 +335,7 @@ static int cells_moments(int nc, const int *c0, const int *cs, const double (*xy
         }
         rd_moments pm;
         rd_patch_moments(&p, &pm);
-        m->a += pm.a;
-        m->sx += pm.sx;
-        m->sy += pm.sy;
-        m->sxx += pm.sxx;
-        m->sxy += pm.sxy;
-        m->syy += pm.syy;
+        rd_moments_add(m, &pm);
     }
     return convex;
 }

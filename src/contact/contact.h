@@ -42,6 +42,17 @@ typedef struct rd_moments {
     double a, sx, sy, sxx, sxy, syy;
 } rd_moments;
 
+/* m += p: the moments of a region made of pieces are their sums. */
+static inline void rd_moments_add(rd_moments *m, const rd_moments *p)
+{
+    m->a += p->a;
+    m->sx += p->sx;
+    m->sy += p->sy;
+    m->sxx += p->sxx;
+    m->sxy += p->sxy;
+    m->syy += p->syy;
+}
+
 /* What the pressure KN d of an affine depth d = d0 + gx x + gy y does over a patch, per unit KN
  * (the caller multiplies by KN): the compressed region (d > 0) only. */
 typedef struct rd_patch_load {

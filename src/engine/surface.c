@@ -814,12 +814,7 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nh, rd_momen
         rd_moments pm;
         rd_patch_moments(&S->comp[n], &pm);
         if (!(pm.a > 0)) continue;
-        m->a += pm.a;
-        m->sx += pm.sx;
-        m->sy += pm.sy;
-        m->sxx += pm.sxx;
-        m->sxy += pm.sxy;
-        m->syy += pm.syy;
+        rd_moments_add(m, &pm);
         n++;
     }
     return n;
@@ -1435,12 +1430,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
         for (; e < npc && S->pkey[2 * ix[e]] == P && S->pkey[2 * ix[e] + 1] == Q; e++) {
             rd_moments pm;
             rd_patch_moments(&S->comp[ix[e]], &pm);
-            m.a += pm.a;
-            m.sx += pm.sx;
-            m.sy += pm.sy;
-            m.sxx += pm.sxx;
-            m.sxy += pm.sxy;
-            m.syy += pm.syy;
+            rd_moments_add(&m, &pm);
         }
         const double(*fr)[3] = B->frame[P];
         double u[3], dR, dep[3];
