@@ -19,14 +19,8 @@ cpu_of() { # cpu_of N: the lower CPU time (s) of two setups of an N-brick wall
     /usr/bin/python3 bench/wall.py "$1" |
         sed 's/^model settle .*/model settle off/; s/^model solve time .*/model solve time 0.0001/' \
             > "$T/wall$1.dat"
-    local best="" t
-    for _ in 1 2; do
-        /usr/bin/time -o "$T/time$1" -f '%U %S' "$bin" run "$T/wall$1.dat" -q -o "$T/wall$1.h5" \
-            > /dev/null 2>&1 || { echo "FAIL run of the $1-brick wall" >&2; return 1; }
-        t=$(awk 'END { print $1 + $2 }' "$T/time$1")
-        if [ -z "$best" ] || awk "BEGIN { exit !($t < $best) }"; then best=$t; fi
-    done
-    echo "$best"
+    least_cpu "$T/time$1" "$bin" run "$T/wall$1.dat" -q -o "$T/wall$1.h5" ||
+        { echo "FAIL run of the $1-brick wall" >&2; return 1; }
 }
 
 small=$(cpu_of 1000) || { echo "FAIL run of the 1000-brick wall"; exit 1; }

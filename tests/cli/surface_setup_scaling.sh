@@ -1,5 +1,6 @@
 #!/bin/bash
 # rd-test: alone
+# rd-test: alone
 # The surface model's setup grows as n log n in a mesh's faces, not n^2 (issue 39): grouping the
 # faces into planes compared each face with every plane so far, and a scanned rock has nearly
 # as many planes as faces (tools/make_pbr.py --nlat 158, 99,540 triangles: 3.8 CPU-s of setup
@@ -21,15 +22,8 @@ cpu_of() { # cpu_of NLAT: the lower CPU time (s) of two setups of an NLAT rock o
         return 1
     sed "s|'pbr.obj'|'$T/rock$1.obj'|; s|^contact property .*|contact model surface\n& restitution 1|" \
         scenarios/pbr.dat > "$T/rock$1.dat"
-    local best="" t
-    for _ in 1 2; do
-        /usr/bin/time -o "$T/time$1" -f '%U %S' "$bin" run "$T/rock$1.dat" -q \
-            --set model.duration=0.001 --set model.settle=off -o "$T/rock$1.h5" > /dev/null 2>&1 ||
-            return 1
-        t=$(awk 'END { print $1 + $2 }' "$T/time$1")
-        if [ -z "$best" ] || awk "BEGIN { exit !($t < $best) }"; then best=$t; fi
-    done
-    echo "$best"
+    least_cpu "$T/time$1" "$bin" run "$T/rock$1.dat" -q --set model.duration=0.001 \
+        --set model.settle=off -o "$T/rock$1.h5"
 }
 
 small=$(cpu_of 79) || { echo "FAIL run of the 24,648-triangle rock"; exit 1; }
