@@ -105,8 +105,9 @@ void rd_observe_end(rd_sim *s)
 {
     rd_summary sum;
     rd_error err;
-    if (rd_observe_sample(s))
-        return; /* the final state, which also completes the rotation extremes */
+    /* the final state, which also completes the rotation extremes; should an observer fail
+       on it, the others still end (a run file keeps its summary, status io-error) */
+    rd_observe_sample(s);
     rd_sim_summary(s, &sum);
     for (int k = 0; k < s->nobs; k++)
         if (s->obs[k].end && s->obs[k].end(s->obs[k].user, s, &sum, &err)) {

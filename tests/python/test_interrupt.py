@@ -35,7 +35,8 @@ def test_ctrl_c_raises_and_keeps_the_file(tmp_path, block_file):
         raise AssertionError("Ctrl-C ignored: the run went on for 30 s")
     assert p.returncode == 130 and "KeyboardInterrupt" in rest, err
     with h5py.File(out, "r") as f:
+        assert "summary" in f, "no /summary in %s: %s; stderr: %s" % (out, list(f), err)
         status = f["summary"].attrs["status"]
         names = {int(v): k for k, v in h5py.check_enum_dtype(f["summary"].attrs.get_id("status").dtype).items()}
-        assert names[int(status)] == "interrupted"
+        assert names[int(status)] == "interrupted", dict(f["summary"].attrs)
         assert f["time"].shape[0] >= 5 and f["time"][-1] < 1000
