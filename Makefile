@@ -30,8 +30,11 @@ SUNLIBS := -lsundials_cvode -lsundials_nvecserial -lsundials_sunmatrixdense -lsu
 # position-independent (one set of objects makes both libraries); only RD_API functions
 # (include/rockdem/api.h) are visible outside the library
 LIBFLAGS := -fPIC -fvisibility=hidden
-ALL_CFLAGS = $(WFLAGS) $(CFLAGS) $(SAN) $(LIBFLAGS) -Iinclude -Isrc $(PKGCFLAGS)
-LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lqhull_r -lm
+# OpenMP (gcc's libgomp): one run on several threads (`--set model.threads=N` or
+# OMP_NUM_THREADS; engine/workers.c). `make OPENMP=` builds without it (every run serial).
+OPENMP  ?= -fopenmp
+ALL_CFLAGS = $(WFLAGS) $(CFLAGS) $(SAN) $(OPENMP) $(LIBFLAGS) -Iinclude -Isrc $(PKGCFLAGS)
+LDLIBS  = $(PKGLIBS) $(SUNLIBS) -lqhull_r -lm $(OPENMP)
 
 BUILD   ?= build
 BIN     ?= bin
@@ -102,6 +105,17 @@ $(BUILD)/tests/rockdem-general: src/cli/main.c $(CLIOBJ) $(filter-out $(BUILD)/o
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) src/cli/main.c $(filter %.o,$^) $(LDLIBS) -o $@
 
+# the program with every loop threaded however small the scene (engine/workers.c:
+# RD_ITEMS_PER_THREAD 0): tests/cli/threads.sh checks that its outputs on 1 and more threads are
+# bin/rockdem's to the bit
+$(BUILD)/obj-threads/engine/workers.o: src/engine/workers.c $(HEADERS) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -DRD_ITEMS_PER_THREAD=0 -c $< -o $@
+
+$(BUILD)/tests/rockdem-threads: src/cli/main.c $(CLIOBJ) $(filter-out $(BUILD)/obj/engine/workers.o,$(LIBOBJ)) $(BUILD)/obj-threads/engine/workers.o $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) src/cli/main.c $(filter %.o,$^) $(LDLIBS) -o $@
+
 # also the shipped PBR's mesh, so the README's next commands (scenarios/pbr.dat) run as written
 run: $(BIN)/rockdem scenarios/pbr.obj
 	$(BIN)/rockdem run scenarios/default.dat
@@ -114,7 +128,7 @@ scenarios/pbr.obj: tools/make_pbr.py
 fragility-example: $(BIN)/rockdem scenarios/pbr.obj
 	bash tools/fragility_example.sh $(BIN)/rockdem
 
-test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed $(TESTBIN) $(BUILD)/tests/rockdem-general scenarios/pbr.obj
+test: $(BIN)/rockdem $(BUILD)/librockdem.a $(BUILD)/librockdem.so $(BUILD)/embed $(TESTBIN) $(BUILD)/tests/rockdem-general $(BUILD)/tests/rockdem-threads scenarios/pbr.obj
 	@bash tests/run.sh $(BUILD) $(BIN)
 
 # the full validation ladder (tools/validate/ladder.py; `make test` runs its fast depth): writes
@@ -157,7 +171,7 @@ FUZZ_TIME    ?= 60
 FUZZ_TARGETS := scenario obj ply stl at2 csv
 FUZZ_SAN     := -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 fuzz:
-	$(MAKE) fuzz-bins BUILD=build-fuzz CC=clang OPT=-O1 SAN="$(FUZZ_SAN)"
+	$(MAKE) fuzz-bins BUILD=build-fuzz CC=clang OPT=-O1 SAN="$(FUZZ_SAN)" OPENMP=
 	@bash tests/fuzz/run.sh build-fuzz/fuzz $(FUZZ_TIME) $(FUZZ_TARGETS)
 fuzz-bins: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_target.c $(BUILD)/librockdem-internal.a $(HEADERS)

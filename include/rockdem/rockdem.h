@@ -251,6 +251,11 @@ RD_API double rd_sim_dt(const rd_sim *sim);
 /* Sum over the shaking steps of the active subcontacts (for ns per subcontact-step). */
 RD_API long rd_sim_active_point_steps(const rd_sim *sim);
 
+/* The most threads one step of the run has run on so far (1: every step serial): the run asks
+ * for rd_scenario.threads (or OMP_NUM_THREADS), and a step uses them where the scene has enough
+ * pairs or bodies to share out (engine/workers.c). The results are the same for any count. */
+RD_API int rd_sim_threads(const rd_sim *sim);
+
 /* Joints (pairs of bodies that came near each other) and what each did; k < count. */
 RD_API int rd_sim_joint_count(const rd_sim *sim);
 RD_API void rd_sim_joint(const rd_sim *sim, int k, rd_joint_summary *out);

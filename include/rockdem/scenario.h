@@ -299,8 +299,9 @@ typedef struct rd_overturn_def {
  * criterion at 2.28 s, the residual passed 1e-2 at 3.4 s as the drums fell off the stylobate). */
 #define RD_OVERTURN_STOP_ANY 2
 
-#define RD_MAX_FENCE_POINTS 64 /* vertices of one `model fence` polyline */
-#define RD_MAX_FENCES       8  /* `model fence` commands of a scenario */
+#define RD_MAX_FENCE_POINTS 64  /* vertices of one `model fence` polyline */
+#define RD_MAX_FENCES       8   /* `model fence` commands of a scenario */
+#define RD_THREADS_MAX      256 /* rd_scenario.threads: the most threads one run may ask for */
 
 /* One fence: `model fence points X1 Y1 X2 Y2 ... [name N]`. */
 typedef struct rd_fence_def {
@@ -366,6 +367,10 @@ typedef struct rd_scenario {
     char save_path[RD_PATH_MAX]; /* `model save 'f.h5'`: checkpoint after settling ("" = none) */
     char restore_path[RD_PATH_MAX]; /* `model restore 'f.h5'`: start from a checkpoint instead
                                        of settling ("" = none) */
+    int threads; /* threads one run steps on (`--set model.threads=N`, 1 to RD_THREADS_MAX; 0,
+                    the default: OMP_NUM_THREADS where set, else 1): the contact loop, the joint
+                    measures and the body loops run in parallel, with results identical to the
+                    bit for every count (engine/workers.c) */
     double ref_restitution; /* rigid reference solvers only (`model reference restitution e`):
                                impact restitution e in (0, 1]; < 0 = Housner's r (default -1) */
 } rd_scenario;

@@ -29,6 +29,8 @@ static const key_doc keys[] = {
       "time step: a fraction of the critical step, or fixed" },
     { "model.safety", "1", "0.2", "auto time step: fraction of the critical step, (0, 1]" },
     { "model.settle", "on | off", "on", "settle under gravity before shaking" },
+    { "model.threads", "1", "OMP_NUM_THREADS, else 1",
+      "threads one run steps on (the same results for any count)" },
     { "contact.stiffness-normal", "Pa/m", "1e10", "KN, normal stiffness per unit area" },
     { "contact.stiffness-shear", "Pa/m", "1e11",
       "KS, shear stiffness per unit area (default 10 KN: see docs/CONTACT.md)" },

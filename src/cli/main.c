@@ -114,10 +114,10 @@ static void print_summary(const rd_sim *sim, const rd_summary *s, int quiet)
            rd_status_name(s->status), s->end_time, s->dt, s->dt_critical, s->steps, s->settle_time,
            s->energy_residual_max);
     printf("perf: steps=%ld wall_s=%.6f steps_per_s=%.6g ns_per_subcontact_step=%.4g "
-           "mean_active_subcontacts=%.4g wall_per_sim_s=%.6g\n",
+           "mean_active_subcontacts=%.4g threads=%d wall_per_sim_s=%.6g\n",
            s->steps, s->wall_seconds, s->wall_seconds > 0 ? s->steps / s->wall_seconds : 0.0,
            aps > 0 ? 1e9 * s->wall_seconds / (double)aps : 0.0,
-           s->steps > 0 ? (double)aps / (double)s->steps : 0.0,
+           s->steps > 0 ? (double)aps / (double)s->steps : 0.0, rd_sim_threads(sim),
            sim_s > 0 ? s->wall_seconds / sim_s : 0.0);
 }
 

@@ -82,6 +82,7 @@
  */
 #include "engine/sim.h"
 #include "engine/law.h"
+#include "engine/workers.h"
 #include "base/vec.h"
 
 #include <float.h>
@@ -377,9 +378,9 @@ static void release(rd_sim *s, const side_ctx *c, int pt, int st, double kA, dou
     point_kinematics(s, c, pt, kin);
     const double *u = c->wn[s->pface[st]], *vr = kin + 3;
     double vn = rd_dot(vr, u);
-    s->e_fric += rd_law_release_energy(kA, last->s, s_now, last->bonded, s->fs[st], u, vr, vn, sA,
-                                       last->lim, s->dt);
-    if (last->fd != 0) s->e_damp += rd_law_dashpot_work(last->fd, 0.0, vn, s->dt);
+    rd_book_fric(s, rd_law_release_energy(kA, last->s, s_now, last->bonded, s->fs[st], u, vr, vn,
+                                          sA, last->lim, s->dt));
+    if (last->fd != 0) rd_book_damp(s, rd_law_dashpot_work(last->fd, 0.0, vn, s->dt));
     s->fs[st][0] = s->fs[st][1] = s->fs[st][2] = 0;
 }
 
@@ -534,8 +535,10 @@ static inline __attribute__((always_inline)) void bear_face(double (*fsa)[3], do
 }
 
 /* The face law's sums of each face used in this side step turned to the ground frame (B^T) and
- * added to the side's: force, torque and fn u. */
-static void fold_face_sums(side_ctx *c, side_sums *a)
+ * added to the side's: force, torque and fn u. The side's force and torque run on from the
+ * owner's (side_step); on a thread's view each face's share is booked to the owner's instead
+ * (workers.h), the same additions in the same order. */
+static void fold_face_sums(rd_sim *s, side_ctx *c, side_sums *a)
 {
     for (int w = 0; w < c->nw; w++)
         for (uint64_t m = c->ff_used[w]; m; m &= m - 1) {
@@ -543,8 +546,16 @@ static void fold_face_sums(side_ctx *c, side_sums *a)
             const face_frame *ff = &c->ff[e];
             const double *u = c->wn[e];
             for (int k = 0; k < 3; k++) {
-                a->f_o[k] += ff->t[0][k] * ff->f[0] + ff->t[1][k] * ff->f[1] + u[k] * ff->f[2];
-                a->tq_o[k] += ff->t[0][k] * ff->tq[0] + ff->t[1][k] * ff->tq[1] + u[k] * ff->tq[2];
+                const double f = ff->t[0][k] * ff->f[0] + ff->t[1][k] * ff->f[1] + u[k] * ff->f[2],
+                             tq = ff->t[0][k] * ff->tq[0] + ff->t[1][k] * ff->tq[1] +
+                                  u[k] * ff->tq[2];
+                if (s->tape) {
+                    rd_tape_add(s->tape, &s->f[c->o][k], f);
+                    rd_tape_add(s->tape, &s->tq[c->o][k], tq);
+                } else {
+                    a->f_o[k] += f;
+                    a->tq_o[k] += tq;
+                }
                 a->nsum[k] += u[k] * ff->fn;
             }
         }
@@ -649,7 +660,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         double stretch = depth - s->pset[st];
         double set = (1.0 - j->restitution) *
                      ((*fl & RD_PT_VIRGIN) ? stretch : rd_max(stretch - s->pstrike[st], 0.0));
-        if (stretch > 0) s->e_damp += 0.5 * kA * set * (2.0 * stretch + vn * s->dt - set);
+        if (stretch > 0) rd_book_damp(s, 0.5 * kA * set * (2.0 * stretch + vn * s->dt - set));
         s->pset[st] += set;
         *fl &= (unsigned char)~(RD_PT_VIRGIN | RD_PT_STRUCK | RD_PT_IMPACT);
     }
@@ -676,7 +687,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         fn = bonded ? fmax(fn, -j->tension * A) : 0.0;
     }
     if (fn != fel || last.fd != 0) /* dashpot or tension-cap work */
-        s->e_damp += rd_law_dashpot_work(last.fd, fn - fel, vn, s->dt);
+        rd_book_damp(s, rd_law_dashpot_work(last.fd, fn - fel, vn, s->dt));
     a->k_active += kA;
 
     /* shear: the incremental Coulomb spring on the plane of the entrance face (law.h; the face
@@ -690,14 +701,18 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     double fs[3]; /* in registers: stored once */
     face_frame *ff = c->face_law ? face_frame_at(c, e) : NULL;
     int slip;
+    /* the slip's friction energy: straight into the sum, or on a thread's view into a local
+       (0 + x is x) booked after */
+    double e_slip = 0, *e_fric = s->tape ? &e_slip : &s->e_fric;
     if (ff) {
         double f0[3];
         face_shear_trial(ff, s->fs[st], vr, sA, s->dt, f0, fs);
-        slip = rd_law_shear_cap(fs, f0, sA, lim, &s->e_fric);
+        slip = rd_law_shear_cap(fs, f0, sA, lim, e_fric);
     } else {
         rd_copy3(s->fs[st], fs);
-        slip = rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, &s->e_fric);
+        slip = rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, e_fric);
     }
+    if (e_slip != 0) rd_book_fric(s, e_slip);
     if (slip) *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     if ((*fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
     if (ff)
@@ -906,7 +921,7 @@ static inline __attribute__((always_inline)) int steady_point(rd_sim *s, side_ct
     if (!plain && k->damped) {
         double fd_prev = k->pj[st][0] - kA * (-k->pj[st][1] - k->pset[st]);
         if (fn != fel || fd_prev != 0)
-            s->e_damp += rd_law_dashpot_work(fd_prev, fn - fel, vn, k->dt);
+            rd_book_damp(s, rd_law_dashpot_work(fd_prev, fn - fel, vn, k->dt));
     }
     a->k_active += kA;
     k->pstate[st] = (unsigned char)(fl & ~(unsigned)RD_PT_SLIP);
@@ -1305,12 +1320,13 @@ face_points(rd_sim *s, side_ctx *c, const rd_joint *j, const steady_ctx *k, int 
  * (face_planes), then its points (steady_point, else subcontact); their forces summed into
  * *sums, the contact tally into *tally and the active point-steps into *active_steps. The tally
  * takes each face's bearing area in face order (a face's own sum first, as the monitor's area
- * always was), its counts and whether it touched once for the side. nw: the mask words in use
- * (a constant at each call: 1 word for most bodies). */
+ * always was), its counts and whether it touched once for the side; area_to: NULL, or on a
+ * thread's view (workers.h) the monitored body's area, to which each face's area is booked
+ * instead. nw: the mask words in use (a constant at each call: 1 word for most bodies). */
 static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx *c, rd_side *sd,
                                                              const rd_joint *j, side_sums *sums,
                                                              rd_watch *tally, long *active_steps,
-                                                             const int nw)
+                                                             double *area_to, const int nw)
 {
     const side_frame fr = c->fr; /* locals no store into rd_sim reaches */
     side_sums a = *sums;
@@ -1347,10 +1363,13 @@ static inline __attribute__((always_inline)) void side_faces(rd_sim *s, side_ctx
                 p1 - p0 == 1
                     ? face_points(s, c, j, &k, p0, p0 + 1, dst, &fr, &a, &na, &nslip, nw, 0)
                     : face_points(s, c, j, &k, p0, p1, dst, &fr, &a, &na, &nslip, nw, 0);
-        area += a.area;
+        if (!area_to)
+            area += a.area;
+        else if (a.area != 0) /* a thread's view: each face's area booked to the watch's */
+            rd_tape_add(s->tape, area_to, a.area);
         touch |= a.area > 0;
     }
-    if (c->face_law) fold_face_sums(c, &a);
+    if (c->face_law) fold_face_sums(s, c, &a);
     *sums = a;
     tally->area = area;
     tally->nactive += na;
@@ -1400,7 +1419,7 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     side_sums sums = {
         .f_o = { 0, 0, 0 }, .tq_o = { 0, 0, 0 }, .nsum = { 0, 0, 0 }, .k_active = 0, .area = 0
     };
-    if (!c.t_free) {
+    if (!c.t_free && !s->tape) { /* (a thread's view books each face's share: fold_face_sums) */
         rd_copy3(s->f[c.o], sums.f_o);
         rd_copy3(s->tq[c.o], sums.tq_o);
     }
@@ -1412,7 +1431,8 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     /* the side's contact tally and its active point-steps, carried in locals and stored once */
     rd_watch *watch = rd_monitor_contact_watch(s, c.o, c.t);
     rd_watch tally = { 0 };
-    if (watch) {
+    double *area_to = watch && s->tape ? &watch->area : NULL; /* a thread's view: booked */
+    if (watch && !s->tape) {
         tally.area = watch->area;
         tally.nactive = watch->nactive;
         tally.nslip = watch->nslip;
@@ -1420,25 +1440,41 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     }
     long active_steps = 0;
     if (c.nw == 1) /* the usual one word of planes (up to 64), as a constant */
-        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, 1);
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, area_to, 1);
     else
-        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, c.nw);
-    if (watch) {
+        side_faces(s, &c, sd, j, &sums, &tally, &active_steps, area_to, c.nw);
+    if (watch && !s->tape) {
         watch->area = tally.area;
         watch->nactive = tally.nactive;
         watch->nslip = tally.nslip;
         watch->touched = tally.touched;
+    } else if (watch) { /* a thread's view: the counts added, touched set, the area booked */
+        rd_count(s, &watch->nactive, tally.nactive);
+        rd_count(s, &watch->nslip, tally.nslip);
+        if (tally.touched) __atomic_store_n(&watch->touched, 1, __ATOMIC_RELAXED);
     }
-    if (c.opens && !s->settling) s->impacting_next[c.o] = s->impacting_next[c.t] = 1;
+    if (c.opens && !s->settling) { /* (a flag other pairs may set too: stored atomically) */
+        __atomic_store_n(&s->impacting_next[c.o], 1, __ATOMIC_RELAXED);
+        __atomic_store_n(&s->impacting_next[c.t], 1, __ATOMIC_RELAXED);
+    }
     if (!s->settling) s->active_point_steps += active_steps;
-    if (c.t_free) { /* the owner takes the sums; the other -F at ro + d each: -(sum ro x F) - d x sum F */
+    if (c.t_free) { /* the owner takes the sums; the other -F at ro + d each:
+                       -(sum ro x F) - d x sum F (a thread's view books the same additions) */
         double dt[3];
         rd_cross(d, sums.f_o, dt);
-        rd_axpy(1.0, sums.f_o, s->f[c.o]);
-        rd_axpy(1.0, sums.tq_o, s->tq[c.o]);
-        rd_axpy(-1.0, sums.f_o, s->f[c.t]);
-        for (int k = 0; k < 3; k++) s->tq[c.t][k] -= sums.tq_o[k] + dt[k];
-    } else {
+        if (s->tape) {
+            for (int k = 0; k < 3; k++) rd_tape_add(s->tape, &s->f[c.o][k], sums.f_o[k]);
+            for (int k = 0; k < 3; k++) rd_tape_add(s->tape, &s->tq[c.o][k], sums.tq_o[k]);
+            for (int k = 0; k < 3; k++) rd_tape_add(s->tape, &s->f[c.t][k], -sums.f_o[k]);
+            for (int k = 0; k < 3; k++)
+                rd_tape_add(s->tape, &s->tq[c.t][k], -(sums.tq_o[k] + dt[k]));
+        } else {
+            rd_axpy(1.0, sums.f_o, s->f[c.o]);
+            rd_axpy(1.0, sums.tq_o, s->tq[c.o]);
+            rd_axpy(-1.0, sums.f_o, s->f[c.t]);
+            for (int k = 0; k < 3; k++) s->tq[c.t][k] -= sums.tq_o[k] + dt[k];
+        }
+    } else if (!s->tape) {
         rd_copy3(sums.f_o, s->f[c.o]);
         rd_copy3(sums.tq_o, s->tq[c.o]);
     }
@@ -1446,13 +1482,13 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
     rd_axpy(c.to_b, sums.nsum, nsum); /* to_b = +-1: +-(fn u) summed, exactly */
 }
 
-int rd_contact_scratch(rd_sim *s)
+struct rd_plane_scratch *rd_contact_scratch(const rd_sim *s)
 {
     const size_t np = s->np_max > 0 ? (size_t)s->np_max : 1, mw = (np + 63) / 64;
     struct rd_plane_scratch *ps =
         calloc(1, sizeof *ps + np * sizeof *ps->ff + np * (4 + 5) * sizeof(double) +
                       2 * mw * sizeof(uint64_t));
-    if (!ps) return -1;
+    if (!ps) return NULL;
     /* the struct, then its arrays: each a whole number of 8-byte words */
     ps->ff = (face_frame *)(ps + 1);
     ps->pl = (double(*)[4])(ps->ff + np);
@@ -1463,12 +1499,29 @@ int rd_contact_scratch(rd_sim *s)
     ps->dmax = ps->dq + np;
     ps->cross = (uint64_t *)(ps->dmax + np);
     ps->ff_used = ps->cross + mw;
-    s->plane_scratch = ps;
-    return 0;
+    return ps;
+}
+
+void rd_contact_pair(rd_sim *s, rd_pair *pr)
+{
+    double k_active = 0, nsum[3] = { 0, 0, 0 };
+    for (int q = 0; q < pr->nside; q++) {
+        side_step(s, pr, &pr->side[q], &k_active, nsum);
+        /* edge subcontacts (edge.c): with two sides, this side's owner's edges against the
+           other body, from the vertex distances side_step has just found */
+        if (pr->nside == 2)
+            rd_edge_side(s, pr, &pr->side[1 - q], s->cv_dist, s->cv_mask);
+        else
+            rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
+    }
+    pr->k_active = k_active;
+    double nn = rd_norm(nsum);
+    if (nn > 0)
+        for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
 }
 
 /* Broad phase, then every live pair's subcontact forces. 0, or -1 when the broad phase ran out
- * of memory growing the pair cache. */
+ * of memory growing the pair cache, or the threads their tapes (workers.c). */
 int rd_contact_step(rd_sim *s)
 {
     if (rd_pairs_update(s)) return -1;
@@ -1476,23 +1529,11 @@ int rd_contact_step(rd_sim *s)
         rd_surface_step(s); /* `contact model surface` */
     else
         reset_departed(s);
-    for (int k = 0; !s->surf && k < s->nlive; k++) {
-        rd_pair *pr = &s->pair[s->live[k]];
-        double k_active = 0, nsum[3] = { 0, 0, 0 };
-        for (int q = 0; q < pr->nside; q++) {
-            side_step(s, pr, &pr->side[q], &k_active, nsum);
-            /* edge subcontacts (edge.c): with two sides, this side's owner's edges against the
-               other body, from the vertex distances side_step has just found */
-            if (pr->nside == 2)
-                rd_edge_side(s, pr, &pr->side[1 - q], s->cv_dist, s->cv_mask);
-            else
-                rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
-        }
-        pr->k_active = k_active;
-        double nn = rd_norm(nsum);
-        if (nn > 0)
-            for (int k = 0; k < 3; k++) pr->n[k] = nsum[k] / nn;
-    }
+    /* the live pairs on the run's threads (workers.c), else here */
+    const int threaded = s->surf ? 0 : rd_workers_contact(s);
+    if (threaded < 0) return -1;
+    for (int k = 0; !s->surf && !threaded && k < s->nlive; k++)
+        rd_contact_pair(s, &s->pair[s->live[k]]);
     unsigned char *im = s->impacting; /* this step's new impacts, for the next step */
     s->impacting = s->impacting_next;
     s->impacting_next = im;

@@ -81,6 +81,7 @@
  */
 #include "engine/sim.h"
 #include "engine/law.h"
+#include "engine/workers.h"
 #include "base/vec.h"
 
 #include <limits.h>
@@ -143,8 +144,8 @@ struct rd_edge_scratch {
 
 /* rd_sim.edge_scratch, for the most planes (rd_sim.np_max) and the most vertices and edges of a
  * body whose edges are tested (any convex body; a mesh within RD_EDGE_MAX_VERTS and
- * RD_EDGE_MAX_EDGES). 0, or -1 (memory). */
-static int edge_scratch(rd_sim *s)
+ * RD_EDGE_MAX_EDGES); NULL (memory). */
+struct rd_edge_scratch *rd_edge_scratch_new(const rd_sim *s)
 {
     size_t np = s->np_max > 0 ? (size_t)s->np_max : 1, nv = 1, ne = 1;
     for (int i = 0; i < s->nb; i++) {
@@ -155,7 +156,7 @@ static int edge_scratch(rd_sim *s)
     }
     const size_t words = 3 * np + (np + 1) / 2 + 2 * nv + nv + (3 * nv + 7) / 8 + (ne + 1) / 2;
     struct rd_edge_scratch *es = calloc(1, sizeof *es + words * sizeof(double));
-    if (!es) return -1;
+    if (!es) return NULL;
     /* the struct, then its arrays, each a whole number of 8-byte words */
     double *w = (double *)(es + 1);
     es->c = w;
@@ -170,8 +171,7 @@ static int edge_scratch(rd_sim *s)
     es->code = (unsigned char *)(es->cand + ne);
     es->sure = es->code + nv;
     es->done = es->sure + nv;
-    s->edge_scratch = es;
-    return 0;
+    return es;
 }
 
 int rd_edge_init(rd_sim *s, rd_error *err)
@@ -196,7 +196,8 @@ int rd_edge_init(rd_sim *s, rd_error *err)
         }
     }
     s->edge_v0[s->nb] = n;
-    return edge_scratch(s) ? rd_error_set(err, "out of memory") : 0;
+    s->edge_scratch = rd_edge_scratch_new(s);
+    return s->edge_scratch ? 0 : rd_error_set(err, "out of memory");
 }
 
 /* Signed distance of world point x to plane k of body o (> 0 outside), m. */
@@ -254,11 +255,11 @@ static void edge_release(rd_sim *s, const rd_side *sd, const rd_joint *j, int e,
     if (q) {
         double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
         double lim = kA * s->edepth[e][0] * gn * tan_phi;
-        s->e_fric += rd_law_release_energy(kA, s_now > 0 ? s->edepth[e][0] : 0.0, s_now, 0,
-                                           s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt);
+        rd_book_fric(s, rd_law_release_energy(kA, s_now > 0 ? s->edepth[e][0] : 0.0, s_now, 0,
+                                              s->efs[e], n, vr, rd_dot(vr, n), sA, lim, s->dt));
     } else {
-        s->e_fric +=
-            0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA);
+        rd_book_fric(
+            s, 0.5 * (kA * s->edepth[e][0] * s->edepth[e][0] + rd_dot(s->efs[e], s->efs[e]) / sA));
     }
     s->efs[e][0] = s->efs[e][1] = s->efs[e][2] = 0;
     s->edepth[e][0] = s->edepth[e][1] = s->edepth[e][2] = 0;
@@ -454,9 +455,16 @@ static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, co
     const int o = sd->owner, t = sd->other;
     double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
     double *fs = s->efs[e], fn = kA * stretch;
-    int slips = rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, &s->e_fric);
+    /* the slip's friction energy: straight into the sum, or on a thread's view into a local
+       (0 + x is x) booked after (workers.h) */
+    double e_slip = 0, *e_fric = s->tape ? &e_slip : &s->e_fric;
+    int slips = rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, e_fric);
+    if (e_slip != 0) rd_book_fric(s, e_slip);
     double F[3] = { -fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2] };
-    rd_law_apply(F, ro, rt, s->f[o], s->tq[o], !s->fixed[t], s->f[t], s->tq[t]);
+    if (s->tape)
+        rd_book_apply(s, F, ro, rt, o, !s->fixed[t], t);
+    else
+        rd_law_apply(F, ro, rt, s->f[o], s->tq[o], !s->fixed[t], s->f[t], s->tq[t]);
     s->edepth[e][0] = stretch;
     return slips;
 }
@@ -744,18 +752,18 @@ static void edge_spring(rd_sim *s, const rd_pair *pr, const rd_side *sd, const r
     const double last = s->edepth[e][0]; /* the stretch it bore last step (0: none) */
     if ((s->eon[e] & RD_EDGE_VIRGIN) && last > 0 && stretch < last && !s->settling) {
         double set = stretch > 0 ? (1.0 - j->restitution) * stretch : 0.0;
-        s->e_damp += 0.5 * kA * set * (stretch + last - set);
+        rd_book_damp(s, 0.5 * kA * set * (stretch + last - set));
         s->edepth[e][1] += set;
         stretch -= set;
         s->eon[e] &= (unsigned char)~RD_EDGE_VIRGIN;
     }
     int slips = edge_force(s, sd, j, e, q, dp->g, stretch > 0 ? stretch : 0, kA, sA);
     s->edepth[e][2] = dp->u;
-    if (w && stretch > 0) {
-        w->area += A;
-        w->nactive++;
-        w->nslip += slips;
-        w->touched |= s->shaking;
+    if (w && stretch > 0) { /* (booked on a thread's view: workers.h) */
+        rd_book(s, &w->area, A);
+        rd_count(s, &w->nactive, 1);
+        rd_count(s, &w->nslip, slips);
+        if (s->shaking) __atomic_store_n(&w->touched, 1, __ATOMIC_RELAXED);
     }
 }
 

@@ -10,6 +10,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "engine/workers.h"
 #include "base/assert.h"
 #include "base/vec.h"
 
@@ -93,46 +94,76 @@ void rd_bodies_refresh(rd_sim *s)
     }
 }
 
+/* The body loops below touch body i alone, so they run on the run's threads (workers.h) where
+ * the scene has enough bodies, with the same bits. */
+
+static void refresh_step_body(rd_sim *s, int i)
+{
+    if (!s->fixed[i]) s->convex[i] ? rd_body_refresh(s, i) : body_refresh_contact(s, i);
+}
+
 /* World geometry of every free body for one step. */
 void rd_bodies_refresh_step(rd_sim *s)
 {
-    for (int i = 0; i < s->nb; i++)
-        if (!s->fixed[i]) s->convex[i] ? rd_body_refresh(s, i) : body_refresh_contact(s, i);
+    const int n = rd_threads_for(s, s->nb);
+    if (n > 1) {
+#pragma omp parallel for schedule(static) num_threads(n)
+        for (int i = 0; i < s->nb; i++) refresh_step_body(s, i);
+    } else {
+        for (int i = 0; i < s->nb; i++) refresh_step_body(s, i);
+    }
+}
+
+static void kick_body(rd_sim *s, int i)
+{
+    if (s->fixed[i]) return;
+    RD_ASSERT(s->mass[i] > 0.0);
+    double im = 1.0 / s->mass[i];
+    rd_copy3(s->v[i], s->v_old[i]);
+    rd_copy3(s->L[i], s->L_old[i]);
+    rd_axpy(im * s->dt, s->f[i], s->v[i]);
+    rd_axpy(s->dt, s->tq[i], s->L[i]);
 }
 
 void rd_integrate_kick(rd_sim *s)
 {
-    for (int i = 0; i < s->nb; i++) {
-        if (s->fixed[i]) continue;
-        RD_ASSERT(s->mass[i] > 0.0);
-        double im = 1.0 / s->mass[i];
-        rd_copy3(s->v[i], s->v_old[i]);
-        rd_copy3(s->L[i], s->L_old[i]);
-        rd_axpy(im * s->dt, s->f[i], s->v[i]);
-        rd_axpy(s->dt, s->tq[i], s->L[i]);
+    const int n = rd_threads_for(s, s->nb);
+    if (n > 1) {
+#pragma omp parallel for schedule(static) num_threads(n)
+        for (int i = 0; i < s->nb; i++) kick_body(s, i);
+    } else {
+        for (int i = 0; i < s->nb; i++) kick_body(s, i);
     }
+}
+
+static void drift_body(rd_sim *s, int i)
+{
+    const double dt = s->dt;
+    if (s->fixed[i]) return;
+    rd_axpy(dt, s->v[i], s->x[i]);
+    double w[3], dq[4], qh[4], Rh[9], phi[3];
+    omega_from(s->R[i], s->inertia[i], s->L[i], w);
+    for (int k = 0; k < 3; k++) phi[k] = 0.5 * dt * w[k];
+    rd_quat_from_rotvec(phi, dq);
+    rd_quat_mul(dq, s->q[i], qh);
+    rd_quat_to_mat(qh, Rh);
+    omega_from(Rh, s->inertia[i], s->L[i], s->w[i]); /* w at n+1/2 */
+    for (int k = 0; k < 3; k++) phi[k] = dt * s->w[i][k];
+    rd_quat_from_rotvec(phi, dq);
+    rd_quat_mul(dq, s->q[i], qh);
+    rd_quat_normalize(qh);
+    RD_ASSERT(fabs(qh[0] * qh[0] + qh[1] * qh[1] + qh[2] * qh[2] + qh[3] * qh[3] - 1.0) < 1e-12);
+    for (int k = 0; k < 4; k++) s->q[i][k] = qh[k];
 }
 
 void rd_integrate_drift(rd_sim *s)
 {
-    const double dt = s->dt;
-    for (int i = 0; i < s->nb; i++) {
-        if (s->fixed[i]) continue;
-        rd_axpy(dt, s->v[i], s->x[i]);
-        double w[3], dq[4], qh[4], Rh[9], phi[3];
-        omega_from(s->R[i], s->inertia[i], s->L[i], w);
-        for (int k = 0; k < 3; k++) phi[k] = 0.5 * dt * w[k];
-        rd_quat_from_rotvec(phi, dq);
-        rd_quat_mul(dq, s->q[i], qh);
-        rd_quat_to_mat(qh, Rh);
-        omega_from(Rh, s->inertia[i], s->L[i], s->w[i]); /* w at n+1/2 */
-        for (int k = 0; k < 3; k++) phi[k] = dt * s->w[i][k];
-        rd_quat_from_rotvec(phi, dq);
-        rd_quat_mul(dq, s->q[i], qh);
-        rd_quat_normalize(qh);
-        RD_ASSERT(fabs(qh[0] * qh[0] + qh[1] * qh[1] + qh[2] * qh[2] + qh[3] * qh[3] - 1.0) <
-                  1e-12);
-        for (int k = 0; k < 4; k++) s->q[i][k] = qh[k];
+    const int n = rd_threads_for(s, s->nb);
+    if (n > 1) {
+#pragma omp parallel for schedule(static) num_threads(n)
+        for (int i = 0; i < s->nb; i++) drift_body(s, i);
+    } else {
+        for (int i = 0; i < s->nb; i++) drift_body(s, i);
     }
 }
 

@@ -31,12 +31,15 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "engine/workers.h"
 #include "base/vec.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define RD_JOINT_CHUNK 64 /* pairs a thread takes at a time (most are parted or light) */
 
 /* Does body i belong to range r? */
 static int in_range(const rd_sim *s, const rd_range_def *r, int i)
@@ -359,25 +362,36 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
  * measures along the centre of pressure's path, so a coarser call misses slip, and maxima
  * between samples): largest opening beyond the gaps it had when it first closed, largest slip,
  * final slip. */
+static void joint_sample(rd_sim *s, rd_pair *pr)
+{
+    if (pr->seen != s->stamp) return; /* parted: keeps what it had */
+    rd_joint_state m;
+    rd_joint_measure(s, pr, &m);
+    if (m.area > 0) pr->closed = 1;
+    if (!pr->closed) return;
+    if (!pr->rest_set && m.area > 0 && isfinite(m.opening)) {
+        const rd_joint *jt = &s->joint[pr->joint];
+        pr->open_rest = m.opening;
+        pr->comp_rest = m.fn / (jt->kn * m.area);
+        pr->rest_set = 1;
+    }
+    double opened = m.opening - pr->open_rest;
+    if (pr->rest_set && isfinite(m.opening) && opened > pr->comp_rest)
+        pr->open_max = fmax(pr->open_max, opened);
+    pr->slip_max = fmax(pr->slip_max, rd_norm(m.slip));
+    rd_copy3(m.slip, pr->slip_end);
+}
+
+/* Each pair's measure reads the bodies and its own points and writes its own fields only, so
+ * the pairs run on the run's threads (workers.h) where there are enough, with the same bits;
+ * the surface model's measures (surface.c) stay serial. */
 void rd_joints_sample(rd_sim *s)
 {
-    for (int p = 0; p < s->npair; p++) {
-        rd_pair *pr = &s->pair[p];
-        if (pr->seen != s->stamp) continue; /* parted: keeps what it had */
-        rd_joint_state m;
-        rd_joint_measure(s, pr, &m);
-        if (m.area > 0) pr->closed = 1;
-        if (!pr->closed) continue;
-        if (!pr->rest_set && m.area > 0 && isfinite(m.opening)) {
-            const rd_joint *jt = &s->joint[pr->joint];
-            pr->open_rest = m.opening;
-            pr->comp_rest = m.fn / (jt->kn * m.area);
-            pr->rest_set = 1;
-        }
-        double opened = m.opening - pr->open_rest;
-        if (pr->rest_set && isfinite(m.opening) && opened > pr->comp_rest)
-            pr->open_max = fmax(pr->open_max, opened);
-        pr->slip_max = fmax(pr->slip_max, rd_norm(m.slip));
-        rd_copy3(m.slip, pr->slip_end);
+    const int n = s->surf ? 1 : rd_threads_for(s, s->npair);
+    if (n > 1) {
+#pragma omp parallel for schedule(dynamic, RD_JOINT_CHUNK) num_threads(n)
+        for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);
+    } else {
+        for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);
     }
 }

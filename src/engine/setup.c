@@ -556,8 +556,11 @@ static int build_step_vertices(rd_sim *s, rd_error *err)
     s->np_max = np_max;
     size_t ndist = 0, nmask = 0;
     if (!rc) side_sizes(s, &ndist, &nmask);
-    rc = rc || !ALLOC(s->cv_dist, ndist) || !ALLOC(s->cv_mask, nmask) || rd_contact_scratch(s) ||
-         !ALLOC(s->cv_body, 3 * (size_t)ncv) || !ALLOC(s->cv_world, 3 * (size_t)ncv);
+    s->ndist = ndist;
+    s->nmask = nmask;
+    rc = rc || !ALLOC(s->cv_dist, ndist) || !ALLOC(s->cv_mask, nmask) ||
+         !(s->plane_scratch = rd_contact_scratch(s)) || !ALLOC(s->cv_body, 3 * (size_t)ncv) ||
+         !ALLOC(s->cv_world, 3 * (size_t)ncv);
     for (int i = 0; i < s->nb && !rc; i++)
         for (int k = s->cv0[i]; k < s->cv0[i + 1]; k++)
             for (int d = 0; d < 3; d++) {
@@ -588,6 +591,7 @@ static int share_points(rd_sim *s, rd_error *err)
     int nmax = 1;
     for (int i = 0; i < s->nb; i++)
         if (s->pt0[i + 1] - s->pt0[i] > nmax) nmax = s->pt0[i + 1] - s->pt0[i];
+    s->nkin = nmax;
     place_key *key = malloc((size_t)nmax * sizeof *key);
     if (!key || !ALLOC(s->pkin, s->npts) || !ALLOC(s->kin, nmax) || !ALLOC(s->kin_stamp, nmax)) {
         free(key);

@@ -10,6 +10,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "engine/workers.h"
 #include "base/constants.h"
 #include "base/path.h"
 #include "base/vec.h"
@@ -382,6 +383,8 @@ static rd_sim *sim_build(const rd_scenario *sc, rd_error *err)
         return NULL;
     }
     rd_monitor_scene(s);
+    s->nthreads = rd_threads_of(&s->sc);
+    s->team = 1;
     rd_motion_axes_of(&s->sc.motion, &s->ground_axes);
     s->ground_const = !ground_varies(&s->sc.motion);
     return s;
@@ -619,6 +622,8 @@ double rd_sim_dt(const rd_sim *s) { return s->dt; }
 
 long rd_sim_active_point_steps(const rd_sim *s) { return s->active_point_steps; }
 
+int rd_sim_threads(const rd_sim *s) { return s->team; }
+
 int rd_sim_joint_count(const rd_sim *s) { return s->npair; }
 
 void rd_sim_joint(const rd_sim *s, int k, rd_joint_summary *out)
@@ -651,6 +656,7 @@ void rd_sim_free(rd_sim *s)
     for (int i = 0; s->poly && i < s->nb; i++) rd_poly_free(&s->poly[i]);
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     rd_runout_free(s);
+    rd_workers_free(s);
     void *arrays[] = { s->poly,
                        s->x,
                        s->q,

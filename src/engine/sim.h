@@ -378,8 +378,17 @@ struct rd_sim {
     double next_out;         /* time of the next sample, s */
     double *obuf;            /* [nfree * 17] staging buffer for one sample */
     long active_point_steps; /* sum over steps of active subcontacts (performance figure) */
-    double wall;             /* wall seconds of the shaking stage */
-    double settle_ratio;     /* unbalanced-force ratio reached by the settle stage */
+    int nthreads; /* threads a step may run on: rd_scenario.threads resolved (workers.c) */
+    int team;     /* the most threads one step of this run ran on (1: all serial) */
+    struct rd_workers *workers; /* the threads' views of the simulation and their tapes
+                                   (workers.c), made at the first step run in parallel */
+    struct rd_tape *tape;       /* NULL in the simulation itself; in a thread's view of it
+                                   (workers.c), where the contact loop records each addition to
+                                   a sum that other pairs share (engine/workers.h: rd_book) */
+    size_t ndist, nmask;        /* entries of cv_dist and cv_mask (setup.c: side_sizes) */
+    int nkin;                   /* entries of kin and kin_stamp: the most points of a body */
+    double wall;                /* wall seconds of the shaking stage */
+    double settle_ratio;        /* unbalanced-force ratio reached by the settle stage */
     double overlap;         /* deepest overlap of two bodies as placed beyond RD_OVERLAP_FRACTION, m
                               (0: none; overlap.c) */
     int overlap_pair[2];    /* the two bodies of that overlap */
@@ -447,7 +456,12 @@ double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
 
 /* contact.c */
 int rd_contact_step(rd_sim *s);
-int rd_contact_scratch(rd_sim *s); /* plane_scratch for np_max planes: 0, or -1 (memory) */
+/* One live pair's subcontact and edge forces (rd_contact_step's loop body; workers.c runs it on
+ * a thread's view of s). */
+void rd_contact_pair(rd_sim *s, rd_pair *pr);
+/* A side's plane scratch for np_max planes (rd_sim.plane_scratch; workers.c: one per thread),
+ * or NULL (memory); free() frees it. */
+struct rd_plane_scratch *rd_contact_scratch(const rd_sim *s);
 void rd_contact_reset_body(rd_sim *s, int body);
 void rd_contact_seat(rd_sim *s);
 void rd_contact_find_impacts(rd_sim *s);
@@ -467,6 +481,8 @@ void rd_surface_free(rd_sim *s);
 /* edge.c */
 int rd_edge_count(const rd_poly *p);
 int rd_edge_init(rd_sim *s, rd_error *err);
+/* edge.c's scratch (rd_sim.edge_scratch; workers.c: one per thread), or NULL (memory). */
+struct rd_edge_scratch *rd_edge_scratch_new(const rd_sim *s);
 void rd_edge_side(rd_sim *s, const rd_pair *pr, rd_side *sd, const double *dist,
                   const uint64_t *mask);
 void rd_edge_reset(rd_sim *s, const rd_side *sd);

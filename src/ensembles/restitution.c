@@ -276,6 +276,7 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
     double p = 0, alpha = 0;
     int rc = free_rocking_scene(base, theta0, sc, &p, &alpha, err);
     sc->output.interval = RD_SAMPLE_EVERY_STEP;
+    sc->threads = 1; /* one rocking block: nothing to share out (and a worker process's run) */
     rd_sim *sim = rc ? NULL : rd_sim_create(sc, err); /* no file: events and the speed log */
     speed_log lg = { .eps = RD_SWING_EPS * theta0 };
     rd_observer obs = { .user = &lg, .sample = speed_log_sample };

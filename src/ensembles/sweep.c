@@ -236,6 +236,7 @@ static int case_scenario(const rd_sweep_plan *p, long k, const char *dir, rd_sce
         if (rd_scenario_set(sc, a, err)) return -1;
     }
     sc->quiet_stop = !p->full; /* engine/quiet_end.c */
+    sc->threads = 1;           /* the cases already run one per core (sweep_pool.c's processes) */
     if (dir) snprintf(sc->output.path, sizeof sc->output.path, "%s/case-%06ld.h5", dir, k);
     return rd_scenario_validate(sc, err);
 }

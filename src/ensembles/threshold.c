@@ -39,6 +39,7 @@ static int dem_overturns(const rd_scenario *base, double amplitude, int *over, r
     sc->output.interval = fmax(sc->output.interval, 0.05); /* a coarse sampling: no history kept */
     sc->overturn.stop = RD_OVERTURN_STOP_ANY;
     sc->quiet_stop = 1; /* ends once at rest after the pulse (engine/quiet_end.c) */
+    sc->threads = 1;    /* the levels already run one per core (processes) */
     rd_sim *sim = rd_sim_create(sc, err);
     int rc = -1;
     if (sim) {

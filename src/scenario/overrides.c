@@ -23,7 +23,8 @@ typedef enum set_kind {
     S_SETTLE,
     S_MODEL,
     S_FILE,
-    S_RECORD /* a record setting: the records are re-read and/or re-processed */
+    S_RECORD, /* a record setting: the records are re-read and/or re-processed */
+    S_THREADS /* rd_scenario.threads: a whole number, 1 to RD_THREADS_MAX */
 } set_kind;
 
 typedef struct set_key {
@@ -62,6 +63,7 @@ static const set_key set_keys[] = {
     { "model.timestep", S_TIMESTEP, 0, R_POS, U_PLAIN },
     { "model.safety", S_NUMBER, offsetof(rd_scenario, timestep.safety), R_FRAC, U_PLAIN },
     { "model.settle", S_SETTLE, 0, R_ANY, U_PLAIN },
+    { "model.threads", S_THREADS, 0, R_POS, U_PLAIN },
     { "motion.amplitude", S_PULSE, offsetof(rd_pulse_def, amplitude), R_ANY, U_ACCEL },
     { "motion.frequency", S_PULSE, offsetof(rd_pulse_def, frequency), R_POS, U_PLAIN },
     { "motion.duration", S_PULSE, offsetof(rd_pulse_def, duration), R_POS, U_PLAIN },
@@ -353,6 +355,12 @@ static int set_apply(const setter *S, const set_key *k)
     case S_MODEL: return set_model(S);
     case S_FILE: return set_file(S);
     case S_RECORD: return set_record(S, k);
+    case S_THREADS:
+        if (set_parse(S, S->value, k->range, k->unit, &v)) return -1;
+        if (v != floor(v) || v > RD_THREADS_MAX)
+            return serr(S, "threads must be a whole number from 1 to %d", RD_THREADS_MAX);
+        S->sc->threads = (int)v;
+        return 0;
     }
     return 0;
 }

@@ -1,0 +1,220 @@
+/* rockdem — one run on several threads (engine/workers.h): the contact loop's live pairs in
+ * chunks on an OpenMP team, each thread on its own view of the simulation, the shared sums
+ * recorded on the chunks' tapes and played back in chunk order.
+ *
+ * What the contact loop writes besides each pair's own state (its points' springs, flags and
+ * measures, its sides' caches): the bodies' force and torque sums, the friction and damping
+ * energies and a monitored body's contact area, each a sum over pairs whose round-off depends
+ * on the order of its terms (booked: workers.h); a monitored body's active and slipping counts
+ * (whole numbers: added atomically); the impact flags (set atomically); the active
+ * point-steps (each view's own, added after); and its scratch (the plane arrays, the vertex
+ * distances and masks, the point kinematics cache, edge.c's arrays: one set per thread). The
+ * chunks are fixed by the live pairs alone, and the tapes played back in chunk order give every
+ * sum the serial loop's terms in the serial loop's order: the bits of one thread for any
+ * number (tests/cli/threads.sh).
+ * Folder engine/ owns the simulation; it may call base/, geometry/, records/ and scenario/.
+ */
+#include "engine/workers.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* Live pairs per thread below which the contact loop stays serial, and bodies or joints per
+ * thread below which their loops do: fewer do not pay for the team's start (a few us). The
+ * test build $(BUILD)/tests/rockdem-threads sets 0, so that small scenes of every kind of
+ * contact (edges, impacts, dashpots, slip: tests/cli/threads.sh) run threaded too. */
+#ifndef RD_ITEMS_PER_THREAD
+#define RD_ITEMS_PER_THREAD 32
+#endif
+/* Chunks of live pairs per thread: taken in turn by whichever thread is free, so a chunk of
+ * costly pairs (a wall's end on its footing) does not hold the others back. */
+#define RD_CHUNKS_PER_THREAD 8
+#define RD_TAPE_MIN          1024 /* entries of a tape's first block */
+
+/* One thread's view of the simulation: a copy of rd_sim with the thread's own scratch. */
+typedef struct rd_worker {
+    rd_sim *view;
+    struct rd_plane_scratch *plane_scratch;
+    struct rd_edge_scratch *edge_scratch;
+    double *cv_dist;
+    uint64_t *cv_mask;
+    double (*kin)[6];
+    long *kin_stamp;
+    long kin_epoch; /* the view's kin_epoch, kept from step to step (its stamps are its own) */
+    long active_point_steps; /* the view's this step */
+} rd_worker;
+
+typedef struct rd_workers {
+    int n;         /* threads */
+    rd_worker *w;  /* [n] */
+    int ntape;     /* n * RD_CHUNKS_PER_THREAD */
+    rd_tape *tape; /* [ntape] */
+} rd_workers;
+
+int rd_threads_of(const rd_scenario *sc)
+{
+    long n = sc->threads;
+    const char *env = getenv("OMP_NUM_THREADS");
+    if (n <= 0 && env && *env) {
+        char *end;
+        errno = 0;
+        n = strtol(env, &end, 10); /* a list "4,2" asks for 4 at the outer level */
+        if (errno || end == env || (*end && *end != ',')) n = 1;
+    }
+    if (n < 1) n = 1;
+    return n > RD_THREADS_MAX ? RD_THREADS_MAX : (int)n;
+}
+
+int rd_threads_for(const rd_sim *s, long n)
+{
+#ifdef _OPENMP
+    if (s->nthreads > 1 && n >= (long)RD_ITEMS_PER_THREAD * s->nthreads) return s->nthreads;
+#endif
+    (void)s;
+    (void)n;
+    return 1;
+}
+
+void rd_tape_grow(rd_tape *t)
+{
+    size_t cap = t->cap ? 2 * t->cap : RD_TAPE_MIN;
+    rd_tape_entry *e = realloc(t->e, cap * sizeof *e);
+    if (!e) {
+        t->failed = 1;
+        return;
+    }
+    t->e = e;
+    t->cap = cap;
+}
+
+void rd_workers_free(rd_sim *s)
+{
+    rd_workers *W = s->workers;
+    if (!W) return;
+    for (int i = 0; W->w && i < W->n; i++) {
+        rd_worker *w = &W->w[i];
+        free(w->view);
+        free(w->plane_scratch);
+        free(w->edge_scratch);
+        free(w->cv_dist);
+        free(w->cv_mask);
+        free(w->kin);
+        free(w->kin_stamp);
+    }
+    for (int c = 0; W->tape && c < W->ntape; c++) free(W->tape[c].e);
+    free(W->w);
+    free(W->tape);
+    free(W);
+    s->workers = NULL;
+}
+
+/* The threads' views and scratch, and the tapes: 0, or -1 (memory). */
+static int workers_new(rd_sim *s)
+{
+    rd_workers *W = calloc(1, sizeof *W);
+    if (!W) return -1;
+    s->workers = W;
+    W->n = s->nthreads;
+    W->ntape = W->n * RD_CHUNKS_PER_THREAD;
+    W->w = calloc((size_t)W->n, sizeof *W->w);
+    W->tape = calloc((size_t)W->ntape, sizeof *W->tape);
+    if (!W->w || !W->tape) return -1;
+    const size_t nd = s->ndist ? s->ndist : 1, nm = s->nmask ? s->nmask : 1,
+                 nk = s->nkin > 0 ? (size_t)s->nkin : 1;
+    for (int i = 0; i < W->n; i++) {
+        rd_worker *w = &W->w[i];
+        w->view = malloc(sizeof *w->view);
+        w->plane_scratch = rd_contact_scratch(s);
+        w->edge_scratch = rd_edge_scratch_new(s);
+        w->cv_dist = calloc(nd, sizeof *w->cv_dist);
+        w->cv_mask = calloc(nm, sizeof *w->cv_mask);
+        w->kin = calloc(nk, sizeof *w->kin);
+        w->kin_stamp = calloc(nk, sizeof *w->kin_stamp); /* 0: no side step yet (epochs from 1) */
+        if (!w->view || !w->plane_scratch || !w->edge_scratch || !w->cv_dist || !w->cv_mask ||
+            !w->kin || !w->kin_stamp)
+            return -1;
+    }
+    return 0;
+}
+
+#ifdef _OPENMP
+/* Thread i's view of s for this step: every field as s has it now, its own scratch and tape. */
+static void view_of(rd_sim *s, rd_worker *w)
+{
+    rd_sim *v = w->view;
+    memcpy(v, s, sizeof *v);
+    v->plane_scratch = w->plane_scratch;
+    v->edge_scratch = w->edge_scratch;
+    v->cv_dist = w->cv_dist;
+    v->cv_mask = w->cv_mask;
+    v->kin = w->kin;
+    v->kin_stamp = w->kin_stamp;
+    v->kin_epoch = w->kin_epoch;
+    v->active_point_steps = 0;
+    v->workers = NULL;
+}
+
+/* Plays the tapes back in chunk order: every shared sum takes its terms as the serial loop
+ * gives them. 0, or -1 when a tape ran out of memory. */
+static int play_back(rd_workers *W, int nchunk)
+{
+    for (int c = 0; c < nchunk; c++)
+        if (W->tape[c].failed) return -1;
+    for (int c = 0; c < nchunk; c++) {
+        const rd_tape_entry *e = W->tape[c].e;
+        for (size_t k = 0, n = W->tape[c].n; k < n; k++) *e[k].to += e[k].v;
+    }
+    return 0;
+}
+#endif
+
+int rd_workers_contact(rd_sim *s)
+{
+#ifdef _OPENMP
+    const int n = rd_threads_for(s, s->nlive);
+    if (n < 2) return 0;
+    if (!s->workers && workers_new(s)) {
+        rd_workers_free(s);
+        return -1;
+    }
+    rd_workers *W = s->workers;
+    const int nchunk = s->nlive < W->ntape ? s->nlive : W->ntape;
+    for (int c = 0; c < nchunk; c++) {
+        W->tape[c].n = 0;
+        W->tape[c].failed = 0;
+        W->tape[c].sim = s;
+    }
+    const int nlive = s->nlive;
+    const int *live = s->live;
+    rd_pair *pair = s->pair;
+    int team = 1; /* the threads the team has (OpenMP may give fewer than asked) */
+#pragma omp parallel num_threads(n)
+    {
+#pragma omp master
+        team = omp_get_num_threads();
+        rd_worker *w = &W->w[omp_get_thread_num()];
+        view_of(s, w);
+        rd_sim *v = w->view;
+        /* chunk c: live pairs [nlive c / nchunk, nlive (c + 1) / nchunk), on any thread */
+#pragma omp for schedule(dynamic, 1)
+        for (int c = 0; c < nchunk; c++) {
+            v->tape = &W->tape[c];
+            const int k1 = (int)((long)nlive * (c + 1) / nchunk);
+            for (int k = (int)((long)nlive * c / nchunk); k < k1; k++)
+                rd_contact_pair(v, &pair[live[k]]);
+        }
+        w->kin_epoch = v->kin_epoch;
+        w->active_point_steps = v->active_point_steps;
+    }
+    for (int i = 0; i < team; i++) s->active_point_steps += W->w[i].active_point_steps;
+    if (team > s->team) s->team = team;
+    return play_back(W, nchunk) ? -1 : 1;
+#else
+    (void)s;
+    return 0;
+#endif
+}
