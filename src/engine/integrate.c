@@ -107,7 +107,7 @@ void rd_bodies_refresh_step(rd_sim *s)
 {
     const int n = rd_threads_for(s, s->nb);
     if (n > 1) {
-#pragma omp parallel for schedule(static) num_threads(n)
+        RD_OMP(omp parallel for schedule(static) num_threads(n))
         for (int i = 0; i < s->nb; i++) refresh_step_body(s, i);
     } else {
         for (int i = 0; i < s->nb; i++) refresh_step_body(s, i);
@@ -129,7 +129,7 @@ void rd_integrate_kick(rd_sim *s)
 {
     const int n = rd_threads_for(s, s->nb);
     if (n > 1) {
-#pragma omp parallel for schedule(static) num_threads(n)
+        RD_OMP(omp parallel for schedule(static) num_threads(n))
         for (int i = 0; i < s->nb; i++) kick_body(s, i);
     } else {
         for (int i = 0; i < s->nb; i++) kick_body(s, i);
@@ -160,7 +160,7 @@ void rd_integrate_drift(rd_sim *s)
 {
     const int n = rd_threads_for(s, s->nb);
     if (n > 1) {
-#pragma omp parallel for schedule(static) num_threads(n)
+        RD_OMP(omp parallel for schedule(static) num_threads(n))
         for (int i = 0; i < s->nb; i++) drift_body(s, i);
     } else {
         for (int i = 0; i < s->nb; i++) drift_body(s, i);

@@ -389,7 +389,7 @@ void rd_joints_sample(rd_sim *s)
 {
     const int n = s->surf ? 1 : rd_threads_for(s, s->npair);
     if (n > 1) {
-#pragma omp parallel for schedule(dynamic, RD_JOINT_CHUNK) num_threads(n)
+        RD_OMP(omp parallel for schedule(dynamic, RD_JOINT_CHUNK) num_threads(n))
         for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);
     } else {
         for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);

@@ -112,6 +112,7 @@ void rd_workers_free(rd_sim *s)
     s->workers = NULL;
 }
 
+#ifdef _OPENMP
 /* The threads' views and scratch, and the tapes: 0, or -1 (memory). */
 static int workers_new(rd_sim *s)
 {
@@ -141,7 +142,6 @@ static int workers_new(rd_sim *s)
     return 0;
 }
 
-#ifdef _OPENMP
 /* Thread i's view of s for this step: every field as s has it now, its own scratch and tape. */
 static void view_of(rd_sim *s, rd_worker *w)
 {

@@ -14,6 +14,14 @@
 
 #include <stddef.h>
 
+/* An OpenMP pragma, left out of a build without OpenMP (`make OPENMP=`: every loop serial,
+ * rd_threads_for is then 1). */
+#ifdef _OPENMP
+#define RD_OMP(directive) _Pragma(#directive)
+#else
+#define RD_OMP(directive)
+#endif
+
 /* One recorded addition: *to += v. */
 typedef struct rd_tape_entry {
     double *to;
