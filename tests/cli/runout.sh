@@ -19,6 +19,8 @@
 #  5. The same slide on a non-convex terrain mesh (a slope, then level): the vertex model has no
 #     contact there (XFAIL: it falls through); the surface model holds it and stops it where the
 #     Coulomb closed form does (its dashpot along the terrain's normal: docs/CONTACT.md 8.8).
+#  6. tools/rdrunout.py draws a plan view of several runs (one path each) and the sweep's
+#     exceedance curves, and refuses bad input with one line and exit 2.
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/runout; rm -rf "$T"; mkdir -p "$T"
@@ -256,6 +258,30 @@ print(("CHECK" if ok else "FAIL") + f" sweep per-fence columns: fence {names}, f
       f"{e.tolist()} against the run's {want}, fence_crossed {n.tolist()}")
 sys.exit(0 if ok else 1)
 PY
+# tools/rdrunout.py: the plan view of two runs over the ESRI grid (a path each), the sweep's
+# exceedance curves (a PNG), and bad input as one line with exit 2
+png_ok() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' ')" = 89504e470d0a1a0a ] && [ "$(stat -c %s "$1")" -gt 10000 ]; }
+tool() { # NAME EXPECT ARGS...: the tool's output must hold EXPECT
+    local name=$1 want=$2; shift 2
+    if $PY tools/rdrunout.py "$@" > "$T/tool.log" 2>&1 && grep -q "$want" "$T/tool.log"; then
+        echo "CHECK rdrunout $name: $(tail -1 "$T/tool.log")"
+    else echo "FAIL rdrunout $name: $(tail -1 "$T/tool.log")"; fails=$((fails + 1)); fi
+}
+tool "plan of two runs" ": 2 paths from 2 run files" plan "$T/terrain.h5" "$T/terrain_h.h5" --labels dt,half \
+    --terrain "$T/slope.asc" -o "$T/plan.png" --dpi 100
+png_ok "$T/plan.png" || { echo "FAIL rdrunout plan: no PNG"; fails=$((fails + 1)); }
+tool "exceedance" "exceed.png" exceedance "$T/fences_sweep.h5" -o "$T/exceed.png" --dpi 100
+png_ok "$T/exceed.png" || { echo "FAIL rdrunout exceedance: no PNG"; fails=$((fails + 1)); }
+bad_tool() { # NAME EXPECT ARGS...: one line holding EXPECT, exit 2
+    local name=$1 want=$2 rc=0; shift 2
+    $PY tools/rdrunout.py "$@" > "$T/tool.log" 2>&1 || rc=$?
+    if [ "$rc" = 2 ] && [ "$(wc -l < "$T/tool.log")" = 1 ] && grep -q -- "$want" "$T/tool.log"; then
+        echo "CHECK rdrunout $name: $(cat "$T/tool.log")"
+    else echo "FAIL rdrunout $name: exit $rc, $(head -3 "$T/tool.log")"; fails=$((fails + 1)); fi
+}
+bad_tool "labels that do not match" "1 labels for 2 run files" plan "$T/terrain.h5" "$T/terrain_h.h5" --labels a -o "$T/p2.png"
+bad_tool "two sweep tables" "one sweep table" exceedance "$T/fences_sweep.h5" "$T/fences_sweep.h5" -o "$T/e2.png"
+bad_tool "a missing run file" "nothing.h5: no such file" plan "$T/nothing.h5" -o "$T/p3.png"
 # a convex rock on a non-convex terrain mesh: no contact in the vertex model (only a convex
 # body is a contact target, and the terrain's own points miss the rock): it falls through
 if grep -q "left the scene" "$T/kink.log"; then held=0; gap=fell-through; else held=1; gap=held; fi
