@@ -26,7 +26,8 @@
 # the number of online cores), DURATION (record and run length, s, default 20), FULL (1: run
 # every case to its end, `rockdem sweep --full`; default: a case ends once at rest with the
 # record left unable to lift or slide it, column quiet_end), TABLE (keep the sample's table
-# there).
+# there), SAFETY (the step's safety factor, `--set model.safety`, in (0, 1]; default: the
+# scene's, 0.2).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd); root=$(dirname "$here")
 bindir=${1:-bin}; case $bindir in /*) ;; *) bindir="$PWD/$bindir" ;; esac
@@ -50,6 +51,12 @@ esac
 jobs=${JOBS:-$(nproc)}; duration=${DURATION:-20}
 case ${FULL:-0} in 0) full= ;; 1) full=--full ;; *) die "FULL must be 0 or 1, got '$FULL'" ;; esac
 posint SEEDS "$seeds"; posint JOBS "$jobs"; posint DURATION "$duration"
+safety=()
+if [ -n "${SAFETY:-}" ]; then
+    awk -v s="$SAFETY" 'BEGIN { exit !(s ~ /^[0-9.]+$/ && s > 0 && s <= 1) }' ||
+        die "SAFETY must be a number in (0, 1], got '$SAFETY'"
+    safety=(--set "model.safety=$SAFETY")
+fi
 [ -x "$rockdem" ] || die "no rockdem executable at $rockdem (build it first: make)"
 [ -f "$root/scenarios/pbr.obj" ] || die "no scenarios/pbr.obj (make scenarios/pbr.obj)"
 nlevels=$(echo "$LEVELS" | tr , '\n' | wc -l)
@@ -74,7 +81,7 @@ load0=$(cut -d' ' -f1-3 /proc/loadavg)
 t0=$(date +%s.%N)
 # the CPU time of the sweep and its workers (waited for): the children line of `times`
 cpu_s=$(
-    "$rockdem" sweep "$tmp/study.dat" --axis "motion.seed=$seedlist" --directions "$sample_dirs" --scales "$LEVELS" \
+    "$rockdem" sweep "$tmp/study.dat" "${safety[@]}" --axis "motion.seed=$seedlist" --directions "$sample_dirs" --scales "$LEVELS" \
         -j "$jobs" $full -q -o "$tmp/sample.h5" >/dev/null || exit 1
     times > "$tmp/times" # (a builtin in this shell: a pipe would fork a shell with no children)
     sed -n 2p "$tmp/times" | awk '{ n = split($1 " " $2, f, " "); s = 0

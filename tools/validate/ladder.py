@@ -114,8 +114,9 @@ def scene_restitution(dat, sets):
 
 
 class Ladder:
-    def __init__(self, bin_, tmp, depth, contact="vertex"):
+    def __init__(self, bin_, tmp, depth, contact="vertex", extra=()):
         self.bin, self.tmp, self.depth, self.contact = bin_, tmp, depth, contact
+        self.extra = list(extra)   # --set KEY=VALUE given to the ladder: last on every DEM run
         self.rows, self.failed, self.xpassed = [], 0, 0
         self.residuals = []   # (energy residual, scene and settings, case group) of every `run`
         self.group = None     # the group of the case running
@@ -142,11 +143,11 @@ class Ladder:
     def dem_sets(self, dat, sets):
         """sets for a DEM run of dat under the ladder's contact model (SURFACE_PLASTIC_ZETA)."""
         if self.contact == "vertex":
-            return list(sets)
+            return list(sets) + self.extra
         extra = ["contact.model=surface"]
         if scene_restitution(dat, sets) == 0:
             extra += ["contact.restitution=1", "model.damping=viscous %g" % SURFACE_PLASTIC_ZETA]
-        return [s for s in sets if not (extra[1:] and s.startswith("model.damping="))] + extra
+        return [s for s in sets if not (extra[1:] and s.startswith("model.damping="))] + extra + self.extra
 
     def run(self, dat, out, *sets):
         args = ["run", dat, "-q", "-o", os.path.join(self.tmp, out)]
@@ -1117,6 +1118,9 @@ def main():
     ap.add_argument("--only", help="groups: block,stack,slide,tipping,restitution,yade,column (the energy check of every run made always closes the list)")
     ap.add_argument("--contact", choices=["vertex", "surface"], default="vertex",
                     help="contact model of every DEM run (surface: see SURFACE_PLASTIC_ZETA; make validate-surface)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a --set override given last to every DEM run (repeatable; `rockdem keys`): "
+                    "bench/safety.sh runs the ladder at each step safety factor")
     ap.add_argument("--md", help="write the markdown report here")
     ap.add_argument("--tmp")
     ap.add_argument("--json", help="write the results file here (make validate: build/validate/results.json)")
@@ -1136,7 +1140,7 @@ def main():
     only = set(a.only.split(",")) if a.only else None
     tmp = a.tmp or tempfile.mkdtemp(prefix="rd_ladder_")
     os.makedirs(tmp, exist_ok=True)
-    L = Ladder(os.path.abspath(a.bin), tmp, a.depth, a.contact)
+    L = Ladder(os.path.abspath(a.bin), tmp, a.depth, a.contact, a.set)
     t0 = time.time()
     errors = 0
     for group, fn, fast in CASES:
