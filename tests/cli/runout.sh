@@ -19,7 +19,9 @@
 #  5. The same slide on a non-convex terrain mesh (a slope, then level): the vertex model has no
 #     contact there (XFAIL: it falls through); the surface model holds it and stops it where the
 #     Coulomb closed form does (its dashpot along the terrain's normal: docs/CONTACT.md 8.8).
-#  6. tools/rdrunout.py draws a plan view of several runs (one path each) and the sweep's
+#  6. A cube landing flat on a soil joint with a dashpot (surface model): its restitution
+#     against the linear spring-dashpot let go at zero force.
+#  7. tools/rdrunout.py draws a plan view of several runs (one path each) and the sweep's
 #     exceedance curves, and refuses bad input with one line and exit 2.
 set -u
 . "$(dirname "$0")/lib/check.sh"
@@ -256,6 +258,51 @@ ok = names == ["upper", "lower"] and e.shape == (2, 2) and (n == 1).all() and \
     abs(t["fence_energy"][row] - max(want.values())) <= 1e-9 * max(want.values())
 print(("CHECK" if ok else "FAIL") + f" sweep per-fence columns: fence {names}, fence_max_energy "
       f"{e.tolist()} against the run's {want}, fence_crossed {n.tolist()}")
+sys.exit(0 if ok else 1)
+PY
+# impact loss on soil under the surface model: the soil joint's dashpot (ratio 0.3) on a cube
+# landing flat at 1 m/s; its restitution against the linear spring-dashpot's, m x'' + c x' + k x
+# = m g (k = KN A, c = 2 zeta sqrt(k m)), let go at zero force (Schwager and Poeschel 2007: 0.451
+# without gravity), integrated here; tolerance the run's change when the step is halved
+cat > "$T/soil_drop.dat" <<'EOF'
+block create brick size 2 2 1 position 0 0 -0.5 fixed name floor group 'soil'
+block create brick size 0.5 0.5 0.5 position 0 0 0.251 name b
+block initial name b velocity 0 0 -1
+contact model surface
+contact property restitution 1
+contact property friction 35 damping 0.3 restitution 1 range group 'soil'
+model settle off
+model solve time 0.01
+output hdf5 'soil_drop.h5' interval 1e-5
+EOF
+sed 's/^model settle off$/&\nmodel timestep auto safety 0.1/' "$T/soil_drop.dat" > "$T/soil_drop_h.dat"
+run soil_drop "$T/soil_drop.dat"; run soil_drop_h "$T/soil_drop_h.dat"
+$PY - "$T" <<'PY' || fails=$((fails + 1))
+import math, sys, h5py, numpy as np
+from scipy.integrate import solve_ivp
+T = sys.argv[1]
+def rebound(name):
+    v = h5py.File(f"{T}/{name}.h5", "r")["velocity"][:, -1, 2]
+    k = int(np.argmin(v))                  # the last sample before the push turns it
+    return v[k], v[k:].max()
+vin, vout = rebound("soil_drop"); _, vout_h = rebound("soil_drop_h")
+m, k, g, zeta = 2700 * 0.125, 1e10 * 0.25, 9.81, 0.3
+c = 2 * zeta * math.sqrt(k * m)
+def let_go(t, y):                          # the contact force, compression x > 0
+    return k * y[0] + c * y[1]
+let_go.terminal, let_go.direction = True, -1
+sol = solve_ivp(lambda t, y: [y[1], g - (k * y[0] + c * y[1]) / m], (0, 0.01), [0, -vin],
+                events=let_go, rtol=1e-11, atol=1e-14, max_step=1e-6)
+e_ref = sol.y_events[0][0][1] / vin
+e, e_h = vout / -vin, vout_h / -vin
+tol = abs(e - e_h)
+# the half step's run must meet it; the default step's is reported (its leapfrog dashpot keeps
+# a few per cent more of the speed: an expected failure with its gap when outside)
+ok = abs(e_h - e_ref) <= tol
+print(("CHECK" if ok else "FAIL") + f" soil impact restitution at the half step (dashpot 0.3, surface model): "
+      f"{e_h:.5f} against {e_ref:.5f}, gap={abs(e_h - e_ref):.3g} tol={tol:.3g}")
+print(("CHECK" if abs(e - e_ref) <= tol else "XFAIL:") + f" soil impact restitution at the default step: "
+      f"{e:.5f} against {e_ref:.5f}, gap={abs(e - e_ref):.3g} tol={tol:.3g}")
 sys.exit(0 if ok else 1)
 PY
 # tools/rdrunout.py: the plan view of two runs over the ESRI grid (a path each), the sweep's
