@@ -18,16 +18,6 @@ GEN=${RD_BUILD:-build}/tests/rockdem-general
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 T=${RD_TMP:-$(mktemp -d)}/steady_path; mkdir -p "$T"; cd "$T" || exit 1
 
-cat > stack_bonded.dat <<'DAT'
-block create brick size 2 2 0.2 position 0 0 -0.1 fixed name pad
-block create brick size 0.5 0.5 0.6 position 0 0 0.3 name lower
-block create brick size 0.4 0.4 0.5 position 0.03 0 0.85 name upper
-contact property stiffness-normal 1e9 stiffness-shear 1e10 friction 20 cohesion 2e3 tension 2e3 spacing auto
-model damping viscous 0.1
-ground-motion pulse one-sine amplitude 0.6g frequency 2 direction 20
-model solve time 1
-output hdf5 'x.h5' interval 0.01
-DAT
 cat > column.dat <<'DAT'
 block create brick size 3 3 0.5 position 0 0 -0.25 fixed name base
 block create column drums 6 diameter 0.8 height 0.6 sides 16 seat-on base name c
@@ -45,7 +35,7 @@ scenes=(
     "brick-topples|$ROOT/tests/cli/data/sweep_brick.dat|--set motion.amplitude=1.0g"
     "landing-topple|$ROOT/scenarios/seed000_topple.dat|--set model.duration=0.6"
     "default|$ROOT/scenarios/default.dat|--set model.duration=2"
-    "stack-bonded|stack_bonded.dat|"
+    "stack-bonded|$ROOT/tests/cli/data/stack_bonded.dat|"
     "column|column.dat|"
     "pbr|pbr.dat|--set model.duration=0.3"
     "elastic-stack|$ROOT/tests/data/yade/stack.dat|--set motion.amplitude=1.0g --set model.duration=2.1"

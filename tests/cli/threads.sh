@@ -86,15 +86,6 @@ done
 
 cp "$ROOT/scenarios/pbr.obj" . 2>/dev/null || { echo "FAIL threads: scenarios/pbr.obj missing (make test makes it)"; exit 1; }
 sed "s#'pbr.obj'#'$T/pbr.obj'#" "$ROOT/scenarios/pbr.dat" > pbr.dat
-cat > stack_bonded.dat <<'DAT'
-block create brick size 2 2 0.2 position 0 0 -0.1 fixed name pad
-block create brick size 0.5 0.5 0.6 position 0 0 0.3 name lower
-block create brick size 0.4 0.4 0.5 position 0.03 0 0.85 name upper
-contact property stiffness-normal 1e9 stiffness-shear 1e10 friction 20 cohesion 2e3 tension 2e3 spacing auto
-model damping viscous 0.1
-ground-motion pulse one-sine amplitude 0.6g frequency 2 direction 20
-model solve time 0.5
-DAT
 # name | scenario | overrides
 scenes=(
     "default|$ROOT/scenarios/default.dat|--set model.duration=0.5"
@@ -103,7 +94,7 @@ scenes=(
     "damped-column|$ROOT/tests/cli/data/column4_damped.dat|--set model.duration=0.06"
     "cask-drum|$ROOT/scenarios/cask_drum.dat|--set model.duration=0.3"
     "joint-groups|$ROOT/scenarios/joint_groups.dat|--set model.duration=0.3"
-    "stack-bonded|stack_bonded.dat|"
+    "stack-bonded|$ROOT/tests/cli/data/stack_bonded.dat|--set model.duration=0.5"
     "pbr|pbr.dat|--set model.duration=0.3"
 )
 for row in "${scenes[@]}"; do
