@@ -269,6 +269,86 @@ static double opening_scan(const rd_sim *s, const rd_pair *pr)
     return open;
 }
 
+/* Face cf of body o that holds point j (cf_pt0 is ascending over the body's faces). */
+static int point_face(const rd_sim *s, int o, int j)
+{
+    int lo = s->cf0[o], hi = s->cf0[o + 1] - 1; /* cf_pt0[lo] <= j < cf_pt0[hi + 1] */
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (s->cf_pt0[mid] <= j)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+/* The largest gap (m) of side sd's points on owner o's faces turned towards the other body,
+ * above *best (first such point in point order); *best_j its point, left alone when none beats
+ * it. */
+static void turned_gap(const rd_sim *s, const rd_side *sd, int o, const double nb[3],
+                       double to_other, double *best, int *best_j)
+{
+    for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
+        int facing = -1; /* asked once per face, and only when a point of it could count */
+        for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
+            double g = s->pj[sd->state0 + (j - s->pt0[o])][1];
+            if (!(g < 1e300 && g > *best)) continue;
+            if (facing < 0) facing = face_turned(s, o, cf, nb, to_other);
+            if (!facing) break;
+            *best = g;
+            *best_j = j;
+        }
+    }
+}
+
+/* Side sd's active points (owner o) into m's normal force and area and the centre of
+ * pressure's sums (cop: the |fn|-weighted sum of their positions, fsum: of |fn|), the shear on
+ * the second body into fs_b (sign as edge_measure's); and the largest gap of any of its points
+ * and that point (gap, gap_j; gap_j -1 when none is above 0). One pass in point order, the
+ * positions summed in the body frame and turned once: sum |fn| (R p + x) = R sum |fn| p + x
+ * sum |fn|. The weight is 1 or 1/2, so w sum A = sum w A exactly. */
+static void side_measure(const rd_sim *s, const rd_side *sd, int o, double sign, rd_joint_state *m,
+                         double *fsum, double fs_b[3], double *gap, int *gap_j)
+{
+    const int j0 = s->pt0[o], n = s->pt0[o + 1] - j0;
+    const unsigned char *ps = s->pstate + sd->state0;
+    const double(*pj)[2] = (const double(*)[2])(s->pj + sd->state0);
+    const double(*fs)[3] = (const double(*)[3])(s->fs + sd->state0);
+    const double(*pl)[3] = (const double(*)[3])(s->pl + j0);
+    const double *pa = s->pa + j0;
+    double fn_sum = 0, area = 0, wsum = 0, cop_b[3] = { 0, 0, 0 }, shear[3] = { 0, 0, 0 };
+    double best = 0;
+    int best_i = -1;
+    for (int i = 0; i < n; i++) {
+        double g = pj[i][1];
+        if (g < 1e300 && g > best) {
+            best = g;
+            best_i = i;
+        }
+        if (!(ps[i] & RD_PT_ACTIVE)) continue;
+        double fn = pj[i][0], w = fabs(fn);
+        fn_sum += fn;
+        area += pa[i];
+        wsum += w;
+        for (int k = 0; k < 3; k++) {
+            cop_b[k] += w * pl[i][k];
+            shear[k] += fs[i][k];
+        }
+    }
+    double cop[3];
+    rd_mat_vec(s->R[o], cop_b, cop);
+    m->fn += fn_sum;
+    m->area += sd->weight * area;
+    *fsum += wsum;
+    for (int k = 0; k < 3; k++) {
+        m->cop[k] += cop[k] + wsum * s->x[o][k];
+        fs_b[k] += sign * shear[k];
+    }
+    *gap = best;
+    *gap_j = best_i < 0 ? -1 : j0 + best_i;
+}
+
 void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
 {
     memset(m, 0, sizeof *m);
@@ -276,10 +356,12 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
     double fs_b[3] = { 0, 0, 0 }, fsum = 0, open = 0;
     int live = pr->seen == s->stamp;       /* a pair whose boxes parted holds no contact */
     int normal = rd_dot(pr->n, pr->n) > 0; /* the joint has borne load */
-    /* The opening is the largest gap of the points that may measure it: this runs every step,
-       so the deepest candidate is found first and tested alone against the face it must lie
-       over; only when it lies off that face does opening_scan look at them all (the same
-       answer: the largest gap of the points that pass). */
+    /* The opening is the largest gap of the points that may measure it (on a face turned
+       towards the other body): this runs every step, so the deepest point of the side is found
+       in the forces' pass and its face asked alone; only where that face is not turned are the
+       turned faces scanned (the same point: the first largest of a subset that holds the first
+       largest of the whole). That point is then tested alone against the face it must lie
+       over; only when it lies off that face does opening_scan look at them all. */
     double best_gap = 0;
     int best_q = -1, best_j = -1;
     if (s->surf && live) { /* the surface model's patches (surface.c); no opening measured */
@@ -289,36 +371,23 @@ void rd_joint_measure(rd_sim *s, rd_pair *pr, rd_joint_state *m)
     }
     for (int q = 0; q < pr->nside && live && !s->surf; q++) {
         const rd_side *sd = &pr->side[q];
-        int o, t;
-        double tol, nb[3];
+        int o, t, gap_j;
+        double tol, nb[3], gap;
         side_frame(s, pr, q, &o, &t, &tol, nb);
         double sign = o == pr->b ? 1.0 : -1.0;     /* stored forces act on the owner */
         double to_other = o == pr->a ? 1.0 : -1.0; /* pr->n points from a towards b */
-        for (int cf = s->cf0[o]; cf < s->cf0[o + 1]; cf++) {
-            if (s->cf_pt0[cf + 1] == s->cf_pt0[cf])
-                continue;    /* a face without points (most of a mesh's) */
-            int facing = -1; /* asked once per face, and only when a point of it could count */
-            for (int j = s->cf_pt0[cf]; j < s->cf_pt0[cf + 1]; j++) {
-                int st = sd->state0 + (j - s->pt0[o]);
-                int active = s->pstate[st] & RD_PT_ACTIVE;
-                if (normal && s->pj[st][1] < 1e300 && s->pj[st][1] > best_gap) {
-                    if (facing < 0) facing = face_turned(s, o, cf, nb, to_other);
-                    if (facing) {
-                        best_gap = s->pj[st][1];
-                        best_q = q;
-                        best_j = j;
-                    }
-                }
-                if (!active) continue;
-                double p[3];
-                point_world(s, o, j, p);
-                double fn = s->pj[st][0], a = sd->weight * s->pa[j];
-                m->fn += fn;
-                m->area += a;
-                fsum += fabs(fn);
-                for (int k = 0; k < 3; k++) {
-                    m->cop[k] += fabs(fn) * p[k];
-                    fs_b[k] += sign * s->fs[st][k];
+        side_measure(s, sd, o, sign, m, &fsum, fs_b, &gap, &gap_j);
+        if (normal && gap > best_gap) {
+            if (face_turned(s, o, point_face(s, o, gap_j), nb, to_other)) {
+                best_gap = gap;
+                best_j = gap_j;
+                best_q = q;
+            } else {
+                int j = -1;
+                turned_gap(s, sd, o, nb, to_other, &best_gap, &j);
+                if (j >= 0) {
+                    best_j = j;
+                    best_q = q;
                 }
             }
         }
