@@ -48,7 +48,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 HEADERS := $(wildcard include/rockdem/*.h src/*/*.h tests/*.h)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: python all lib run test unit asan asan-unit debug fragility-example fuzz fuzz-bins bench bench-study bench-echo-cliff bench-safety bench-peers study deps clean check-yade mpi
+.PHONY: python all lib run test unit asan asan-unit debug fragility-example fuzz fuzz-bins bench bench-study bench-echo-cliff bench-safety bench-fragility-step bench-peers study deps clean check-yade mpi
 
 all: $(BIN)/rockdem $(BUILD)/librockdem.so
 
@@ -204,6 +204,11 @@ bench-study: $(BIN)/rockdem scenarios/pbr.obj
 # runs of 20 s records) timed on a 76-run sample, projected to 2 cores (about 3-6 min on 2 idle cores)
 bench-echo-cliff: $(BIN)/rockdem scenarios/pbr.obj
 	@STUDY=echo-cliff bash bench/pbr_study.sh $(BIN)
+
+# how the step moves a PBR fragility study's outcomes and fitted medians, against a 0.01 deg turn
+# of the shaking (about 15 min on 2 cores; docs/FRAGILITY.md)
+bench-fragility-step: $(BIN)/rockdem scenarios/pbr.obj
+	@bash bench/fragility_step.sh $(BIN)
 
 # the step's safety factor by time to solution: the fast ladder and the PBR study's cost per run
 # at each factor of SAFETIES (bench/safety.sh, about 10-15 min per factor on 2 idle cores)
