@@ -4,8 +4,9 @@
 #   bash bench/kernel.sh [BINDIR [KERNELDIR]]    (defaults: bin, build/bench; `make bench` runs it)
 #
 # Scenes: the corner block (bench/block.dat, 4 vertex subcontacts), the 11 x 11 bed (the same
-# block, default contact), the shipped PBR (scenarios/pbr.dat) and a 20-drum column
-# (bench/column_scene.sh, 0.1 s). REPS rounds (default 3); in each round every scene runs once in
+# block, default contact), the shipped PBR (scenarios/pbr.dat, 3,968 triangles), the same rock
+# as a 5,040-triangle mesh (`tools/make_pbr.py --seed 1 --nlat 36`, on the same pedestal) and a
+# 20-drum column (bench/column_scene.sh, 0.1 s). REPS rounds (default 3); in each round every scene runs once in
 # rockdem and then once in each kernel build on as many points as rockdem's mean active
 # subcontacts, so the two share the machine's state. The fastest of the rounds counts for each.
 # rockdem's figure is its `perf:` line: ns per active subcontact-step (wall time over steps times
@@ -27,12 +28,16 @@ kv() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p" | head -n1; }
 KERNEL_POINT_STEPS=30000000 # per kernel run: ~0.2-0.6 s at 6-20 ns per point-step
 
 bash "$here/column_scene.sh" 20 0.1 "$tmp/column.h5" > "$tmp/column20.dat"
-scenes=(corners bed pbr column20)
+/usr/bin/python3 "$root/tools/make_pbr.py" --seed 1 --nlat 36 -o "$tmp/pbr5k.obj" > /dev/null
+sed "s|'pbr.obj'|'$tmp/pbr5k.obj'|" "$root/scenarios/pbr.dat" > "$tmp/pbr5k.dat"
+grep -q "pbr5k.obj" "$tmp/pbr5k.dat" || die "scenarios/pbr.dat no longer imports 'pbr.obj'"
+scenes=(corners bed pbr pbr5k column20)
 scene_args() { # the rockdem run arguments of scene $1
     case $1 in
         corners) echo "$here/block.dat --set contact.spacing=vertices" ;;
         bed) echo "$here/block.dat" ;;
         pbr) echo "$root/scenarios/pbr.dat" ;;
+        pbr5k) echo "$tmp/pbr5k.dat" ;;
         column20) echo "$tmp/column20.dat" ;;
     esac
 }
