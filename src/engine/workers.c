@@ -122,8 +122,9 @@ static int workers_new(rd_sim *s)
     W->n = s->nthreads;
     W->ntape = W->n * RD_CHUNKS_PER_THREAD;
     W->w = calloc((size_t)W->n, sizeof *W->w);
-    W->tape = calloc((size_t)W->ntape, sizeof *W->tape);
+    W->tape = aligned_alloc(RD_CACHE_LINE, (size_t)W->ntape * sizeof *W->tape);
     if (!W->w || !W->tape) return -1;
+    memset(W->tape, 0, (size_t)W->ntape * sizeof *W->tape);
     const size_t nd = s->ndist ? s->ndist : 1, nm = s->nmask ? s->nmask : 1,
                  nk = s->nkin > 0 ? (size_t)s->nkin : 1;
     for (int i = 0; i < W->n; i++) {

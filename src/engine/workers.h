@@ -28,9 +28,15 @@ typedef struct rd_tape_entry {
     double v;
 } rd_tape_entry;
 
-/* The additions of one chunk of live pairs, in the order the serial loop makes them. */
+/* Bytes of a cache line: what one core's write takes from another's cache. */
+#define RD_CACHE_LINE 64
+
+/* The additions of one chunk of live pairs, in the order the serial loop makes them. Each tape
+ * fills whole cache lines of its own (workers.c allocates them aligned): the chunks running at
+ * once are mostly neighbours, and their counts, written at every addition, sharing a line made
+ * the two cores pass it back and forth. */
 typedef struct rd_tape {
-    rd_tape_entry *e;
+    _Alignas(RD_CACHE_LINE) rd_tape_entry *e;
     size_t n, cap;
     int failed;  /* 1: out of memory growing it (rd_contact_step fails) */
     rd_sim *sim; /* the simulation (the energies' sums: rd_book_fric, rd_book_damp) */
