@@ -33,7 +33,7 @@
 /* Chunks of live pairs per thread: taken in turn by whichever thread is free, so a chunk of
  * costly pairs (a wall's end on its footing) does not hold the others back. */
 #define RD_CHUNKS_PER_THREAD 8
-#define RD_TAPE_MIN          1024 /* entries of a tape's first block */
+#define RD_TAPE_MIN          2048 /* words of a tape's first block */
 
 /* One thread's view of the simulation: a copy of rd_sim with the thread's own scratch. */
 typedef struct rd_worker {
@@ -79,15 +79,16 @@ int rd_threads_for(const rd_sim *s, long n)
     return 1;
 }
 
-void rd_tape_grow(rd_tape *t)
+void rd_tape_grow(rd_tape *t, size_t k)
 {
     size_t cap = t->cap ? 2 * t->cap : RD_TAPE_MIN;
-    rd_tape_entry *e = realloc(t->e, cap * sizeof *e);
-    if (!e) {
+    while (cap < t->n + k) cap *= 2;
+    rd_tape_word *w = realloc(t->w, cap * sizeof *w);
+    if (!w) {
         t->failed = 1;
         return;
     }
-    t->e = e;
+    t->w = w;
     t->cap = cap;
 }
 
@@ -105,7 +106,7 @@ void rd_workers_free(rd_sim *s)
         free(w->kin);
         free(w->kin_stamp);
     }
-    for (int c = 0; W->tape && c < W->ntape; c++) free(W->tape[c].e);
+    for (int c = 0; W->tape && c < W->ntape; c++) free(W->tape[c].w);
     free(W->w);
     free(W->tape);
     free(W);
@@ -159,16 +160,44 @@ static void view_of(rd_sim *s, rd_worker *w)
     v->workers = NULL;
 }
 
+/* Plays one tape back into s (workers.h: the records). */
+static void play_tape(rd_sim *s, const rd_tape *t)
+{
+    const rd_tape_word *w = t->w;
+    for (size_t k = 0, n = t->n; k < n;) {
+        const uintptr_t h = w[k].tag;
+        if (!(h & 1u)) {
+            *w[k].to += w[k + 1].v;
+            k += 2;
+            continue;
+        }
+        const int o = (int)(h >> 3);
+        if ((h & 7u) == RD_TAPE_BODY) {
+            for (int c = 0; c < 3; c++) {
+                s->f[o][c] += w[k + 1 + c].v;
+                s->tq[o][c] += w[k + 4 + c].v;
+            }
+            k += 7;
+            continue;
+        }
+        const int ot = (int)w[k + 1].tag;
+        for (int c = 0; c < 3; c++) {
+            s->f[o][c] += w[k + 2 + c].v;
+            s->tq[o][c] += w[k + 5 + c].v;
+            s->f[ot][c] += -w[k + 2 + c].v;
+            s->tq[ot][c] += w[k + 8 + c].v;
+        }
+        k += 11;
+    }
+}
+
 /* Plays the tapes back in chunk order: every shared sum takes its terms as the serial loop
  * gives them. 0, or -1 when a tape ran out of memory. */
-static int play_back(rd_workers *W, int nchunk)
+static int play_back(rd_sim *s, rd_workers *W, int nchunk)
 {
     for (int c = 0; c < nchunk; c++)
         if (W->tape[c].failed) return -1;
-    for (int c = 0; c < nchunk; c++) {
-        const rd_tape_entry *e = W->tape[c].e;
-        for (size_t k = 0, n = W->tape[c].n; k < n; k++) *e[k].to += e[k].v;
-    }
+    for (int c = 0; c < nchunk; c++) play_tape(s, &W->tape[c]);
     return 0;
 }
 #endif
@@ -213,7 +242,7 @@ int rd_workers_contact(rd_sim *s)
     }
     for (int i = 0; i < team; i++) s->active_point_steps += W->w[i].active_point_steps;
     if (team > s->team) s->team = team;
-    return play_back(W, nchunk) ? -1 : 1;
+    return play_back(s, W, nchunk) ? -1 : 1;
 #else
     (void)s;
     return 0;
