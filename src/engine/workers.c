@@ -30,9 +30,10 @@
 #ifndef RD_ITEMS_PER_THREAD
 #define RD_ITEMS_PER_THREAD 32
 #endif
-/* Chunks of live pairs per thread: taken in turn by whichever thread is free, so a chunk of
- * costly pairs (a wall's end on its footing) does not hold the others back. */
-#define RD_CHUNKS_PER_THREAD 8
+/* Chunks of live pairs per thread: thread t runs the chunks of its own block (the t-th of the
+ * live list's n equal blocks) first, then takes the chunks left in the others' blocks, so a
+ * block of costly pairs (a wall's end on its footing) does not hold the others back. */
+#define RD_CHUNKS_PER_THREAD 16
 #define RD_TAPE_MIN          2048 /* words of a tape's first block */
 
 /* One thread's view of the simulation: a copy of rd_sim with the thread's own scratch. */
@@ -48,9 +49,15 @@ typedef struct rd_worker {
     long active_point_steps; /* the view's this step */
 } rd_worker;
 
+/* The chunks of one block taken so far, on a cache line of its own (every thread may take). */
+typedef struct rd_block {
+    _Alignas(RD_CACHE_LINE) int taken;
+} rd_block;
+
 typedef struct rd_workers {
-    int n;         /* threads */
-    rd_worker *w;  /* [n] */
+    int n;          /* threads */
+    rd_worker *w;   /* [n] */
+    rd_block *next; /* [n] */
     int ntape;     /* n * RD_CHUNKS_PER_THREAD */
     rd_tape *tape; /* [ntape] */
 } rd_workers;
@@ -108,6 +115,7 @@ void rd_workers_free(rd_sim *s)
     }
     for (int c = 0; W->tape && c < W->ntape; c++) free(W->tape[c].w);
     free(W->w);
+    free(W->next);
     free(W->tape);
     free(W);
     s->workers = NULL;
@@ -123,8 +131,9 @@ static int workers_new(rd_sim *s)
     W->n = s->nthreads;
     W->ntape = W->n * RD_CHUNKS_PER_THREAD;
     W->w = calloc((size_t)W->n, sizeof *W->w);
+    W->next = aligned_alloc(RD_CACHE_LINE, (size_t)W->n * sizeof *W->next);
     W->tape = aligned_alloc(RD_CACHE_LINE, (size_t)W->ntape * sizeof *W->tape);
-    if (!W->w || !W->tape) return -1;
+    if (!W->w || !W->next || !W->tape) return -1;
     memset(W->tape, 0, (size_t)W->ntape * sizeof *W->tape);
     const size_t nd = s->ndist ? s->ndist : 1, nm = s->nmask ? s->nmask : 1,
                  nk = s->nkin > 0 ? (size_t)s->nkin : 1;
@@ -158,6 +167,25 @@ static void view_of(rd_sim *s, rd_worker *w)
     v->kin_epoch = w->kin_epoch;
     v->active_point_steps = 0;
     v->workers = NULL;
+}
+
+/* The next chunk for thread t of a team of nt: its own block's next, else the next left in
+ * the following threads' blocks; -1 when every chunk is taken. Block b holds chunks
+ * [nchunk b / nt, nchunk (b + 1) / nt). Which thread runs a chunk changes no result (each
+ * chunk books on its own tape), only which core's cache holds its pairs: with each thread on
+ * its own block, the same pairs from step to step, their state stays in one core's cache,
+ * where chunks taken in turn by whichever thread was free moved about half of it between the
+ * cores every step. */
+static int chunk_next(rd_workers *W, int t, int nt, int nchunk)
+{
+    for (int k = 0; k < nt; k++) {
+        const int b = (t + k) % nt, lo = (int)((long)nchunk * b / nt),
+                  hi = (int)((long)nchunk * (b + 1) / nt);
+        if (__atomic_load_n(&W->next[b].taken, __ATOMIC_RELAXED) >= hi - lo) continue;
+        const int c = lo + __atomic_fetch_add(&W->next[b].taken, 1, __ATOMIC_RELAXED);
+        if (c < hi) return c;
+    }
+    return -1;
 }
 
 /* Plays one tape back into s (workers.h: the records). */
@@ -221,17 +249,18 @@ int rd_workers_contact(rd_sim *s)
     const int nlive = s->nlive;
     const int *live = s->live;
     rd_pair *pair = s->pair;
+    for (int t = 0; t < n; t++) W->next[t].taken = 0;
     int team = 1; /* the threads the team has (OpenMP may give fewer than asked) */
 #pragma omp parallel num_threads(n)
     {
+        const int t = omp_get_thread_num(), nt = omp_get_num_threads();
 #pragma omp master
-        team = omp_get_num_threads();
-        rd_worker *w = &W->w[omp_get_thread_num()];
+        team = nt;
+        rd_worker *w = &W->w[t];
         view_of(s, w);
         rd_sim *v = w->view;
         /* chunk c: live pairs [nlive c / nchunk, nlive (c + 1) / nchunk), on any thread */
-#pragma omp for schedule(dynamic, 1)
-        for (int c = 0; c < nchunk; c++) {
+        for (int c; (c = chunk_next(W, t, nt, nchunk)) >= 0;) {
             v->tape = &W->tape[c];
             const int k1 = (int)((long)nlive * (c + 1) / nchunk);
             for (int k = (int)((long)nlive * c / nchunk); k < k1; k++)
