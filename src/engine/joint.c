@@ -387,7 +387,7 @@ static void joint_sample(rd_sim *s, rd_pair *pr)
  * stay serial. */
 void rd_joints_sample(rd_sim *s)
 {
-    const int n = s->surf ? 1 : rd_threads_for(s, s->npair);
+    const int n = s->surf ? 1 : rd_threads_for_pairs(s, NULL, s->npair);
     if (n > 1) {
         RD_OMP(omp parallel for schedule(static) num_threads(n))
         for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);

@@ -30,6 +30,12 @@
 #ifndef RD_ITEMS_PER_THREAD
 #define RD_ITEMS_PER_THREAD 32
 #endif
+/* Subcontact points per thread above which a loop over fewer pairs than RD_ITEMS_PER_THREAD
+ * per thread runs threaded: 32 of a wall's bricks' pairs carry about 500 (8 corner points
+ * a side, two sides), so the same work. */
+#ifndef RD_POINTS_PER_THREAD
+#define RD_POINTS_PER_THREAD 512
+#endif
 /* Chunks of live pairs per thread: thread t runs the chunks of its own block (the t-th of the
  * live list's n equal blocks) first, then takes the chunks left in the others' blocks, so a
  * block of costly pairs (a wall's end on its footing) does not hold the others back. */
@@ -84,6 +90,24 @@ int rd_threads_for(const rd_sim *s, long n)
     (void)s;
     (void)n;
     return 1;
+}
+
+int rd_threads_for_pairs(const rd_sim *s, const int *list, int n)
+{
+    const int t = rd_threads_for(s, n);
+#ifdef _OPENMP
+    if (t == 1 && s->nthreads > 1 && n >= 2 * s->nthreads) {
+        long points = 0; /* n is small here: fewer than RD_ITEMS_PER_THREAD pairs per thread */
+        for (int k = 0; k < n; k++) {
+            const rd_pair *pr = &s->pair[list ? list[k] : k];
+            for (int q = 0; q < pr->nside; q++)
+                points += s->pt0[pr->side[q].owner + 1] - s->pt0[pr->side[q].owner];
+        }
+        if (points >= (long)RD_POINTS_PER_THREAD * s->nthreads) return s->nthreads;
+    }
+#endif
+    (void)list;
+    return t;
 }
 
 void rd_tape_grow(rd_tape *t, size_t k)
@@ -233,7 +257,7 @@ static int play_back(rd_sim *s, rd_workers *W, int nchunk)
 int rd_workers_contact(rd_sim *s)
 {
 #ifdef _OPENMP
-    const int n = rd_threads_for(s, s->nlive);
+    const int n = rd_threads_for_pairs(s, s->live, s->nlive);
     if (n < 2) return 0;
     if (!s->workers && workers_new(s)) {
         rd_workers_free(s);

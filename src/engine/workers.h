@@ -159,6 +159,12 @@ int rd_threads_of(const rd_scenario *sc);
  * RD_ITEMS_PER_THREAD of them (fewer are not worth the thread team's start). */
 int rd_threads_for(const rd_sim *s, long n);
 
+/* Threads a loop over the pairs list[0 .. n) (list NULL: pairs 0 .. n) runs on: as
+ * rd_threads_for, or, where the pairs are fewer but carry many subcontact points (a column's
+ * drum beds: some 90 points a side), s->nthreads once there are at least 2 pairs and
+ * RD_POINTS_PER_THREAD points per thread. */
+int rd_threads_for_pairs(const rd_sim *s, const int *list, int n);
+
 /* rd_contact_step's loop over the live pairs on s->nthreads threads: 1 when it ran them, 0 when
  * they are too few (the caller runs them serially), -1 when out of memory. */
 int rd_workers_contact(rd_sim *s);
