@@ -370,6 +370,15 @@ static int touch(rd_sim *s, int i, int j)
     return touch_found(s, a, b, hash_find(s, a, b));
 }
 
+/* Body i's drift since its box was built, and the box rebuilt when the drift passes the margin
+ * or, in a swept scene, when the body moved at all. */
+static void box_update(rd_sim *s, int i, int sweeping)
+{
+    double d = box_drift(s, i); /* 0 for a body that has not moved (a fixed one) */
+    s->box_drift[i] = d;
+    if (!(d <= s->margin) || (sweeping && d > 0)) box_build(s, i);
+}
+
 static void sort_order(rd_sim *s)
 {
     int ax = s->sweep_axis, n = s->nb, *o = s->order;
@@ -431,9 +440,11 @@ static void sweep_part(rd_sim *s, int i0, int i1, rd_sweep_part *pt)
         }
 }
 
-/* sweep on nt threads: the sorted order split into one range of bodies per thread, each
- * thread's finds in sweep order, then the finds appended to the live list thread by thread and
- * the new pairs made in that order (the serial sweep's live list and slots, bit for bit). */
+/* The box updates and the sweep on nt threads, in one team: the boxes (each body's its own),
+ * the sort on one thread, then the sorted order split into one range of bodies per thread,
+ * each thread's finds in sweep order; the finds are then appended to the live list thread by
+ * thread and the new pairs made in that order (the serial sweep's live list and slots, bit for
+ * bit). */
 static int sweep_threaded(rd_sim *s, int nt)
 {
     if (!s->sweep_part) {
@@ -441,11 +452,14 @@ static int sweep_threaded(rd_sim *s, int nt)
         if (!s->sweep_part) return -1;
         memset(s->sweep_part, 0, RD_THREADS_MAX * sizeof *s->sweep_part);
     }
-    sort_order(s);
     const int n = s->nb;
     int team = 1;
     RD_OMP(omp parallel num_threads(nt))
     {
+        RD_OMP(omp for schedule(static))
+        for (int i = 0; i < n; i++) box_update(s, i, 1);
+        RD_OMP(omp single)
+        sort_order(s);
         const int t = omp_get_thread_num(), k = omp_get_num_threads();
         if (t == 0) team = k;
         sweep_part(s, (int)((long)n * t / k), (int)((long)n * (t + 1) / k), &s->sweep_part[t]);
@@ -474,40 +488,24 @@ void rd_pairs_free(rd_sim *s)
     s->sweep_part = NULL;
 }
 
-/* Body i's drift since its box was built, and the box rebuilt when the drift passes the margin
- * or, in a swept scene, when the body moved at all. */
-static void box_update(rd_sim *s, int i, int sweeping)
-{
-    double d = box_drift(s, i); /* 0 for a body that has not moved (a fixed one) */
-    s->box_drift[i] = d;
-    if (!(d <= s->margin) || (sweeping && d > 0)) box_build(s, i);
-}
-
 int rd_pairs_update(rd_sim *s)
 {
     s->stamp++;
     int sweeping = s->nb > RD_BRUTE_MAX;
-    const int nt = sweeping ? rd_threads_for(s, s->nb) : 1;
-    if (nt > 1) { /* each body's box its own */
-        RD_OMP(omp parallel for schedule(static) num_threads(nt))
-        for (int i = 0; i < s->nb; i++) box_update(s, i, sweeping);
-    } else {
-        for (int i = 0; i < s->nb; i++) box_update(s, i, sweeping);
-    }
     /* the live list can hold every pair that overlaps: at most all pairs seen so far + n^2 new */
     int maxlive = s->nb <= RD_BRUTE_MAX ? s->nb * s->nb : s->npair + 8 * s->nb;
     if (reserve((void **)&s->live, &s->cap_live, maxlive, sizeof *s->live)) return -1;
     s->nlive = 0;
-    if (s->nb <= RD_BRUTE_MAX) {
-        for (int i = 0; i < s->nb; i++)
-            for (int j = i + 1; j < s->nb; j++)
-                if (pair_live(s, i, j) && touch(s, i, j)) return -1;
-        return 0;
-    }
 #ifdef _OPENMP
+    const int nt = sweeping ? rd_threads_for(s, s->nb) : 1;
     if (nt > 1) return sweep_threaded(s, nt);
 #endif
-    return sweep(s);
+    for (int i = 0; i < s->nb; i++) box_update(s, i, sweeping);
+    if (sweeping) return sweep(s);
+    for (int i = 0; i < s->nb; i++)
+        for (int j = i + 1; j < s->nb; j++)
+            if (pair_live(s, i, j) && touch(s, i, j)) return -1;
+    return 0;
 }
 
 int rd_pairs_init(rd_sim *s, rd_error *err)
