@@ -545,18 +545,19 @@ static void fold_face_sums(rd_sim *s, side_ctx *c, side_sums *a)
             const int e = 64 * w + __builtin_ctzll(m);
             const face_frame *ff = &c->ff[e];
             const double *u = c->wn[e];
+            double f[3], tq[3];
             for (int k = 0; k < 3; k++) {
-                const double f = ff->t[0][k] * ff->f[0] + ff->t[1][k] * ff->f[1] + u[k] * ff->f[2],
-                             tq = ff->t[0][k] * ff->tq[0] + ff->t[1][k] * ff->tq[1] +
-                                  u[k] * ff->tq[2];
-                if (s->tape) {
-                    rd_tape_add(s->tape, &s->f[c->o][k], f);
-                    rd_tape_add(s->tape, &s->tq[c->o][k], tq);
-                } else {
-                    a->f_o[k] += f;
-                    a->tq_o[k] += tq;
-                }
+                f[k] = ff->t[0][k] * ff->f[0] + ff->t[1][k] * ff->f[1] + u[k] * ff->f[2];
+                tq[k] = ff->t[0][k] * ff->tq[0] + ff->t[1][k] * ff->tq[1] + u[k] * ff->tq[2];
                 a->nsum[k] += u[k] * ff->fn;
+            }
+            if (s->tape) {
+                rd_tape_body(s->tape, c->o, f, tq);
+                continue;
+            }
+            for (int k = 0; k < 3; k++) {
+                a->f_o[k] += f[k];
+                a->tq_o[k] += tq[k];
             }
         }
 }
@@ -1463,11 +1464,9 @@ RD_HOT static void side_step(rd_sim *s, rd_pair *pr, rd_side *sd, double *k_acti
         double dt[3];
         rd_cross(d, sums.f_o, dt);
         if (s->tape) {
-            for (int k = 0; k < 3; k++) rd_tape_add(s->tape, &s->f[c.o][k], sums.f_o[k]);
-            for (int k = 0; k < 3; k++) rd_tape_add(s->tape, &s->tq[c.o][k], sums.tq_o[k]);
-            for (int k = 0; k < 3; k++) rd_tape_add(s->tape, &s->f[c.t][k], -sums.f_o[k]);
-            for (int k = 0; k < 3; k++)
-                rd_tape_add(s->tape, &s->tq[c.t][k], -(sums.tq_o[k] + dt[k]));
+            double tt[3];
+            for (int k = 0; k < 3; k++) tt[k] = -(sums.tq_o[k] + dt[k]);
+            rd_tape_pair(s->tape, c.o, c.t, sums.f_o, sums.tq_o, tt);
         } else {
             rd_axpy(1.0, sums.f_o, s->f[c.o]);
             rd_axpy(1.0, sums.tq_o, s->tq[c.o]);

@@ -39,8 +39,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_JOINT_CHUNK 64 /* pairs a thread takes at a time (most are parted or light) */
-
 /* Does body i belong to range r? */
 static int in_range(const rd_sim *s, const rd_range_def *r, int i)
 {
@@ -452,13 +450,15 @@ static void joint_sample(rd_sim *s, rd_pair *pr)
 }
 
 /* Each pair's measure reads the bodies and its own points and writes its own fields only, so
- * the pairs run on the run's threads (workers.h) where there are enough, with the same bits;
- * the surface model's measures (surface.c) stay serial. */
+ * the pairs run on the run's threads (workers.h) where there are enough, with the same bits,
+ * each thread one stretch of the pairs (made in the sweep's order, so about the pairs of its
+ * block of the contact loop, in its core's cache); the surface model's measures (surface.c)
+ * stay serial. */
 void rd_joints_sample(rd_sim *s)
 {
-    const int n = s->surf ? 1 : rd_threads_for(s, s->npair);
+    const int n = s->surf ? 1 : rd_threads_for_pairs(s, NULL, s->npair);
     if (n > 1) {
-        RD_OMP(omp parallel for schedule(dynamic, RD_JOINT_CHUNK) num_threads(n))
+        RD_OMP(omp parallel for schedule(static) num_threads(n))
         for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);
     } else {
         for (int p = 0; p < s->npair; p++) joint_sample(s, &s->pair[p]);

@@ -31,6 +31,7 @@
  * geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
 #include "engine/sim.h"
+#include "engine/workers.h"
 #include "base/assert.h"
 #include "base/constants.h"
 #include "base/vec.h"
@@ -38,6 +39,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define RD_BRUTE_MAX 8 /* up to this many bodies, test every pair directly */
 
@@ -340,12 +344,10 @@ static int pair_live(rd_sim *s, int i, int j)
     return boxes_overlap(s->aabb[i], s->aabb[j]);
 }
 
-/* Mark pair (i, j) live this step, creating it on first contact. 0, or -1 out of memory. */
-static int touch(rd_sim *s, int i, int j)
+/* Mark pair (a < b) live this step, p its slot (hash_find's answer), creating it on first
+ * contact. 0, or -1 out of memory. */
+static int touch_found(rd_sim *s, int a, int b, int p)
 {
-    if (s->fixed[i] && s->fixed[j]) return 0;
-    int a = i < j ? i : j, b = i < j ? j : i;
-    int p = hash_find(s, a, b);
     if (p < 0) {
         int pa = s->pt0[a + 1] > s->pt0[a] && s->convex[b],
             pb = s->pt0[b + 1] > s->pt0[b] && s->convex[a];
@@ -360,7 +362,24 @@ static int touch(rd_sim *s, int i, int j)
     return 0;
 }
 
-static int sweep(rd_sim *s)
+/* Mark pair (i, j) live this step, creating it on first contact. 0, or -1 out of memory. */
+static int touch(rd_sim *s, int i, int j)
+{
+    if (s->fixed[i] && s->fixed[j]) return 0;
+    int a = i < j ? i : j, b = i < j ? j : i;
+    return touch_found(s, a, b, hash_find(s, a, b));
+}
+
+/* Body i's drift since its box was built, and the box rebuilt when the drift passes the margin
+ * or, in a swept scene, when the body moved at all. */
+static void box_update(rd_sim *s, int i, int sweeping)
+{
+    double d = box_drift(s, i); /* 0 for a body that has not moved (a fixed one) */
+    s->box_drift[i] = d;
+    if (!(d <= s->margin) || (sweeping && d > 0)) box_build(s, i);
+}
+
+static void sort_order(rd_sim *s)
 {
     int ax = s->sweep_axis, n = s->nb, *o = s->order;
     for (int i = 1; i < n; i++) /* insertion sort: the order barely changes between steps */
@@ -369,32 +388,123 @@ static int sweep(rd_sim *s)
             o[j] = o[j - 1];
             o[j - 1] = t;
         }
+}
+
+static int sweep(rd_sim *s)
+{
+    int ax = s->sweep_axis, n = s->nb, *o = s->order;
+    sort_order(s);
     for (int i = 0; i < n; i++)
         for (int j = i + 1; j < n && s->aabb[o[j]][ax] <= s->aabb[o[i]][ax + 3]; j++)
             if (boxes_overlap(s->aabb[o[i]], s->aabb[o[j]]) && touch(s, o[i], o[j])) return -1;
     return 0;
 }
 
+#ifdef _OPENMP
+/* One pair a threaded sweep found overlapping: bodies a < b, p their slot or -1 (new). */
+typedef struct rd_sweep_hit {
+    int a, b, p;
+} rd_sweep_hit;
+
+/* One thread's finds, in the serial sweep's order; on cache lines of its own. */
+typedef struct rd_sweep_part {
+    _Alignas(RD_CACHE_LINE) rd_sweep_hit *hit;
+    int n, cap;
+    int failed; /* 1: out of memory growing hit */
+} rd_sweep_part;
+
+static void part_add(rd_sweep_part *pt, int a, int b, int p)
+{
+    if (pt->n == pt->cap && reserve((void **)&pt->hit, &pt->cap, pt->n + 1, sizeof *pt->hit)) {
+        pt->failed = 1;
+        return;
+    }
+    pt->hit[pt->n++] = (rd_sweep_hit){ a, b, p };
+}
+
+/* The sweep over bodies order[i0 .. i1) of the sorted order: each overlap's slot looked up
+ * (the hash map and the pairs only read) and a known pair marked seen (each pair is found once
+ * a sweep, so by one thread), into pt. */
+static void sweep_part(rd_sim *s, int i0, int i1, rd_sweep_part *pt)
+{
+    int ax = s->sweep_axis, n = s->nb, *o = s->order;
+    pt->n = 0;
+    pt->failed = 0;
+    for (int i = i0; i < i1; i++)
+        for (int j = i + 1; j < n && s->aabb[o[j]][ax] <= s->aabb[o[i]][ax + 3]; j++) {
+            int u = o[i], w = o[j];
+            if (!boxes_overlap(s->aabb[u], s->aabb[w]) || (s->fixed[u] && s->fixed[w])) continue;
+            int a = u < w ? u : w, b = u < w ? w : u, p = hash_find(s, a, b);
+            if (p >= 0) s->pair[p].seen = s->stamp;
+            part_add(pt, a, b, p);
+        }
+}
+
+/* The box updates and the sweep on nt threads, in one team: the boxes (each body's its own),
+ * the sort on one thread, then the sorted order split into one range of bodies per thread,
+ * each thread's finds in sweep order; the finds are then appended to the live list thread by
+ * thread and the new pairs made in that order (the serial sweep's live list and slots, bit for
+ * bit). */
+static int sweep_threaded(rd_sim *s, int nt)
+{
+    if (!s->sweep_part) {
+        s->sweep_part = aligned_alloc(RD_CACHE_LINE, RD_THREADS_MAX * sizeof *s->sweep_part);
+        if (!s->sweep_part) return -1;
+        memset(s->sweep_part, 0, RD_THREADS_MAX * sizeof *s->sweep_part);
+    }
+    const int n = s->nb;
+    int team = 1;
+    RD_OMP(omp parallel num_threads(nt))
+    {
+        RD_OMP(omp for schedule(static))
+        for (int i = 0; i < n; i++) box_update(s, i, 1);
+        RD_OMP(omp single)
+        sort_order(s);
+        const int t = omp_get_thread_num(), k = omp_get_num_threads();
+        if (t == 0) team = k;
+        sweep_part(s, (int)((long)n * t / k), (int)((long)n * (t + 1) / k), &s->sweep_part[t]);
+    }
+    for (int t = 0; t < team; t++) {
+        const rd_sweep_part *pt = &s->sweep_part[t];
+        if (pt->failed) return -1;
+        for (int h = 0; h < pt->n; h++) {
+            const rd_sweep_hit *e = &pt->hit[h];
+            if (e->p >= 0)
+                s->live[s->nlive++] = e->p;
+            else if (touch_found(s, e->a, e->b, -1))
+                return -1;
+        }
+    }
+    return 0;
+}
+#endif
+
+void rd_pairs_free(rd_sim *s)
+{
+#ifdef _OPENMP
+    for (int t = 0; s->sweep_part && t < RD_THREADS_MAX; t++) free(s->sweep_part[t].hit);
+#endif
+    free(s->sweep_part);
+    s->sweep_part = NULL;
+}
+
 int rd_pairs_update(rd_sim *s)
 {
     s->stamp++;
     int sweeping = s->nb > RD_BRUTE_MAX;
-    for (int i = 0; i < s->nb; i++) {
-        double d = box_drift(s, i); /* 0 for a body that has not moved (a fixed one) */
-        s->box_drift[i] = d;
-        if (!(d <= s->margin) || (sweeping && d > 0)) box_build(s, i);
-    }
     /* the live list can hold every pair that overlaps: at most all pairs seen so far + n^2 new */
     int maxlive = s->nb <= RD_BRUTE_MAX ? s->nb * s->nb : s->npair + 8 * s->nb;
     if (reserve((void **)&s->live, &s->cap_live, maxlive, sizeof *s->live)) return -1;
     s->nlive = 0;
-    if (s->nb <= RD_BRUTE_MAX) {
-        for (int i = 0; i < s->nb; i++)
-            for (int j = i + 1; j < s->nb; j++)
-                if (pair_live(s, i, j) && touch(s, i, j)) return -1;
-    } else if (sweep(s)) {
-        return -1;
-    }
+#ifdef _OPENMP
+    const int nt = sweeping ? rd_threads_for(s, s->nb) : 1;
+    if (nt > 1) return sweep_threaded(s, nt);
+#endif
+    for (int i = 0; i < s->nb; i++) box_update(s, i, sweeping);
+    if (sweeping) return sweep(s);
+    for (int i = 0; i < s->nb; i++)
+        for (int j = i + 1; j < s->nb; j++)
+            if (pair_live(s, i, j) && touch(s, i, j)) return -1;
     return 0;
 }
 

@@ -657,6 +657,7 @@ void rd_sim_free(rd_sim *s)
     for (int k = 0; s->watch && k < s->nfree; k++) free(s->watch[k].support);
     rd_runout_free(s);
     rd_workers_free(s);
+    rd_pairs_free(s);
     void *arrays[] = { s->poly,
                        s->x,
                        s->q,

@@ -308,6 +308,8 @@ struct rd_sim {
     int hcap;
     int *live, nlive, cap_live; /* pairs whose boxes overlap this step */
     int *live_prev, nlive_prev, cap_live_prev;
+    struct rd_sweep_part *sweep_part; /* [RD_THREADS_MAX] a threaded sweep's per-thread finds
+                                         (pairs.c), made at the first one */
 
     /* contact pairs and their per-point history (grown when two bodies first meet) */
     int npair, cap_pair;
@@ -450,6 +452,7 @@ void rd_history_step(rd_sim *s);
 /* pairs.c */
 int rd_pairs_init(rd_sim *s, rd_error *err);
 int rd_pairs_update(rd_sim *s);
+void rd_pairs_free(rd_sim *s);
 void rd_pairs_box_now(const rd_sim *s, int i, double box[6]);
 void rd_pairs_box_loose(const rd_sim *s, int i, double box[6]);
 double rd_pairs_drift(const rd_sim *s, int i, const double pose[7]);
