@@ -64,8 +64,8 @@ typedef struct rd_workers {
     int n;          /* threads */
     rd_worker *w;   /* [n] */
     rd_block *next; /* [n] */
-    int ntape;     /* n * RD_CHUNKS_PER_THREAD */
-    rd_tape *tape; /* [ntape] */
+    int ntape;      /* n * RD_CHUNKS_PER_THREAD */
+    rd_tape *tape;  /* [ntape] */
 } rd_workers;
 
 int rd_threads_of(const rd_scenario *sc)
