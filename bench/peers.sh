@@ -8,8 +8,8 @@
 # made here on the first run (BUILDDIR/peers-venv); without the network (or pip) they are skipped
 # and the table says why. YADE is Debian's (apt-get install yade); without it, skipped the same
 # way. Writes the full table to BUILDDIR/bench/peers.md, and each code's best row with the
-# sentence they support into docs/PERFORMANCE.md (between its peers markers). Environment: NO_YADE=1
-# skips YADE; README=FILE writes that file instead (README= : none).
+# sentence they support into README.md and docs/PERFORMANCE.md (between their peers markers).
+# Environment: NO_YADE=1 skips YADE; README="FILE ..." writes those files instead (README= : none).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd); root=$(dirname "$here")
 bindir=${1:-bin}; case $bindir in /*) ;; *) bindir="$PWD/$bindir" ;; esac
@@ -30,7 +30,7 @@ fi
 [ -n "$py" ] && echo "peers: $("$py" -c 'import mujoco; print("mujoco", mujoco.__version__)' 2>/dev/null)," \
     "$("$py" -m pip show pybullet 2>/dev/null | sed -n 's/^Version: /pybullet /p')"
 yade=(); [ "${NO_YADE:-0}" = 1 ] && yade=(--no-yade)
-readme=${README-$root/docs/PERFORMANCE.md}; readme_opt=(); [ -z "$readme" ] || readme_opt=(--readme "$readme")
+readme_opt=(); for f in ${README-$root/README.md $root/docs/PERFORMANCE.md}; do readme_opt+=(--readme "$f"); done
 mkdir -p "$build/bench"
 /usr/bin/python3 "$here/peers.py" --bin "$bindir/rockdem" --venv-python "$py" --skip-reason "$reason" \
     "${yade[@]}" "${readme_opt[@]}" -o "$build/bench/peers.md"
