@@ -4,7 +4,7 @@
 # clang-format (Debian clang-format, installed by tools/install-deps.sh).
 set -u
 command -v clang-format > /dev/null || { echo "SKIP: clang-format not installed"; exit 77; }
-files=$(make -s -f - print-format-files <<'MK'
+files=$(make --no-print-directory -s -f - print-format-files <<'MK'
 include Makefile
 print-format-files: ; @echo $(FORMAT_FILES)
 MK
