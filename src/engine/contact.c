@@ -702,9 +702,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     double fs[3]; /* in registers: stored once */
     face_frame *ff = c->face_law ? face_frame_at(c, e) : NULL;
     int slip;
-    /* the slip's friction energy: straight into the sum, or on a thread's view into a local
-       (0 + x is x) booked after */
-    double e_slip = 0, *e_fric = s->tape ? &e_slip : &s->e_fric;
+    double e_slip = 0, *e_fric = rd_fric_sum(s, &e_slip); /* the slip's friction energy */
     if (ff) {
         double f0[3];
         face_shear_trial(ff, s->fs[st], vr, sA, s->dt, f0, fs);
@@ -1504,6 +1502,8 @@ struct rd_plane_scratch *rd_contact_scratch(const rd_sim *s)
 void rd_contact_pair(rd_sim *s, rd_pair *pr)
 {
     double k_active = 0, nsum[3] = { 0, 0, 0 };
+    double e_pair[2] = { 0, 0 }; /* the pair's friction and damping energy this step, J */
+    s->e_pair = e_pair;
     for (int q = 0; q < pr->nside; q++) {
         side_step(s, pr, &pr->side[q], &k_active, nsum);
         /* edge subcontacts (edge.c): with two sides, this side's owner's edges against the
@@ -1513,6 +1513,9 @@ void rd_contact_pair(rd_sim *s, rd_pair *pr)
         else
             rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
     }
+    s->e_pair = NULL;
+    for (int k = 0; k < 2; k++)
+        if (e_pair[k] != 0) rd_book_energy(s, k, e_pair[k]);
     pr->k_active = k_active;
     double nn = rd_norm(nsum);
     if (nn > 0)
