@@ -9,7 +9,8 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-G0 = 9.80665  # m/s^2, standard gravity (rockdem's default `model gravity`)
+G0 = 9.80665  # m/s^2, standard gravity: the scenario unit `g` (amplitudes such as 0.6g)
+SCENE_G = 9.81  # m/s^2, the scenes' gravity when `model gravity` is not given (rockdem's default)
 
 
 def housner_r(alpha):
@@ -28,9 +29,10 @@ def restitution_from_amplitudes(alpha, th_before, th_after):
     return math.sqrt(num / den)
 
 
-def newmark_slide(mu, amp, freq, g=G0, t_end=None):
+def newmark_slide(mu, amp, freq, g, t_end=None):
     """Rigid-plastic (Newmark 1965) sliding of a block on a level base with friction
     coefficient mu under a one-sine ground pulse a_g = amp sin(2 pi f t), 0 <= t <= 1/f.
+    g is the scene's gravity (m/s^2), which sets the friction limit mu g; amp is in m/s^2.
     Returns (max |u|, final u) of the slip u relative to the base (m). Integrated exactly in
     the sense of an ODE with events (rtol 1e-11): the block sticks while |a_g| <= mu g and its
     relative velocity is 0; while sliding, u'' = -a_g - mu g sign(u')."""
@@ -99,7 +101,7 @@ def winkler_inset_first_impact(b, h, depth, mass, kn, theta0, g):
     return t1(wedge), t1(lambda th: 0.0)
 
 
-def stack_rocking_omega(blocks, kn, density, g=G0):
+def stack_rocking_omega(blocks, kn, density, g):
     """Lowest angular frequency (rad/s) of an elastic two-block stack rocking before uplift:
     blocks = [(b1, h1), (b2, h2)] half-widths and half-heights (m) of square-based bricks, lower
     first; each joint a Winkler bed of stiffness kn (Pa/m) over the smaller face, rotational

@@ -536,7 +536,7 @@ def case_stack_history(L):
             # the KN docs/CONTACT.md recommends for uplift times to 1 %: the smallest decade whose
             # elastic bound (above) is under 1 % of the rigid uplift time
             kn = 10 * KN0
-            while cf.pulse_onset_lag(cf.stack_rocking_omega(halves, kn, 2700.0), 2.0, ev_ref[0]) > 0.01 * ev_ref[0]:
+            while cf.pulse_onset_lag(cf.stack_rocking_omega(halves, kn, 2700.0, cf.SCENE_G), 2.0, ev_ref[0]) > 0.01 * ev_ref[0]:
                 kn *= 10
             if kn > 10 * KN0:
                 _, v, _ = dem(kn / KN0)
@@ -566,7 +566,7 @@ def stack_event_checks(L, label, ev_ref, v1, v2, dt, t_imp, halves):
             # onset: the DEM's uplift may lag or lead the rigid one by up to 1/(omega cos(2 pi f t))
             # (closed_forms.pulse_onset_lag, omega from the joints' stiffness and the blocks'
             # inertia), plus one step to locate the event
-            omega = cf.stack_rocking_omega(halves, 10 * KN0, 2700.0)
+            omega = cf.stack_rocking_omega(halves, 10 * KN0, 2700.0, cf.SCENE_G)
             tol = (cf.pulse_onset_lag(omega, 2.0, ev_ref[k]) + dt) / ev_ref[k]
             tol_src = "elastic rocking mode %.0f Hz: 1/(omega cos(2 pi f t)) + one DEM step" % (omega / (2 * math.pi))
         else:
@@ -659,7 +659,7 @@ output hdf5 'slide.h5' interval 0.005
 
 def case_slide(L):
     mu, A, f = math.tan(math.radians(20)), 0.6 * cf.G0, 2.0
-    umax, ufin = cf.newmark_slide(mu, A, f)
+    umax, ufin = cf.newmark_slide(mu, A, f, cf.SCENE_G)
 
     def dem(kf):
         p = L.run(L.scene("slide%g" % kf, SLIDE.format(kn=1e10 * kf, ks=1e9 * kf)), "slide%g.h5" % kf)
@@ -679,7 +679,7 @@ def case_tipping(L):
     2 s): a rigid block uplifts when k t = g tan(alpha) (t = 1 s) and its tilt then grows from
     0. Quantity: the time the tilt first passes 1e-4 rad, DEM vs the CVODE rigid reference (the
     rigid solver's uplift is the closed form to 1e-6, tests/test_reference.c)."""
-    k = cf.G0 * math.tan(ALPHA)
+    k = cf.SCENE_G * math.tan(ALPHA)
     motion = "ground-motion pulse triangle amplitude %.10g duration 4" % (2 * k)
 
     def cross(path):
@@ -975,7 +975,7 @@ def case_yade_column(L):
 def case_yade_slide(L):
     rd1, rd2, y1, y2 = yade_pair(L, "slide.dat", "slide")
     s = [R.sumval("max_slide", 0) for R in (rd1, rd2, y1, y2)]
-    umax, _ = cf.newmark_slide(math.tan(math.radians(20)), 0.6 * cf.G0, 2.0)
+    umax, _ = cf.newmark_slide(math.tan(math.radians(20)), 0.6 * cf.G0, 2.0, cf.SCENE_G)
     # Both codes approximate Newmark's rigid-plastic slide. Each may be off it by its own error:
     # YADE's distance from the closed form (measured on the stored run) and rockdem's bound from
     # a two-KN study (KN and KS x 10, step / sqrt 10); plus each code's dt/2 change.
