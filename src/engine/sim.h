@@ -357,16 +357,15 @@ struct rd_sim {
 
     /* energy bookkeeping, J */
     double e_fric, e_damp, e_work; /* accumulated friction, damping dissipation, ground work */
-    double *e_pair;     /* [2] while rd_contact_pair steps a pair: its friction and damping energy
-                       this step, summed there and added to e_fric, e_damp once per pair (a
-                       term each, where per point a thread's tape took 2 words a point); NULL
-                       elsewhere */
-    double e0;          /* total mechanical energy at the start of shaking */
-    double e_scale;     /* largest energy term seen (to normalise the residual) */
-    double resid_max;   /* max |residual| / e_scale */
-    double t_untrusted; /* s: first sample whose residual passed RD_ENERGY_TRUST
+    /* [2] while rd_contact_pair steps a pair: its friction and damping energy this step, added
+       to e_fric, e_damp once per pair; else NULL */
+    double *e_pair;
+    double e0;                 /* total mechanical energy at the start of shaking */
+    double e_scale;            /* largest energy term seen (to normalise the residual) */
+    double resid_max;          /* max |residual| / e_scale */
+    double t_untrusted;        /* s: first sample whose residual passed RD_ENERGY_TRUST
                                       (its time only where untrusted is 1) */
-    int untrusted;      /* 1: a sample's residual has passed RD_ENERGY_TRUST */
+    int untrusted;             /* 1: a sample's residual has passed RD_ENERGY_TRUST */
     double energy[RD_NENERGY]; /* last sample */
 
     /* monitoring and output */

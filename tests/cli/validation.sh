@@ -12,6 +12,11 @@ set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
 fails=0
 fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+# the closed forms' scene gravity (Newmark's friction limit mu g) is rockdem's default gravity
+g_c=$(sed -n 's/^#define RD_GRAVITY_DEFAULT \([0-9.]*\).*/\1/p' src/base/constants.h)
+/usr/bin/python3 -c "import sys; sys.path.insert(0, 'tools/validate'); import closed_forms as cf
+sys.exit(0 if cf.SCENE_G == float('$g_c') else 1)" ||
+    fail "closed_forms.SCENE_G differs from RD_GRAVITY_DEFAULT ($g_c, src/base/constants.h)"
 # --against: every row run here that the committed report has must print the same rockdem
 # value (deterministic runs), so docs/validation.md goes stale only with a FAIL here
 /usr/bin/python3 tools/validate/ladder.py --depth fast --only block,stack,slide,tipping,restitution --bin "$BIN" \

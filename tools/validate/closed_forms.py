@@ -10,7 +10,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 G0 = 9.80665  # m/s^2, standard gravity: the scenario unit `g` (amplitudes such as 0.6g)
-SCENE_G = 9.81  # m/s^2, the scenes' gravity when `model gravity` is not given (rockdem's default)
+SCENE_G = 9.81  # m/s^2, the scenes' gravity without `model gravity`: RD_GRAVITY_DEFAULT (tests/cli/validation.sh)
 
 
 def housner_r(alpha):
