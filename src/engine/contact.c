@@ -702,7 +702,7 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
     double fs[3]; /* in registers: stored once */
     face_frame *ff = c->face_law ? face_frame_at(c, e) : NULL;
     int slip;
-    double e_slip = 0, *e_fric = rd_fric_sum(s, &e_slip); /* the slip's friction energy */
+    double *e_fric = &s->e_pair[0]; /* the slip's friction energy: the pair's sum */
     if (ff) {
         double f0[3];
         face_shear_trial(ff, s->fs[st], vr, sA, s->dt, f0, fs);
@@ -711,7 +711,6 @@ RD_HOT static __attribute__((noinline)) int subcontact(rd_sim *s, side_ctx *c, c
         rd_copy3(s->fs[st], fs);
         slip = rd_law_shear(fs, u, vr, vn, sA, s->dt, lim, e_fric);
     }
-    if (e_slip != 0) rd_book_fric(s, e_slip);
     if (slip) *fl = (unsigned char)((*fl | RD_PT_SLIP) & ~RD_PT_BONDED);
     if ((*fl & (RD_PT_VIRGIN | RD_PT_IMPACT)) == (RD_PT_VIRGIN | RD_PT_IMPACT)) c->opens = 1;
     if (ff)
@@ -1514,8 +1513,9 @@ void rd_contact_pair(rd_sim *s, rd_pair *pr)
             rd_edge_side(s, pr, &pr->side[q], NULL, NULL);
     }
     s->e_pair = NULL;
-    for (int k = 0; k < 2; k++)
-        if (e_pair[k] != 0) rd_book_energy(s, k, e_pair[k]);
+    rd_sim *sim = s->tape ? s->tape->sim : s; /* on a thread's view: the simulation's totals */
+    if (e_pair[0] != 0) rd_book(s, &sim->e_fric, e_pair[0]);
+    if (e_pair[1] != 0) rd_book(s, &sim->e_damp, e_pair[1]);
     pr->k_active = k_active;
     double nn = rd_norm(nsum);
     if (nn > 0)

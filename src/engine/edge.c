@@ -455,9 +455,8 @@ static int edge_force(rd_sim *s, const rd_side *sd, const rd_joint *j, int e, co
     const int o = sd->owner, t = sd->other;
     double ro[3], rt[3], vr[3], n[3], gn = edge_point(s, sd, q, g, ro, rt, vr, n);
     double *fs = s->efs[e], fn = kA * stretch;
-    double e_slip = 0, *e_fric = rd_fric_sum(s, &e_slip); /* the slip's friction energy */
+    double *e_fric = &s->e_pair[0]; /* the slip's friction energy: the pair's sum */
     int slips = rd_law_shear(fs, n, vr, rd_dot(vr, n), sA, s->dt, fn * gn * j->tan_phi, e_fric);
-    if (e_slip != 0) rd_book_fric(s, e_slip);
     double F[3] = { -fn * g[0] + fs[0], -fn * g[1] + fs[1], -fn * g[2] + fs[2] };
     if (s->tape)
         rd_book_apply(s, F, ro, rt, o, !s->fixed[t], t);

@@ -109,25 +109,10 @@ static inline void rd_book(rd_sim *s, double *to, double v)
         *to += v;
 }
 
-/* Friction and damping energy, J: into the pair's sums while a pair is stepped (s->e_pair),
- * else into rd_sim.e_fric, e_damp of the simulation (on a thread's view: booked). */
-static inline void rd_book_energy(rd_sim *s, int which, double v)
-{
-    if (s->e_pair)
-        s->e_pair[which] += v;
-    else if (s->tape)
-        rd_tape_add(s->tape, which ? &s->tape->sim->e_damp : &s->tape->sim->e_fric, v);
-    else
-        *(which ? &s->e_damp : &s->e_fric) += v;
-}
-static inline void rd_book_fric(rd_sim *s, double v) { rd_book_energy(s, 0, v); }
-/* Where a law adds a slip's friction energy (law.h's e_fric): the pair's sum, or on a thread's
- * view outside a pair the caller's local (0 + x is x, booked after), else rd_sim.e_fric. */
-static inline double *rd_fric_sum(rd_sim *s, double *local)
-{
-    return s->e_pair ? &s->e_pair[0] : s->tape ? local : &s->e_fric;
-}
-static inline void rd_book_damp(rd_sim *s, double v) { rd_book_energy(s, 1, v); }
+/* Friction and damping energy, J, of the pair being stepped (rd_sim.e_pair: every contact and
+ * edge law runs inside rd_contact_pair, which books the two sums once per pair). */
+static inline void rd_book_fric(rd_sim *s, double v) { s->e_pair[0] += v; }
+static inline void rd_book_damp(rd_sim *s, double v) { s->e_pair[1] += v; }
 
 /* Whole-number tallies (a watch's active and slipping points): order does not matter, so a
  * view adds atomically. */
