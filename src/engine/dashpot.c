@@ -19,15 +19,65 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A new patch's dashpot is merged into one of the pair's last this many (same direction and
+ * ratio): a few directions a pair (a convex body's faces), and a bounded search where each
+ * patch has its own (terrain's faces against a rock). */
+#define RD_DASHPOT_SCAN   8
 #define RD_DASHPOT_SWEEPS 200 /* most Gauss-Seidel sweeps of a stack's solve */
 #define RD_DASHPOT_TOL                                                                             \
     1e-14 /* a sweep that moves no body's velocity by more than this
                                    fraction of its size (|v| + |w| radius) ends the solve */
 
-rd_dashpot *rd_dashpot_new(rd_dashpots *d)
+rd_dashpot *rd_dashpot_of(const rd_sim *s, rd_dashpots *d, int first, int i, int r, double c,
+                          const double u[3])
 {
+    const int a = s->fixed[i] ? -1 : i, b = s->fixed[r] ? -1 : r;
+    const int k0 = d->n - RD_DASHPOT_SCAN > first ? d->n - RD_DASHPOT_SCAN : first;
+    for (int k = k0; k < d->n; k++) {
+        rd_dashpot *e = &d->e[k];
+        if (e->a == a && e->b == b && e->c == c && e->u[0] == u[0] && e->u[1] == u[1] &&
+            e->u[2] == u[2])
+            return e;
+    }
     if (rd_grow((void **)&d->e, &d->cap, d->n + 1, sizeof *d->e)) return NULL;
-    return &d->e[d->n++];
+    rd_dashpot *e = &d->e[d->n++];
+    memset(e, 0, sizeof *e);
+    e->a = a;
+    e->b = b;
+    e->c = c;
+    rd_copy3(u, e->u);
+    /* body i: (u, 0) for 1, (0, e_l x u) for p_l; body r the negatives, its lever p + x_i - x_r */
+    double lever[3], t[3];
+    for (int k = 0; k < 3; k++) lever[k] = s->x[i][k] - s->x[r][k];
+    for (int sd = 0; sd < 2; sd++) {
+        const double sg = sd ? -1.0 : 1.0;
+        for (int p = 0; p < 3; p++) e->g[sd][0][p] = sg * u[p];
+        if (sd) {
+            rd_cross(lever, u, t);
+            for (int p = 0; p < 3; p++) e->g[sd][0][3 + p] = -t[p];
+        }
+        for (int l = 0; l < 3; l++) {
+            const double el[3] = { l == 0, l == 1, l == 2 };
+            rd_cross(el, u, t);
+            for (int p = 0; p < 3; p++) e->g[sd][1 + l][3 + p] = sg * t[p];
+        }
+    }
+    return e;
+}
+
+void rd_dashpot_add_region(rd_dashpot *e, const double m2[6], const double O[3], const double E1[3],
+                           const double E2[3])
+{
+    const double a = m2[0], sx = m2[1], sy = m2[2], sxx = m2[3], sxy = m2[4], syy = m2[5];
+    double *m = e->m;
+    m[0] += a;
+    for (int k = 0; k < 3; k++) m[1 + k] += a * O[k] + sx * E1[k] + sy * E2[k];
+    int q = 4;
+    for (int k = 0; k < 3; k++)
+        for (int l = k; l < 3; l++)
+            m[q++] += a * O[k] * O[l] + sx * (O[k] * E1[l] + E1[k] * O[l]) +
+                      sy * (O[k] * E2[l] + E2[k] * O[l]) + sxx * E1[k] * E1[l] +
+                      sxy * (E1[k] * E2[l] + E2[k] * E1[l]) + syy * E2[k] * E2[l];
 }
 
 void rd_dashpots_free(rd_dashpots *d)
@@ -43,22 +93,19 @@ void rd_dashpots_free(rd_dashpots *d)
     memset(d, 0, sizeof *d);
 }
 
-/* The moments as the symmetric 3 x 3 matrix of the basis (1, x, y). */
-static void moment_matrix(const double m[6], double M[3][3])
+/* The moments as the symmetric 4 x 4 matrix of the basis (1, p_x, p_y, p_z). */
+static void moment_matrix(const double m[RD_DASHPOT_MOMENTS], double M[4][4])
 {
-    M[0][0] = m[0];
-    M[0][1] = M[1][0] = m[1];
-    M[0][2] = M[2][0] = m[2];
-    M[1][1] = m[3];
-    M[1][2] = M[2][1] = m[4];
-    M[2][2] = m[5];
+    int q = 0;
+    for (int k = 0; k < 4; k++)
+        for (int l = k; l < 4; l++) M[k][l] = M[l][k] = m[q++];
 }
 
-/* The rates w_k = sum over the free sides of g[side][k] . xi (k: 1, x, y), m/s. */
-static void rates(const rd_dashpot *e, double (*xi)[6], double w[3])
+/* The rates w_k = sum over the free sides of g[side][k] . xi (k: 1, p_x, p_y, p_z), m/s. */
+static void rates(const rd_dashpot *e, double (*xi)[6], double w[4])
 {
     const int body[2] = { e->a, e->b };
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 4; k++) {
         w[k] = 0;
         for (int sd = 0; sd < 2; sd++)
             if (body[sd] >= 0)
@@ -150,17 +197,19 @@ static void body_system(rd_sim *s, rd_dashpots *d, int i)
     for (int q = d->first[i]; q < d->first[i + 1]; q++) {
         const rd_dashpot *e = &d->e[d->list[q]];
         const int sd = e->a == i ? 0 : 1;
-        double M[3][3], H[3][6];
+        double M[4][4], H[4][6];
         moment_matrix(e->m, M);
-        for (int k = 0; k < 3; k++)
-            for (int p = 0; p < 6; p++)
-                H[k][p] =
-                    M[k][0] * e->g[sd][0][p] + M[k][1] * e->g[sd][1][p] + M[k][2] * e->g[sd][2][p];
+        for (int k = 0; k < 4; k++)
+            for (int p = 0; p < 6; p++) {
+                H[k][p] = 0;
+                for (int l = 0; l < 4; l++) H[k][p] += M[k][l] * e->g[sd][l][p];
+            }
         for (int p = 0; p < 6; p++)
-            for (int r = 0; r < 6; r++)
-                A[6 * p + r] += 0.5 * dt * e->c *
-                                (e->g[sd][0][p] * H[0][r] + e->g[sd][1][p] * H[1][r] +
-                                 e->g[sd][2][p] * H[2][r]);
+            for (int r = 0; r < 6; r++) {
+                double gh = 0;
+                for (int k = 0; k < 4; k++) gh += e->g[sd][k][p] * H[k][r];
+                A[6 * p + r] += 0.5 * dt * e->c * gh;
+            }
     }
     chol6(A, d->chol[i]);
     chol6_solve(d->chol[i], d->rhs[i], d->xi[i]);
@@ -176,12 +225,12 @@ static double body_update(rd_sim *s, rd_dashpots *d, int i)
         const rd_dashpot *e = &d->e[d->list[q]];
         const int sd = e->a == i ? 0 : 1, o = sd ? e->a : e->b;
         if (o < 0) continue;
-        double w[3] = { 0, 0, 0 }, M[3][3];
-        for (int k = 0; k < 3; k++)
+        double w[4] = { 0, 0, 0, 0 }, M[4][4];
+        for (int k = 0; k < 4; k++)
             for (int p = 0; p < 6; p++) w[k] += e->g[1 - sd][k][p] * d->xi[o][p];
         moment_matrix(e->m, M);
-        for (int k = 0; k < 3; k++) {
-            double h = M[k][0] * w[0] + M[k][1] * w[1] + M[k][2] * w[2];
+        for (int k = 0; k < 4; k++) {
+            const double h = M[k][0] * w[0] + M[k][1] * w[1] + M[k][2] * w[2] + M[k][3] * w[3];
             for (int p = 0; p < 6; p++) b[p] -= 0.5 * s->dt * e->c * e->g[sd][k][p] * h;
         }
     }
@@ -247,16 +296,17 @@ int rd_dashpot_solve(rd_sim *s, rd_dashpots *d)
     memset(d->fd, 0, (size_t)s->nb * sizeof *d->fd);
     for (int k = 0; k < d->n; k++) { /* the generalized forces -D xi */
         const rd_dashpot *e = &d->e[k];
-        double w[3], M[3][3], h[3];
+        double w[4], M[4][4], h[4];
         rates(e, d->xi, w);
         moment_matrix(e->m, M);
-        for (int l = 0; l < 3; l++) h[l] = M[l][0] * w[0] + M[l][1] * w[1] + M[l][2] * w[2];
+        for (int l = 0; l < 4; l++)
+            h[l] = M[l][0] * w[0] + M[l][1] * w[1] + M[l][2] * w[2] + M[l][3] * w[3];
         const int body[2] = { e->a, e->b };
         for (int sd = 0; sd < 2; sd++) {
             if (body[sd] < 0) continue;
             for (int p = 0; p < 6; p++)
-                d->fd[body[sd]][p] -=
-                    e->c * (e->g[sd][0][p] * h[0] + e->g[sd][1][p] * h[1] + e->g[sd][2][p] * h[2]);
+                d->fd[body[sd]][p] -= e->c * (e->g[sd][0][p] * h[0] + e->g[sd][1][p] * h[1] +
+                                              e->g[sd][2][p] * h[2] + e->g[sd][3][p] * h[3]);
         }
     }
     for (int i = 0; i < s->nb; i++) {

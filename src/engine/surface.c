@@ -490,39 +490,8 @@ typedef struct surf_sums {
                                          force (N), shear force on the pair's second body (N),
                                          |fn|-weighted sum of the patches' centres of pressure
                                          (N m) and its weight (N) */
+    int dp0;                          /* the pair's first dashpot (S->dp) */
 } surf_sums;
-
-/* The dashpot of one patch (c_a, Pa s/m; region moments m; the plane's origin O from i's centre
- * and axes E1, E2, r's outward normal u, ground frame) into the step's implicit solve
- * (dashpot.c): u . vrel at (x, y) of the plane is (g0 + x g1 + y g2) . xi over the two bodies,
- * g0 = (u, O x u) and gk = (0, Ek x u) for i, their negatives for r with O + x_i - x_r. */
-static int patch_dashpot(rd_sim *s, int i, int r, double c_a, const rd_moments *m,
-                         const double O[3], const double E1[3], const double E2[3],
-                         const double u[3])
-{
-    rd_dashpot *e = rd_dashpot_new(&s->surf->dp);
-    if (!e) return -1;
-    e->a = s->fixed[i] ? -1 : i;
-    e->b = s->fixed[r] ? -1 : r;
-    e->c = c_a;
-    const double mm[6] = { m->a, m->sx, m->sy, m->sxx, m->sxy, m->syy };
-    memcpy(e->m, mm, sizeof mm);
-    double Or[3];
-    for (int k = 0; k < 3; k++) Or[k] = O[k] + s->x[i][k] - s->x[r][k];
-    const double *lever[2][3] = { { O, E1, E2 }, { Or, E1, E2 } };
-    for (int sd = 0; sd < 2; sd++) {
-        const double sg = sd ? -1.0 : 1.0;
-        for (int k = 0; k < 3; k++) {
-            double t[3];
-            rd_cross(lever[sd][k], u, t);
-            for (int p = 0; p < 3; p++) {
-                e->g[sd][k][p] = k == 0 ? sg * u[p] : 0.0;
-                e->g[sd][k][3 + p] = sg * t[p];
-            }
-        }
-    }
-    return 0;
-}
 
 /* The twisting lever of a patch (the integral of d |r - c| about its centroid c), found only
  * when the Coulomb test needs it: from the pieces pc[0 .. n) (the convex path), or given. */
@@ -596,10 +565,13 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     double wrel[3] = { s->w[i][0], s->w[i][1], s->w[i][2] };
     if (r_free) rd_axpy(-1.0, s->w[r], wrel);
     double rt[3];
-    if (c_a > 0) {
+    if (c_a > 0) { /* into the pair's dashpot along un (dashpot.h) */
         double un[3];
         dashpot_normal(s, i, fr, uw, un);
-        if (patch_dashpot(s, i, r, c_a, m, O, E1, E2, un)) return -1;
+        rd_dashpot *e = rd_dashpot_of(s, &S->dp, sum->dp0, i, r, c_a, un);
+        if (!e) return -1;
+        const double m2[6] = { m->a, m->sx, m->sy, m->sxx, m->sxy, m->syy };
+        rd_dashpot_add_region(e, m2, O, E1, E2);
     }
     /* the normal pressure KN d, affine, integrated over the region */
     double q[3];
@@ -974,7 +946,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
     const double c_a = (j->damping > 0 && pr->k_active > 0)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
                            : 0.0;
-    surf_sums sum = { .nact = 0 }; /* all zero */
+    surf_sums sum = { .dp0 = S->dp.n }; /* all zero but the pair's first dashpot */
     for (int kp = 0; kp < np; kp++) {
         const int P = S->ord[kp];
         const double(*fr)[3] = B->frame[P];
@@ -1421,7 +1393,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     const double c_a = (j->damping > 0 && pr->k_active > 0)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
                            : 0.0;
-    surf_sums sum = { .nact = 0 }; /* all zero */
+    surf_sums sum = { .dp0 = S->dp.n }; /* all zero but the pair's first dashpot */
     int rc = 0;
     for (int k = 0; k < npc && !rc;) {
         const int P = S->pkey[2 * ix[k]], Q = S->pkey[2 * ix[k] + 1];
