@@ -25,10 +25,10 @@
 /* The dashpot of one pair's regions along one direction: bodies a (the integration body, -1
  * when fixed) and b (the reference body, -1 when fixed), c (Pa s/m), the rate's direction u
  * (unit, ground frame), the regions' moments m (packed upper triangle of the integral of phi
- * phi^T over them, phi = (1, p_x, p_y, p_z), p from a's centre in the ground frame; m^2 .. m^4)
- * and the normal-rate basis g[body][k] (per body the six components of the generalized
- * velocity: linear, then angular), so that u . v_rel(p) = sum over the two bodies of sum_k
- * phi_k(p) g[.][k] . xi. */
+ * phi^T over them, phi = (1, p_x, p_y, p_z), p from the integration body's centre, ground
+ * frame; m^2 .. m^4) and the normal-rate basis g[body][k] (per body the six components of the
+ * generalized velocity: linear, then angular), so that u . v_rel(p) = sum over the two bodies
+ * of sum_k phi_k(p) g[.][k] . xi. */
 typedef struct rd_dashpot {
     int a, b;
     double c;
