@@ -97,15 +97,15 @@ void rd_dashpots_free(rd_dashpots *d)
 static void moment_matrix(const double m[RD_DASHPOT_MOMENTS], double M[4][4])
 {
     int q = 0;
-    for (int k = 0; k < 4; k++)
-        for (int l = k; l < 4; l++) M[k][l] = M[l][k] = m[q++];
+    for (int k = 0; k < RD_DASHPOT_BASIS; k++)
+        for (int l = k; l < RD_DASHPOT_BASIS; l++) M[k][l] = M[l][k] = m[q++];
 }
 
 /* The rates w_k = sum over the free sides of g[side][k] . xi (k: 1, p_x, p_y, p_z), m/s. */
-static void rates(const rd_dashpot *e, double (*xi)[6], double w[4])
+static void rates(const rd_dashpot *e, double (*xi)[6], double w[RD_DASHPOT_BASIS])
 {
     const int body[2] = { e->a, e->b };
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < RD_DASHPOT_BASIS; k++) {
         w[k] = 0;
         for (int sd = 0; sd < 2; sd++)
             if (body[sd] >= 0)
@@ -197,17 +197,17 @@ static void body_system(rd_sim *s, rd_dashpots *d, int i)
     for (int q = d->first[i]; q < d->first[i + 1]; q++) {
         const rd_dashpot *e = &d->e[d->list[q]];
         const int sd = e->a == i ? 0 : 1;
-        double M[4][4], H[4][6];
+        double M[RD_DASHPOT_BASIS][RD_DASHPOT_BASIS], H[RD_DASHPOT_BASIS][6];
         moment_matrix(e->m, M);
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < RD_DASHPOT_BASIS; k++)
             for (int p = 0; p < 6; p++) {
                 H[k][p] = 0;
-                for (int l = 0; l < 4; l++) H[k][p] += M[k][l] * e->g[sd][l][p];
+                for (int l = 0; l < RD_DASHPOT_BASIS; l++) H[k][p] += M[k][l] * e->g[sd][l][p];
             }
         for (int p = 0; p < 6; p++)
             for (int r = 0; r < 6; r++) {
                 double gh = 0;
-                for (int k = 0; k < 4; k++) gh += e->g[sd][k][p] * H[k][r];
+                for (int k = 0; k < RD_DASHPOT_BASIS; k++) gh += e->g[sd][k][p] * H[k][r];
                 A[6 * p + r] += 0.5 * dt * e->c * gh;
             }
     }
@@ -225,11 +225,11 @@ static double body_update(rd_sim *s, rd_dashpots *d, int i)
         const rd_dashpot *e = &d->e[d->list[q]];
         const int sd = e->a == i ? 0 : 1, o = sd ? e->a : e->b;
         if (o < 0) continue;
-        double w[4] = { 0, 0, 0, 0 }, M[4][4];
-        for (int k = 0; k < 4; k++)
+        double w[RD_DASHPOT_BASIS] = { 0, 0, 0, 0 }, M[RD_DASHPOT_BASIS][RD_DASHPOT_BASIS];
+        for (int k = 0; k < RD_DASHPOT_BASIS; k++)
             for (int p = 0; p < 6; p++) w[k] += e->g[1 - sd][k][p] * d->xi[o][p];
         moment_matrix(e->m, M);
-        for (int k = 0; k < 4; k++) {
+        for (int k = 0; k < RD_DASHPOT_BASIS; k++) {
             const double h = M[k][0] * w[0] + M[k][1] * w[1] + M[k][2] * w[2] + M[k][3] * w[3];
             for (int p = 0; p < 6; p++) b[p] -= 0.5 * s->dt * e->c * e->g[sd][k][p] * h;
         }
@@ -296,10 +296,10 @@ int rd_dashpot_solve(rd_sim *s, rd_dashpots *d)
     memset(d->fd, 0, (size_t)s->nb * sizeof *d->fd);
     for (int k = 0; k < d->n; k++) { /* the generalized forces -D xi */
         const rd_dashpot *e = &d->e[k];
-        double w[4], M[4][4], h[4];
+        double w[RD_DASHPOT_BASIS], M[RD_DASHPOT_BASIS][RD_DASHPOT_BASIS], h[RD_DASHPOT_BASIS];
         rates(e, d->xi, w);
         moment_matrix(e->m, M);
-        for (int l = 0; l < 4; l++)
+        for (int l = 0; l < RD_DASHPOT_BASIS; l++)
             h[l] = M[l][0] * w[0] + M[l][1] * w[1] + M[l][2] * w[2] + M[l][3] * w[3];
         const int body[2] = { e->a, e->b };
         for (int sd = 0; sd < 2; sd++) {
