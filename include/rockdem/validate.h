@@ -197,22 +197,36 @@ RD_API double rd_rigid_restitution(const rd_rocking_scales *s, double gravity);
 RD_API int rd_restitution_measure(const rd_scenario *sc, double theta0, rd_restitution *out,
                                   rd_error *err);
 
-/* The contact restitution (`contact property restitution e`, the impact loss of contact.c)
- * that gives the block restitution `target` in free rocking to |r - target| < RD_CAL_RTOL:
- * a scan of e = 0, 0.25, ..., 1 finds the first interval where r crosses the target (r need
- * not grow with e at a multi-point base), then secant steps inside it. Returns 0 with *e set
- * when reached; 1 when no scanned interval crosses the target (below r(e = 0) at corners the
- * impacts are already perfectly plastic: less needs sliding or dashpots; above r(e = 1) the
- * contact is elastic); 2 when one does but RD_CAL_ITER steps inside it do not reach the target
- * (r(e) too uneven there: the block slides or bounces, e.g. the `3dec` preset's KS = KN / 10).
- * Not reached, *e and *reached are the closest e and r measured. */
+/* The impact-loss parameter that gives the block restitution `target` in free rocking to
+ * |r - target| < RD_CAL_RTOL: the vertex model's contact restitution e (`contact property
+ * restitution e`, the impact loss of contact.c), or under the surface model, which has no
+ * permanent set, its joint dashpot's ratio of critical damping zeta (`model damping viscous
+ * zeta`, its impact loss; the joint's restitution is taken as 1): rd_restitution_loss_at. A scan
+ * of the grid (e = 0, 0.25, ..., 1; zeta = 0.05, 0.3, 1, 2.5, 5) finds the first interval
+ * where r crosses the target (r need not grow with e at a multi-point base; it falls with
+ * zeta), then secant steps inside it. Returns 0 with *e set when reached; 1 when no scanned
+ * interval crosses the target (below r(e = 0) at corners the impacts are already perfectly
+ * plastic: less needs sliding or dashpots; above r(e = 1) the contact is elastic; above
+ * r(zeta = 0.05) no steady loss keeps more); 2 when one does but RD_CAL_ITER steps inside it do
+ * not reach the target (r too uneven there: the block slides or bounces, e.g. the `3dec`
+ * preset's KS = KN / 10). Not reached, *e and *reached are the closest parameter and r
+ * measured. */
 RD_API int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                                     double *reached, rd_error *err);
 
-/* Intervals of the calibration's first scan over e in [0, 1]. */
+/* Intervals of the calibration's first scan (e in [0, 1], or zeta in [0.05, 5]). */
 #define RD_CAL_GRID 4
+/* 1 when the scenario's impact loss is its joint dashpot (the surface model), not the contact
+ * restitution; then the calibration varies the dashpot's ratio. */
+RD_API int rd_restitution_by_dashpot(const rd_scenario *sc);
+/* The calibration's k-th scanned loss parameter (k = 0 .. RD_CAL_GRID): e = k / RD_CAL_GRID, or
+ * the surface model's dashpot ratio. */
+RD_API double rd_restitution_loss_at(const rd_scenario *sc, int k);
+/* Set the loss parameter x on sc: its contact restitution, or (surface model) restitution 1 and
+ * `model damping viscous x`. */
+RD_API void rd_restitution_set_loss(rd_scenario *sc, double x);
 /* rd_restitution_calibrate with the scan's runs already made: grid[k] (k = 0 .. RD_CAL_GRID) is
- * the measurement of the scenario at contact restitution k / RD_CAL_GRID (a row of `rockdem
+ * the measurement of the scenario at loss parameter rd_restitution_loss_at(k) (a row of `rockdem
  * restitution`'s table), or NULL to run them. *at (may be NULL) receives the measurement at the
  * returned e, so a caller reads its speed check without running it again. */
 RD_API int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double target,

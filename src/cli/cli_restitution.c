@@ -1,7 +1,8 @@
 /* rockdem — `rockdem restitution SCENARIO [--target r] [--theta0 rad] [--set k=v]...`:
  * the DEM's effective restitution in free rocking (src/ensembles/restitution.c) for KN from
- * 1e8 to 1e11 Pa/m and contact restitution 0 .. 1, then the contact restitution that reaches
- * the target (default Housner's r = 1 - 1.5 sin^2 alpha) at the scenario's own KN.
+ * 1e8 to 1e11 Pa/m and the impact-loss parameter's grid (contact restitution 0 .. 1; under the
+ * surface model the joint dashpot's ratio 0.05 .. 5), then the value that reaches the target
+ * (default Housner's r = 1 - 1.5 sin^2 alpha) at the scenario's own KN.
  * Folder cli/ owns the rockdem program (not part of librockdem); it may call the public API and
  * ensembles/.
  */
@@ -44,7 +45,7 @@ static int restitution_option(void *ctx, int argc, char **argv, int *i)
 }
 
 /* r by amplitude decay (and, in brackets, from the speeds at equal |theta|) for KN
- * 1e8 .. 1e11 Pa/m (KS scaled with it) and contact restitution e = k / RD_CAL_GRID, the
+ * 1e8 .. 1e11 Pa/m (KS scaled with it) and the loss parameter rd_restitution_loss_at(k), the
  * calibration's scan. Returns 1 with grid[] filled when the scenario's own KN is a row (the
  * calibration then reuses it), else 0. */
 static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CAL_GRID + 1])
@@ -55,8 +56,8 @@ static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CA
     printf(
         "block restitution r (free rocking from %.4g rad, mean of the first 3 impacts; amplitude "
         "decay [speeds at equal |theta| either side])\n%-10s",
-        theta0, "KN \\ e");
-    for (int j = 0; j <= RD_CAL_GRID; j++) printf(" %15.2f", (double)j / RD_CAL_GRID);
+        theta0, rd_restitution_by_dashpot(sc) ? "KN \\ zeta" : "KN \\ e");
+    for (int j = 0; j <= RD_CAL_GRID; j++) printf(" %15.2f", rd_restitution_loss_at(sc, j));
     printf("\n");
     for (size_t i = 0; i < sizeof kn / sizeof *kn; i++) {
         int own = kn[i] == sc->contact.kn;
@@ -64,7 +65,7 @@ static int print_table(rd_scenario *sc, double theta0, rd_restitution grid[RD_CA
         for (int j = 0; j <= RD_CAL_GRID; j++) {
             copy.contact.kn = kn[i];
             copy.contact.ks = own ? sc->contact.ks : kn[i] * sc->contact.ks / sc->contact.kn;
-            copy.contact.restitution = (double)j / RD_CAL_GRID;
+            rd_restitution_set_loss(&copy, rd_restitution_loss_at(sc, j));
             rd_restitution m;
             rd_error err;
             int bad = rd_restitution_measure(&copy, theta0, &m, &err);
@@ -95,6 +96,32 @@ static void print_check(const rd_restitution *m)
             ? "the impacts are complete, agreed"
             : "DISAGREE (over 0.5 %): the block still bounces on its new pivot after each impact, "
               "losing energy later than rigid theory's instantaneous impact");
+}
+
+/* Why the calibration cannot reach its target (rc 2: r too uneven in a bracket; else r stays
+ * above it (high) or below it), for the vertex model's restitution or the dashpot's ratio. */
+static const char *unreachable_why(int rc, int high, int dashpot)
+{
+    if (rc == 2)
+        return dashpot ? "r crosses the target between two scanned ratios but is too uneven "
+                         "there to reach it to 0.002 (the block slides or bounces: see the table)"
+                       : "r(e) crosses the target between two scanned values of e but is too "
+                         "uneven there to reach it to 0.002 (the block slides or bounces on its "
+                         "new edge: see the table)";
+    if (dashpot)
+        return high ? "no dashpot ratio up to 5 loses enough; a lower r needs sliding at the "
+                      "pivot"
+                    : "no dashpot ratio down to 0.05 keeps enough: a continuous base reverses "
+                      "the block's fall on the compressed wedge under its landing edge, which "
+                      "bounds r (0.913 for h/b = 2, docs/CONTACT.md section 8.6); below 0.05 "
+                      "the block's vibration on its joint is not damped out between impacts";
+    return high ? "no restitution in [0, 1] loses enough: perfectly plastic point impacts "
+                  "already keep more than asked; a lower r needs sliding at the pivot or "
+                  "contact dashpots (model damping viscous)"
+                : "no restitution in [0, 1] keeps enough: a point that rebounds makes the block "
+                  "bounce on its new edge, and a corner impact without bouncing keeps at most "
+                  "Housner's r; more needs the impact shared with the base's interior (spacing, "
+                  "docs/CONTACT.md section 2)";
 }
 
 int rd_cli_restitution(int argc, char **argv)
@@ -134,6 +161,11 @@ int rd_cli_restitution(int argc, char **argv)
         return 2;
     }
     double theta0 = a.theta0 > 0 ? a.theta0 : 0.5 * rs.alpha;
+    const int dashpot = rd_restitution_by_dashpot(&sc);
+    if (dashpot)
+        printf("contact model surface: the impact loss is the joint's dashpot (no permanent "
+               "set): restitution 1, and the dashpot's ratio (model damping viscous) is the "
+               "calibrated parameter\n");
     double rigid = rs.housner ? rd_housner_r(rs.alpha) : rd_rigid_restitution(&rs, sc.gravity);
     double target = a.target > 0 ? a.target : rigid;
     if (!rs.housner)
@@ -162,30 +194,20 @@ int rd_cli_restitution(int argc, char **argv)
     if (rc < 0) {
         fprintf(stderr, "%s\n", err.msg);
     } else if (rc == 0) {
-        printf("calibrated: contact property restitution %.4f gives r = %.4f (target %.4f%s, "
-               "|error| < %g) at KN %.3g Pa/m\n",
-               e, reached, target,
+        printf("calibrated: %s %.4f gives r = %.4f (target %.4f%s, |error| < %g) at KN %.3g "
+               "Pa/m\n",
+               dashpot ? "model damping viscous" : "contact property restitution", e, reached,
+               target,
                a.target > 0 ? ""
                : rs.housner ? ", Housner's r"
                             : ", the rigid impact's r",
                RD_CAL_RTOL, sc.contact.kn);
         print_check(&at);
     } else {
-        const char *why =
-            rc == 2            ? "r(e) crosses the target between two scanned values of e but is "
-                                 "too uneven there to reach it to 0.002 (the block slides or "
-                                 "bounces on its new edge: see the table)"
-            : reached > target ? "no restitution in [0, 1] loses enough: perfectly plastic point "
-                                 "impacts already keep more than asked; a lower r needs sliding "
-                                 "at the pivot or contact dashpots (model damping viscous)"
-                               : "no restitution in [0, 1] keeps enough: a point that rebounds "
-                                 "makes the block bounce on its new edge, and a corner impact "
-                                 "without bouncing keeps at most Housner's r; more needs the "
-                                 "impact shared with the base's interior (spacing, "
-                                 "docs/CONTACT.md section 2)";
-        printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at "
-               "restitution %g: %s\n",
-               target, reached, e, why);
+        printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at %s %g: "
+               "%s\n",
+               target, reached, dashpot ? "dashpot ratio" : "restitution", e,
+               unreachable_why(rc, reached > target, dashpot));
     }
     rd_scenario_free(&sc);
     return rc < 0 ? 3 : rc ? 4 : 0;

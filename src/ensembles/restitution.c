@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_CAL_ITER          12 /* secant steps on e inside one bracket */
+#define RD_CAL_ITER          12 /* secant steps on the loss parameter inside one bracket */
 /* The speeds either side of impact k are averaged over the band of |theta| from RD_BAND_LO to
  * RD_BAND_HI times the smaller of the two amplitudes around it, the same band on both sides:
  * outside the impact (the compliant impact turns the block through about 1e-5 rad at KN
@@ -215,8 +215,10 @@ int rd_restitution_isolate(const rd_scenario *sc, const char *name, rd_scenario 
     }
     out->nbodies = n;
     out->nhistories = 0; /* they may name removed bodies; the measurement keeps none */
-    for (int j = 0; j < out->njoints; j++) /* the calibrated e acts on b's joint, whatever set it */
-        out->joint[j].set &= ~(unsigned)RD_JOINT_RESTITUTION;
+    /* the calibrated loss (e, or the dashpot's ratio) acts on b's joint, whatever set it */
+    const unsigned loss = rd_restitution_by_dashpot(sc) ? RD_JOINT_RESTITUTION | RD_JOINT_DAMPING
+                                                        : RD_JOINT_RESTITUTION;
+    for (int j = 0; j < out->njoints; j++) out->joint[j].set &= ~loss;
     free(keep);
     return 0;
 }
@@ -225,6 +227,34 @@ double rd_rigid_restitution(const rd_rocking_scales *s, double gravity)
 {
     double sa = sin(s->alpha);
     return 1 - 2 * s->p * s->p * s->R * sa * sa / gravity;
+}
+
+/* The surface model's scan of its dashpot ratio (validate.h): on the 0.5 x 0.5 x 1.0 m block
+ * (h/b = 2) r falls from 0.913 at 0.05 through 0.850 at 0.3, 0.780 at 1 and 0.719 at 2.5 to
+ * 0.656 at 5 (docs/CONTACT.md section 8.6), so the grid brackets every r from below Housner's
+ * (0.70) to the highest steady one; below 0.05 the block's vibration on its joint is not damped
+ * out between impacts and the ratios scatter. */
+static const double CAL_ZETA[RD_CAL_GRID + 1] = { 0.05, 0.3, 1.0, 2.5, 5.0 };
+
+int rd_restitution_by_dashpot(const rd_scenario *sc)
+{
+    return sc->contact.model == RD_CONTACT_SURFACE;
+}
+
+double rd_restitution_loss_at(const rd_scenario *sc, int k)
+{
+    return rd_restitution_by_dashpot(sc) ? CAL_ZETA[k] : (double)k / RD_CAL_GRID;
+}
+
+void rd_restitution_set_loss(rd_scenario *sc, double x)
+{
+    if (!rd_restitution_by_dashpot(sc)) {
+        sc->contact.restitution = x;
+        return;
+    }
+    sc->contact.restitution = 1; /* the surface model's joint: no permanent set */
+    sc->damping.kind = RD_DAMPING_VISCOUS;
+    sc->damping.value = x;
 }
 
 /* The free-rocking scene: no motion, the single body tilted by theta0 towards the side it tips
@@ -329,26 +359,25 @@ int rd_restitution_measure(const rd_scenario *base, double theta0, rd_restitutio
 }
 
 /* Fewer than two impacts: the block does not rock freely (an error for the calibration). */
-static int too_few(const rd_restitution *m, double e, rd_error *err)
+static int too_few(const rd_scenario *sc, const rd_restitution *m, double x, rd_error *err)
 {
     if (m->r >= 0) return 0;
-    return rd_error_set(err,
-                        "restitution: fewer than two impacts at contact restitution %g "
-                        "(the block does not rock freely)",
-                        e);
+    return rd_error_set(
+        err, "restitution: fewer than two impacts at %s %g (the block does not rock freely)",
+        rd_restitution_by_dashpot(sc) ? "dashpot ratio" : "contact restitution", x);
 }
 
-/* The measurement at contact restitution e. */
-static int measure_at(const rd_scenario *base, double theta0, double e, rd_restitution *m,
+/* The measurement at loss parameter x (rd_restitution_set_loss). */
+static int measure_at(const rd_scenario *base, double theta0, double x, rd_restitution *m,
                       rd_error *err)
 {
     rd_scenario *sc = malloc(sizeof *sc);
     if (!sc) return rd_error_set(err, "out of memory");
     *sc = *base;
-    sc->contact.restitution = e;
+    rd_restitution_set_loss(sc, x);
     int rc = rd_restitution_measure(sc, theta0, m, err);
     free(sc);
-    return rc ? rc : too_few(m, e, err);
+    return rc ? rc : too_few(base, m, x, err);
 }
 
 /* Regula falsi (Illinois variant) for r(e) = target inside a bracket [lo, hi] where r - target
@@ -396,18 +425,19 @@ int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double t
                                   rd_restitution *at, rd_error *err)
 {
     /* r(e) grows with e at corner subcontacts but need not at a multi-point base (the
-       mid-line layout of docs/CONTACT.md section 2 goes down and up again): the grid
-       e = 0, 1/RD_CAL_GRID, ..., 1 is scanned for the first interval where r crosses the
-       target, which is then refined; with none, the grid point closest to it is returned */
+       mid-line layout of docs/CONTACT.md section 2 goes down and up again), and falls with the
+       surface model's dashpot ratio: the grid (rd_restitution_loss_at) is scanned for the first
+       interval where r crosses the target, which is then refined; with none, the grid point
+       closest to it is returned */
     double eg[RD_CAL_GRID + 1], fg[RD_CAL_GRID + 1];
     rd_restitution mg[RD_CAL_GRID + 1], dummy;
     if (!at) at = &dummy;
     int best = 0;
     for (int k = 0; k <= RD_CAL_GRID; k++) {
-        eg[k] = (double)k / RD_CAL_GRID;
+        eg[k] = rd_restitution_loss_at(sc, k);
         if (grid) {
             mg[k] = grid[k];
-            if (too_few(&mg[k], eg[k], err)) return -1;
+            if (too_few(sc, &mg[k], eg[k], err)) return -1;
         } else if (measure_at(sc, theta0, eg[k], &mg[k], err)) {
             return -1;
         }
