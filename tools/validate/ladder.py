@@ -767,6 +767,17 @@ def calibration_check(L, rid, layout, scene, *patterns):
             "target", got, abs(got - 0.9), 0.002, "the calibration's target accuracy (issue 11, must-have 1)")
 
 
+def check_amplitudes(L, rid, ra, a1, a2, p, src, kns):
+    """Rows rid/amp1-3: the DEM's amplitudes after impacts 1-3 at the two KN of kns (a1, a2)
+    against the reference's ra, within the two-KN study plus the 1 ms sampling of a peak (p:
+    the block's frequency parameter, rad/s)."""
+    samp = p ** 2 * 1e-3 ** 2 / 8   # 1 ms sampling of a peak (parabola at the top)
+    for i in range(3):
+        tol = RICHARDSON * abs(a1[i] - a2[i]) / ra[i] + samp
+        L.check("%s/amp%d" % (rid, i + 1), "rocking amplitude after impact %d (rad), relative error" % (i + 1),
+                ra[i], src, a1[i], abs(a1[i] - ra[i]) / ra[i], tol, "two-KN study (%s, %s) + 1 ms sampling" % kns)
+
+
 SURFACE_OTHER_R = 0.80   # the surface model's other r (h/b = 2 block): its dashpot calibrated to it
 
 
@@ -810,11 +821,7 @@ def surface_other_r(L):
     src = "CVODE Housner at the measured r = %.4f (dashpot ratio %.4g, KN %s; %.4f at %s)" % (
         r, zeta, kns[0], rs[kfs[1]], kns[1])
     p = math.sqrt(3 * cf.SCENE_G / (4 * math.hypot(0.25, 0.5)))
-    samp = p ** 2 * 1e-3 ** 2 / 8   # 1 ms sampling of a peak (parabola at the top)
-    for i in range(3):
-        tol = RICHARDSON * abs(a1[i] - a2[i]) / ra[i] + samp
-        L.check("surface-other-r/amp%d" % (i + 1), "rocking amplitude after impact %d (rad), relative error" % (i + 1),
-                ra[i], src, a1[i], abs(a1[i] - ra[i]) / ra[i], tol, "two-KN study (%s, %s) + 1 ms sampling" % kns)
+    check_amplitudes(L, "surface-other-r", ra, a1, a2, p, src, kns)
 
 
 def case_other_restitution(L):
@@ -849,11 +856,7 @@ def case_other_restitution(L):
         kns = tuple("%.0e" % (KN0 * kf) for kf in kfs)
         src = "CVODE Housner at the layout's measured r = %.4f (KN %s; %.4f at %s; Housner's %.3f)" % (
             r, kns[0], rs[kfs[1]], kns[1], cf.housner_r(alpha))
-        samp = p ** 2 * 1e-3 ** 2 / 8   # 1 ms sampling of a peak (parabola at the top)
-        for i in range(3):
-            tol = RICHARDSON * abs(a1[i] - a2[i]) / ra[i] + samp
-            L.check("%s/amp%d" % (rid, i + 1), "rocking amplitude after impact %d (rad), relative error" % (i + 1),
-                    ra[i], src, a1[i], abs(a1[i] - ra[i]) / ra[i], tol, "two-KN study (%s, %s) + 1 ms sampling" % kns)
+        check_amplitudes(L, rid, ra, a1, a2, p, src, kns)
         if L.depth != "full":
             continue
         # the h/b 3 block also at w/p 1 and 5 (issue 11's range 1-6 for another r; the h/b 2
