@@ -141,29 +141,34 @@ static void chol6_solve(const double L[21], const double b[6], double x[6])
     }
 }
 
+int rd_dashpots_reserve(const rd_sim *s, rd_dashpots *d)
+{
+    if (s->nb <= d->cap_x) return 0;
+    void *xi = realloc(d->xi, (size_t)s->nb * sizeof *d->xi);
+    if (xi) d->xi = xi;
+    void *rhs = realloc(d->rhs, (size_t)s->nb * sizeof *d->rhs);
+    if (rhs) d->rhs = rhs;
+    void *ch = realloc(d->chol, (size_t)s->nb * sizeof *d->chol);
+    if (ch) d->chol = ch;
+    void *fd = realloc(d->fd, (size_t)s->nb * sizeof *d->fd);
+    if (fd) d->fd = fd;
+    void *fp = realloc(d->fd_prev, (size_t)s->nb * sizeof *d->fd_prev);
+    if (fp) {
+        d->fd_prev = fp;
+        memset(d->fd_prev + d->cap_x, 0, (size_t)(s->nb - d->cap_x) * sizeof *d->fd_prev);
+    }
+    if (!xi || !rhs || !ch || !fd || !fp) return -1;
+    d->cap_x = s->nb;
+    return 0;
+}
+
 /* Per body, the dashpots it takes part in (CSR; list[2 n ..) is the fill scratch). */
 static int body_lists(const rd_sim *s, rd_dashpots *d)
 {
     if (rd_grow((void **)&d->first, &d->cap_b, s->nb + 1, sizeof *d->first) ||
-        rd_grow((void **)&d->list, &d->cap_l, 2 * d->n + s->nb, sizeof *d->list))
+        rd_grow((void **)&d->list, &d->cap_l, 2 * d->n + s->nb, sizeof *d->list) ||
+        rd_dashpots_reserve(s, d))
         return -1;
-    if (s->nb > d->cap_x) {
-        void *xi = realloc(d->xi, (size_t)s->nb * sizeof *d->xi);
-        if (xi) d->xi = xi;
-        void *rhs = realloc(d->rhs, (size_t)s->nb * sizeof *d->rhs);
-        if (rhs) d->rhs = rhs;
-        void *ch = realloc(d->chol, (size_t)s->nb * sizeof *d->chol);
-        if (ch) d->chol = ch;
-        void *fd = realloc(d->fd, (size_t)s->nb * sizeof *d->fd);
-        if (fd) d->fd = fd;
-        void *fp = realloc(d->fd_prev, (size_t)s->nb * sizeof *d->fd_prev);
-        if (fp) {
-            d->fd_prev = fp;
-            memset(d->fd_prev + d->cap_x, 0, (size_t)(s->nb - d->cap_x) * sizeof *d->fd_prev);
-        }
-        if (!xi || !rhs || !ch || !fd || !fp) return -1;
-        d->cap_x = s->nb;
-    }
     memset(d->first, 0, (size_t)(s->nb + 1) * sizeof *d->first);
     for (int k = 0; k < d->n; k++) {
         if (d->e[k].a >= 0) d->first[d->e[k].a + 1]++;

@@ -72,6 +72,9 @@ void rd_dashpot_add_region(rd_dashpot *e, const double m2[6], const double O[3],
  * the list. Returns 0, -1 when out of memory. */
 int rd_dashpot_solve(rd_sim *s, rd_dashpots *d);
 
+/* Room for the per-body arrays of every body (last step's forces zeroed where new). 0 or -1. */
+int rd_dashpots_reserve(const rd_sim *s, rd_dashpots *d);
+
 void rd_dashpots_free(rd_dashpots *d);
 
 #endif

@@ -6,7 +6,8 @@
  * phase (boxes, sweep order, step stamp, pair hash map, the pairs live at the last step), every
  * contact pair with its per-subcontact history (shear forces, state bits, normal force and gap)
  * and the joint table, the settle stage's figures and events, and each free body's contact area
- * at rest (the monitor's reference for uplift). Arrays are listed as they are in memory
+ * at rest (the monitor's reference for uplift); under `contact model surface` its patches
+ * (surface_state.c). Arrays are listed as they are in memory
  * (doubles bit for bit, pairs and joints as raw records whose sizes the header carries), so a
  * restored run continues exactly as the uninterrupted one would: tests/cli/checkpoint.sh
  * compares the final states of both for equality.
@@ -41,6 +42,7 @@ void rd_state_capture(rd_sim *s, long h[RD_STATE_HEADER], double settle[2])
                                       (long)sizeof(rd_event),
                                       s->nedge_state };
     memcpy(h, v, sizeof v);
+    rd_surface_state_capture(s, h);
     settle[0] = s->settle_time;
     settle[1] = s->settle_ratio;
     for (int k = 0; k < s->nfree; k++) s->rest_area[k] = s->watch[k].area;
@@ -80,7 +82,7 @@ int rd_state_arrays(rd_sim *s, rd_state_array a[RD_STATE_ARRAYS])
     a[n++] =
         (rd_state_array){ "state/edge_depth", RD_STATE_DOUBLE, s->edepth, 3L * s->nedge_state };
     a[n++] = (rd_state_array){ "state/edge_bearing", RD_STATE_BYTE, s->eon, s->nedge_state };
-    return n;
+    return rd_surface_state_arrays(s, a, n);
 }
 
 /* Do the k values at a and b agree to RD_STATE_BUILD_RTOL of scale? */
@@ -190,6 +192,8 @@ const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER],
         h[RD_STATE_H_JOINT_SIZE] != (long)sizeof(rd_joint) ||
         h[RD_STATE_H_EVENT_SIZE] != (long)sizeof(rd_event))
         return "written by another rockdem build (checkpoint layout differs)";
+    const char *model = rd_surface_state_mismatch(s, h, buf, n);
+    if (model) return model;
     if (h[RD_STATE_H_NB] != s->nb || !names || !there) {
         snprintf(buf, n, "it holds %ld blocks, this scenario %d", h[RD_STATE_H_NB], s->nb);
         return buf;
@@ -249,7 +253,7 @@ int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER])
     s->nedge_state = s->cap_efs = s->cap_edepth = s->cap_eon = (int)h[RD_STATE_H_NEDGE];
     s->stamp = h[RD_STATE_H_STAMP];
     s->sweep_axis = (int)h[RD_STATE_H_AXIS];
-    return 0;
+    return rd_surface_state_reserve(s, h);
 }
 
 void rd_state_restored(rd_sim *s, const double settle[2])

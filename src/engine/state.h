@@ -13,8 +13,8 @@
 #include <stddef.h>
 
 #define RD_STATE_VERSION                                                                           \
-    7 /* bump when the image's arrays or their meaning change (7: entrance faces as int) */
-#define RD_STATE_ARRAYS 32 /* room for the arrays of an image */
+    8 /* bump when the image's arrays or their meaning change (8: the surface model's patches) */
+#define RD_STATE_ARRAYS 40 /* room for the arrays of an image */
 #define RD_STATE_BUILD_RTOL                                                                        \
     1e-9 /* a restored block's shape, mass and fixed pose must be the saved
                                     one's to this relative tolerance (round-off, not a change) */
@@ -35,8 +35,12 @@ typedef struct rd_state_array {
 
 /* The image's sizes and figures, in this order (stored as one array of longs): version, nb,
  * npts, npair, njoint, nstate, nface_state, hcap, nlive_prev, nevent, stamp, sweep_axis, and
- * the record sizes of rd_pair, rd_joint, rd_event (a checkpoint is tied to the build), and the
- * edge subcontacts' count (edge.c). */
+ * the record sizes of rd_pair, rd_joint, rd_event (a checkpoint is tied to the build), the
+ * edge subcontacts' count (edge.c), then the contact model (0 vertex, 1 surface) and the
+ * surface model's sizes and figures (surface_state.c; 0 under the vertex model): patches,
+ * their hash map's capacity, patches loaded at the last step, the mesh pairs' face-pair table
+ * capacity and entries, pairs measured, surface steps, the last front plane, the patch record's
+ * size, bodies with a dashpot force kept and whether a dashpot acted at the last step. */
 enum {
     RD_STATE_H_VERSION,
     RD_STATE_H_NB,
@@ -54,11 +58,24 @@ enum {
     RD_STATE_H_JOINT_SIZE,
     RD_STATE_H_EVENT_SIZE,
     RD_STATE_H_NEDGE,
+    RD_STATE_H_MODEL,
+    RD_STATE_H_NPATCH,
+    RD_STATE_H_PATCH_HCAP,
+    RD_STATE_H_NON,
+    RD_STATE_H_FCAP,
+    RD_STATE_H_NFK,
+    RD_STATE_H_NMEAS,
+    RD_STATE_H_SURF_STAMP,
+    RD_STATE_H_FRONT,
+    RD_STATE_H_PATCH_SIZE,
+    RD_STATE_H_DP_N,
+    RD_STATE_H_DP_ACTED,
     RD_STATE_HEADER
 };
 #define RD_STATE_HEADER_NAMES                                                                      \
     "version,nb,npts,npair,njoint,nstate,nface_state,hcap,nlive,nevent,"                           \
-    "stamp,sweep_axis,pair_size,joint_size,event_size,nedge"
+    "stamp,sweep_axis,pair_size,joint_size,event_size,nedge,model,npatch,patch_hcap,non,"          \
+    "face_cap,nface_pair,nmeasure,surface_stamp,front,patch_size,dashpot_bodies,dashpot_acted"
 
 /* sim.c: the simulation built from a scenario (rd_sim_create without the checkpoint) */
 rd_sim *rd_sim_build(const rd_scenario *sc, rd_error *err);
@@ -105,5 +122,16 @@ const char *rd_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER],
 int rd_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER]);
 /* The arrays are read: the run starts from them instead of settling. */
 void rd_state_restored(rd_sim *s, const double settle[2]);
+
+/* surface_state.c: the surface model's part of the image (nothing under the vertex model).
+ * Its header entries (RD_STATE_H_MODEL on; 0 under the vertex model). */
+void rd_surface_state_capture(const rd_sim *s, long h[RD_STATE_HEADER]);
+/* Its arrays appended at a[n ..): the count after them. */
+int rd_surface_state_arrays(rd_sim *s, rd_state_array *a, int n);
+/* Does the image's model fit this simulation's? NULL, or the difference (in buf). */
+const char *rd_surface_state_mismatch(const rd_sim *s, const long h[RD_STATE_HEADER], char *buf,
+                                      size_t n);
+/* Its arrays sized for the image of header h. 0 or -1. */
+int rd_surface_state_reserve(rd_sim *s, const long h[RD_STATE_HEADER]);
 
 #endif
