@@ -54,6 +54,10 @@
 /* A bound on an affine function over a box taken as negative only below minus this fraction of
  * its terms' size: far beyond round-off, so a rejection never drops a piece the clip keeps. */
 #define RD_SURF_ROUNDOFF  1e-12
+/* keep_planes leaves a plane of r out only when it is behind the nearest one by more than this
+ * fraction of the scene's size (the bodies' radii and distances): a thousand times the
+ * round-off margin of box_bounds, so its per-plane tests would have left it out too. */
+#define RD_SURF_KEEP      1e-9
 
 static uint64_t state_key(int pair, int plane, int face)
 {
@@ -243,6 +247,28 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
                     bx[c + 2] = rd_max(bx[c + 2], B->f2[q][c]);
                 }
     }
+    B->rect = malloc((size_t)(B->nplane > 0 ? B->nplane : 1) * sizeof *B->rect);
+    if (!B->rect) {
+        free(fill);
+        rd_error_set(err, "out of memory");
+        return -1;
+    }
+    for (int k = 0; k < B->nplane; k++) { /* the corners o + x e1 + y e2 of the box, body frame */
+        const double *bx = B->box[k], (*fr)[3] = B->frame[k];
+        double *b = B->rect[k];
+        for (int c = 0; c < 3; c++) {
+            b[c] = DBL_MAX;
+            b[c + 3] = -DBL_MAX;
+        }
+        for (int q = 0; q < 4; q++) {
+            const double x = bx[q & 1 ? 2 : 0], y = bx[q & 2 ? 3 : 1];
+            for (int c = 0; c < 3; c++) {
+                const double v = fr[0][c] + x * fr[1][c] + y * fr[2][c];
+                b[c] = rd_min(b[c], v);
+                b[c + 3] = rd_max(b[c + 3], v);
+            }
+        }
+    }
     free(fill);
     B->plane_of = plane_of;
     if (plane_cells(P, B)) {
@@ -318,7 +344,8 @@ int rd_surface_init(rd_sim *s, rd_error *err)
     S->uw = malloc((size_t)S->cap_pl * sizeof *S->uw);
     S->dep = malloc((size_t)S->cap_pl * sizeof *S->dep);
     S->hcut = malloc((size_t)S->cap_pl * sizeof *S->hcut);
-    if (!S->uw || !S->dep || !S->hcut) {
+    S->keep = malloc((size_t)S->cap_pl * sizeof *S->keep);
+    if (!S->uw || !S->dep || !S->hcut || !S->keep) {
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -364,6 +391,7 @@ void rd_surface_free(rd_sim *s)
         free(B->f2_0);
         free(B->f2);
         free(B->box);
+        free(B->rect);
         free(B->plane_of);
         free(B->plane_c0);
         free(B->c2_0);
@@ -382,6 +410,7 @@ void rd_surface_free(rd_sim *s)
     free(S->uw);
     free(S->dep);
     free(S->hcut);
+    free(S->keep);
     free(S->tsc.slot);
     free(S->tsc.count);
     free(S->tsc.ends);
@@ -585,13 +614,15 @@ static void box_bounds(const double c[3], const double bx[4], double *lo, double
  * and step, so a plane that does not reach r costs one pass, and each face g then clips only
  * what is inside. A cell whose every vertex lies deeper than cap below the nearest plane is
  * left out (a mesh's far side). Returns the count, -1 when out of memory. */
-static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap)
+static int plane_inside(rd_sim *s, const surf_body *B, int P, double cap)
 {
     struct rd_surface *S = s->surf;
     const double *bx = B->box[P];
+    const int nk = S->nkeep, *keep = S->keep;
     int ncut = 0, *cut_by = S->hcut; /* the planes of r that may cut a cell */
     double least_hi = DBL_MAX, least_tol = 0;
-    for (int h = 0; h < nr; h++) { /* the whole plane in front of one plane of r: outside it */
+    for (int kh = 0; kh < nk; kh++) { /* the whole plane in front of one plane of r: outside */
+        const int h = keep[kh];
         double lo, hi, tol;
         box_bounds(S->dep[h], bx, &lo, &hi, &tol);
         if (hi <= 0) {
@@ -622,9 +653,10 @@ static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap
             -DBL_MAX; /* the least, over the cell's vertices, of their nearest-plane depth */
         for (int k = 0; k < nv && far_test; k++) {
             double dmin = DBL_MAX;
-            for (int h = 0; h < nr; h++)
-                dmin =
-                    rd_min(dmin, S->dep[h][0] + S->dep[h][1] * v2[k][0] + S->dep[h][2] * v2[k][1]);
+            for (int kh = 0; kh < nk; kh++) {
+                const double *dh = S->dep[keep[kh]];
+                dmin = rd_min(dmin, dh[0] + dh[1] * v2[k][0] + dh[2] * v2[k][1]);
+            }
             deep = k ? rd_min(deep, dmin) : dmin;
         }
         if (deep > cap) continue;
@@ -655,11 +687,12 @@ static int plane_inside(rd_sim *s, const surf_body *B, int P, int nr, double cap
  * for some other face h the affine d_h - d_g is negative all over the box (every piece would
  * clip to nothing). Otherwise the faces h whose d_h - d_g may be negative somewhere in the box
  * (those that may cut a piece) into S->hcut; returns their count + 1, 0 when g cannot be. */
-static int nearest_possible(struct rd_surface *S, int g, int nr)
+static int nearest_possible(struct rd_surface *S, int g)
 {
     const double *dg = S->dep[g];
     int n = 0;
-    for (int h = 0; h < nr; h++) {
+    for (int kh = 0; kh < S->nkeep; kh++) {
+        const int h = S->keep[kh];
         if (h == g) continue;
         const double *dh = S->dep[h];
         const double c[3] = { dh[0] - dg[0], dh[1] - dg[1], dh[2] - dg[2] };
@@ -831,8 +864,49 @@ static int plane_lead(const surf_body *B, int g)
     return B->plane_face[B->plane_f0[B->plane_of[g]]];
 }
 
+/* The planes of r that may cut or be nearest anywhere on the np near planes of i (S->ord) into
+ * S->keep, in their order: over the box U that holds the near planes' coordinate boxes (body
+ * i's frame, surf_body.rect) each plane h of r has depth bounds lo_h .. hi_h; with H the least
+ * hi_h, a plane with lo_h above H and above 0 (by RD_SURF_KEEP of the scene's size) is behind
+ * the plane that gives H, and behind r's surface, at every point of U: it cuts no cell and is
+ * never the nearest plane, so every test of plane_inside, nearest_possible and nearest_pieces
+ * decides the same without it (a rock on a pedestal's top: its sides and bottom). */
+static void keep_planes(rd_sim *s, int i, int r, int np)
+{
+    struct rd_surface *S = s->surf;
+    const surf_body *B = &S->body[i];
+    const int nr = s->poly[r].nf;
+    double lo[3] = { DBL_MAX, DBL_MAX, DBL_MAX }, hi[3] = { -DBL_MAX, -DBL_MAX, -DBL_MAX };
+    for (int kp = 0; kp < np; kp++) {
+        const double *b = B->rect[S->ord[kp]];
+        for (int c = 0; c < 3; c++) {
+            lo[c] = rd_min(lo[c], b[c]);
+            hi[c] = rd_max(hi[c], b[c + 3]);
+        }
+    }
+    double mid[3], half[3];
+    for (int c = 0; c < 3; c++) {
+        mid[c] = 0.5 * (lo[c] + hi[c]);
+        half[c] = 0.5 * (hi[c] - lo[c]);
+    }
+    double least = DBL_MAX, size = s->poly[i].radius + s->poly[r].radius + rd_norm(mid);
+    for (int h = 0; h < nr; h++) { /* d_h(p) = pl[3] - u . p over U: centre -+ spread */
+        const double *pl = S->pl[h];
+        const double dc = pl[3] - rd_dot(pl, mid);
+        const double w = fabs(pl[0]) * half[0] + fabs(pl[1]) * half[1] + fabs(pl[2]) * half[2];
+        S->dep[h][0] = dc - w; /* scratch: lo_h (plane_depth overwrites it) */
+        least = rd_min(least, dc + w);
+        size = rd_max(size, fabs(pl[3]));
+    }
+    const double m = RD_SURF_KEEP * size;
+    S->nkeep = 0;
+    for (int h = 0; h < nr; h++)
+        if (!(S->dep[h][0] > least + m && S->dep[h][0] > m)) S->keep[S->nkeep++] = h;
+}
+
 /* Every patch of live pair number pair whose body r is convex (section 8.1): the planes of i
- * near r (near_planes) against every plane of r by the nearest-plane clip. */
+ * near r (near_planes) against the planes of r that may reach them (keep_planes) by the
+ * nearest-plane clip. */
 static int pair_convex(rd_sim *s, int pair, int i, int r)
 {
     struct rd_surface *S = s->surf;
@@ -861,6 +935,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
         rd_mat_tvec(s->R[i], uw, pl);
         pl[3] = dw - rd_dot(uw, s->x[i]);
     }
+    keep_planes(s, i, r, np);
     const double cap = RD_SURF_DEPTH_CAP * rd_min(Pr->radius, s->poly[i].radius);
     const double c_a = (j->damping > 0 && pr->k_active > 0)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)
@@ -871,13 +946,16 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
         const double(*fr)[3] = B->frame[P];
         /* the plane of r that put the last plane wholly in front usually does it again: one
            depth and one box test reject most candidates (plane_inside's own first test) */
-        if (in_front(S, B, P, S->front < nr ? S->front : 0)) continue;
-        for (int h = 0; h < nr; h++) plane_depth(S, fr, h);
-        const int nin = plane_inside(s, B, P, nr, cap);
+        const int f0 = S->front < nr ? S->front : 0;
+        if (in_front(S, B, P, f0)) continue;
+        for (int kh = 0; kh < S->nkeep; kh++) /* (in_front found f0's) */
+            if (S->keep[kh] != f0) plane_depth(S, fr, S->keep[kh]);
+        const int nin = plane_inside(s, B, P, cap);
         if (nin < 0) return -1;
-        for (int g = 0; g < nr && nin > 0; g++) {
+        for (int kg = 0; kg < S->nkeep && nin > 0; kg++) {
+            const int g = S->keep[kg];
             if (plane_lead(Br, g) != g) continue; /* its plane's patch is its lead's */
-            const int nh = nearest_possible(S, g, nr) - 1;
+            const int nh = nearest_possible(S, g) - 1;
             if (nh < 0) continue;
             rd_moments m;
             int n = nearest_pieces(S, nin, g, nh, &m);

@@ -23,6 +23,8 @@ typedef struct surf_body {
     double (*box)[4];      /* per plane: the bounding box of its faces in its coordinates, m (x
                                min, y min, x max, y max): an affine depth's bounds over the plane
                                are at its corners */
+    double (*rect)[6];     /* per plane: the body-frame box (x, y, z min, then max; m) of the
+                               corners of its coordinate box (keep_planes) */
     int *plane_of;         /* [nf] the plane of each face */
     int *plane_c0;         /* [nplane + 1] first cell of each plane (the convex path) */
     int *c2_0;             /* [ncell + 1] first vertex of cell c in c2 */
@@ -63,6 +65,7 @@ struct rd_surface {
     double (*uw)[3];  /* scratch: r's outward normals, ground frame */
     double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
     int *hcut;        /* scratch: the planes of r that may cut a piece */
+    int *keep, nkeep; /* scratch: the planes of r that may reach this pair (keep_planes) */
     int front;        /* the plane of r that last put a whole plane in front of it */
     int cap_pl;
     rd_patch_scratch tsc;   /* scratch of rd_patch_torsion_set */

@@ -13,7 +13,7 @@
 #  - measuring never changes a result: the block under a 0.5 g 2 Hz one-sine with its dashpot
 #    (zeta 0.3), with and without every joint, body and energy history, writes the same
 #    /summary to the bit.
-#  - `model save` is refused with one line (a checkpoint holds the vertex subcontacts' state).
+# (Checkpoints of the patches: tests/cli/checkpoint_surface.sh.)
 set -u
 . "$(dirname "$0")/lib/check.sh"
 BIN=$(cd "$(dirname "${RD_BIN:-bin/rockdem}")" && pwd)/rockdem; T=${RD_TMP:-$(mktemp -d)}/surface_measures; rm -rf "$T"; mkdir -p "$T"
@@ -35,7 +35,6 @@ scene rest.dat "model solve time 0.2" "history interval 0.01" \
 scene shake.dat "ground-motion pulse one-sine amplitude 0.5g frequency 2 direction 0" "model solve time 2"
 scene shake_h.dat "ground-motion pulse one-sine amplitude 0.5g frequency 2 direction 0" "model solve time 2" \
     "history interval 0.001" "history joint 'base' 'b' all" "history body 'b' all" "history energy"
-scene save.dat "model solve time 0.2" "model save 'c.h5'"
 cd "$T" || exit 1
 fail=0
 for f in rest shake shake_h; do "$BIN" run "$f.dat" -q > "$f.out" 2>&1 || { echo "FAIL run $f: $(tail -1 "$f.out")"; exit 1; }; done
@@ -63,8 +62,4 @@ ok = ok and all(np.array_equal(a.attrs[k], b.attrs[k]) for k in a.attrs if 'wall
 print(int(ok))")
 echo "CHECK /summary with and without histories: identical $same"
 verdict "/summary unchanged by histories" "$same" "$same" 1 strict || fail=1
-if "$BIN" run save.dat -q > save.out 2>&1; then echo "FAIL model save ran with the surface model"; fail=1
-elif ! grep -q "contact model surface: 'model save' is not supported" save.out || [ "$(wc -l < save.out)" -ne 1 ]; then
-    echo "FAIL model save refusal: $(cat save.out)"; fail=1
-else echo "CHECK model save refused: $(cat save.out)"; fi
 exit $fail
