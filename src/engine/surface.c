@@ -58,6 +58,9 @@
  * fraction of the scene's size (the bodies' radii and distances): a thousand times the
  * round-off margin of box_bounds, so its per-plane tests would have left it out too. */
 #define RD_SURF_KEEP      1e-9
+/* The skin of a pair's kept near planes, in contact bands (near_planes): a seated rock's planes
+ * are found once, a rocking one's every few steps. */
+#define RD_SURF_SKIN      1.0
 
 static uint64_t state_key(int pair, int plane, int face)
 {
@@ -293,6 +296,13 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     if (!bad) bad = rd_bvh_build(&B->tree, nf, (const double(*)[3])lo, (const double(*)[3])hi);
     free(lo);
     free(hi);
+    B->plane_key = bad ? NULL : malloc((size_t)(B->nplane > 0 ? B->nplane : 1) * sizeof(int));
+    bad = bad || !B->plane_key;
+    for (int k = 0; !bad && k < B->nplane; k++) B->plane_key[k] = nf;
+    for (int q = 0; !bad && q < nf; q++) { /* its first face in the tree's item order */
+        int *key = &B->plane_key[B->plane_of[B->tree.item[q]]];
+        if (q < *key) *key = q;
+    }
     if (bad) {
         rd_error_set(err, "out of memory");
         return -1;
@@ -397,6 +407,7 @@ void rd_surface_free(rd_sim *s)
         free(B->c2_0);
         free(B->c2);
         free(B->seen);
+        free(B->plane_key);
         rd_bvh_free(&B->tree);
     }
     free(S->body);
@@ -411,6 +422,8 @@ void rd_surface_free(rd_sim *s)
     free(S->dep);
     free(S->hcut);
     free(S->keep);
+    for (int k = 0; k < S->cap_near; k++) free(S->near[k].plane);
+    free(S->near);
     free(S->tsc.slot);
     free(S->tsc.count);
     free(S->tsc.ends);
@@ -806,10 +819,33 @@ static int pair_finish(rd_sim *s, int pair, rd_pair *pr, int i, int r, const sur
     return measure_store(s, pair, sum);
 }
 
-/* The planes of body i (its tree) that may reach into body r: those with a face whose box,
- * carried into r's frame, meets r's box there grown by margin (m); into S->ord. Returns the
- * count, -1 when out of memory. */
-static int near_planes(rd_sim *s, int i, int r, double margin)
+/* How far, at most, any node box of i's tree (carried into r's frame as the box around its
+ * turned box: rd_bvh_query_carried) has moved between the poses (rot0, tr0) and (rot, tr): each
+ * box's centre c and half-widths h move by at most |d tr| + |d rot| (|c| + |h|) per axis (|d
+ * rot| the Frobenius norm, above the spectral one), and |c| + |h| <= 2 rc, rc the farthest
+ * corner of the root box from i's centre. m. */
+static double carried_shift(const rd_bvh *t, const double rot0[9], const double tr0[3],
+                            const double rot[9], const double tr[3])
+{
+    double dr = 0, dt = 0, rc = 0;
+    for (int k = 0; k < 9; k++) dr += (rot[k] - rot0[k]) * (rot[k] - rot0[k]);
+    for (int k = 0; k < 3; k++) {
+        dt += (tr[k] - tr0[k]) * (tr[k] - tr0[k]);
+        const double c = rd_max(fabs(t->lo[0][k]), fabs(t->hi[0][k]));
+        rc += c * c;
+    }
+    return sqrt(dt) + 2 * sqrt(dr) * sqrt(rc);
+}
+
+/* The planes of body i (its tree) that may reach into body r (pair number pair): those with a
+ * face whose box, carried into r's frame, meets r's box there grown by margin (m); into S->ord,
+ * in the order of their first face in the tree (surf_body.plane_key). The tree is queried with
+ * margin + RD_SURF_SKIN margin and the list kept with the pose (Verlet's skin): while no box has
+ * moved by more than the skin since (carried_shift), every plane the query with margin would
+ * find is in the kept list, and the others find no patch (no point of theirs lies within
+ * margin of r's box), so the patches, in their order, are the same. Returns the count, -1 when
+ * out of memory. */
+static int near_planes(rd_sim *s, int pair, int i, int r, double margin)
 {
     struct rd_surface *S = s->surf;
     surf_body *B = &S->body[i];
@@ -817,8 +853,20 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
     if (tr_r->nnode == 0) return 0;
     double rot[9], tr[3];
     rel_pose(s, r, i, rot, tr);
+    if (pair >= S->cap_near) {
+        const int old = S->cap_near;
+        if (rd_grow((void **)&S->near, &S->cap_near, pair + 1, sizeof *S->near)) return -1;
+        memset(S->near + old, 0, (size_t)(S->cap_near - old) * sizeof *S->near);
+    }
+    surf_near *kn = &S->near[pair];
+    const double skin = RD_SURF_SKIN * margin;
+    if (kn->valid && carried_shift(&B->tree, kn->rot, kn->tr, rot, tr) <= skin) {
+        if (rd_grow((void **)&S->ord, &S->cap_ord, kn->n, sizeof *S->ord)) return -1;
+        memcpy(S->ord, kn->plane, (size_t)kn->n * sizeof *S->ord);
+        return kn->n;
+    }
     S->cand.n = 0;
-    if (rd_bvh_query_carried(&B->tree, rot, tr, tr_r->lo[0], tr_r->hi[0], margin, &S->cand))
+    if (rd_bvh_query_carried(&B->tree, rot, tr, tr_r->lo[0], tr_r->hi[0], margin + skin, &S->cand))
         return -1;
     if (++S->seen_stamp == 0) { /* the stamp wrapped: start the marks again */
         for (int b = 0; b < s->nb; b++)
@@ -831,9 +879,18 @@ static int near_planes(rd_sim *s, int i, int r, double margin)
         const int P = B->plane_of[S->cand.ab[k][0]];
         if (B->seen[P] == S->seen_stamp) continue;
         B->seen[P] = S->seen_stamp;
-        S->ord[n++] = P;
+        int k1 = n++; /* insertion by key: the faces come in tree order, so planes seldom move */
+        for (; k1 > 0 && B->plane_key[S->ord[k1 - 1]] > B->plane_key[P]; k1--)
+            S->ord[k1] = S->ord[k1 - 1];
+        S->ord[k1] = P;
     }
-    return n; /* in the tree's order: the same every step for the same overlap */
+    if (rd_grow((void **)&kn->plane, &kn->cap, n, sizeof *kn->plane)) return -1;
+    memcpy(kn->plane, S->ord, (size_t)n * sizeof *kn->plane);
+    memcpy(kn->rot, rot, sizeof kn->rot);
+    memcpy(kn->tr, tr, sizeof kn->tr);
+    kn->n = n;
+    kn->valid = 1;
+    return n;
 }
 
 /* The depth below plane h of r over plane frame fr, affine in its coordinates, into S->dep[h]. */
@@ -916,7 +973,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
     const rd_joint *j = &s->joint[pr->joint];
     const int nr = Pr->nf;
     const double band = RD_CONTACT_BAND * rd_min(Pr->radius, s->poly[i].radius);
-    const int np = near_planes(s, i, r, band);
+    const int np = near_planes(s, pair, i, r, band);
     if (np <= 0) {
         pr->k_active = 0;
         return np;

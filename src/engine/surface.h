@@ -32,7 +32,15 @@ typedef struct surf_body {
                                (rd_patch_cells), its coordinates, counter-clockwise */
     rd_bvh tree;           /* the faces' boxes, body frame (contact/bvh.c) */
     int *seen;             /* [nplane] stamp: plane taken this step (the convex path) */
+    int *plane_key;        /* [nplane] the tree position of its first face (near_planes' order) */
 } surf_body;
+
+/* A pair's planes near the other body, kept with the pose they were found at (near_planes). */
+typedef struct surf_near {
+    double rot[9], tr[3]; /* i's frame into r's then */
+    int *plane, n, cap;
+    int valid;
+} surf_near;
 
 /* The state of one patch, keyed by (pair, plane of the integration body, face of r). */
 typedef struct surf_state {
@@ -66,7 +74,9 @@ struct rd_surface {
     double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
     int *hcut;        /* scratch: the planes of r that may cut a piece */
     int *keep, nkeep; /* scratch: the planes of r that may reach this pair (keep_planes) */
-    int front;        /* the plane of r that last put a whole plane in front of it */
+    surf_near *near;  /* per pair (the convex path), its kept near planes */
+    int cap_near;
+    int front; /* the plane of r that last put a whole plane in front of it */
     int cap_pl;
     rd_patch_scratch tsc;   /* scratch of rd_patch_torsion_set */
     rd_bvh_pairs cand;      /* scratch: candidate faces, or face pairs, from the trees */
