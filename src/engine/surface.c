@@ -719,12 +719,29 @@ static int nearest_possible(struct rd_surface *S, int g)
 
 /* The parts of the inside pieces S->ins[0 .. nin) where face g of r is the nearest plane (d_h -
  * d_g >= 0 for the nh faces h of S->hcut, the others hold it over the pieces' box): into
- * S->comp, their moments summed into *m. Returns the piece count, -1 when out of memory. */
-static int nearest_pieces(struct rd_surface *S, int nin, int g, int nh, rd_moments *m)
+ * S->comp (*pc), their moments summed into *m. When no face cuts (nh = 0) and every inside
+ * piece has an area, they are the inside pieces themselves (*pc = S->ins, nothing copied).
+ * Returns the piece count, -1 when out of memory. */
+static int nearest_pieces(struct rd_surface *S, int nin, int g, int nh, rd_moments *m,
+                          const rd_poly2 **pc)
 {
     const double *dg = S->dep[g];
     int n = 0;
     *m = (rd_moments){ 0, 0, 0, 0, 0, 0 };
+    if (nh == 0) {
+        for (; n < nin; n++) {
+            rd_moments pm;
+            rd_patch_moments(&S->ins[n], &pm);
+            if (!(pm.a > 0)) break;
+            rd_moments_add(m, &pm);
+        }
+        if (n == nin) {
+            *pc = S->ins;
+            return n;
+        }
+        n = 0; /* a piece with no area: the pieces that have one, copied */
+        *m = (rd_moments){ 0, 0, 0, 0, 0, 0 };
+    }
     for (int e = 0; e < nin; e++) {
         if (rd_grow((void **)&S->comp, &S->cap_comp, n + 2, sizeof *S->comp)) return -1;
         rd_poly2 *a = &S->comp[n], *b = &S->comp[n + 1];
@@ -754,6 +771,7 @@ static int nearest_pieces(struct rd_surface *S, int nin, int g, int nh, rd_momen
         rd_moments_add(m, &pm);
         n++;
     }
+    *pc = S->comp; /* (after its growth) */
     return n;
 }
 
@@ -1015,7 +1033,8 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             const int nh = nearest_possible(S, g) - 1;
             if (nh < 0) continue;
             rd_moments m;
-            int n = nearest_pieces(S, nin, g, nh, &m);
+            const rd_poly2 *pieces;
+            int n = nearest_pieces(S, nin, g, nh, &m, &pieces);
             if (n < 0) return -1;
             if (n == 0) continue;
             rd_patch_load ld;
@@ -1023,7 +1042,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
             const double c[2] = { ld.cx, ld.cy };
-            surf_twist tw = { S->comp, n, c, dg, &S->tsc, 0.0 };
+            surf_twist tw = { pieces, n, c, dg, &S->tsc, 0.0 };
             if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, &tw, fr, dg, c_a, &sum)) return -1;
         }
     }
