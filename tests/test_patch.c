@@ -20,6 +20,8 @@
  *  - rd_patch_torsion_bound: between 0 and the twisting lever on the square, the 12-gon and an
  *    affine pressure off the centre (the inequality |r - c| >= |r - c|^2 / rmax), and on the
  *    square its closed-form ratio sqrt 2 / (sqrt 2 + ln(1 + sqrt 2)) = 0.616;
+ *  - rd_patch_torsion_disc: likewise, also under a wedge of pressure, and on the square its
+ *    closed-form ratio 4 / (sqrt(3 pi) (sqrt 2 + ln(1 + sqrt 2))) = 0.568;
  *  - rd_plane_group: the same planes, face by face, as the first-fit scan of every plane, on
  *    faces scattered about a few planes across the tolerances' edges (normals turned by up to
  *    twice the angle tolerance, offsets moved by up to twice dtol: both sides of both bounds).
@@ -446,6 +448,39 @@ static void test_torsion_bound(void **state)
                  sqrt(2.0) / (sqrt(2.0) + log(1 + sqrt(2.0))), 1e-8, RD_STRICT);
 }
 
+/* The disc bound against the exact lever on the same three patches, and on a wedge of pressure
+ * that vanishes along one side of the square; on the uniform square in closed form. */
+static void test_torsion_disc(void **state)
+{
+    (void)state;
+    rd_poly2 sq = rect(-0.5, -0.5, 0.5, 0.5), tri = { 3, { { 0, 0 }, { 1.2, 0.1 }, { 0.3, 0.9 } } };
+    rd_poly2 gon;
+    gon.n = 12;
+    for (int k = 0; k < 12; k++) {
+        gon.p[k][0] = 0.4 * cos(2 * M_PI * k / 12);
+        gon.p[k][1] = 0.4 * sin(2 * M_PI * k / 12);
+    }
+    const rd_poly2 *poly[4] = { &sq, &gon, &tri, &sq };
+    const double c[4][2] = { { 0, 0 }, { 0, 0 }, { 0.45, 0.35 }, { 0, 0 } };
+    const double dep[4][3] = { { 1, 0, 0 }, { 1, 0, 0 }, { 0.1, 0.3, -0.05 }, { 0.5, 1, 0 } };
+    const char *name[4] = { "square", "12-gon", "triangle, affine pressure", "square, wedge" };
+    for (int k = 0; k < 4; k++) {
+        rd_moments m;
+        rd_patch_moments(poly[k], &m);
+        const double f = dep[k][0] * m.a + dep[k][1] * m.sx + dep[k][2] * m.sy;
+        double ex = rd_patch_torsion(poly[k], c[k], dep[k][0], dep[k][1], dep[k][2]);
+        double lo = rd_patch_torsion_disc(poly[k], 1, f, dep[k][0], dep[k][1], dep[k][2]);
+        char what[96];
+        snprintf(what, sizeof what, "disc bound / lever, %s", name[k]);
+        rd_check_abs(what, lo / ex, 0.5, 0.5, RD_STRICT); /* in (0, 1]: a lower bound */
+    }
+    /* the unit square under d = 1: (2/3) sqrt(1 / (3 pi)) over (sqrt 2 + ln(1 + sqrt 2)) / 6 */
+    double ex = rd_patch_torsion(&sq, c[0], 1, 0, 0);
+    double lo = rd_patch_torsion_disc(&sq, 1, 1.0, 1, 0, 0);
+    rd_check_rel("disc bound / lever, square, closed form", lo / ex,
+                 4 / (sqrt(3 * M_PI) * (sqrt(2.0) + log(1 + sqrt(2.0)))), 1e-8, RD_STRICT);
+}
+
 /* The first-fit scan that rd_plane_group must reproduce: each face against every plane. */
 static int plane_scan(int nf, const double (*fn)[3], const double *fd, double ntol, double dtol,
                       int *plane_of)
@@ -523,6 +558,7 @@ int main(void)
         cmocka_unit_test(test_cells_jittered),
         cmocka_unit_test(test_cells_l_shape),
         cmocka_unit_test(test_torsion_bound),
+        cmocka_unit_test(test_torsion_disc),
         cmocka_unit_test(test_plane_group),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -91,6 +91,14 @@ double rd_patch_torsion(const rd_poly2 *p, const double c[2], double d0, double 
 double rd_patch_torsion_bound(const rd_poly2 *pieces, int n, const double c[2], double d0,
                               double gx, double gy);
 
+/* A weaker lower bound, cheaper still (one pass over the vertices): with F the integral of d
+ * over the pieces (m^3) and dmax the largest d at their vertices, the part of F within a disc
+ * of radius q about any centre is at most pi q^2 dmax, so the integral of d |r - c| is at
+ * least q (F - pi q^2 dmax), largest at q = sqrt(F / (3 pi dmax)): (2/3) q F. The pieces must
+ * lie where d >= 0. 0 when it cannot bound. */
+double rd_patch_torsion_disc(const rd_poly2 *pieces, int n, double f, double d0, double gx,
+                             double gy);
+
 /* Scratch of rd_patch_torsion_set (zero it before first use; free its arrays after). */
 typedef struct rd_patch_scratch {
     int cap;

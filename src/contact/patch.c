@@ -243,6 +243,18 @@ double rd_patch_torsion_bound(const rd_poly2 *pieces, int n, const double c[2], 
     return r2 > 0 && w > 0 ? (1 - RD_PATCH_BOUND_SLACK) * w / sqrt(r2) : 0.0;
 }
 
+double rd_patch_torsion_disc(const rd_poly2 *pieces, int n, double f, double d0, double gx,
+                             double gy)
+{
+    double dmax = 0;
+    for (int k = 0; k < n; k++)
+        for (int i = 0; i < pieces[k].n; i++)
+            dmax = rd_max(dmax, d0 + gx * pieces[k].p[i][0] + gy * pieces[k].p[i][1]);
+    if (!(f > 0 && dmax > 0)) return 0.0;
+    const double q = sqrt(f / (3 * M_PI * dmax));
+    return (1 - RD_PATCH_BOUND_SLACK) * (2.0 / 3.0) * q * f;
+}
+
 void rd_patch_load_from(const rd_moments *m, double d0, double gx, double gy, rd_patch_load *out)
 {
     *out = (rd_patch_load){ 0, 0, 0, 0, 0, 0, 0, 0, 0 };

@@ -485,6 +485,14 @@ static double twist_lower(const surf_twist *tw)
     return tw->pc ? rd_patch_torsion_bound(tw->pc, tw->n, tw->c, d[0], d[1], d[2]) : tw->tors;
 }
 
+/* A weaker lower bound from the patch's integral of depth f (m^3) and its deepest vertex, in one
+ * pass over the vertices (rd_patch_torsion_disc): tried first. */
+static double twist_disc(const surf_twist *tw, double f)
+{
+    const double *d = tw->dep;
+    return tw->pc ? rd_patch_torsion_disc(tw->pc, tw->n, f, d[0], d[1], d[2]) : tw->tors;
+}
+
 /* The direction of a patch's dashpot (ground frame): the fixed body's surface normal, pointing
  * into the integration body i. r's outward normal uw when r is fixed or both are free, minus
  * i's plane normal when i is fixed (terrain against a convex rock). A dashpot damps the bodies'
@@ -567,7 +575,10 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
     sp->mt -= kJ * spin * s->dt;
     s->e_fric += rd_patch_resize_work(sp, fp, mp, f0, m0, kA, kJ);
     double flim = j->tan_phi * rd_max(fn, 0.0),
-           mlim = ld->f > 0 ? flim * twist_lower(tw) / ld->f : 0.0;
+           mlim = ld->f > 0 ? flim * twist_disc(tw, ld->f) / ld->f : 0.0;
+    /* the bounds, weakest first, prove most sticking springs inside; else the lever itself */
+    if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1) && ld->f > 0)
+        mlim = flim * twist_lower(tw) / ld->f;
     if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1))
         mlim = ld->f > 0 ? flim * twist_exact(tw) / ld->f : 0.0;
     int slip = rd_patch_spring_cap(sp, f0, m0, kA, kJ, flim, mlim, &s->e_fric);
