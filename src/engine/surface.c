@@ -892,6 +892,7 @@ static int near_planes(rd_sim *s, int pair, int i, int r, double margin)
     if (kn->valid && carried_shift(&B->tree, kn->rot, kn->tr, rot, tr) <= skin) {
         if (rd_grow((void **)&S->ord, &S->cap_ord, kn->n, sizeof *S->ord)) return -1;
         memcpy(S->ord, kn->plane, (size_t)kn->n * sizeof *S->ord);
+        memcpy(S->ubox, kn->box, sizeof S->ubox);
         return kn->n;
     }
     S->cand.n = 0;
@@ -917,6 +918,17 @@ static int near_planes(rd_sim *s, int pair, int i, int r, double margin)
     memcpy(kn->plane, S->ord, (size_t)n * sizeof *kn->plane);
     memcpy(kn->rot, rot, sizeof kn->rot);
     memcpy(kn->tr, tr, sizeof kn->tr);
+    double *bx = kn->box; /* the box around the planes' coordinate boxes (keep_planes) */
+    for (int c = 0; c < 3; c++) {
+        bx[c] = DBL_MAX;
+        bx[c + 3] = -DBL_MAX;
+    }
+    for (int k = 0; k < n; k++)
+        for (int c = 0; c < 3; c++) {
+            bx[c] = rd_min(bx[c], B->rect[S->ord[k]][c]);
+            bx[c + 3] = rd_max(bx[c + 3], B->rect[S->ord[k]][c + 3]);
+        }
+    memcpy(S->ubox, bx, sizeof S->ubox);
     kn->n = n;
     kn->valid = 1;
     return n;
@@ -950,26 +962,18 @@ static int plane_lead(const surf_body *B, int g)
     return B->plane_face[B->plane_f0[B->plane_of[g]]];
 }
 
-/* The planes of r that may cut or be nearest anywhere on the np near planes of i (S->ord) into
+/* The planes of r that may cut or be nearest anywhere on the near planes of i (S->ord) into
  * S->keep, in their order: over the box U that holds the near planes' coordinate boxes (body
- * i's frame, surf_body.rect) each plane h of r has depth bounds lo_h .. hi_h; with H the least
+ * i's frame, surf_body.rect; near_planes keeps it with the list, S->ubox) each plane h of r has depth bounds lo_h .. hi_h; with H the least
  * hi_h, a plane with lo_h above H and above 0 (by RD_SURF_KEEP of the scene's size) is behind
  * the plane that gives H, and behind r's surface, at every point of U: it cuts no cell and is
  * never the nearest plane, so every test of plane_inside, nearest_possible and nearest_pieces
  * decides the same without it (a rock on a pedestal's top: its sides and bottom). */
-static void keep_planes(rd_sim *s, int i, int r, int np)
+static void keep_planes(rd_sim *s, int i, int r)
 {
     struct rd_surface *S = s->surf;
-    const surf_body *B = &S->body[i];
     const int nr = s->poly[r].nf;
-    double lo[3] = { DBL_MAX, DBL_MAX, DBL_MAX }, hi[3] = { -DBL_MAX, -DBL_MAX, -DBL_MAX };
-    for (int kp = 0; kp < np; kp++) {
-        const double *b = B->rect[S->ord[kp]];
-        for (int c = 0; c < 3; c++) {
-            lo[c] = rd_min(lo[c], b[c]);
-            hi[c] = rd_max(hi[c], b[c + 3]);
-        }
-    }
+    const double *lo = S->ubox, *hi = S->ubox + 3; /* near_planes' box of the near planes */
     double mid[3], half[3];
     for (int c = 0; c < 3; c++) {
         mid[c] = 0.5 * (lo[c] + hi[c]);
@@ -1021,7 +1025,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
         rd_mat_tvec(s->R[i], uw, pl);
         pl[3] = dw - rd_dot(uw, s->x[i]);
     }
-    keep_planes(s, i, r, np);
+    keep_planes(s, i, r);
     const double cap = RD_SURF_DEPTH_CAP * rd_min(Pr->radius, s->poly[i].radius);
     const double c_a = (j->damping > 0 && pr->k_active > 0)
                            ? 2 * j->damping * j->kn * sqrt(pr->m_eff / pr->k_active)

@@ -38,6 +38,7 @@ typedef struct surf_body {
 /* A pair's planes near the other body, kept with the pose they were found at (near_planes). */
 typedef struct surf_near {
     double rot[9], tr[3]; /* i's frame into r's then */
+    double box[6];        /* the box around the planes' coordinate boxes, i's frame (lo, hi), m */
     int *plane, n, cap;
     int valid;
 } surf_near;
@@ -75,6 +76,7 @@ struct rd_surface {
     int *hcut;        /* scratch: the planes of r that may cut a piece */
     int *keep, nkeep; /* scratch: the planes of r that may reach this pair (keep_planes) */
     surf_near *near;  /* per pair (the convex path), its kept near planes */
+    double ubox[6];   /* the present pair's surf_near.box */
     int cap_near;
     int front; /* the plane of r that last put a whole plane in front of it */
     int cap_pl;
