@@ -332,14 +332,15 @@ static int check_initial_speeds(const rd_sim *s, rd_error *err)
     return 0;
 }
 
-/* Estimated steps of the whole run: settling (at most its time limit), shaking and tail as the
- * run takes them (rd_run_length). The motion's end counts only with a tail: without one the run
- * stops at its duration, and a 10 s run at KN 1e14 under a 600 s record (3.6e7 steps) was
- * refused as 1.46e9. */
+/* Estimated steps of the whole run: settling (at most its time limit; none when the run starts
+ * from a checkpoint), shaking and tail as the run takes them (rd_run_length). The motion's end
+ * counts only with a tail: without one the run stops at its duration, and a 10 s run at KN
+ * 1e14 under a 600 s record (3.6e7 steps) was refused as 1.46e9. */
 static double step_estimate(const rd_sim *s)
 {
     const rd_scenario *sc = &s->sc;
-    return ((sc->settle.enabled ? sc->settle.max_time : 0.0) + rd_run_length(s)) / s->dt;
+    const int settles = sc->settle.enabled && !sc->restore_path[0];
+    return ((settles ? sc->settle.max_time : 0.0) + rd_run_length(s)) / s->dt;
 }
 
 /* Refuse a run whose step count exceeds RD_STEP_BUDGET unless forced, and one shorter than a
