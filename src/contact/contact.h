@@ -98,6 +98,8 @@ double rd_patch_torsion_bound(const rd_poly2 *pieces, int n, const double c[2], 
  * lie where d >= 0. 0 when it cannot bound. */
 double rd_patch_torsion_disc(const rd_poly2 *pieces, int n, double f, double d0, double gx,
                              double gy);
+/* The same bound from f and dmax (m, the largest d over the pieces, 0 or more) themselves. */
+double rd_patch_torsion_disc_of(double f, double dmax);
 
 /* Scratch of rd_patch_torsion_set (zero it before first use; free its arrays after). */
 typedef struct rd_patch_scratch {

@@ -250,6 +250,11 @@ double rd_patch_torsion_disc(const rd_poly2 *pieces, int n, double f, double d0,
     for (int k = 0; k < n; k++)
         for (int i = 0; i < pieces[k].n; i++)
             dmax = rd_max(dmax, d0 + gx * pieces[k].p[i][0] + gy * pieces[k].p[i][1]);
+    return rd_patch_torsion_disc_of(f, dmax);
+}
+
+double rd_patch_torsion_disc_of(double f, double dmax)
+{
     if (!(f > 0 && dmax > 0)) return 0.0;
     const double q = sqrt(f / (3 * M_PI * dmax));
     return (1 - RD_PATCH_BOUND_SLACK) * (2.0 / 3.0) * q * f;

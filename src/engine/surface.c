@@ -455,9 +455,11 @@ typedef struct surf_sums {
 } surf_sums;
 
 /* The twisting lever of a patch (the integral of d |r - c| about its centroid c), found only
- * when the Coulomb test needs it: from the pieces pc[0 .. n) (the convex path), or given. */
+ * when the Coulomb test needs it: from the pieces pc[0 .. n) (the convex path) or pc[ix[0 ..
+ * n)] (the mesh path, one patch's pieces among the pair's). */
 typedef struct surf_twist {
-    const rd_poly2 *pc; /* the compressed pieces; NULL: tors is given */
+    const rd_poly2 *pc; /* the compressed pieces; NULL: tors is found */
+    const int *ix;      /* NULL, or the patch's pieces in pc */
     int n;
     const double *c, *dep; /* the centroid, the depth's coefficients (plane coordinates) */
     rd_patch_scratch *sc;
@@ -467,7 +469,13 @@ typedef struct surf_twist {
 /* The lever itself (once). */
 static double twist_exact(surf_twist *tw)
 {
-    if (tw->pc) {
+    if (tw->pc && tw->ix) {
+        const double *d = tw->dep;
+        tw->tors = 0;
+        for (int q = 0; q < tw->n; q++)
+            tw->tors += rd_patch_torsion(&tw->pc[tw->ix[q]], tw->c, d[0], d[1], d[2]);
+        tw->pc = NULL;
+    } else if (tw->pc) {
         const double *d = tw->dep;
         tw->tors = tw->n == 1
                        ? rd_patch_torsion(tw->pc, tw->c, d[0], d[1], d[2])
@@ -477,20 +485,30 @@ static double twist_exact(surf_twist *tw)
     return tw->tors;
 }
 
-/* A lower bound of it: the Coulomb test with this lever finds most sticking patches inside the
- * limit surface at a third of the cost (rd_patch_spring_s2). */
-static double twist_lower(const surf_twist *tw)
-{
-    const double *d = tw->dep;
-    return tw->pc ? rd_patch_torsion_bound(tw->pc, tw->n, tw->c, d[0], d[1], d[2]) : tw->tors;
-}
-
 /* A weaker lower bound from the patch's integral of depth f (m^3) and its deepest vertex, in one
  * pass over the vertices (rd_patch_torsion_disc): tried first. */
 static double twist_disc(const surf_twist *tw, double f)
 {
     const double *d = tw->dep;
-    return tw->pc ? rd_patch_torsion_disc(tw->pc, tw->n, f, d[0], d[1], d[2]) : tw->tors;
+    if (!tw->pc) return tw->tors;
+    if (!tw->ix) return rd_patch_torsion_disc(tw->pc, tw->n, f, d[0], d[1], d[2]);
+    double dmax = 0;
+    for (int q = 0; q < tw->n; q++) {
+        const rd_poly2 *p = &tw->pc[tw->ix[q]];
+        for (int v = 0; v < p->n; v++)
+            dmax = rd_max(dmax, d[0] + d[1] * p->p[v][0] + d[2] * p->p[v][1]);
+    }
+    return rd_patch_torsion_disc_of(f, dmax);
+}
+
+/* A lower bound of it: the Coulomb test with this lever finds most sticking patches inside the
+ * limit surface at a third of the cost (rd_patch_spring_s2). */
+static double twist_lower(const surf_twist *tw, double f)
+{
+    const double *d = tw->dep;
+    if (tw->pc && tw->ix)
+        return twist_disc(tw, f); /* (no third-moment bound of scattered pieces) */
+    return tw->pc ? rd_patch_torsion_bound(tw->pc, tw->n, tw->c, d[0], d[1], d[2]) : tw->tors;
 }
 
 /* The direction of a patch's dashpot (ground frame): the fixed body's surface normal, pointing
@@ -578,7 +596,7 @@ static int patch_apply(rd_sim *s, rd_pair *pr, int pair, int i, int r, int P, in
            mlim = ld->f > 0 ? flim * twist_disc(tw, ld->f) / ld->f : 0.0;
     /* the bounds, weakest first, prove most sticking springs inside; else the lever itself */
     if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1) && ld->f > 0)
-        mlim = flim * twist_lower(tw) / ld->f;
+        mlim = flim * twist_lower(tw, ld->f) / ld->f;
     if (!(rd_patch_spring_s2(sp, flim, mlim) <= 1))
         mlim = ld->f > 0 ? flim * twist_exact(tw) / ld->f : 0.0;
     int slip = rd_patch_spring_cap(sp, f0, m0, kA, kJ, flim, mlim, &s->e_fric);
@@ -1057,7 +1075,7 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
             rd_patch_load_from(&m, dg[0], dg[1], dg[2], &ld);
             if (!(ld.area > 0)) continue;
             const double c[2] = { ld.cx, ld.cy };
-            surf_twist tw = { pieces, n, c, dg, &S->tsc, 0.0 };
+            surf_twist tw = { pieces, NULL, n, c, dg, &S->tsc, 0.0 };
             if (patch_apply(s, pr, pair, i, r, P, g, &m, &ld, &tw, fr, dg, c_a, &sum)) return -1;
         }
     }
@@ -1502,11 +1520,8 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
         rd_patch_load_from(&m, dep[0], dep[1], dep[2], &ld);
         if (ld.area > 0) {
             const double c[2] = { ld.cx, ld.cy };
-            double tors = 0;
-            for (int q = k; q < e; q++)
-                tors += rd_patch_torsion(&S->comp[ix[q]], c, dep[0], dep[1], dep[2]);
             rd_mat_vec(s->R[r], Br->frame[Q][3], S->uw[Q]);
-            surf_twist tw = { NULL, 0, c, dep, NULL, tors };
+            surf_twist tw = { S->comp, ix + k, e - k, c, dep, NULL, 0.0 };
             rc = patch_apply(s, pr, pair, i, r, P, Q, &m, &ld, &tw, fr, dep, c_a, &sum);
         }
         k = e;
