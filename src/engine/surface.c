@@ -250,9 +250,10 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
                     bx[c + 2] = rd_max(bx[c + 2], B->f2[q][c]);
                 }
     }
+    free(fill);
+    B->plane_of = plane_of;
     B->rect = malloc((size_t)(B->nplane > 0 ? B->nplane : 1) * sizeof *B->rect);
     if (!B->rect) {
-        free(fill);
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -272,8 +273,6 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
             }
         }
     }
-    free(fill);
-    B->plane_of = plane_of;
     if (plane_cells(P, B)) {
         rd_error_set(err, "out of memory");
         return -1;
