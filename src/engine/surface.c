@@ -341,10 +341,18 @@ int rd_surface_init(rd_sim *s, rd_error *err)
         rd_error_set(err, "out of memory");
         return -1;
     }
-    int most = 0;
+    int most = 0, most_planes = 1;
     for (int i = 0; i < s->nb; i++) {
         if (body_planes(&s->poly[i], &S->body[i], err, s->sc.bodies[i].name)) return -1;
         if (s->poly[i].nf > most) most = s->poly[i].nf;
+        if (S->body[i].nplane > most_planes) most_planes = S->body[i].nplane;
+    }
+    S->cap_q = most_planes;
+    S->qpl = malloc((size_t)most_planes * sizeof *S->qpl);
+    S->qstamp = calloc((size_t)most_planes, sizeof *S->qstamp);
+    if (!S->qpl || !S->qstamp) {
+        rd_error_set(err, "out of memory");
+        return -1;
     }
     if (rd_grow((void **)&S->pl, &S->cap_pl, most, sizeof *S->pl)) {
         rd_error_set(err, "out of memory");
@@ -421,6 +429,8 @@ void rd_surface_free(rd_sim *s)
     free(S->dep);
     free(S->hcut);
     free(S->keep);
+    free(S->qpl);
+    free(S->qstamp);
     for (int k = 0; k < S->cap_near; k++) free(S->near[k].plane);
     free(S->near);
     free(S->tsc.slot);
@@ -1149,13 +1159,20 @@ static int sort_cand(struct rd_surface *S, mesh_cand *mc, int nc, int nfi, int n
     return 0;
 }
 
-/* Plane Q of r in i's frame: outward normal u and offset dR (u . x = dR). */
-static void plane_in(const surf_body *Br, int Q, const double rot[9], const double tr[3],
-                     double u[3], double *dR)
+/* Plane Q of r in i's frame: outward normal u and offset dR (u . x = dR), found once per pair and
+ * step (the candidates share their planes: S->qpl, stamped with pair_mesh's epoch). */
+static void plane_in(struct rd_surface *S, const surf_body *Br, int Q, const double rot[9],
+                     const double tr[3], double u[3], double *dR)
 {
-    const double(*fq)[3] = Br->frame[Q];
-    rd_mat_vec(rot, fq[3], u);
-    *dR = rd_dot(fq[3], fq[0]) + rd_dot(u, tr);
+    double *q = S->qpl[Q];
+    if (S->qstamp[Q] != S->qepoch) { /* once per pair and step (pair_mesh's epoch) */
+        const double(*fq)[3] = Br->frame[Q];
+        rd_mat_vec(rot, fq[3], q);
+        q[3] = rd_dot(fq[3], fq[0]) + rd_dot(q, tr);
+        S->qstamp[Q] = S->qepoch;
+    }
+    rd_copy3(q, u);
+    *dR = q[3];
 }
 
 /* One piece (a convex polygon of plane P's coordinates) into the pieces store, group (P, Q). */
@@ -1302,7 +1319,7 @@ static int face_sides(struct rd_surface *S, const rd_poly *Pr, const surf_body *
     for (int k = 0; k < nc; k++) {
         mesh_side *sd = &S->side[k];
         double uh[3], dh;
-        plane_in(Br, cand[k].Q, rot, tr, uh, &dh);
+        plane_in(S, Br, cand[k].Q, rot, tr, uh, &dh);
         sd->e[0] = dh - rd_dot(uh, fr[0]);
         sd->e[1] = -rd_dot(uh, fr[1]);
         sd->e[2] = -rd_dot(uh, fr[2]);
@@ -1352,7 +1369,7 @@ static int face_pieces(rd_sim *s, int pair, int i, int r, const mesh_cand *cand,
         if (!cand[k].facing || !cand[k].behind) continue;
         const int fr_ = cand[k].fr, Q = cand[k].Q, nr = Pr->flen[fr_];
         double u[3], dR, dep[3];
-        plane_in(Br, Q, rot, tr, u, &dR);
+        plane_in(S, Br, Q, rot, tr, u, &dR);
         for (int v = 0; v < nr; v++) {
             rd_mat_vec(rot, Pr->v[Pr->fidx[Pr->fstart[fr_] + v]], rv[v]);
             rd_axpy(1.0, tr, rv[v]);
@@ -1450,6 +1467,10 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     const double band = RD_SURF_MESH_DEPTH * rd_min(Pr->radius, Pi->radius);
     double rot[9], tr[3];
     rel_pose(s, i, r, rot, tr);
+    if (++S->qepoch == 0) { /* the epoch wrapped: start the stamps again */
+        memset(S->qstamp, 0, (size_t)S->cap_q * sizeof *S->qstamp);
+        S->qepoch = 1;
+    }
     S->cand.n = 0;
     if (rd_bvh_overlaps(&B->tree, &Br->tree, rot, tr, band, &S->cand)) return -1;
     /* the facing and depth tests; the survivors in place, as mesh_cand */
@@ -1464,7 +1485,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
     for (int k = 0; k < S->cand.n; k++) {
         const int fi = S->cand.ab[k][0], fr_ = S->cand.ab[k][1], Q = Br->plane_of[fr_];
         double u[3], dR;
-        plane_in(Br, Q, rot, tr, u, &dR);
+        plane_in(S, Br, Q, rot, tr, u, &dR);
         const int facing = rd_dot(Pi->fn[fi], u) < -RD_SURF_FACING;
         double dlo = DBL_MAX, dhi = -DBL_MAX;
         for (int q = Pi->fstart[fi]; q < Pi->fstart[fi] + Pi->flen[fi]; q++) {
@@ -1511,7 +1532,7 @@ static int pair_mesh(rd_sim *s, int pair, int i, int r)
         }
         const double(*fr)[3] = B->frame[P];
         double u[3], dR, dep[3];
-        plane_in(Br, Q, rot, tr, u, &dR);
+        plane_in(S, Br, Q, rot, tr, u, &dR);
         dep[0] = dR - rd_dot(u, fr[0]);
         dep[1] = -rd_dot(u, fr[1]);
         dep[2] = -rd_dot(u, fr[2]);

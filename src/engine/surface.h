@@ -77,6 +77,10 @@ struct rd_surface {
     int *keep, nkeep; /* scratch: the planes of r that may reach this pair (keep_planes) */
     surf_near *near;  /* per pair (the convex path), its kept near planes */
     double ubox[6];   /* the present pair's surf_near.box */
+    double (*qpl)[4]; /* mesh pairs: r's planes in i's frame (u, dR), found at the epoch of */
+    unsigned *qstamp; /* qstamp (plane_in) */
+    unsigned qepoch;
+    int cap_q;
     int cap_near;
     int front; /* the plane of r that last put a whole plane in front of it */
     int cap_pl;
