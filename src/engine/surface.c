@@ -362,7 +362,9 @@ int rd_surface_init(rd_sim *s, rd_error *err)
     S->dep = malloc((size_t)S->cap_pl * sizeof *S->dep);
     S->hcut = malloc((size_t)S->cap_pl * sizeof *S->hcut);
     S->keep = malloc((size_t)S->cap_pl * sizeof *S->keep);
-    if (!S->uw || !S->dep || !S->hcut || !S->keep) {
+    S->pkeep = malloc((size_t)S->cap_pl * sizeof *S->pkeep);
+    S->klo = malloc((size_t)S->cap_pl * sizeof *S->klo);
+    if (!S->uw || !S->dep || !S->hcut || !S->keep || !S->pkeep || !S->klo) {
         rd_error_set(err, "out of memory");
         return -1;
     }
@@ -429,6 +431,8 @@ void rd_surface_free(rd_sim *s)
     free(S->dep);
     free(S->hcut);
     free(S->keep);
+    free(S->pkeep);
+    free(S->klo);
     free(S->qpl);
     free(S->qstamp);
     for (int k = 0; k < S->cap_near; k++) free(S->near[k].plane);
@@ -669,7 +673,7 @@ static int plane_inside(rd_sim *s, const surf_body *B, int P, double cap)
 {
     struct rd_surface *S = s->surf;
     const double *bx = B->box[P];
-    const int nk = S->nkeep, *keep = S->keep;
+    const int nk = S->npkeep, *keep = S->pkeep;
     int ncut = 0, *cut_by = S->hcut; /* the planes of r that may cut a cell */
     double least_hi = DBL_MAX, least_tol = 0;
     for (int kh = 0; kh < nk; kh++) { /* the whole plane in front of one plane of r: outside */
@@ -742,8 +746,8 @@ static int nearest_possible(struct rd_surface *S, int g)
 {
     const double *dg = S->dep[g];
     int n = 0;
-    for (int kh = 0; kh < S->nkeep; kh++) {
-        const int h = S->keep[kh];
+    for (int kh = 0; kh < S->npkeep; kh++) {
+        const int h = S->pkeep[kh];
         if (h == g) continue;
         const double *dh = S->dep[h];
         const double c[3] = { dh[0] - dg[0], dh[1] - dg[1], dh[2] - dg[2] };
@@ -989,36 +993,51 @@ static int plane_lead(const surf_body *B, int g)
     return B->plane_face[B->plane_f0[B->plane_of[g]]];
 }
 
-/* The planes of r that may cut or be nearest anywhere on the near planes of i (S->ord) into
- * S->keep, in their order: over the box U that holds the near planes' coordinate boxes (body
- * i's frame, surf_body.rect; near_planes keeps it with the list, S->ubox) each plane h of r has depth bounds lo_h .. hi_h; with H the least
- * hi_h, a plane with lo_h above H and above 0 (by RD_SURF_KEEP of the scene's size) is behind
- * the plane that gives H, and behind r's surface, at every point of U: it cuts no cell and is
- * never the nearest plane, so every test of plane_inside, nearest_possible and nearest_pieces
- * decides the same without it (a rock on a pedestal's top: its sides and bottom). */
+/* Of the planes from[0 .. n) of r, those that may cut or be nearest anywhere in the box b (body
+ * i's frame: x, y, z min, then max) into to, in their order; returns their count. Over b each
+ * plane h has depth bounds lo_h .. hi_h; with H the least hi_h, a plane with lo_h above H and
+ * above 0 by m is behind the plane that gives H, and behind r's surface, at every point of b:
+ * it cuts no cell there, is never the nearest plane, and each region it would bound is bounded
+ * by that plane already, so plane_inside, nearest_possible and nearest_pieces find the same
+ * regions without it (the order of the clips can move a vertex at round-off). */
+static int keep_over(struct rd_surface *S, const double b[6], const int *from, int n, double m,
+                     int *to)
+{
+    double mid[3], half[3], least = DBL_MAX;
+    for (int c = 0; c < 3; c++) {
+        mid[c] = 0.5 * (b[c] + b[c + 3]);
+        half[c] = 0.5 * (b[c + 3] - b[c]);
+    }
+    for (int k = 0; k < n; k++) { /* d_h(p) = pl[3] - u . p over b: centre -+ spread */
+        const double *pl = S->pl[from[k]];
+        const double dc = pl[3] - rd_dot(pl, mid);
+        const double w = fabs(pl[0]) * half[0] + fabs(pl[1]) * half[1] + fabs(pl[2]) * half[2];
+        S->klo[k] = dc - w;
+        least = rd_min(least, dc + w);
+    }
+    int nk = 0;
+    for (int k = 0; k < n; k++)
+        if (!(S->klo[k] > least + m && S->klo[k] > m)) to[nk++] = from[k];
+    return nk;
+}
+
+/* The planes of r that may reach the near planes of i (S->ord) into S->keep (keep_over, over
+ * the box U of their coordinate boxes, S->ubox: a rock on a pedestal's top keeps the top), with
+ * the margin RD_SURF_KEEP of the scene's size into S->keep_m; each near plane P then keeps
+ * those that may reach its own box (surf_body.rect: a drum's side face, the two or three
+ * planes of the drum below at its edge, not all 26). */
 static void keep_planes(rd_sim *s, int i, int r)
 {
     struct rd_surface *S = s->surf;
     const int nr = s->poly[r].nf;
-    const double *lo = S->ubox, *hi = S->ubox + 3; /* near_planes' box of the near planes */
-    double mid[3], half[3];
-    for (int c = 0; c < 3; c++) {
-        mid[c] = 0.5 * (lo[c] + hi[c]);
-        half[c] = 0.5 * (hi[c] - lo[c]);
+    double size = s->poly[i].radius + s->poly[r].radius;
+    for (int c = 0; c < 3; c++) size += fabs(S->ubox[c]) + fabs(S->ubox[c + 3]);
+    for (int h = 0; h < nr; h++) {
+        size = rd_max(size, fabs(S->pl[h][3]));
+        S->pkeep[h] = h;
     }
-    double least = DBL_MAX, size = s->poly[i].radius + s->poly[r].radius + rd_norm(mid);
-    for (int h = 0; h < nr; h++) { /* d_h(p) = pl[3] - u . p over U: centre -+ spread */
-        const double *pl = S->pl[h];
-        const double dc = pl[3] - rd_dot(pl, mid);
-        const double w = fabs(pl[0]) * half[0] + fabs(pl[1]) * half[1] + fabs(pl[2]) * half[2];
-        S->dep[h][0] = dc - w; /* scratch: lo_h (plane_depth overwrites it) */
-        least = rd_min(least, dc + w);
-        size = rd_max(size, fabs(pl[3]));
-    }
-    const double m = RD_SURF_KEEP * size;
-    S->nkeep = 0;
-    for (int h = 0; h < nr; h++)
-        if (!(S->dep[h][0] > least + m && S->dep[h][0] > m)) S->keep[S->nkeep++] = h;
+    S->keep_m = RD_SURF_KEEP * size;
+    S->nkeep = keep_over(S, S->ubox, S->pkeep, nr, S->keep_m, S->keep);
 }
 
 /* Every patch of live pair number pair whose body r is convex (section 8.1): the planes of i
@@ -1065,12 +1084,13 @@ static int pair_convex(rd_sim *s, int pair, int i, int r)
            depth and one box test reject most candidates (plane_inside's own first test) */
         const int f0 = S->front < nr ? S->front : 0;
         if (in_front(S, B, P, f0)) continue;
-        for (int kh = 0; kh < S->nkeep; kh++) /* (in_front found f0's) */
-            if (S->keep[kh] != f0) plane_depth(S, fr, S->keep[kh]);
+        S->npkeep = keep_over(S, B->rect[P], S->keep, S->nkeep, S->keep_m, S->pkeep);
+        for (int kh = 0; kh < S->npkeep; kh++) /* (in_front found f0's) */
+            if (S->pkeep[kh] != f0) plane_depth(S, fr, S->pkeep[kh]);
         const int nin = plane_inside(s, B, P, cap);
         if (nin < 0) return -1;
-        for (int kg = 0; kg < S->nkeep && nin > 0; kg++) {
-            const int g = S->keep[kg];
+        for (int kg = 0; kg < S->npkeep && nin > 0; kg++) {
+            const int g = S->pkeep[kg];
             if (plane_lead(Br, g) != g) continue; /* its plane's patch is its lead's */
             const int nh = nearest_possible(S, g) - 1;
             if (nh < 0) continue;

@@ -69,16 +69,19 @@ struct rd_surface {
     int cap_comp;
     rd_poly2 *ins; /* scratch: the parts of one plane's cells inside r */
     int cap_ins;
-    double inbox[4];  /* their bounding box, the plane's coordinates (x, y min, x, y max), m */
-    double (*pl)[4];  /* scratch: r's planes in the integration body's frame (u, d) */
-    double (*uw)[3];  /* scratch: r's outward normals, ground frame */
-    double (*dep)[3]; /* scratch: depth below each plane of r, affine in a plane's coords */
-    int *hcut;        /* scratch: the planes of r that may cut a piece */
-    int *keep, nkeep; /* scratch: the planes of r that may reach this pair (keep_planes) */
-    surf_near *near;  /* per pair (the convex path), its kept near planes */
-    double ubox[6];   /* the present pair's surf_near.box */
-    double (*qpl)[4]; /* mesh pairs: r's planes in i's frame (u, dR), found at the epoch of */
-    unsigned *qstamp; /* qstamp (plane_in) */
+    double inbox[4];    /* their bounding box, the plane's coordinates (x, y min, x, y max), m */
+    double (*pl)[4];    /* scratch: r's planes in the integration body's frame (u, d) */
+    double (*uw)[3];    /* scratch: r's outward normals, ground frame */
+    double (*dep)[3];   /* scratch: depth below each plane of r, affine in a plane's coords */
+    int *hcut;          /* scratch: the planes of r that may cut a piece */
+    int *keep, nkeep;   /* scratch: the planes of r that may reach this pair (keep_planes) */
+    int *pkeep, npkeep; /* scratch: of those, the ones that may reach one plane of i */
+    double *klo;        /* scratch: keep_over's depth bounds */
+    double keep_m;      /* keep_over's margin for this pair, m */
+    surf_near *near;    /* per pair (the convex path), its kept near planes */
+    double ubox[6];     /* the present pair's surf_near.box */
+    double (*qpl)[4];   /* mesh pairs: r's planes in i's frame (u, dR), found at the epoch of */
+    unsigned *qstamp;   /* qstamp (plane_in) */
     unsigned qepoch;
     int cap_q;
     int cap_near;
