@@ -922,7 +922,7 @@ static int near_planes(rd_sim *s, int pair, int i, int r, double margin)
     const double skin = RD_SURF_SKIN * margin;
     if (kn->valid && carried_shift(&B->tree, kn->rot, kn->tr, rot, tr) <= skin) {
         if (rd_grow((void **)&S->ord, &S->cap_ord, kn->n, sizeof *S->ord)) return -1;
-        memcpy(S->ord, kn->plane, (size_t)kn->n * sizeof *S->ord);
+        if (kn->n > 0) memcpy(S->ord, kn->plane, (size_t)kn->n * sizeof *S->ord);
         memcpy(S->ubox, kn->box, sizeof S->ubox);
         return kn->n;
     }
@@ -946,7 +946,7 @@ static int near_planes(rd_sim *s, int pair, int i, int r, double margin)
         S->ord[k1] = P;
     }
     if (rd_grow((void **)&kn->plane, &kn->cap, n, sizeof *kn->plane)) return -1;
-    memcpy(kn->plane, S->ord, (size_t)n * sizeof *kn->plane);
+    if (n > 0) memcpy(kn->plane, S->ord, (size_t)n * sizeof *kn->plane);
     memcpy(kn->rot, rot, sizeof kn->rot);
     memcpy(kn->tr, tr, sizeof kn->tr);
     double *bx = kn->box; /* the box around the planes' coordinate boxes (keep_planes) */
