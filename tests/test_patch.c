@@ -417,18 +417,25 @@ static void test_cells_l_shape(void **state)
     rd_check_rel("L cells: area (m^2)", m.a, 0.75, ROUNDOFF, RD_STRICT);
 }
 
+/* A regular 12-gon of circumradius r about the origin. */
+static rd_poly2 dodecagon(double r)
+{
+    rd_poly2 gon;
+    gon.n = 12;
+    for (int k = 0; k < 12; k++) {
+        gon.p[k][0] = r * cos(2 * M_PI * k / 12);
+        gon.p[k][1] = r * sin(2 * M_PI * k / 12);
+    }
+    return gon;
+}
+
 /* The torsion bound against the exact lever: a uniform pressure on a square about its centre,
  * on a regular 12-gon, and an affine pressure about an off-centre point of a triangle. */
 static void test_torsion_bound(void **state)
 {
     (void)state;
     rd_poly2 sq = rect(-0.5, -0.5, 0.5, 0.5), tri = { 3, { { 0, 0 }, { 1.2, 0.1 }, { 0.3, 0.9 } } };
-    rd_poly2 gon;
-    gon.n = 12;
-    for (int k = 0; k < 12; k++) {
-        gon.p[k][0] = 0.4 * cos(2 * M_PI * k / 12);
-        gon.p[k][1] = 0.4 * sin(2 * M_PI * k / 12);
-    }
+    const rd_poly2 gon = dodecagon(0.4);
     const rd_poly2 *poly[3] = { &sq, &gon, &tri };
     const double c[3][2] = { { 0, 0 }, { 0, 0 }, { 0.45, 0.35 } };
     const double dep[3][3] = { { 1, 0, 0 }, { 1, 0, 0 }, { 0.1, 0.3, -0.05 } };
@@ -454,12 +461,7 @@ static void test_torsion_disc(void **state)
 {
     (void)state;
     rd_poly2 sq = rect(-0.5, -0.5, 0.5, 0.5), tri = { 3, { { 0, 0 }, { 1.2, 0.1 }, { 0.3, 0.9 } } };
-    rd_poly2 gon;
-    gon.n = 12;
-    for (int k = 0; k < 12; k++) {
-        gon.p[k][0] = 0.4 * cos(2 * M_PI * k / 12);
-        gon.p[k][1] = 0.4 * sin(2 * M_PI * k / 12);
-    }
+    const rd_poly2 gon = dodecagon(0.4);
     const rd_poly2 *poly[4] = { &sq, &gon, &tri, &sq };
     const double c[4][2] = { { 0, 0 }, { 0, 0 }, { 0.45, 0.35 }, { 0, 0 } };
     const double dep[4][3] = { { 1, 0, 0 }, { 1, 0, 0 }, { 0.1, 0.3, -0.05 }, { 0.5, 1, 0 } };
