@@ -225,19 +225,22 @@ RD_API double rd_restitution_loss_at(const rd_scenario *sc, int k);
 /* Set the loss parameter x on sc: its contact restitution, or (surface model) restitution 1 and
  * `model damping viscous x`. */
 RD_API void rd_restitution_set_loss(rd_scenario *sc, double x);
-/* rd_restitution_calibrate with the scan's runs already made: grid[k] (k = 0 .. RD_CAL_GRID) is
- * the measurement of the scenario at loss parameter rd_restitution_loss_at(k) (a row of `rockdem
- * restitution`'s table), or NULL to run them. *at (may be NULL) receives the measurement at the
- * returned e, so a caller reads its speed check without running it again. */
+/* rd_restitution_calibrate to |r - target| < rtol, with the scan's runs already made: grid[k]
+ * (k = 0 .. RD_CAL_GRID) is the measurement of the scenario at loss parameter
+ * rd_restitution_loss_at(k) (a row of `rockdem restitution`'s table), or NULL to run them. *at
+ * (may be NULL) receives the measurement at the returned e, so a caller reads its speed check
+ * without running it again. */
 RD_API int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double target,
-                                         const rd_restitution *grid, double *e, double *reached,
-                                         rd_restitution *at, rd_error *err);
+                                         double rtol, const rd_restitution *grid, double *e,
+                                         double *reached, rd_restitution *at, rd_error *err);
 
-/* |r - target| at which the calibration stops (the specification, issue 11). */
-#define RD_CAL_RTOL   0.002
+/* |r - target| at which the calibration stops (the specification, issue 11), and the least a
+ * caller may ask (`rockdem restitution --rtol`): the last digit the calibration prints r to. */
+#define RD_CAL_RTOL     0.002
+#define RD_CAL_RTOL_MIN 1e-4
 /* Relative difference up to which the amplitude-decay and speed measures of one run agree when
  * its impacts are complete (the specification, issue 11; measured 0.04 % on the rigid preset
  * and on the 11 x 11 bed, 0.00 % on the defaults, docs/CONTACT.md). */
-#define RD_CHECK_RTOL 0.005
+#define RD_CHECK_RTOL   0.005
 
 #endif

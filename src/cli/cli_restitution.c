@@ -15,13 +15,14 @@
 
 typedef struct restitution_args {
     double target;    /* 0: Housner's r */
+    double rtol;      /* the calibration's stop on |r - target| */
     double theta0;    /* rad; 0: half of alpha */
     const char *body; /* --body NAME: that body alone on what holds it up; NULL: the scene */
 } restitution_args;
 
 static int restitution_option(void *ctx, int argc, char **argv, int *i)
 {
-    static const char *const names[] = { "--target", "--theta0", "--body", NULL };
+    static const char *const names[] = { "--target", "--theta0", "--body", "--rtol", NULL };
     restitution_args *a = ctx;
     const char *o = argv[*i], *v;
     int rc = rd_cli_option(argc, argv, *i, names, &v);
@@ -34,6 +35,16 @@ static int restitution_option(void *ctx, int argc, char **argv, int *i)
     int target = !strcmp(o, "--target");
     double x;
     if (rd_cli_number(o, v, 0, &x)) return -1;
+    if (!strcmp(o, "--rtol")) {
+        if (!(x >= RD_CAL_RTOL_MIN && x <= RD_CAL_RTOL)) {
+            fprintf(stderr, "rockdem: --rtol expects a tolerance on r from %g to %g, got '%s'\n",
+                    RD_CAL_RTOL_MIN, RD_CAL_RTOL, v);
+            return -1;
+        }
+        a->rtol = x;
+        (*i)++;
+        return 0;
+    }
     if (!(x > 0) || (target && x > 1)) {
         fprintf(stderr, "rockdem: %s expects %s, got '%s'\n", o,
                 target ? "a restitution above 0, at most 1" : "an initial tilt above 0 (rad)", v);
@@ -104,10 +115,11 @@ static const char *unreachable_why(int rc, int high, int dashpot)
 {
     if (rc == 2)
         return dashpot ? "r crosses the target between two scanned ratios but is too uneven "
-                         "there to reach it to 0.002 (the block slides or bounces: see the table)"
+                         "there to reach it to --rtol (the block slides or bounces: see the "
+                         "table)"
                        : "r(e) crosses the target between two scanned values of e but is too "
-                         "uneven there to reach it to 0.002 (the block slides or bounces on its "
-                         "new edge: see the table)";
+                         "uneven there to reach it to --rtol (the block slides or bounces on "
+                         "its new edge: see the table)";
     if (dashpot)
         return high ? "no dashpot ratio up to 5 loses enough; a lower r needs sliding at the "
                       "pivot"
@@ -127,7 +139,7 @@ static const char *unreachable_why(int rc, int high, int dashpot)
 int rd_cli_restitution(int argc, char **argv)
 {
     rd_scenario sc;
-    restitution_args a = { 0, 0, NULL };
+    restitution_args a = { .target = 0, .rtol = RD_CAL_RTOL, .theta0 = 0, .body = NULL };
     if (rd_cli_scenario(&sc, argc, argv, restitution_option, &a, NULL)) {
         rd_scenario_free(&sc);
         return 2;
@@ -188,8 +200,8 @@ int rd_cli_restitution(int argc, char **argv)
     rd_restitution grid[RD_CAL_GRID + 1], at;
     int have = print_table(&sc, theta0, grid);
     double e, reached;
-    int rc = rd_restitution_calibrate_grid(&sc, theta0, target, have ? grid : NULL, &e, &reached,
-                                           &at, &err);
+    int rc = rd_restitution_calibrate_grid(&sc, theta0, target, a.rtol, have ? grid : NULL, &e,
+                                           &reached, &at, &err);
     rd_cli_progress_stop();
     if (rc < 0) {
         fprintf(stderr, "%s\n", err.msg);
@@ -201,12 +213,12 @@ int rd_cli_restitution(int argc, char **argv)
                a.target > 0 ? ""
                : rs.housner ? ", Housner's r"
                             : ", the rigid impact's r",
-               RD_CAL_RTOL, sc.contact.kn);
+               a.rtol, sc.contact.kn);
         print_check(&at);
     } else {
-        printf("UNREACHABLE: target r = %.4f; the closest this contact gets is r = %.4f at %s %g: "
-               "%s\n",
-               target, reached, dashpot ? "dashpot ratio" : "restitution", e,
+        printf("UNREACHABLE: target r = %.4f (--rtol %g); the closest this contact gets is "
+               "r = %.4f at %s %g: %s\n",
+               target, a.rtol, reached, dashpot ? "dashpot ratio" : "restitution", e,
                unreachable_why(rc, reached > target, dashpot));
     }
     rd_scenario_free(&sc);

@@ -383,10 +383,10 @@ static int measure_at(const rd_scenario *base, double theta0, double x, rd_resti
 /* Regula falsi (Illinois variant) for r(e) = target inside a bracket [lo, hi] where r - target
  * changes sign (flo, fhi); bisection when a step leaves it. *e, *reached and *at hold the
  * closest measurement so far (the caller's on entry) and are replaced by closer ones. Returns 0
- * once within RD_CAL_RTOL, 2 when RD_CAL_ITER steps do not get there (r(e) too uneven inside
+ * once within rtol, 2 when RD_CAL_ITER steps do not get there (r(e) too uneven inside
  * the bracket: the block slides or bounces), -1 on error. */
-static int refine(const rd_scenario *sc, double theta0, double target, double lo, double hi,
-                  double flo, double fhi, double *e, double *reached, rd_restitution *at,
+static int refine(const rd_scenario *sc, double theta0, double target, double rtol, double lo,
+                  double hi, double flo, double fhi, double *e, double *reached, rd_restitution *at,
                   rd_error *err)
 {
     for (int it = 0; it < RD_CAL_ITER; it++) {
@@ -400,7 +400,7 @@ static int refine(const rd_scenario *sc, double theta0, double target, double lo
             *reached = r;
             *at = m;
         }
-        if (fabs(r - target) < RD_CAL_RTOL) return 0;
+        if (fabs(r - target) < rtol) return 0;
         if ((r - target) * flo > 0) {
             lo = mid;
             flo = r - target;
@@ -417,10 +417,11 @@ static int refine(const rd_scenario *sc, double theta0, double target, double lo
 int rd_restitution_calibrate(const rd_scenario *sc, double theta0, double target, double *e,
                              double *reached, rd_error *err)
 {
-    return rd_restitution_calibrate_grid(sc, theta0, target, NULL, e, reached, NULL, err);
+    return rd_restitution_calibrate_grid(sc, theta0, target, RD_CAL_RTOL, NULL, e, reached, NULL,
+                                         err);
 }
 
-int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double target,
+int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double target, double rtol,
                                   const rd_restitution *grid, double *e, double *reached,
                                   rd_restitution *at, rd_error *err)
 {
@@ -443,7 +444,7 @@ int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double t
         }
         fg[k] = mg[k].r - target;
         if (fabs(fg[k]) < fabs(fg[best])) best = k;
-        if (fabs(fg[k]) < RD_CAL_RTOL) {
+        if (fabs(fg[k]) < rtol) {
             *e = eg[k];
             *reached = mg[k].r;
             *at = mg[k];
@@ -455,7 +456,7 @@ int rd_restitution_calibrate_grid(const rd_scenario *sc, double theta0, double t
     *at = mg[best];
     for (int k = 0; k < RD_CAL_GRID; k++)
         if (fg[k] * fg[k + 1] < 0)
-            return refine(sc, theta0, target, eg[k], eg[k + 1], fg[k], fg[k + 1], e, reached, at,
-                          err);
+            return refine(sc, theta0, target, rtol, eg[k], eg[k + 1], fg[k], fg[k + 1], e, reached,
+                          at, err);
     return 1;
 }

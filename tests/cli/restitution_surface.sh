@@ -3,7 +3,8 @@
 # section 8.6): the surface model has no permanent set, so its impact loss is the joint's
 # dashpot and the calibrator varies the dashpot's ratio (model damping viscous). On the
 # 0.5 x 0.5 x 1.0 m block (h/b = 2, rho 2700; KN 1e10, KS 1e11 Pa/m, 40 deg):
-#  - the calibration reaches r = 0.80 to its specification, 0.002 (RD_CAL_RTOL, issue 11);
+#  - the calibration reaches r = 0.80 to the tolerance asked, --rtol 5e-4 (a quarter of its
+#    default, RD_CAL_RTOL, issue 11's 0.002); a --rtol outside 1e-4 .. 0.002 is refused;
 #  - a free-rocking run of the brick and of the 10 x 10 cut mesh at that ratio, read here from
 #    the run files (amplitude decay of impacts 1-3, rigid energy between impacts), gives 0.80
 #    within 0.002 + 1 % (the issue's tessellation tolerance);
@@ -23,10 +24,18 @@ BRICK="block create brick size 0.5 0.5 1.0 position 0 0 0.5 density 2700 name b"
 MESH="block import mesh 'box_cut10.obj' position 0 0 0.5 density 2700 name b"
 cp "$D/box_cut10.obj" "$T/"
 scene "$T/brick.dat" "$BRICK" ""
-rc=0; "$BIN" restitution "$T/brick.dat" --target 0.8 -q > "$T/cal.txt" 2>&1 || rc=$?
+for bad in 1e-5 0.01 x; do
+    rc=0; "$BIN" restitution "$T/brick.dat" --rtol "$bad" > "$T/bad.txt" 2>&1 || rc=$?
+    if [ "$rc" -eq 2 ] && [ "$(wc -l < "$T/bad.txt")" -eq 1 ] && grep -q -- "--rtol" "$T/bad.txt"; then
+        echo "CHECK rtol-refused-$bad ($(cat "$T/bad.txt"))"
+    else
+        echo "FAIL rtol-refused-$bad: rc=$rc: $(head -n2 "$T/bad.txt")"; fails=$((fails + 1))
+    fi
+done
+rc=0; "$BIN" restitution "$T/brick.dat" --target 0.8 --rtol 5e-4 -q > "$T/cal.txt" 2>&1 || rc=$?
 zeta=$(sed -n 's/^calibrated: model damping viscous \([0-9.]*\) gives r = \([0-9.]*\).*/\1/p' "$T/cal.txt")
 got=$(sed -n 's/^calibrated: model damping viscous \([0-9.]*\) gives r = \([0-9.]*\).*/\2/p' "$T/cal.txt")
-if [ "$rc" -eq 0 ] && [ -n "$zeta" ] && awk -v r="$got" 'BEGIN { exit !(r - 0.8 < 0.002 && 0.8 - r < 0.002) }'; then
+if [ "$rc" -eq 0 ] && [ -n "$zeta" ] && awk -v r="$got" 'BEGIN { exit !(r - 0.8 < 5e-4 && 0.8 - r < 5e-4) }'; then
     echo "CHECK calibrated-0.8 (zeta $zeta, r $got)"
 else
     echo "FAIL calibrated-0.8: rc=$rc: $(grep -m1 -E 'calibrated|UNREACH|restitution:' "$T/cal.txt")"
