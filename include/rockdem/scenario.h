@@ -87,6 +87,7 @@ typedef struct rd_contact_def {
     rd_perturb_def perturb; /* interface perturbation (default: off) */
     int model;              /* RD_CONTACT_VERTEX (default): vertex subcontacts; RD_CONTACT_SURFACE:
                          patches from the touching faces (docs/CONTACT.md section 8) */
+    int model_line;         /* scenario line of `contact model` (0: none, or --set) */
 } rd_contact_def;
 
 /* rd_contact_def.model */

@@ -309,26 +309,50 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     return 0;
 }
 
+/* Where the scene chose the surface model, for messages: "file:line" of `contact model
+ * surface`, or "file (--set contact.model=surface)". */
+static void model_where(const rd_scenario *sc, char *buf, size_t n)
+{
+    if (sc->contact.model_line > 0)
+        snprintf(buf, n, "%s:%d", sc->file, sc->contact.model_line);
+    else
+        snprintf(buf, n, "%s (--set contact.model=surface)", sc->file);
+}
+
 int rd_surface_init(rd_sim *s, rd_error *err)
 {
     s->surf = NULL;
     if (s->sc.contact.model != RD_CONTACT_SURFACE) return 0;
+    char where[RD_PATH_MAX + 48];
+    model_where(&s->sc, where, sizeof where);
     for (int j = 0; j < s->njoint; j++) {
         const rd_joint *jt = &s->joint[j];
-        if (jt->restitution < 1) {
-            rd_error_set(
-                err,
-                "contact model surface: restitution %g is not modelled (its impact loss is the "
-                "joint's dashpot, 'model damping viscous'); give 'contact property restitution 1'",
-                jt->restitution);
-            return -1;
-        }
-        if (jt->cohesion > 0 || jt->tension > 0) {
-            rd_error_set(
-                err,
-                "contact model surface: cohesion and tension are not modelled; give them as 0");
-            return -1;
-        }
+        if (jt->restitution < 1)
+            return rd_error_set(err,
+                                "%s: contact model surface: restitution %g is not modelled (its "
+                                "impact loss is the joint's dashpot, 'model damping viscous'); "
+                                "give 'contact property restitution 1'",
+                                where, jt->restitution);
+        if (jt->cohesion > 0 || jt->tension > 0)
+            return rd_error_set(err,
+                                "%s: contact model surface: cohesion and tension are not "
+                                "modelled; give them as 0",
+                                where);
+    }
+    for (int k = 0; k < s->sc.njoints; k++) { /* the overrides' joints form with their pairs */
+        const rd_joint_def *jd = &s->sc.joint[k];
+        if ((jd->set & RD_JOINT_RESTITUTION) && jd->restitution < 1)
+            return rd_error_set(err,
+                                "%s:%d: contact model surface (%s): restitution %g is not "
+                                "modelled (its impact loss is the joint's dashpot, 'damping'); "
+                                "give 'restitution 1'",
+                                s->sc.file, jd->line, where, jd->restitution);
+        if (((jd->set & RD_JOINT_COHESION) && jd->cohesion > 0) ||
+            ((jd->set & RD_JOINT_TENSION) && jd->tension > 0))
+            return rd_error_set(err,
+                                "%s:%d: contact model surface (%s): cohesion and tension are not "
+                                "modelled; give them as 0",
+                                s->sc.file, jd->line, where);
     }
     struct rd_surface *S = calloc(1, sizeof *S);
     if (!S) {

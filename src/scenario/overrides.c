@@ -232,6 +232,7 @@ static int set_model(const setter *S)
         return serr(S, "expected vertex or surface, got '%s'", S->value);
     S->sc->contact.model =
         strcasecmp(S->value, "surface") == 0 ? RD_CONTACT_SURFACE : RD_CONTACT_VERTEX;
+    S->sc->contact.model_line = 0;
     return 0;
 }
 

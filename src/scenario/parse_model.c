@@ -308,5 +308,6 @@ int contact_model(parser *P)
     int k = one_keyword(P, names);
     if (k < 0 || command_once(P)) return -1;
     P->sc->contact.model = k == 1 ? RD_CONTACT_SURFACE : RD_CONTACT_VERTEX;
+    P->sc->contact.model_line = verb_token(P)->line;
     return 0;
 }

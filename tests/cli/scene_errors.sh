@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Scene-control commands (issue 15) refuse bad input with one line naming file, line and
-# problem: joint ranges, histories and checkpoints.
+# problem: joint ranges, histories, checkpoints and what the surface model cannot model.
 set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}
 fails=0
@@ -23,4 +23,10 @@ expect history-joint "e.dat:4:19: a joint needs two different blocks" "history j
 expect restore-missing "model restore: cannot open '$T/none.h5'" "model restore '$T/none.h5'"
 expect save-and-restore "'model save' and 'model restore' in one scenario" "model save 'a.h5'
 model restore 'a.h5'"
+expect surface-restitution "e.dat:4: contact model surface: restitution 0 is not modelled" "contact model surface"
+expect surface-cohesion "e.dat:4: contact model surface: cohesion and tension are not modelled" "contact model surface
+contact property restitution 1 cohesion 1e5"
+expect surface-range-restitution "$T/e.dat:6: contact model surface ($T/e.dat:5): restitution 0.3 is not modelled" "contact property restitution 1
+contact model surface
+contact property restitution 0.3 range group 'rock'"
 [ "$fails" -eq 0 ]
