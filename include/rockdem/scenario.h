@@ -67,6 +67,7 @@ typedef struct rd_perturb_def {
     double scatter;        /* c.o.v. of a mean-1 lognormal factor on each point's area, so on
                               its normal and shear stiffness (default 0) */
     int keep_corners;      /* 1: the corners of each contact face are never removed (default 0) */
+    int line; /* scenario line of the last `contact interface-perturbation` (0: none) */
 } rd_perturb_def;
 
 /* Contact law: 3DEC Coulomb-slip joint (seed 002 eqs. 1-2), one property set for all pairs. */

@@ -52,9 +52,10 @@ typedef struct rd_sweep_plan {
     char body[RD_SWEEP_BODIES][RD_NAME_MAX];
     int nfences; /* fences of the scenario (`model fence`) */
     char fence[RD_MAX_FENCES][RD_NAME_MAX];
-    int pulse;            /* 1: the scenario's horizontal motion is a pulse (no records) */
-    double amplitude;     /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
-    int perturbed;        /* 1: the scenario's interface perturbation removes, raises or scatters */
+    int pulse;        /* 1: the scenario's horizontal motion is a pulse (no records) */
+    double amplitude; /* the pulse's amplitude as parsed, m/s^2 (factor scales) */
+    int perturbed;    /* 1: the scenario's interface perturbation removes, raises or scatters */
+    int surface;      /* 1: the scenario's `contact model surface` (it has no points to perturb) */
     const char *keep_dir; /* --keep-runs DIR: each case's HDF5 file there; NULL: no file */
     int full;             /* --full: every case runs to its end (no quiet end: sc.quiet_stop 0) */
 } rd_sweep_plan;

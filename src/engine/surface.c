@@ -27,8 +27,8 @@
  * Impact loss: the joint's normal dashpot (`model damping viscous` or a joint's damping), a
  * pressure c_a dd/dt with c_a = 2 zeta KN sqrt(m_eff / K_active), integrated implicitly
  * (engine/dashpot.c: it does not shorten the step); the permanent set of the vertex model
- * (`restitution` < 1) has no patch form and is refused, as are cohesion and tension, and two
- * non-convex bodies that may touch.
+ * (`restitution` < 1) has no patch form and is refused, as are cohesion, tension and the
+ * interface perturbation of the vertex model's points (rd_surface_init).
  * Folder engine/ owns the simulation (bodies, contacts, stepping, monitors); it may call base/,
  * contact/, geometry/, records/ and scenario/ (validate, copy, free), never io/ or cli/.
  */
@@ -338,6 +338,19 @@ int rd_surface_init(rd_sim *s, rd_error *err)
                                 "%s: contact model surface: cohesion and tension are not "
                                 "modelled; give them as 0",
                                 where);
+    }
+    const rd_perturb_def *pd = &s->sc.contact.perturb;
+    if (pd->seed != 0 && (pd->remove > 0 || pd->raise > 0 || pd->scatter > 0)) {
+        char at[RD_PATH_MAX + 48];
+        if (pd->line > 0)
+            snprintf(at, sizeof at, "%s:%d", s->sc.file, pd->line);
+        else
+            snprintf(at, sizeof at, "%s (--set contact.interface-*)", s->sc.file);
+        return rd_error_set(err,
+                            "%s: contact model surface (%s): contact interface-perturbation is not "
+                            "modelled (it perturbs the vertex model's subcontact points); leave it "
+                            "out or give 'contact model vertex'",
+                            at, where);
     }
     for (int k = 0; k < s->sc.njoints; k++) { /* the overrides' joints form with their pairs */
         const rd_joint_def *jd = &s->sc.joint[k];

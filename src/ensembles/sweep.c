@@ -283,6 +283,7 @@ static int inspect_base(rd_sweep_plan *p, rd_error *err)
     p->amplitude = sc.motion.horizontal.amplitude;
     const rd_perturb_def *d = &sc.contact.perturb;
     p->perturbed = d->remove > 0 || d->raise > 0 || d->scatter > 0;
+    p->surface = sc.contact.model == RD_CONTACT_SURFACE;
     rd_scenario_free(&sc);
     return rc;
 }
@@ -299,6 +300,9 @@ static int check_values(const rd_sweep_plan *p, rd_error *err)
             return fail(err,
                         "--axis interface: the scenario has no 'contact interface-perturbation' "
                         "with remove, raise or scatter; every seed would be the same interface");
+        if (x->kind == RD_AXIS_INTERFACE && p->surface)
+            return fail(err, "--axis interface: the scenario's contact model surface has no "
+                             "subcontact points to perturb (give 'contact model vertex')");
         for (int v = 0; v < x->n; v++) {
             rd_scenario sc;
             rd_error e;

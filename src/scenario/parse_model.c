@@ -269,6 +269,7 @@ int contact_perturbation(parser *P)
     const token *kw;
     unsigned seen = 0;
     int k;
+    d->line = verb_token(P)->line;
     while ((k = next_keyword(P, names, &seen, &kw)) >= 0) {
         double *v[] = { &d->seed, &d->remove, &d->raise, &d->raise_fraction, &d->scatter };
         if (keyword_once(P, kw, names[k])) return -1;

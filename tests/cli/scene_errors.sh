@@ -29,4 +29,15 @@ contact property restitution 1 cohesion 1e5"
 expect surface-range-restitution "$T/e.dat:6: contact model surface ($T/e.dat:5): restitution 0.3 is not modelled" "contact property restitution 1
 contact model surface
 contact property restitution 0.3 range group 'rock'"
+expect surface-perturbation "$T/e.dat:6: contact model surface ($T/e.dat:5): contact interface-perturbation is not modelled" "contact property restitution 1
+contact model surface
+contact interface-perturbation seed 2 remove 0.3"
+# the same perturbation from --set: the file, no line
+printf "block create brick size 2 2 0.5 position 0 0 -0.25 fixed name base\nblock create brick size 0.4 0.4 1.6 seat-on base name b\nmodel solve time 0.01\n" > "$T/p.dat"
+out=$("$BIN" run "$T/p.dat" -o "$T/p.h5" --set contact.model=surface --set contact.restitution=1 \
+    --set contact.interface-seed=2 --set contact.interface-scatter=0.3 2>&1 >/dev/null)
+case $out in
+"$T/p.dat (--set contact.interface-*): contact model surface ($T/p.dat (--set contact.model=surface)): contact interface-perturbation is not modelled"*) ;;
+*) echo "FAIL surface-perturbation-set: $out"; fails=$((fails + 1)) ;;
+esac
 [ "$fails" -eq 0 ]

@@ -63,6 +63,8 @@ check --directions 0,north && grep -q "direction in degrees" "$T/err"
 check --scales 0.5g -j 0 && grep -q "\-j expects" "$T/err"
 [ ! -e "$T/bad.h5" ]
 check --axis interface=3 && grep -q "no 'contact interface-perturbation'" "$T/err"
+check --set contact.model=surface --set contact.restitution=1 --set contact.interface-remove=0.5 --axis interface=3 &&
+    grep -q "contact model surface has no subcontact points to perturb" "$T/err"
 # an interface sweep: 3 seeds of a perturbed bed
 "$BIN" sweep "$S" --set contact.spacing=0.1 --set contact.interface-remove=0.5 --set contact.interface-scatter=0.3 \
     --scales 1.0g --axis interface=3 -j 2 -q -o "$T/iface.h5"
