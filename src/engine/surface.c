@@ -309,22 +309,24 @@ static int body_planes(const rd_poly *P, surf_body *B, rd_error *err, const char
     return 0;
 }
 
-/* Where the scene chose the surface model, for messages: "file:line" of `contact model
- * surface`, or "file (--set contact.model=surface)". */
-static void model_where(const rd_scenario *sc, char *buf, size_t n)
+/* A scenario place for messages: "file:line", or "file (--set KEY)" for line 0. */
+static void scene_where(const rd_scenario *sc, int line, const char *key, char *buf, size_t n)
 {
-    if (sc->contact.model_line > 0)
-        snprintf(buf, n, "%s:%d", sc->file, sc->contact.model_line);
+    if (line > 0)
+        snprintf(buf, n, "%s:%d", sc->file, line);
     else
-        snprintf(buf, n, "%s (--set contact.model=surface)", sc->file);
+        snprintf(buf, n, "%s (--set %s)", sc->file, key);
 }
 
-int rd_surface_init(rd_sim *s, rd_error *err)
+/* What the surface model does not model, refused with one line naming where the scene asks for
+ * it and where it chose the model: the permanent set (restitution < 1), cohesion and tension of
+ * the scene's joints and of the range overrides (whose joints form later, with their pairs), and
+ * the interface perturbation of the vertex model's points. */
+static int refuse_unmodelled(const rd_sim *s, rd_error *err)
 {
-    s->surf = NULL;
-    if (s->sc.contact.model != RD_CONTACT_SURFACE) return 0;
-    char where[RD_PATH_MAX + 48];
-    model_where(&s->sc, where, sizeof where);
+    const rd_scenario *sc = &s->sc;
+    char where[RD_PATH_MAX + 48], at[RD_PATH_MAX + 48];
+    scene_where(sc, sc->contact.model_line, "contact.model=surface", where, sizeof where);
     for (int j = 0; j < s->njoint; j++) {
         const rd_joint *jt = &s->joint[j];
         if (jt->restitution < 1)
@@ -339,34 +341,38 @@ int rd_surface_init(rd_sim *s, rd_error *err)
                                 "modelled; give them as 0",
                                 where);
     }
-    const rd_perturb_def *pd = &s->sc.contact.perturb;
+    const rd_perturb_def *pd = &sc->contact.perturb;
     if (pd->seed != 0 && (pd->remove > 0 || pd->raise > 0 || pd->scatter > 0)) {
-        char at[RD_PATH_MAX + 48];
-        if (pd->line > 0)
-            snprintf(at, sizeof at, "%s:%d", s->sc.file, pd->line);
-        else
-            snprintf(at, sizeof at, "%s (--set contact.interface-*)", s->sc.file);
+        scene_where(sc, pd->line, "contact.interface-*", at, sizeof at);
         return rd_error_set(err,
                             "%s: contact model surface (%s): contact interface-perturbation is not "
                             "modelled (it perturbs the vertex model's subcontact points); leave it "
                             "out or give 'contact model vertex'",
                             at, where);
     }
-    for (int k = 0; k < s->sc.njoints; k++) { /* the overrides' joints form with their pairs */
-        const rd_joint_def *jd = &s->sc.joint[k];
+    for (int k = 0; k < sc->njoints; k++) {
+        const rd_joint_def *jd = &sc->joint[k];
         if ((jd->set & RD_JOINT_RESTITUTION) && jd->restitution < 1)
             return rd_error_set(err,
                                 "%s:%d: contact model surface (%s): restitution %g is not "
                                 "modelled (its impact loss is the joint's dashpot, 'damping'); "
                                 "give 'restitution 1'",
-                                s->sc.file, jd->line, where, jd->restitution);
+                                sc->file, jd->line, where, jd->restitution);
         if (((jd->set & RD_JOINT_COHESION) && jd->cohesion > 0) ||
             ((jd->set & RD_JOINT_TENSION) && jd->tension > 0))
             return rd_error_set(err,
                                 "%s:%d: contact model surface (%s): cohesion and tension are not "
                                 "modelled; give them as 0",
-                                s->sc.file, jd->line, where);
+                                sc->file, jd->line, where);
     }
+    return 0;
+}
+
+int rd_surface_init(rd_sim *s, rd_error *err)
+{
+    s->surf = NULL;
+    if (s->sc.contact.model != RD_CONTACT_SURFACE) return 0;
+    if (refuse_unmodelled(s, err)) return -1;
     struct rd_surface *S = calloc(1, sizeof *S);
     if (!S) {
         rd_error_set(err, "out of memory");
