@@ -295,6 +295,11 @@ static rd_sim *placed(const rd_scenario *sc, rd_error *err)
         rd_error_set(err, "out of memory");
         return NULL;
     }
+    if (s->status != RD_STATUS_DONE) { /* a pair the contact model cannot make (pairs.c) */
+        rd_error_set(err, "%s: %s", sc->file, s->errmsg);
+        rd_sim_free(s);
+        return NULL;
+    }
     s->settling = 0;
     return s;
 }

@@ -37,6 +37,7 @@
 #include "base/vec.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
@@ -344,6 +345,23 @@ static int pair_live(rd_sim *s, int i, int j)
     return boxes_overlap(s->aabb[i], s->aabb[j]);
 }
 
+/* Bodies a and b within reach of each other, neither with points the vertex model can test
+ * against the other (two non-convex bodies, or a body with no subcontact points against a
+ * non-convex one): the vertex model cannot make their contact, and carrying on would let one
+ * fall through the other. The run stops with an error (status error, one line); 0. */
+static int unmodelled(rd_sim *s, int a, int b)
+{
+    if (s->status != RD_STATUS_DONE) return 0; /* the first error stands */
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "blocks '%s' and '%s' are within reach of each other at t = %.6g s, and the vertex "
+             "contact model cannot touch them (its subcontact points bear only on a convex body, "
+             "and neither is convex with points on the other): give 'contact model surface' "
+             "(docs/CONTACT.md section 8.5)",
+             s->sc.bodies[a].name, s->sc.bodies[b].name, s->t);
+    s->status = RD_STATUS_ERROR;
+    return 0;
+}
+
 /* Mark pair (a < b) live this step, p its slot (hash_find's answer), creating it on first
  * contact. 0, or -1 out of memory. */
 static int touch_found(rd_sim *s, int a, int b, int p)
@@ -354,7 +372,7 @@ static int touch_found(rd_sim *s, int a, int b, int p)
         /* the surface model takes any pair (surface.c: a non-convex body's planes against a
            convex partner, a rock on a terrain mesh; two meshes face against face), with no
            subcontact points; the vertex model cannot touch two meshes */
-        if (!pa && !pb && s->sc.contact.model != RD_CONTACT_SURFACE) return 0;
+        if (!pa && !pb && s->sc.contact.model != RD_CONTACT_SURFACE) return unmodelled(s, a, b);
         if ((p = pair_create(s, a, b)) < 0) return -1;
     }
     s->pair[p].seen = s->stamp;

@@ -2,9 +2,10 @@
 # Mesh against mesh in the surface contact model (issue 39, items 2-4; docs/CONTACT.md section
 # 8.5): an L-shaped prism rocking and sliding on an L-shaped fixed prism, and on a free one, under
 # a 1.2 g 2 Hz one-sine. Each run must end done (no body passed into another), move (the block
-# rocks: max tilt above 1e-3 rad), and keep its energy residual below the issue's 1e-3. On main
-# the vertex model never paired two meshes (the block fell through: status lost) and the surface
-# model refused them ("are both non-convex").
+# rocks: max tilt above 1e-3 rad), and keep its energy residual below the issue's 1e-3. The
+# vertex model cannot pair two meshes (before, the block fell through: status lost, and `check`
+# said ok): `check` and `run` refuse a pair within reach at the start, and a run stops with one
+# line when two meshes come within reach later (the toppling column), naming both blocks.
 set -u
 BIN=${RD_BIN:-bin/rockdem}; T=${RD_TMP:-$(mktemp -d)}/surface_mesh; rm -rf "$T"; mkdir -p "$T"
 D=$(cd "$(dirname "$0")/../data/mesh" && pwd)
@@ -37,4 +38,20 @@ if awk -v t="${tb:-0}" 'BEGIN { exit !(t > 1e-3) }'; then echo "CHECK topple-str
 else echo "FAIL topple-strikes-neighbour: max tilt '$tb' rad"; fails=$((fails + 1)); fi
 if awk -v r="${res:-1}" 'BEGIN { exit !(r < 1e-3) }'; then echo "CHECK topple-energy (residual $res, tol 1e-3)"
 else echo "XFAIL: energy residual of a toppling mesh column striking a mesh gap=$res tol=1e-3"; fi
+# the vertex model: one line naming the pair, exit 2 from check, 3 from run
+vertex=(--set contact.model=vertex --set contact.restitution=0)
+want="blocks 'base' and 'block' are within reach of each other at t = 0 s, and the vertex contact model cannot touch them"
+rc=0; "$BIN" check "$T/L_on_L.dat" "${vertex[@]}" > /dev/null 2> "$T/v_check.err" || rc=$?
+if [ "$rc" -eq 2 ] && [ "$(wc -l < "$T/v_check.err")" -eq 1 ] && grep -qF "$T/L_on_L.dat: $want" "$T/v_check.err"; then
+    echo "CHECK vertex-check-refuses"
+else echo "FAIL vertex-check-refuses: rc=$rc: $(cat "$T/v_check.err")"; fails=$((fails + 1)); fi
+rc=0; "$BIN" run "$T/L_on_L.dat" "${vertex[@]}" -o "$T/v.h5" > /dev/null 2> "$T/v_run.err" || rc=$?
+if [ "$rc" -eq 3 ] && [ "$(wc -l < "$T/v_run.err")" -eq 1 ] && grep -qF "$want" "$T/v_run.err"; then
+    echo "CHECK vertex-run-refuses"
+else echo "FAIL vertex-run-refuses: rc=$rc: $(cat "$T/v_run.err")"; fails=$((fails + 1)); fi
+rc=0; "$BIN" run "$T/topple.dat" "${vertex[@]}" -o "$T/vt.h5" > "$T/vt.txt" 2> "$T/vt.err" || rc=$?
+if [ "$rc" -eq 3 ] && grep -q "^run: status error" "$T/vt.txt" &&
+    grep -qE "blocks 'a' and 'b' are within reach of each other at t = 0\.[0-9]+ s" "$T/vt.err"; then
+    echo "CHECK vertex-topple-stops ($(grep -o 't = [0-9.]* s' "$T/vt.err" | head -n1))"
+else echo "FAIL vertex-topple-stops: rc=$rc: $(cat "$T/vt.err")"; fails=$((fails + 1)); fi
 [ "$fails" -eq 0 ]
