@@ -29,7 +29,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RD_FALLEN_TILT (85.0 * M_PI / 180.0) /* past this, a run may stop: the body is down */
+#define RD_FALLEN_TILT     (85.0 * M_PI / 180.0)  /* past this, a run may stop: the body is down */
+#define RD_UNSEEN_FRACTION (10 * RD_CONTACT_BAND) /* of the smaller radius: overlap.c's limit */
 #define RD_ROCK_MIN                                                                                \
     1e-3 /* rocking amplitudes below this fraction of alpha are noise, not impacts */
 
@@ -452,8 +453,15 @@ static void fell_over(rd_sim *s, int k)
  * left if it never met the criterion), gets a "lost" event, and the run goes on. Only a body
  * that never bore on anything (placed beside its pad) or that left while settling stops the
  * run. Called every few steps, while settling too. Returns 1 when the run must stop. */
-/* Body i has passed into convex body j (how: the evidence, for the message): one error, 1. */
-static int passed_into(rd_sim *s, int i, int j, const char *stage, const char *how)
+/* The usual causes of a body passing into another, for passed_into's message. */
+static const char *const RD_SOFT_OR_EDGES =
+    "the contact stiffness is far too soft for the load, or the bodies crossed edge to edge "
+    "between subcontact points (give their faces a finer spacing)";
+
+/* Body i has passed into convex body j (how: the evidence, cause: its likely causes, for the
+ * message): one error, 1. */
+static int passed_into(rd_sim *s, int i, int j, const char *stage, const char *how,
+                       const char *cause)
 {
     int k = s->free_of[i];
     if (k >= 0 && s->watch[k].over_once) {
@@ -468,13 +476,11 @@ static int passed_into(rd_sim *s, int i, int j, const char *stage, const char *h
         s->status = RD_STATUS_OVERTURNED;
         return 1;
     }
-    snprintf(
-        s->errmsg, sizeof s->errmsg,
-        "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): %s: the "
-        "contact stiffness (stiffness-normal %g Pa/m) is far too soft for the load, or the bodies crossed "
-        "edge to edge between subcontact points (give their faces a finer spacing)",
-        s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t, s->nsteps_all, how,
-        s->sc.contact.kn);
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "body '%s' passed into body '%s'%s at t = %.6g s (step %ld): %s (stiffness-normal %g "
+             "Pa/m): %s",
+             s->sc.bodies[i].name, s->sc.bodies[j].name, stage, s->t, s->nsteps_all, how,
+             s->sc.contact.kn, cause);
     s->status = RD_STATUS_PENETRATED;
     return 1;
 }
@@ -485,7 +491,7 @@ static int passed_into(rd_sim *s, int i, int j, const char *stage, const char *h
 static int penetrated(rd_sim *s, int i, int j, const char *stage)
 {
     if (s->fixed[i] || !s->convex[j] || !inside_convex(s, j, s->x[i])) return 0;
-    return passed_into(s, i, j, stage, "its centre of mass is inside it");
+    return passed_into(s, i, j, stage, "its centre of mass is inside it", RD_SOFT_OR_EDGES);
 }
 
 /* A bearing subcontact point of side sd deeper in the other (convex) body than that body's
@@ -509,7 +515,54 @@ static int sunk(rd_sim *s, const rd_side *sd, const char *stage)
              "a subcontact point of '%s' is %.3g m deep in it, past its middle (%.3g m from its "
              "centre of mass to its nearest face)",
              s->sc.bodies[o].name, deepest, r);
-    return passed_into(s, o, t, stage, how);
+    return passed_into(s, o, t, stage, how, RD_SOFT_OR_EDGES);
+}
+
+/* The deepest hull vertex of body o inside convex body t, m (<= 0: none inside), from o's pose
+ * (a free mesh's stored hull positions may be a step old: pairs.c). */
+static double hull_depth(const rd_sim *s, int o, int t)
+{
+    const double(*wn)[3] = s->wn + s->face0[t];
+    const double *wd = s->wd + s->face0[t];
+    const int nf = s->poly[t].nf;
+    double deepest = -INFINITY;
+    for (int e = s->hv0[o]; e < s->hv0[o + 1]; e++) {
+        double w[3];
+        rd_mat_vec(s->R[o], s->poly[o].v[s->hv[e] - s->vert0[o]], w);
+        rd_axpy(1.0, s->x[o], w);
+        double depth = INFINITY; /* below every plane of t by at least this */
+        for (int f = 0; f < nf && depth > deepest; f++)
+            depth = fmin(depth, wd[f] - rd_dot(wn[f], w));
+        deepest = fmax(deepest, depth);
+    }
+    return deepest;
+}
+
+/* A mesh's face that carries no subcontact points (its points lie on the faces that touch at
+ * the start or face down near its base: setup.c face_role) meets a convex body unseen: a
+ * scanned rock tipped towards a wall passed 422 of its 1,986 vertices into it, and the run
+ * ended "OVERTURNED". A hull vertex of mesh o deeper in convex t than 1 % of the smaller
+ * radius (the depth a run accepts at rest, overlap.c) and than every bearing point of the side
+ * by more than the contact band is not held by the law: one error, 1. */
+static int unseen(rd_sim *s, const rd_side *sd, const char *stage)
+{
+    const int o = sd->owner, t = sd->other;
+    if (s->surf || s->convex[o] || !s->convex[t]) return 0; /* (the surface model: every face) */
+    double bearing = 0; /* the side's deepest bearing point, m */
+    for (int pt = s->pt0[o], st = sd->state0; pt < s->pt0[o + 1]; pt++, st++)
+        if (s->pstate[st] & RD_PT_ACTIVE) bearing = fmax(bearing, -s->pj[st][1]);
+    const double r = fmin(s->poly[o].radius, s->poly[t].radius);
+    const double most = fmax(RD_UNSEEN_FRACTION * r, bearing + RD_CONTACT_BAND * r);
+    const double deepest = hull_depth(s, o, t);
+    if (!(deepest > most)) return 0;
+    char how[RD_NAME_MAX + 160];
+    snprintf(how, sizeof how,
+             "a vertex of '%s' is %.3g m deep in it, deeper than its bearing points (%.3g m)",
+             s->sc.bodies[o].name, deepest, bearing);
+    return passed_into(s, o, t, stage, how,
+                       "a face of the mesh that carries no subcontact points met it (the vertex "
+                       "model puts points on the faces that touch at the start or face down near "
+                       "the base): give 'contact model surface'");
 }
 
 int rd_monitor_escape(rd_sim *s)
@@ -541,7 +594,7 @@ int rd_monitor_escape(rd_sim *s)
         const rd_pair *p = &s->pair[s->live[l]];
         if (penetrated(s, p->a, p->b, stage) || penetrated(s, p->b, p->a, stage)) return 1;
         for (int q = 0; q < p->nside; q++)
-            if (sunk(s, &p->side[q], stage)) return 1;
+            if (sunk(s, &p->side[q], stage) || unseen(s, &p->side[q], stage)) return 1;
     }
     return 0;
 }
