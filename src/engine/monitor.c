@@ -522,18 +522,12 @@ static int sunk(rd_sim *s, const rd_side *sd, const char *stage)
  * (a free mesh's stored hull positions may be a step old: pairs.c). */
 static double hull_depth(const rd_sim *s, int o, int t)
 {
-    const double(*wn)[3] = s->wn + s->face0[t];
-    const double *wd = s->wd + s->face0[t];
-    const int nf = s->poly[t].nf;
     double deepest = -INFINITY;
     for (int e = s->hv0[o]; e < s->hv0[o + 1]; e++) {
         double w[3];
         rd_mat_vec(s->R[o], s->poly[o].v[s->hv[e] - s->vert0[o]], w);
         rd_axpy(1.0, s->x[o], w);
-        double depth = INFINITY; /* below every plane of t by at least this */
-        for (int f = 0; f < nf && depth > deepest; f++)
-            depth = fmin(depth, wd[f] - rd_dot(wn[f], w));
-        deepest = fmax(deepest, depth);
+        deepest = fmax(deepest, rd_overlap_point_depth(s, t, w, deepest));
     }
     return deepest;
 }

@@ -19,19 +19,22 @@
 #include <math.h>
 #include <stdio.h>
 
+double rd_overlap_point_depth(const rd_sim *s, int t, const double w[3], double stop)
+{
+    const double(*wn)[3] = s->wn + s->face0[t];
+    const double *wd = s->wd + s->face0[t];
+    double depth = INFINITY; /* below every plane of t by at least this */
+    for (int f = 0; f < s->poly[t].nf && depth > stop; f++)
+        depth = fmin(depth, wd[f] - rd_dot(wn[f], w));
+    return depth;
+}
+
 /* The deepest vertex of body i inside convex body j, m (<= 0: none inside). */
 static double vertex_depth(const rd_sim *s, int i, int j)
 {
-    const double(*wn)[3] = s->wn + s->face0[j];
-    const double *wd = s->wd + s->face0[j];
-    const int nf = s->poly[j].nf;
     double deepest = -INFINITY;
-    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++) {
-        double depth = INFINITY; /* below every plane of j by at least this */
-        for (int f = 0; f < nf && depth > deepest; f++)
-            depth = fmin(depth, wd[f] - rd_dot(wn[f], s->wv[v]));
-        deepest = fmax(deepest, depth);
-    }
+    for (int v = s->vert0[i]; v < s->vert0[i + 1]; v++)
+        deepest = fmax(deepest, rd_overlap_point_depth(s, j, s->wv[v], deepest));
     return deepest;
 }
 

@@ -589,6 +589,9 @@ rd_sim *rd_sim_build_as_placed(const rd_scenario *sc, rd_error *err);
 #define RD_PARALLEL_SIN 1e-9 /* two unit directions closer than this sine are parallel */
 /* How deep bodies i and j overlap as placed, m (0: apart or touching). */
 double rd_overlap_depth(const rd_sim *s, int i, int j);
+/* How far point w (ground frame, m) lies below every face plane of convex body t, m (<= 0:
+ * outside), known only to be at most stop once it is (engine/overlap.c). */
+double rd_overlap_point_depth(const rd_sim *s, int t, const double w[3], double stop);
 /* Note the overlap of touching bodies i and j as placed, if deeper than any noted before. */
 void rd_overlap_note(rd_sim *s, int i, int j);
 /* -1 with err naming the deepest overlap noted, else 0. */
